@@ -1,0 +1,31 @@
+# `make demo` and `make test` do the whole set-up on a fresh Debian 12 machine.
+BUILD_DIR ?= build
+JOBS ?= $(shell nproc)
+DEMO_OUT ?= out/demo
+APERTURE := $(BUILD_DIR)/apps/aperture
+
+.PHONY: all deps configure build test demo bench clean
+
+all: build
+
+deps:
+	@scripts/install-deps.sh
+
+configure: deps
+	@cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+
+build: configure
+	@cmake --build $(BUILD_DIR) -j $(JOBS)
+
+test: build
+	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+
+demo: build
+	@scripts/demo.sh $(APERTURE) $(DEMO_OUT)
+
+bench: configure
+	@cmake --build $(BUILD_DIR) -j $(JOBS) --target bench
+	@for b in $(BUILD_DIR)/tests/*_bench; do echo "== $$b"; $$b --benchmark_min_time=0.2 || exit 1; done
+
+clean:
+	rm -rf $(BUILD_DIR)

@@ -1,0 +1,16 @@
+#pragma once
+// Subcommands of the `aperture` executable. Each Add*Command registers its CLI11 subcommand and
+// stores its exit code in *exit_code when it runs. Apps stay thin (STYLE.md 10): parse, build
+// library objects, run, report.
+#include <CLI/CLI.hpp>
+
+namespace aperture::apps {
+
+void AddRunCommand(CLI::App& app, int* exit_code);
+void AddSimCommand(CLI::App& app, int* exit_code);
+void AddRenderCommand(CLI::App& app, int* exit_code);
+void AddBenchCommand(CLI::App& app, int* exit_code);
+void AddCalibrateCommand(CLI::App& app, int* exit_code);
+void AddVersionCommand(CLI::App& app, int* exit_code);
+
+}  // namespace aperture::apps

@@ -1,0 +1,33 @@
+// aperture: perception-centric quadrotor autonomy. See README.md for the commands.
+#include <iostream>
+
+#include "apps/commands.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"aperture: perception-centric quadrotor autonomy (run | sim | render | bench | "
+               "calibrate | version)"};
+  app.require_subcommand(1);
+  int exit_code = 0;
+  aperture::apps::AddRunCommand(app, &exit_code);
+  aperture::apps::AddSimCommand(app, &exit_code);
+  aperture::apps::AddRenderCommand(app, &exit_code);
+  aperture::apps::AddBenchCommand(app, &exit_code);
+  aperture::apps::AddCalibrateCommand(app, &exit_code);
+  aperture::apps::AddVersionCommand(app, &exit_code);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    // Unknown flags and bad values: the message, a pointer to --help, and exit code 2.
+    std::cerr << "aperture: " << e.what() << "\n"
+              << "Run 'aperture --help' or 'aperture <command> --help' for usage.\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "aperture: error: " << e.what() << "\n";
+    return 1;
+  }
+  return exit_code;
+}

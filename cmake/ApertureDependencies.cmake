@@ -1,0 +1,15 @@
+# Every package here comes from Debian 12 (scripts/install-deps.sh installs them).
+find_package(Eigen3 3.4 REQUIRED NO_MODULE)
+find_package(OpenCV 4 REQUIRED COMPONENTS core imgproc imgcodecs videoio calib3d features2d video)
+find_package(TBB REQUIRED)
+find_package(yaml-cpp REQUIRED)
+find_package(nlohmann_json 3 REQUIRED)
+find_package(CLI11 REQUIRED)
+find_package(NLopt REQUIRED)
+find_package(GTest REQUIRED)
+find_package(benchmark REQUIRED)
+
+set(APERTURE_OPENCV_CORE opencv_core opencv_imgproc opencv_imgcodecs)
+set(APERTURE_OPENCV_ALL opencv_core opencv_imgproc opencv_imgcodecs opencv_videoio opencv_calib3d
+    opencv_features2d opencv_video)
+# yaml-cpp 0.7 on Debian exports the plain target name `yaml-cpp`.

@@ -1,0 +1,38 @@
+# aperture_add_module(<folder> DEPS <targets...>)
+# One library per top-level folder (STYLE.md 5): sources are the folder's *.cc files, the include
+# root is the project root (#include "perception/camera/pinhole_camera.h"), the alias is
+# aperture::<folder>. A folder without sources yet is an INTERFACE target so the layering holds.
+function(aperture_add_module name)
+  cmake_parse_arguments(ARG "" "" "DEPS" ${ARGN})
+  file(GLOB_RECURSE sources CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/${name}/*.cc)
+  set(target aperture_${name})
+  if(sources)
+    add_library(${target} STATIC ${sources})
+    target_include_directories(${target} PUBLIC ${PROJECT_SOURCE_DIR})
+    target_link_libraries(${target} PUBLIC ${ARG_DEPS})
+    target_compile_options(${target} PRIVATE -Wall -Wextra)
+  else()
+    add_library(${target} INTERFACE)
+    target_include_directories(${target} INTERFACE ${PROJECT_SOURCE_DIR})
+    target_link_libraries(${target} INTERFACE ${ARG_DEPS})
+  endif()
+  add_library(aperture::${name} ALIAS ${target})
+endfunction()
+
+# aperture_add_test_suite(<folder> DEPS <targets...>)
+# tests/<folder>/*_test.cc become one GoogleTest executable registered with ctest.
+function(aperture_add_test_suite name)
+  cmake_parse_arguments(ARG "" "" "DEPS" ${ARGN})
+  file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/${name}/*_test.cc)
+  if(NOT sources)
+    return()
+  endif()
+  set(target aperture_${name}_tests)
+  add_executable(${target} ${sources})
+  target_link_libraries(${target} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gmock GTest::gtest_main)
+  target_compile_options(${target} PRIVATE -Wall -Wextra)
+  target_compile_definitions(${target} PRIVATE
+      APERTURE_TEST_DATA_DIR="${CMAKE_CURRENT_SOURCE_DIR}/data"
+      APERTURE_BINARY="$<TARGET_FILE:aperture>")
+  gtest_discover_tests(${target} DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 600)
+endfunction()

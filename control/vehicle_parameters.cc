@@ -1,0 +1,76 @@
+#include "control/vehicle_parameters.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace aperture::control {
+namespace {
+
+double EvaluateQuadratic(const Eigen::Vector3d& k, double u) { return (k[2] * u + k[1]) * u + k[0]; }
+
+void RequirePositive(double value, const std::string& field) {
+  if (!(std::isfinite(value) && value > 0.0)) {
+    throw std::invalid_argument("vehicle parameter '" + field + "' must be finite and > 0, got " +
+                                std::to_string(value));
+  }
+}
+
+}  // namespace
+
+double RotorParameters::ThrustFromCommand(double u) const {
+  return EvaluateQuadratic(thrust_coeffs_N, u);
+}
+
+double RotorParameters::DragTorqueFromCommand(double u) const {
+  return EvaluateQuadratic(torque_coeffs_Nm, u);
+}
+
+double RotorParameters::CommandFromThrust(double f_N) const {
+  const double f = std::clamp(f_N, MinThrust(), MaxThrust());
+  const double k0 = thrust_coeffs_N[0], k1 = thrust_coeffs_N[1], k2 = thrust_coeffs_N[2];
+  if (std::abs(k2) < 1e-12) return (f - k0) / k1;
+  // Rising root of k2 u^2 + k1 u + (k0 - f) = 0, the argument of tau in (G.5).
+  const double discriminant = std::max(0.0, k1 * k1 - 4.0 * k2 * (k0 - f));
+  return std::clamp((-k1 + std::sqrt(discriminant)) / (2.0 * k2), command_min, command_max);
+}
+
+double RotorParameters::TorqueCoefficient(double f_N) const {
+  const double f = std::max(f_N, std::max(MinThrust(), 1e-6));
+  return DragTorqueFromCommand(CommandFromThrust(f)) / f;
+}
+
+Eigen::Vector3d VehicleParameters::RotorPosition_B(int i) const {
+  static constexpr double kSigns[4][2] = {{1, 1}, {1, -1}, {-1, -1}, {-1, 1}};
+  const double d = arm_length_m / std::sqrt(2.0);
+  return {kSigns[i][0] * d, kSigns[i][1] * d, 0.0};
+}
+
+void VehicleParameters::Validate() const {
+  RequirePositive(mass_kg, "mass_kg");
+  for (int i = 0; i < 3; ++i) RequirePositive(inertia_diag_kgm2[i], "inertia_diag_kgm2");
+  RequirePositive(arm_length_m, "arm_length_m");
+  RequirePositive(gravity_mps2, "gravity_mps2");
+  RequirePositive(rotor.time_constant_up_s, "rotor.time_constant_up_s");
+  RequirePositive(rotor.time_constant_down_s, "rotor.time_constant_down_s");
+  for (int i = 0; i < 4; ++i) RequirePositive(rotor_fitness[i], "rotor_fitness");
+  if (!(rotor_drag_D_per_s.allFinite() && rotor_drag_A.allFinite() && rotor_drag_B.allFinite() &&
+        std::isfinite(thrust_velocity_coeff_kh))) {
+    throw std::invalid_argument("vehicle parameters: rotor drag terms (D, A, B, k_h) must be finite");
+  }
+  if (!(rotor.command_max > rotor.command_min)) {
+    throw std::invalid_argument("vehicle parameter 'rotor.command_max' must exceed 'command_min'");
+  }
+  // The thrust map must rise over the command range for (G.5) to be well defined.
+  const Eigen::Vector3d& k = rotor.thrust_coeffs_N;
+  const double slope_min = 2.0 * k[2] * rotor.command_min + k[1];
+  const double slope_max = 2.0 * k[2] * rotor.command_max + k[1];
+  if (!(slope_min >= 0.0 && slope_max > 0.0) || rotor.MinThrust() < 0.0) {
+    throw std::invalid_argument(
+        "vehicle parameter 'rotor.thrust_coeffs_N' must give a non-negative thrust that increases "
+        "over [command_min, command_max]");
+  }
+}
+
+}  // namespace aperture::control

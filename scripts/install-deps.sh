@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package aperture builds, tests and runs with. Idempotent: quiet when all
+# is present, one `apt-get update` only when something is missing. Root runs apt-get directly;
+# anyone else goes through sudo.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config ccache
+  libeigen3-dev libopencv-dev libopencv-contrib-dev libtbb-dev
+  libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libnlopt-cxx-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  visp-images-data
+)
+
+missing=()
+for package in "${packages[@]}"; do
+  status=$(dpkg-query -W -f='${Status}' "$package" 2>/dev/null || true)
+  [[ "$status" == "install ok installed" ]] || missing+=("$package")
+done
+((${#missing[@]})) || exit 0
+
+if [[ $(id -u) -eq 0 ]]; then
+  sudo=()
+elif command -v sudo >/dev/null; then
+  sudo=(sudo)
+else
+  echo "install-deps: missing packages (${missing[*]}) and not root, and sudo is not installed." >&2
+  echo "install-deps: run this script as root, or install those packages yourself." >&2
+  exit 1
+fi
+
+echo "install-deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+"${sudo[@]}" apt-get update -qq
+"${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
