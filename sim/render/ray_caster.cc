@@ -153,8 +153,12 @@ const RayCaster::RayTable& RayCaster::Rays(const perception::CameraModel& camera
         table->center[p] = camera.Unproject({double(x), double(y)}).normalized().cast<float>();
         for (int sy = 0; sy < k && k > 1; ++sy) {
           for (int sx = 0; sx < k; ++sx) {
-            // Sub-pixel sample centres of a regular k x k grid over [x - 0.5, x + 0.5].
-            const Eigen::Vector2d px(x - 0.5 + (sx + 0.5) / k, y - 0.5 + (sy + 0.5) / k);
+            // One sample per cell of a k x k grid, shifted inside its cell so that all k^2
+            // samples have distinct x and distinct y offsets (n-rooks within strata): edge
+            // coverage of near-axis-aligned edges is then quantized in k^2 steps, not k.
+            const double ox = (sx * k + sy + 0.5) / (k * k);
+            const double oy = (sy * k + sx + 0.5) / (k * k);
+            const Eigen::Vector2d px(x - 0.5 + ox, y - 0.5 + oy);
             table->sub[p * k * k + static_cast<size_t>(sy * k + sx)] =
                 camera.Unproject(px).normalized().cast<float>();
           }

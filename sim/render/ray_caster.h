@@ -8,8 +8,9 @@
 //   object_id  CV_32SC1, Scene object id through the pixel centre (LEDs: within 2 sigma of the
 //              blob centre), 0 for sky.
 // Shading: Lambertian, Scene::lighting (ambient + one directional light, no shadows); sky from
-// Scene::sky. With supersampling k, each pixel averages k x k rays on a regular sub-pixel grid
-// (ground truth stays on the pixel centre ray).
+// Scene::sky. With supersampling k, each pixel averages k x k rays, one per cell of a k x k
+// sub-pixel grid with all x and all y offsets distinct (box filter; ground truth stays on the
+// pixel centre ray).
 //
 // LEDs (Led primitives) are drawn as an isotropic Gaussian radiance distribution centred on the
 // projected emitter centre, integrated exactly over each pixel's square footprint (erf

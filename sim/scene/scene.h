@@ -13,6 +13,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sim/scene/primitives.h"
@@ -36,6 +37,12 @@ struct Material {
 };
 
 struct SceneObject {
+  SceneObject() = default;
+  SceneObject(std::string name_, Primitive primitive_, Material material_ = {},
+              const Eigen::Isometry3d& T_WO_ = Eigen::Isometry3d::Identity())
+      : name(std::move(name_)), primitive(std::move(primitive_)),
+        material(std::move(material_)), T_WO(T_WO_) {}
+
   std::string name;  // e.g. "gap", "led_target", "tag3"; unique within a scene
   Primitive primitive;
   Material material;
