@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <functional>
+#include <opencv2/imgproc.hpp>
 #include <queue>
 #include <sstream>
 #include <stdexcept>
@@ -194,6 +195,25 @@ void FrameGraph::DrawOverlays(const FrameSlots& slots, cv::Mat& bgr) const {
     const NodeContext context(const_cast<FrameSlots&>(slots), declarations_[index]);
     nodes_[index]->DrawOverlay(context, bgr);
   }
+}
+
+cv::Mat FrameGraph::RenderOverlay(const FrameSlots& slots) const {
+  const cv::Mat& image = slots.Get<Frame>(kFrameSlot).image;
+  cv::Mat bgr;
+  if (image.type() == CV_8UC1) {
+    cv::cvtColor(image, bgr, cv::COLOR_GRAY2BGR);
+  } else if (image.type() == CV_8UC3) {
+    bgr = image.clone();
+  } else if (image.type() == CV_8UC4) {
+    cv::cvtColor(image, bgr, cv::COLOR_BGRA2BGR);
+  } else {
+    throw std::invalid_argument(
+        "FrameGraph::RenderOverlay: frame image type " +
+        (image.empty() ? std::string("(empty)") : cv::typeToString(image.type())) +
+        " is not CV_8UC1, CV_8UC3 or CV_8UC4");
+  }
+  DrawOverlays(slots, bgr);
+  return bgr;
 }
 
 }  // namespace aperture::perception

@@ -49,6 +49,9 @@ class FrameGraph {
   std::map<std::string, double> CollectMetrics(const FrameSlots& slots) const;
   // After a frame ran: every node's DrawOverlay in topological order onto `bgr` (CV_8UC3).
   void DrawOverlays(const FrameSlots& slots, cv::Mat& bgr) const;
+  // A BGR copy of the frame's image (gray is expanded) with every overlay drawn: one frame of the
+  // overlay video. Throws std::invalid_argument if the frame image is empty or not 8-bit.
+  cv::Mat RenderOverlay(const FrameSlots& slots) const;
 
  private:
   std::vector<std::unique_ptr<Node>> nodes_;

@@ -17,8 +17,9 @@
 //   constructor: missing folder, no images, unreadable/malformed times.txt or data.csv, times.txt
 //     line count != image count, a listed file that is missing or an image without a listed time
 //     (skipped and recorded with skip_bad_frames), non-increasing times -> throws;
-//   Next(): empty, corrupt or truncated file, or an image size different from the first frame's
-//     -> throws, or skips with skip_bad_frames.
+//   Next(): empty, corrupt or truncated file, or an image size different from the first good
+//     frame's -> throws, or skips with skip_bad_frames. The first good frame sets the size, so if
+//     it is the odd one out every later frame is reported (the messages name it).
 #include <filesystem>
 #include <string>
 #include <vector>

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <functional>
 #include <map>
 #include <memory>
@@ -12,6 +14,7 @@
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "perception/graph/parallel_executor.h"
@@ -370,6 +373,50 @@ TEST(FrameGraphExecutors, OverlaysAreDrawnInTopologicalOrder) {
   EXPECT_EQ(graph.TopologicalNames(),
             (std::vector<std::string>{"blur", "gradient", "detail", "profile", "score"}));
   EXPECT_EQ(drawn, "bgdps");
+}
+
+TEST(FrameGraphExecutors, RenderOverlayExpandsGrayFramesAndDraws) {
+  FrameGraph graph(MakePipelineNodes());
+  SerialExecutor executor(graph);
+  // Row 0 black: FunctionNode's overlay marks its drawing order there (see DrawOverlay).
+  Frame frame;
+  frame.image = cv::Mat(60, 80, CV_8UC1, cv::Scalar(0));
+  cv::rectangle(frame.image, cv::Rect(10, 10, 40, 30), cv::Scalar(90), cv::FILLED);
+  const FrameSlots slots = executor.Run(frame);
+  const cv::Mat overlay = graph.RenderOverlay(slots);
+  ASSERT_EQ(overlay.type(), CV_8UC3);
+  ASSERT_EQ(overlay.size(), frame.image.size());
+  // FunctionNode draws only into row 0; below it every channel equals the gray frame.
+  cv::Mat channels[3];
+  cv::split(overlay, channels);
+  const cv::Rect below(0, 1, frame.image.cols, frame.image.rows - 1);
+  for (const cv::Mat& channel : channels) {
+    EXPECT_EQ(cv::norm(channel(below), frame.image(below), cv::NORM_INF), 0.0);
+  }
+  EXPECT_EQ(overlay.at<cv::Vec3b>(0, 0)[0], 'b');
+}
+
+// Two independent nodes meet at a rendezvous: each announces itself and waits for the other. Run
+// serially, the first would wait alone until the deadline. The deadline is a safety net against a
+// hang, not a measured duration; the test needs two hardware threads.
+TEST(FrameGraphExecutors, ParallelExecutorRunsIndependentNodesConcurrently) {
+  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "needs two hardware threads";
+  std::atomic<int> arrived{0};
+  auto rendezvous = [&arrived](NodeContext& context) {
+    ++arrived;
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+    while (arrived.load() < 2 && std::chrono::steady_clock::now() < deadline) {
+      std::this_thread::yield();
+    }
+    context.Set(context.node_name(), arrived.load() == 2);
+  };
+  FrameGraph graph(MakeNodes(
+      FunctionNode("left", {MakeSlot<Frame>("frame")}, {MakeSlot<bool>("left")}, rendezvous),
+      FunctionNode("right", {MakeSlot<Frame>("frame")}, {MakeSlot<bool>("right")}, rendezvous)));
+  ParallelExecutor executor(graph, ParallelExecutorParams{2});
+  const FrameSlots slots = executor.Run(Frame{});
+  EXPECT_TRUE(slots.Get<bool>("left"));
+  EXPECT_TRUE(slots.Get<bool>("right"));
 }
 
 TEST(FrameGraphExecutors, ParallelExecutorRethrowsTheFirstNodeErrorAndSkipsDependents) {

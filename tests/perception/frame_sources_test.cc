@@ -80,7 +80,7 @@ void WriteSequence(const fs::path& folder, int n) {
 // ---------------------------------------------------------------- image folders: good input
 
 TEST(ImageFolderSource, PlaysInNaturalOrderTimedByFps) {
-  testing::TempDirectory dir;
+  test_support::TempDirectory dir;
   WriteSequence(dir.path(), 12);
   ImageFolderSource source(dir.path(), Options(20.0));
   EXPECT_EQ(source.SizeHint(), std::optional<size_t>(12));
@@ -98,7 +98,7 @@ TEST(ImageFolderSource, PlaysInNaturalOrderTimedByFps) {
 }
 
 TEST(ImageFolderSource, ColorModeGivesBgrOrGrayFromEveryFormat) {
-  testing::TempDirectory dir;
+  test_support::TempDirectory dir;
   // B, G, R distinct so a channel swap shows; gray = 0.299 R + 0.587 G + 0.114 B = 119.64.
   const cv::Mat color(kSize, CV_8UC3, cv::Scalar(10, 100, 200));
   const std::vector<std::string> extensions = {".png", ".jpg", ".ppm", ".bmp", ".tiff"};
@@ -134,7 +134,7 @@ TEST(ImageFolderSource, ColorModeGivesBgrOrGrayFromEveryFormat) {
 }
 
 TEST(ImageFolderSource, TimesTxtSingleColumnIsPositional) {
-  testing::TempDirectory dir;
+  test_support::TempDirectory dir;
   WriteSequence(dir.path(), 3);
   WriteText(dir.path() / "times.txt", "# seconds\n1.5\n1.6\n1.75\n");
   ImageFolderSource source(dir.path(), Options(99.0));  // times.txt wins over fps
@@ -147,7 +147,7 @@ TEST(ImageFolderSource, TimesTxtSingleColumnIsPositional) {
 }
 
 TEST(ImageFolderSource, TimesTxtPairsMatchByNameInAnyLineOrder) {
-  testing::TempDirectory dir;
+  test_support::TempDirectory dir;
   WriteSequence(dir.path(), 3);
   WriteText(dir.path() / "times.txt", "frame3.png 0.3\nframe1 0.1\n0.2 frame2.png\n");
   ImageFolderSource source(dir.path(), Options(0.0));
@@ -176,7 +176,7 @@ fs::path WriteEurocCamera(const fs::path& root, const std::string& extra_csv_lin
 }
 
 TEST(ImageFolderSource, EurocDataCsvFromCameraFolderOrItsDataFolder) {
-  testing::TempDirectory dir;
+  test_support::TempDirectory dir;
   const fs::path cam0 = WriteEurocCamera(dir.path());
   for (const fs::path& spec : {cam0, cam0 / "data"}) {
     ImageFolderSource source(spec, Options(0.0));
@@ -191,7 +191,7 @@ TEST(ImageFolderSource, EurocDataCsvFromCameraFolderOrItsDataFolder) {
 }
 
 TEST(ImageFolderSource, NanosecondFileNamesAreTimesSmallNumbersNeedFps) {
-  testing::TempDirectory dir;
+  test_support::TempDirectory dir;
   const fs::path ns = dir.path() / "ns";
   const fs::path counters = dir.path() / "counters";
   fs::create_directories(ns);
@@ -224,7 +224,7 @@ class BothModes : public ::testing::TestWithParam<bool> {
 };
 
 TEST_P(BothModes, MissingFolderNamesIt) {
-  testing::TempDirectory dir;
+  test_support::TempDirectory dir;
   const fs::path missing = dir.path() / "no_such_sequence";
   const std::string message =
       MessageOf<std::runtime_error>([&] { ImageFolderSource(missing, options()); });
@@ -233,7 +233,7 @@ TEST_P(BothModes, MissingFolderNamesIt) {
 }
 
 TEST_P(BothModes, FolderWithoutImagesNamesItAndTheExtensions) {
-  testing::TempDirectory dir;
+  test_support::TempDirectory dir;
   WriteText(dir.path() / "notes.txt", "no images here\n");
   fs::create_directories(dir.path() / "sub");
   WriteImage(dir.path() / "sub" / "frame1.png", GrayFrame(1));  // subfolders are not searched
@@ -245,7 +245,7 @@ TEST_P(BothModes, FolderWithoutImagesNamesItAndTheExtensions) {
 }
 
 TEST_P(BothModes, TimesTxtWithWrongLineCountGivesBothCounts) {
-  testing::TempDirectory dir;
+  test_support::TempDirectory dir;
   WriteSequence(dir.path(), 3);
   WriteText(dir.path() / "times.txt", "0.0\n0.1\n");
   const std::string message =
@@ -255,7 +255,7 @@ TEST_P(BothModes, TimesTxtWithWrongLineCountGivesBothCounts) {
 }
 
 TEST_P(BothModes, NonMonotonicTimesNameBothFiles) {
-  testing::TempDirectory dir;
+  test_support::TempDirectory dir;
   WriteSequence(dir.path(), 3);
   WriteText(dir.path() / "times.txt", "0.0\n0.2\n0.1\n");
   const std::string message =
@@ -266,7 +266,7 @@ TEST_P(BothModes, NonMonotonicTimesNameBothFiles) {
 }
 
 TEST_P(BothModes, DuplicateTimesAreRejected) {
-  testing::TempDirectory dir;
+  test_support::TempDirectory dir;
   WriteSequence(dir.path(), 3);
   WriteText(dir.path() / "times.txt", "frame1.png 0.0\nframe2.png 0.1\nframe3.png 0.1\n");
   const std::string message =
@@ -276,7 +276,7 @@ TEST_P(BothModes, DuplicateTimesAreRejected) {
 }
 
 TEST_P(BothModes, UnparsableDataCsvLineNamesFileAndLine) {
-  testing::TempDirectory dir;
+  test_support::TempDirectory dir;
   const fs::path cam0 = WriteEurocCamera(dir.path(), "14036365798x3555584,img3.png\n");
   const std::string message =
       MessageOf<std::invalid_argument>([&] { ImageFolderSource(cam0, options()); });
@@ -285,7 +285,7 @@ TEST_P(BothModes, UnparsableDataCsvLineNamesFileAndLine) {
 }
 
 TEST_P(BothModes, NegativeFpsIsRejected) {
-  testing::TempDirectory dir;
+  test_support::TempDirectory dir;
   WriteSequence(dir.path(), 2);
   EXPECT_THAT(MessageOf<std::invalid_argument>([&] { ImageFolderSource(dir.path(), options(-5)); }),
               HasSubstr("fps = -5"));
@@ -308,7 +308,7 @@ void PrintTo(const BadFrameCase& bad_frame, std::ostream* os) { *os << bad_frame
 class BadFrame : public ::testing::TestWithParam<BadFrameCase> {};
 
 TEST_P(BadFrame, StrictModeThrowsNamingTheFile) {
-  testing::TempDirectory dir;
+  test_support::TempDirectory dir;
   WriteSequence(dir.path(), 5);
   const fs::path bad = dir.path() / "frame3.png";
   GetParam().spoil(bad);
@@ -327,7 +327,7 @@ TEST_P(BadFrame, StrictModeThrowsNamingTheFile) {
 }
 
 TEST_P(BadFrame, SkipModeRecordsAndWarns) {
-  testing::TempDirectory dir;
+  test_support::TempDirectory dir;
   WriteSequence(dir.path(), 5);
   const fs::path bad = dir.path() / "frame3.png";
   GetParam().spoil(bad);
@@ -375,7 +375,7 @@ INSTANTIATE_TEST_SUITE_P(
     [](const auto& info) { return info.param.name; });
 
 TEST(ImageFolderSource, ListedButMissingFilesAndUntimedImagesThrowOrAreRecorded) {
-  testing::TempDirectory dir;
+  test_support::TempDirectory dir;
   WriteSequence(dir.path(), 3);
   WriteText(dir.path() / "times.txt", "frame1.png 0.1\nframe2.png 0.2\nframe9.png 0.9\n");
   // frame3.png has no line; frame9.png has a line but no file.
@@ -396,7 +396,7 @@ TEST(ImageFolderSource, ListedButMissingFilesAndUntimedImagesThrowOrAreRecorded)
 }
 
 TEST(ImageFolderSource, AllFramesBadInSkipModeEndsWithEveryOneRecorded) {
-  testing::TempDirectory dir;
+  test_support::TempDirectory dir;
   WriteText(dir.path() / "a.png", "not a png");
   WriteText(dir.path() / "b.png", "not a png either");
   ImageFolderSource source(dir.path(), Options(10.0, true));
@@ -421,7 +421,7 @@ void WriteVideo(const fs::path& file, int n, double fps) {
 }
 
 TEST(VideoFileSource, ReadsBackEveryFrameInOrderWithContainerTimes) {
-  testing::TempDirectory dir;
+  test_support::TempDirectory dir;
   const fs::path video = dir.path() / "clip.avi";
   WriteVideo(video, 7, 10.0);
   VideoFileSource source(video, Options(0.0, false, ColorMode::kGray));
@@ -438,7 +438,7 @@ TEST(VideoFileSource, ReadsBackEveryFrameInOrderWithContainerTimes) {
 }
 
 TEST(VideoFileSource, ExplicitFpsOverridesContainerTimesAndColorModeApplies) {
-  testing::TempDirectory dir;
+  test_support::TempDirectory dir;
   const fs::path video = dir.path() / "clip.avi";
   WriteVideo(video, 4, 10.0);
   VideoFileSource source(video, Options(25.0, false, ColorMode::kColor));
@@ -449,7 +449,7 @@ TEST(VideoFileSource, ExplicitFpsOverridesContainerTimesAndColorModeApplies) {
 }
 
 TEST(VideoFileSource, MissingAndUndecodableFilesNameTheFile) {
-  testing::TempDirectory dir;
+  test_support::TempDirectory dir;
   const fs::path missing = dir.path() / "missing.avi";
   EXPECT_THAT(MessageOf<std::runtime_error>([&] { VideoFileSource(missing, Options(0.0)); }),
               HasSubstr(missing.string()));
@@ -466,7 +466,7 @@ TEST(VideoFileSource, MissingAndUndecodableFilesNameTheFile) {
 // ---------------------------------------------------------------- factory and camera
 
 TEST(OpenFrameSource, DispatchesFolderVideoAndCameraSpecs) {
-  testing::TempDirectory dir;
+  test_support::TempDirectory dir;
   WriteSequence(dir.path(), 2);
   const fs::path video = dir.path() / "clip.avi";
   WriteVideo(video, 3, 10.0);

@@ -68,7 +68,7 @@ TEST_P(ImageFormat, CompleteFileIsAcceptedAndEveryTruncationIsDetected) {
 }
 
 TEST_P(ImageFormat, ReadImageFileRejectsTheFirstHalfOfARealFile) {
-  testing::TempDirectory dir;
+  test_support::TempDirectory dir;
   const std::filesystem::path file = dir.path() / ("half" + GetParam().extension);
   const std::vector<unsigned char> bytes = Encode(GetParam().extension, GetParam().channels);
   std::ofstream(file, std::ios::binary)
@@ -92,7 +92,7 @@ TEST(ReadImageFile, ImreadAloneAcceptsATruncatedJpeg) {
   // warning, for a JPEG cut in half (the missing rows are filled in). OpenCV 4.6 itself rejects
   // truncated PNGs (its decoder reads up to IEND); older versions did not, and the check gives a
   // precise message either way (BadFrame/TruncatedPng in frame_sources_test.cc).
-  testing::TempDirectory dir;
+  test_support::TempDirectory dir;
   const std::vector<unsigned char> jpeg = Encode(".jpg", 1);
   const std::filesystem::path file = dir.path() / "half.jpg";
   std::ofstream(file, std::ios::binary)
@@ -105,7 +105,7 @@ TEST(ReadImageFile, ImreadAloneAcceptsATruncatedJpeg) {
 }
 
 TEST(ReadImageFile, DecodesLosslessFormatsExactlyInBothColorModes) {
-  testing::TempDirectory dir;
+  test_support::TempDirectory dir;
   const cv::Mat color = MakeTestImage(3);
   for (const std::string extension : {".png", ".ppm", ".bmp", ".tiff"}) {
     const std::filesystem::path file = dir.path() / ("image" + extension);
@@ -124,7 +124,7 @@ TEST(ReadImageFile, DecodesLosslessFormatsExactlyInBothColorModes) {
 }
 
 TEST(ReadImageFile, GarbageEmptyAndMissingFilesNameTheFile) {
-  testing::TempDirectory dir;
+  test_support::TempDirectory dir;
   const std::filesystem::path garbage = dir.path() / "garbage.png";
   std::ofstream(garbage) << "this is not an image at all, just text with a .png name";
   const std::filesystem::path empty = dir.path() / "empty.png";

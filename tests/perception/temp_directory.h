@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <string>
 
-namespace aperture::perception::testing {
+namespace aperture::test_support {
 
 class TempDirectory {
  public:
@@ -35,4 +35,4 @@ class TempDirectory {
   std::filesystem::path path_;
 };
 
-}  // namespace aperture::perception::testing
+}  // namespace aperture::test_support
