@@ -23,7 +23,7 @@ endfunction()
 # tests/<folder>/*_test.cc become one GoogleTest executable registered with ctest.
 function(aperture_add_test_suite name)
   cmake_parse_arguments(ARG "" "" "DEPS" ${ARGN})
-  file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/${name}/*_test.cc)
+  file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/${name}/*.cc)
   if(NOT sources)
     return()
   endif()
@@ -33,6 +33,7 @@ function(aperture_add_test_suite name)
   target_compile_options(${target} PRIVATE -Wall -Wextra)
   target_compile_definitions(${target} PRIVATE
       APERTURE_TEST_DATA_DIR="${CMAKE_CURRENT_SOURCE_DIR}/data"
-      APERTURE_BINARY="$<TARGET_FILE:aperture>")
+      APERTURE_BINARY="$<TARGET_FILE:aperture>"
+      APERTURE_VERSION_FOR_TEST="${PROJECT_VERSION}")
   gtest_discover_tests(${target} DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 600)
 endfunction()

@@ -40,6 +40,12 @@ class CameraModel {
   virtual std::unique_ptr<CameraModel> Scaled(int new_width, int new_height) const = 0;
   virtual std::unique_ptr<CameraModel> Clone() const = 0;
 
+  // Linear projection parameters [fx, fy, cx, cy] in px (same meaning for every model).
+  virtual Eigen::Vector4d intrinsics() const = 0;
+  // Distortion coefficients in OpenCV order: empty (pinhole), k1 k2 p1 p2 [k3] (radtan),
+  // k1 k2 k3 k4 (equidistant).
+  virtual Eigen::VectorXd distortion() const = 0;
+
  protected:
   CameraModel(int width, int height) : width_(width), height_(height) {}
 

@@ -1,0 +1,218 @@
+#include "config/param_reader.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <sstream>
+
+namespace aperture::config {
+namespace {
+
+std::string Describe(const YAML::Node& node) {
+  switch (node.Type()) {
+    case YAML::NodeType::Null:
+      return "nothing (null)";
+    case YAML::NodeType::Scalar:
+      return "'" + node.Scalar() + "'";
+    case YAML::NodeType::Sequence:
+      return "a sequence of " + std::to_string(node.size()) + " items";
+    case YAML::NodeType::Map:
+      return "a map";
+    case YAML::NodeType::Undefined:
+      break;
+  }
+  return "nothing";
+}
+
+// YAML 1.2 core-schema special floats plus the plain spellings people type on a command line.
+bool ParseSpecialDouble(const std::string& text, double* value) {
+  static const std::map<std::string, double> kSpecial = {
+      {".nan", std::nan("")},         {".NaN", std::nan("")},       {".NAN", std::nan("")},
+      {"nan", std::nan("")},          {".inf", HUGE_VAL},           {".Inf", HUGE_VAL},
+      {".INF", HUGE_VAL},             {"+.inf", HUGE_VAL},          {"inf", HUGE_VAL},
+      {"-.inf", -HUGE_VAL},           {"-.Inf", -HUGE_VAL},         {"-.INF", -HUGE_VAL},
+      {"-inf", -HUGE_VAL}};
+  const auto it = kSpecial.find(text);
+  if (it == kSpecial.end()) return false;
+  *value = it->second;
+  return true;
+}
+
+}  // namespace
+
+void ThrowTypeError(const ValueContext& context, const YAML::Node& node,
+                    const std::string& expected) {
+  throw std::invalid_argument(context.where + ": key '" + context.key + "' expects " + expected +
+                              ", got " + Describe(node) + "; fix the value in " + context.where);
+}
+
+void ConvertNode(const YAML::Node& node, const ValueContext& context, double* value) {
+  if (!node.IsScalar()) ThrowTypeError(context, node, "a number");
+  const std::string& text = node.Scalar();
+  if (ParseSpecialDouble(text, value)) return;
+  // strtod instead of yaml-cpp's stream parsing: the whole scalar must be a number ("3m" fails).
+  char* end = nullptr;
+  const double parsed = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size()) {
+    ThrowTypeError(context, node, "a number");
+  }
+  *value = parsed;
+}
+
+void ConvertNode(const YAML::Node& node, const ValueContext& context, int* value) {
+  if (!node.IsScalar()) ThrowTypeError(context, node, "an integer");
+  const std::string& text = node.Scalar();
+  char* end = nullptr;
+  errno = 0;
+  const long parsed = std::strtol(text.c_str(), &end, 10);
+  if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE ||
+      parsed < std::numeric_limits<int>::min() || parsed > std::numeric_limits<int>::max()) {
+    ThrowTypeError(context, node, "an integer");
+  }
+  *value = static_cast<int>(parsed);
+}
+
+void ConvertNode(const YAML::Node& node, const ValueContext& context, float* value) {
+  double wide = 0.0;
+  ConvertNode(node, context, &wide);
+  if (std::isfinite(wide) && std::abs(wide) > std::numeric_limits<float>::max()) {
+    ThrowTypeError(context, node, "a number within single-precision range");
+  }
+  *value = static_cast<float>(wide);
+}
+
+namespace {
+
+unsigned long long ParseUnsigned(const YAML::Node& node, const ValueContext& context,
+                                 unsigned long long max) {
+  const std::string expected = "a non-negative integer up to " + std::to_string(max);
+  if (!node.IsScalar()) ThrowTypeError(context, node, expected);
+  const std::string& text = node.Scalar();
+  // strtoull silently negates "-1"; only digits are accepted.
+  if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos) {
+    ThrowTypeError(context, node, expected);
+  }
+  errno = 0;
+  const unsigned long long parsed = std::strtoull(text.c_str(), nullptr, 10);
+  if (errno == ERANGE || parsed > max) ThrowTypeError(context, node, expected);
+  return parsed;
+}
+
+}  // namespace
+
+void ConvertNode(const YAML::Node& node, const ValueContext& context, unsigned int* value) {
+  *value = static_cast<unsigned int>(
+      ParseUnsigned(node, context, std::numeric_limits<unsigned int>::max()));
+}
+
+void ConvertNode(const YAML::Node& node, const ValueContext& context, unsigned long* value) {
+  *value = static_cast<unsigned long>(
+      ParseUnsigned(node, context, std::numeric_limits<unsigned long>::max()));
+}
+
+void ConvertNode(const YAML::Node& node, const ValueContext& context, bool* value) {
+  // YAML 1.2 core schema booleans only: "yes"/"on" are strings there, so they are rejected rather
+  // than silently meaning true.
+  if (node.IsScalar()) {
+    const std::string& text = node.Scalar();
+    if (text == "true" || text == "True" || text == "TRUE") {
+      *value = true;
+      return;
+    }
+    if (text == "false" || text == "False" || text == "FALSE") {
+      *value = false;
+      return;
+    }
+  }
+  ThrowTypeError(context, node, "a boolean (true or false)");
+}
+
+void ConvertNode(const YAML::Node& node, const ValueContext& context, std::string* value) {
+  if (!node.IsScalar()) ThrowTypeError(context, node, "a string");
+  *value = node.Scalar();
+}
+
+void ConvertNode(const YAML::Node& node, const ValueContext& context, Eigen::VectorXd* value) {
+  std::vector<double> numbers;
+  ConvertNode(node, context, &numbers);
+  *value = Eigen::Map<const Eigen::VectorXd>(numbers.data(), static_cast<Eigen::Index>(numbers.size()));
+}
+
+ParamReader::ParamReader(YAML::Node node, std::string path,
+                         std::shared_ptr<const OriginMap> origins)
+    : node_(std::move(node)), path_(std::move(path)), origins_(std::move(origins)) {
+  if (node_ && !node_.IsMap() && !node_.IsNull()) {
+    const std::string where = Locate(path_, node_.Mark());
+    throw std::invalid_argument(where + ": '" + (path_.empty() ? "<document root>" : path_) +
+                                "' must be a map of key: value entries, got " + Describe(node_));
+  }
+}
+
+ParamReader::ParamReader(YAML::Node node, const std::string& source)
+    : ParamReader(std::move(node), "",
+                  std::make_shared<const OriginMap>(OriginMap{{"", ValueOrigin{source, true}}})) {}
+
+std::string ParamReader::FullKey(const std::string& key) const {
+  return path_.empty() ? key : path_ + "." + key;
+}
+
+bool ParamReader::Has(const std::string& key) const {
+  return node_.IsMap() && static_cast<bool>(static_cast<const YAML::Node&>(node_)[key]);
+}
+
+YAML::Node ParamReader::Lookup(const std::string& key) {
+  known_keys_.insert(key);
+  if (!node_.IsMap()) return YAML::Node(YAML::NodeType::Undefined);
+  // Const access: non-const operator[] would insert the key into the shared tree. A missing key
+  // yields an invalid handle; hand out a plain undefined node instead.
+  const YAML::Node found = static_cast<const YAML::Node&>(node_)[key];
+  return found ? found : YAML::Node(YAML::NodeType::Undefined);
+}
+
+ParamReader ParamReader::Section(const std::string& key) {
+  return ParamReader(Lookup(key), FullKey(key), origins_);
+}
+
+std::string ParamReader::Locate(const std::string& full_key, const YAML::Mark& mark) const {
+  // The longest recorded prefix of the dotted key names the source.
+  std::string prefix = full_key;
+  while (true) {
+    const auto it = origins_->find(prefix);
+    if (it != origins_->end()) {
+      const ValueOrigin& origin = it->second;
+      if (origin.has_lines && !mark.is_null()) {
+        return origin.source + ":" + std::to_string(mark.line + 1) + ":" +
+               std::to_string(mark.column + 1);
+      }
+      return origin.source;
+    }
+    if (prefix.empty()) return "<unknown source>";
+    const std::size_t dot = prefix.rfind('.');
+    prefix = dot == std::string::npos ? "" : prefix.substr(0, dot);
+  }
+}
+
+std::string ParamReader::Where(const std::string& key) const {
+  const YAML::Node child = node_.IsMap() ? static_cast<const YAML::Node&>(node_)[key] : YAML::Node();
+  return Locate(FullKey(key), child ? child.Mark() : node_.Mark());
+}
+
+void ParamReader::RejectUnknownKeys() const {
+  if (!node_.IsMap()) return;
+  for (auto it = node_.begin(); it != node_.end(); ++it) {
+    const std::string key = it->first.Scalar();
+    if (known_keys_.count(key) > 0) continue;
+    std::ostringstream known;
+    for (const std::string& name : known_keys_) {
+      known << (known.tellp() > 0 ? ", " : "") << name;
+    }
+    throw std::invalid_argument(
+        Locate(FullKey(key), it->first.Mark()) + ": unknown key '" + FullKey(key) + "'" +
+        (path_.empty() ? "" : " in section '" + path_ + "'") + "; known keys: " +
+        (known_keys_.empty() ? std::string("(none)") : known.str()) +
+        ". Fix the spelling or remove it.");
+  }
+}
+
+}  // namespace aperture::config

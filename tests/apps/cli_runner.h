@@ -1,0 +1,28 @@
+#pragma once
+// Runs the built `aperture` binary for end-to-end CLI tests.
+#include <string>
+
+namespace aperture::apps::testing {
+
+struct CommandResult {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr, interleaved
+};
+
+// Runs `aperture <arguments>` through the shell (arguments are passed verbatim).
+CommandResult RunAperture(const std::string& arguments);
+
+// A fresh, empty folder under the system temp directory, removed by the destructor.
+class TempFolder {
+ public:
+  explicit TempFolder(const std::string& stem);
+  ~TempFolder();
+  TempFolder(const TempFolder&) = delete;
+  TempFolder& operator=(const TempFolder&) = delete;
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+}  // namespace aperture::apps::testing

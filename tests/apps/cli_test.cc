@@ -1,0 +1,45 @@
+// The command line contract: --help everywhere, exit code 2 for unknown flags and bad values,
+// commands that are not available yet say so and fail instead of pretending.
+#include <gtest/gtest.h>
+
+#include "tests/apps/cli_runner.h"
+
+namespace aperture::apps::testing {
+namespace {
+
+TEST(Cli, VersionPrintsTheProjectVersion) {
+  const CommandResult result = RunAperture("version");
+  EXPECT_EQ(result.exit_code, 0);
+  EXPECT_NE(result.output.find("aperture " APERTURE_VERSION_FOR_TEST), std::string::npos)
+      << result.output;
+}
+
+TEST(Cli, HelpListsEverySubcommand) {
+  const CommandResult result = RunAperture("--help");
+  EXPECT_EQ(result.exit_code, 0);
+  for (const char* name : {"run", "sim", "render", "bench", "calibrate", "version"}) {
+    EXPECT_NE(result.output.find(name), std::string::npos) << name;
+  }
+}
+
+TEST(Cli, UnknownFlagExitsWithTwoAndSaysWhy) {
+  const CommandResult result = RunAperture("version --no-such-flag");
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_NE(result.output.find("--no-such-flag"), std::string::npos) << result.output;
+}
+
+TEST(Cli, MissingSubcommandExitsWithTwo) {
+  EXPECT_EQ(RunAperture("").exit_code, 2);
+  EXPECT_EQ(RunAperture("fly").exit_code, 2);
+}
+
+TEST(Cli, CommandsNotAvailableYetFailAndSaySo) {
+  for (const char* name : {"sim", "render", "bench"}) {
+    const CommandResult result = RunAperture(name);
+    EXPECT_NE(result.exit_code, 0) << name;
+    EXPECT_NE(result.output.find("not available yet"), std::string::npos) << result.output;
+  }
+}
+
+}  // namespace
+}  // namespace aperture::apps::testing
