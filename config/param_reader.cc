@@ -73,6 +73,44 @@ void ConvertNode(const YAML::Node& node, const ValueContext& context, int* value
   *value = static_cast<int>(parsed);
 }
 
+void ConvertNode(const YAML::Node& node, const ValueContext& context, float* value) {
+  double wide = 0.0;
+  ConvertNode(node, context, &wide);
+  if (std::isfinite(wide) && std::abs(wide) > std::numeric_limits<float>::max()) {
+    ThrowTypeError(context, node, "a number within single-precision range");
+  }
+  *value = static_cast<float>(wide);
+}
+
+namespace {
+
+unsigned long long ParseUnsigned(const YAML::Node& node, const ValueContext& context,
+                                 unsigned long long max) {
+  const std::string expected = "a non-negative integer up to " + std::to_string(max);
+  if (!node.IsScalar()) ThrowTypeError(context, node, expected);
+  const std::string& text = node.Scalar();
+  // strtoull silently negates "-1"; only digits are accepted.
+  if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos) {
+    ThrowTypeError(context, node, expected);
+  }
+  errno = 0;
+  const unsigned long long parsed = std::strtoull(text.c_str(), nullptr, 10);
+  if (errno == ERANGE || parsed > max) ThrowTypeError(context, node, expected);
+  return parsed;
+}
+
+}  // namespace
+
+void ConvertNode(const YAML::Node& node, const ValueContext& context, unsigned int* value) {
+  *value = static_cast<unsigned int>(
+      ParseUnsigned(node, context, std::numeric_limits<unsigned int>::max()));
+}
+
+void ConvertNode(const YAML::Node& node, const ValueContext& context, unsigned long* value) {
+  *value = static_cast<unsigned long>(
+      ParseUnsigned(node, context, std::numeric_limits<unsigned long>::max()));
+}
+
 void ConvertNode(const YAML::Node& node, const ValueContext& context, bool* value) {
   // YAML 1.2 core schema booleans only: "yes"/"on" are strings there, so they are rejected rather
   // than silently meaning true.

@@ -14,7 +14,7 @@
 // ("gap.yaml:12:3" for a file, "--set gap.roll_deg=abc" for a command-line override), then the
 // full dotted key and what was expected (the type, the allowed enum values, or the known keys).
 //
-// Supported field types: double, int, bool, std::string, fixed-size Eigen matrices of double
+// Supported field types: double, float, int, unsigned, std::size_t, bool, std::string, fixed-size Eigen matrices of double
 // (vectors from a flat sequence, matrices from a sequence of rows or a flat row-major sequence),
 // Eigen::VectorXd, std::vector<T> of any supported T, enums via ReadEnum, nested structs via
 // ReadSection/Section.
@@ -99,7 +99,11 @@ struct ValueContext {
 [[noreturn]] void ThrowTypeError(const ValueContext& context, const YAML::Node& node,
                                  const std::string& expected);
 void ConvertNode(const YAML::Node& node, const ValueContext& context, double* value);
+void ConvertNode(const YAML::Node& node, const ValueContext& context, float* value);
 void ConvertNode(const YAML::Node& node, const ValueContext& context, int* value);
+// Unsigned: counts, sizes and random seeds; a negative value is a type error.
+void ConvertNode(const YAML::Node& node, const ValueContext& context, unsigned int* value);
+void ConvertNode(const YAML::Node& node, const ValueContext& context, unsigned long* value);
 void ConvertNode(const YAML::Node& node, const ValueContext& context, bool* value);
 void ConvertNode(const YAML::Node& node, const ValueContext& context, std::string* value);
 void ConvertNode(const YAML::Node& node, const ValueContext& context, Eigen::VectorXd* value);

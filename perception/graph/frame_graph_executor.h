@@ -8,8 +8,9 @@
 //   SerialExecutor executor(graph);
 //   FrameSlots slots = graph.MakeSlots(first_frame);
 //   for each frame: executor.Run(frame, slots);
-//                   csv.Write(graph.CollectMetrics(slots)); graph.DrawOverlays(slots, bgr);
-//   summary["timing"] = executor.Timing();
+//                   csv.Write(graph.CollectMetrics(slots));
+//                   video.write(graph.RenderOverlay(slots));
+//   summary["timing"] = executor.Timing();  // + executor.FrameTiming() for the whole graph
 #include <chrono>
 #include <cstddef>
 #include <vector>

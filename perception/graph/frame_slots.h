@@ -9,6 +9,7 @@
 #include <map>
 #include <string>
 #include <typeindex>
+#include <utility>
 #include <vector>
 
 #include "perception/graph/slot_spec.h"

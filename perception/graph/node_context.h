@@ -5,6 +5,7 @@
 // the node and the slot. Nodes receive a mutable context in Run and a const one in Metrics and
 // DrawOverlay (read only).
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "perception/graph/frame_slots.h"

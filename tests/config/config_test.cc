@@ -268,6 +268,29 @@ TEST_F(ConfigFileTest, SetReplacesScalarParentWithMap) {
   EXPECT_THAT(tree.ToYaml(), HasSubstr("mass_kg: 2.5"));
 }
 
+TEST_F(ConfigFileTest, UnsignedAndFloatFields) {
+  ParamReader reader(YAML::Load("seed: 4294967295\ncount: 12\ngain: 0.25\nbad: -1\n"), "inline");
+  unsigned int seed = 0;
+  std::size_t count = 0;
+  float gain = 0.0f;
+  reader.Read("seed", &seed);
+  reader.Read("count", &count);
+  reader.Read("gain", &gain);
+  EXPECT_EQ(seed, 4294967295u);
+  EXPECT_EQ(count, 12u);
+  EXPECT_EQ(gain, 0.25f);
+  std::size_t bad = 0;
+  EXPECT_THAT(ErrorOf([&] { reader.Read("bad", &bad); }), HasSubstr("non-negative integer"));
+}
+
+TEST_F(ConfigFileTest, ToJsonTypesScalarsAndKeepsQuotedStrings) {
+  ConfigTree tree;
+  tree.MergeYaml("a: {b: 1, c: x, d: +.5, e: '3'}\nf: [true, ~, \"q\\\"s\", .nan]\n", "inline");
+  tree.ApplySet("g=1e3");
+  EXPECT_EQ(tree.ToJson(),
+            R"({"a":{"b":1,"c":"x","d":0.5,"e":"3"},"f":[true,null,"q\"s",".nan"],"g":1000})");
+}
+
 TEST_F(ConfigFileTest, StandaloneReaderNamesItsSource) {
   ParamReader reader(YAML::Load("mass_kg: 1\nextra: 2\n"), "inline.yaml");
   TestParams params;

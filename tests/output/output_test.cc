@@ -20,6 +20,7 @@
 #include "output/base64.h"
 #include "output/csv_writer.h"
 #include "output/html_report.h"
+#include "output/json_eigen.h"
 #include "output/output_folder.h"
 #include "output/progress_bar.h"
 #include "output/svg_plot.h"
@@ -83,6 +84,10 @@ TEST_F(OutputTest, SummaryRoundTripsWithOkStatus) {
   out.summary()["inputs"]["sequence"] = "gap_01";
   out.summary()["counts"]["frames"] = 120;
   out.summary()["timing_ms"] = {{"gap_detector", 3.25}, {"tracker", 0.125}};
+  Eigen::Matrix<double, 2, 3> R;
+  R << 1, 2, 3, 4, 5, 6;
+  out.summary()["p_W_m"] = EigenToJson(Eigen::Vector3d(0.5, -1.0, 2.0));
+  out.summary()["R"] = EigenToJson(R);
   const std::string path = out.WriteSummary(RunStatus::kOk);
   EXPECT_EQ(path, (directory_ / "nested" / "run" / "summary.json").string());
   const nlohmann::json read = nlohmann::json::parse(ReadFile(path));
@@ -92,6 +97,8 @@ TEST_F(OutputTest, SummaryRoundTripsWithOkStatus) {
   EXPECT_EQ(read["counts"]["frames"], 120);
   EXPECT_EQ(read["timing_ms"]["tracker"].get<double>(), 0.125);
   EXPECT_GE(read["wall_time_s"].get<double>(), 0.0);
+  EXPECT_EQ(read["p_W_m"], nlohmann::json::parse("[0.5, -1.0, 2.0]"));
+  EXPECT_EQ(read["R"], nlohmann::json::parse("[[1, 2, 3], [4, 5, 6]]"));  // rows
   // Atomic write: only the summary remains, no temporary or probe file.
   EXPECT_EQ(ListFiles(directory_ / "nested" / "run"), std::vector<std::string>{"summary.json"});
 }
