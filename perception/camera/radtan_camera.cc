@@ -1,6 +1,7 @@
 #include "perception/camera/radtan_camera.h"
 
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -99,18 +100,26 @@ Eigen::Vector3d RadTanCamera::Unproject(const Eigen::Vector2d& px) const {
   Eigen::Vector2d xy = xy_d;
   Eigen::Matrix2d J;
   Eigen::Vector2d residual = Distort(xy, &J) - xy_d;
-  for (int iteration = 0; iteration < 50 && residual.norm() > 1e-15; ++iteration) {
-    const Eigen::Vector2d step = J.partialPivLu().solve(residual);
+  double residual_norm = residual.norm();
+  // 1e-11 px: two orders below the 1e-9 px the callers rely on.
+  const double tolerance = 1e-11 / std::max(k_.fx, k_.fy);
+  for (int iteration = 0; iteration < 50 && residual_norm > tolerance; ++iteration) {
+    const Eigen::Vector2d step = J.inverse() * residual;  // closed-form 2x2 inverse
+    bool improved = false;
     double scale = 1.0;
-    Eigen::Vector2d candidate, candidate_residual;
-    do {
-      candidate = xy - scale * step;
-      candidate_residual = Distort(candidate) - xy_d;
-      scale *= 0.5;
-    } while (candidate_residual.norm() >= residual.norm() && scale > 1e-6);
-    if (!(candidate_residual.norm() < residual.norm())) break;
-    xy = candidate;
-    residual = Distort(xy, &J) - xy_d;
+    for (int halving = 0; halving < 20 && !improved; ++halving, scale *= 0.5) {
+      const Eigen::Vector2d candidate = xy - scale * step;
+      Eigen::Matrix2d J_candidate;
+      const Eigen::Vector2d candidate_residual = Distort(candidate, &J_candidate) - xy_d;
+      if (candidate_residual.norm() < residual_norm) {
+        xy = candidate;
+        J = J_candidate;
+        residual = candidate_residual;
+        residual_norm = residual.norm();
+        improved = true;
+      }
+    }
+    if (!improved) break;  // at the floating-point floor (or beyond the fold)
   }
   return Eigen::Vector3d(xy.x(), xy.y(), 1.0).normalized();
 }

@@ -25,8 +25,25 @@ VideoFileSource::VideoFileSource(const std::filesystem::path& path,
 }
 
 std::optional<Frame> VideoFileSource::Next() {
+  if (ended_) return std::nullopt;
   cv::Mat image;
-  if (!capture_.read(image) || image.empty()) return std::nullopt;
+  if (!capture_.read(image) || image.empty()) {
+    ended_ = true;
+    const size_t delivered = static_cast<size_t>(next_index_);
+    if (frame_count_ && delivered < *frame_count_) {
+      const std::string reason = "video ended after " + std::to_string(delivered) + " of the " +
+                                 std::to_string(*frame_count_) +
+                                 " frames its container announces (truncated or corrupt file)";
+      if (!options_.skip_bad_frames) {
+        throw std::runtime_error("video file '" + path_.string() + "': " + reason +
+                                 "; re-copy or re-encode it, or pass --skip-bad-frames to accept "
+                                 "the frames that decode");
+      }
+      RecordSkip("frames " + std::to_string(delivered) + ".." + std::to_string(*frame_count_ - 1),
+                 reason);
+    }
+    return std::nullopt;
+  }
   Frame frame;
   frame.index = next_index_++;
   frame.camera_id = options_.camera_id;

@@ -8,8 +8,10 @@
 //
 // Failure: a missing file or one no backend can open throws std::runtime_error from the
 // constructor; a frame whose time does not increase throws std::invalid_argument from Next()
-// (pass --fps). The end of the decodable stream ends the source: a video cut short ends early
-// rather than reporting a bad frame (decoders do not distinguish the two).
+// (pass --fps). Decoders cannot tell a truncated file from its end, so a stream that ends before
+// the frame count the container announces is reported at that point: std::runtime_error, or with
+// skip_bad_frames one SkippedFrames() entry for the missing frames. (Containers that only estimate
+// their count could over-announce; skip_bad_frames then turns the error into a recorded warning.)
 #include <filesystem>
 #include <string>
 
@@ -35,6 +37,7 @@ class VideoFileSource : public FrameSource {
   std::optional<size_t> frame_count_;
   int next_index_ = 0;
   double last_t_s_ = 0.0;
+  bool ended_ = false;
 };
 
 }  // namespace aperture::perception

@@ -448,6 +448,41 @@ TEST(VideoFileSource, ExplicitFpsOverridesContainerTimesAndColorModeApplies) {
   EXPECT_EQ(frames[3].image.type(), CV_8UC3);
 }
 
+TEST(VideoFileSource, TruncatedFileThrowsOrRecordsTheMissingFrames) {
+  // An AVI cut at 3/4 keeps its header (20 frames announced, plus several kB of padding that a
+  // cut at 1/2 of these tiny frames would reach) but loses the last frames and the index.
+  test_support::TempDirectory dir;
+  const fs::path video = dir.path() / "cut.avi";
+  WriteVideo(video, 20, 10.0);
+  fs::resize_file(video, fs::file_size(video) * 3 / 4);
+
+  VideoFileSource strict(video, Options(0.0, false));
+  ASSERT_EQ(strict.SizeHint(), std::optional<size_t>(20));
+  std::string message;
+  int delivered = 0;
+  try {
+    while (strict.Next()) ++delivered;
+    ADD_FAILURE() << "a truncated video ended without an error";
+  } catch (const std::runtime_error& e) {
+    message = e.what();
+  }
+  EXPECT_GT(delivered, 0);
+  EXPECT_LT(delivered, 20);
+  EXPECT_THAT(message, HasSubstr(video.string()));
+  EXPECT_THAT(message, HasSubstr("ended after " + std::to_string(delivered) + " of the 20"));
+  EXPECT_THAT(message, HasSubstr("--skip-bad-frames"));
+
+  VideoFileSource skipping(video, Options(0.0, true));
+  ::testing::internal::CaptureStderr();
+  const std::vector<Frame> frames = ReadAll(skipping);
+  const std::string stderr_text = ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(frames.size(), static_cast<size_t>(delivered));
+  ASSERT_EQ(skipping.SkippedFrames().size(), 1u);
+  EXPECT_EQ(skipping.SkippedFrames()[0].item, "frames " + std::to_string(delivered) + "..19");
+  EXPECT_THAT(stderr_text, HasSubstr("warning: "));
+  EXPECT_FALSE(skipping.Next().has_value());
+}
+
 TEST(VideoFileSource, MissingAndUndecodableFilesNameTheFile) {
   test_support::TempDirectory dir;
   const fs::path missing = dir.path() / "missing.avi";
