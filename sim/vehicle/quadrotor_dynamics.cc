@@ -27,6 +27,14 @@ void QuadrotorDynamicsParams::Validate() const {
     throw std::invalid_argument("QuadrotorDynamicsParams.max_integration_step_s must be > 0, got " +
                                 std::to_string(max_integration_step_s));
   }
+  const double fastest_lag_s =
+      std::min(vehicle.rotor.time_constant_up_s, vehicle.rotor.time_constant_down_s);
+  if (rotor_lag_enabled && fastest_lag_s < max_integration_step_s) {
+    throw std::invalid_argument(
+        "QuadrotorDynamicsParams: rotor time constant " + std::to_string(fastest_lag_s) +
+        " s is shorter than max_integration_step_s " + std::to_string(max_integration_step_s) +
+        " s; RK4 cannot resolve that lag: reduce the step or set rotor_lag_enabled = false");
+  }
 }
 
 QuadrotorDynamics::QuadrotorDynamics(const QuadrotorDynamicsParams& params,
@@ -54,6 +62,7 @@ void QuadrotorDynamics::SetMotorCommands(const Eigen::Vector4d& u) {
   }
   const control::RotorParameters& rotor = params_.vehicle.rotor;
   commands_ = u.cwiseMax(rotor.command_min).cwiseMin(rotor.command_max);
+  if (!params_.rotor_lag_enabled) SettleRotors();
 }
 
 void QuadrotorDynamics::SetRotorThrustCommand(const control::RotorThrustCommand& command) {

@@ -44,8 +44,13 @@ struct QuadrotorDynamicsParams {
   // Largest RK4 step [s]; Step(dt) is split into equal sub-steps no longer than this. 1 ms
   // resolves the 11 ms rotor time constant (step error of RK4 ~ (h/tau)^5) and body dynamics.
   double max_integration_step_s = 0.001;
+  // false: every rotor produces f(u) the moment u is set, (G.7) is bypassed. For comparisons with
+  // models that assume instantaneous thrust (flatness, F.1-F.5); a tiny time constant is not the
+  // same, since RK4 samples the thrust at the start of a step, before such a fast lag has moved.
+  bool rotor_lag_enabled = true;
 
-  // Throws std::invalid_argument naming the field (delegates to VehicleParameters::Validate).
+  // Throws std::invalid_argument naming the field (delegates to VehicleParameters::Validate), and
+  // when the lag is enabled but a rotor time constant is shorter than max_integration_step_s.
   void Validate() const;
 };
 

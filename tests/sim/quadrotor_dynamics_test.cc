@@ -152,6 +152,21 @@ TEST(QuadrotorDynamicsTest, MotorStepResponsesMatchUpAndDownTimeConstants) {
   EXPECT_NEAR(tau_down, params.vehicle.rotor.time_constant_down_s, 1e-6);
 }
 
+TEST(QuadrotorDynamicsTest, DisabledRotorLagAppliesThrustImmediately) {
+  QuadrotorDynamicsParams params;
+  params.rotor_lag_enabled = false;
+  QuadrotorDynamics vehicle(params);
+  const Eigen::Vector4d u(0.5, -0.2, 0.1, 0.9);
+  vehicle.SetMotorCommands(u);
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_DOUBLE_EQ(vehicle.RotorThrusts_N()[i], params.vehicle.rotor.ThrustFromCommand(u[i]));
+  }
+  vehicle.Step(0.001);
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_DOUBLE_EQ(vehicle.RotorThrusts_N()[i], params.vehicle.rotor.ThrustFromCommand(u[i]));
+  }
+}
+
 TEST(QuadrotorDynamicsTest, ThrustCommandsAreScaledByFitnessAndClamped) {
   QuadrotorDynamicsParams params;
   params.vehicle.rotor_fitness = Eigen::Vector4d(0.8, 1.0, 1.1, 0.9);
@@ -260,6 +275,11 @@ TEST(QuadrotorDynamicsTest, RejectsBadInputsNamingThem) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("mass_kg"), std::string::npos) << e.what();
   }
+  params = QuadrotorDynamicsParams();
+  params.vehicle.rotor.time_constant_up_s = 1e-4;  // faster than the 1 ms step can resolve
+  EXPECT_THROW(QuadrotorDynamics{params}, std::invalid_argument);
+  params.rotor_lag_enabled = false;
+  EXPECT_NO_THROW(QuadrotorDynamics{params});
   QuadrotorDynamics vehicle{QuadrotorDynamicsParams()};
   EXPECT_THROW(vehicle.Step(0.0), std::invalid_argument);
   EXPECT_THROW(vehicle.SetMotorCommands(Eigen::Vector4d::Constant(NAN)), std::invalid_argument);
