@@ -19,10 +19,9 @@
 //    phase acceleration steps at t = 0 and t = ramp_s (by 5 m/s / 30 s = 0.17 m/s^2 tangential
 //    acceleration on the circle), so jerk and snap are impulses there and are reported as 0.
 // Before t = 0 every trajectory rests at its start point. All positions are in W (z up).
+#include <Eigen/Core>
 #include <array>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "control/trajectory_point.h"
 
@@ -71,9 +70,9 @@ class PhaseProfile {
 
 struct CircleTrajectoryParams {
   Eigen::Vector3d center_W{0.0, 0.0, 1.5};
-  double radius_m = 1.8;       // F.7.2
-  double speed_mps = 4.0;      // F.7.2
-  double heading_rad = 0.0;    // constant heading (the thesis figures assume one)
+  double radius_m = 1.8;     // F.7.2
+  double speed_mps = 4.0;    // F.7.2
+  double heading_rad = 0.0;  // constant heading (the thesis figures assume one)
   SpeedRampParams ramp;
   // F.7 speed ramp: 0 -> 5 m/s linearly in 30 s.
   static CircleTrajectoryParams ThesisSpeedRamp();
@@ -93,8 +92,8 @@ class CircleTrajectory : public ReferenceTrajectory {
 
 struct LemniscateTrajectoryParams {
   Eigen::Vector3d center_W{0.0, 0.0, 1.5};
-  double amplitude_m = 2.0;      // F.7.2: x = 2 cos(phi)
-  double max_speed_mps = 4.0;    // F.7.2; sets the full phase rate to max_speed / (sqrt(2) A)
+  double amplitude_m = 2.0;    // F.7.2: x = 2 cos(phi)
+  double max_speed_mps = 4.0;  // F.7.2; sets the full phase rate to max_speed / (sqrt(2) A)
   double heading_rad = 0.0;
   SpeedRampParams ramp;
   // F.7 speed ramp: maximum speed 0 -> 5 m/s linearly in 30 s.

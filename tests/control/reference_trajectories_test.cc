@@ -80,8 +80,8 @@ TEST(ReferenceTrajectoriesTest, CircleFliesRadiusAndSpeedOfThesisAndStopsAtRest)
   // Ten loops at full speed plus half a loop's length in each ramp: the phase at the end.
   const double loops = 10.0 + 2.0 * (0.5 * 3.0 * 4.0 / 1.8) / (2.0 * M_PI);
   const Eigen::Vector3d expected_end =
-      params.center_W + 1.8 * Eigen::Vector3d(std::cos(2.0 * M_PI * loops),
-                                              std::sin(2.0 * M_PI * loops), 0.0);
+      params.center_W +
+      1.8 * Eigen::Vector3d(std::cos(2.0 * M_PI * loops), std::sin(2.0 * M_PI * loops), 0.0);
   EXPECT_LT((end.p_W - expected_end).norm(), 1e-9);
 }
 
