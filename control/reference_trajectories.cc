@@ -242,4 +242,21 @@ TrajectoryPoint BackAndForthTrajectory::Evaluate(double t_s) const {
   return point;
 }
 
+// ---------------------------------------------------------------------------- By name
+
+std::unique_ptr<ReferenceTrajectory> MakeThesisTrajectory(const std::string& name) {
+  if (name == "circle") return std::make_unique<CircleTrajectory>();
+  if (name == "lemniscate") return std::make_unique<LemniscateTrajectory>();
+  if (name == "circle_speed_ramp") {
+    return std::make_unique<CircleTrajectory>(CircleTrajectoryParams::ThesisSpeedRamp());
+  }
+  if (name == "lemniscate_speed_ramp") {
+    return std::make_unique<LemniscateTrajectory>(LemniscateTrajectoryParams::ThesisSpeedRamp());
+  }
+  if (name == "back_and_forth") return std::make_unique<BackAndForthTrajectory>();
+  throw std::invalid_argument("unknown reference trajectory '" + name +
+                              "'; use one of circle, lemniscate, circle_speed_ramp, "
+                              "lemniscate_speed_ramp, back_and_forth");
+}
+
 }  // namespace aperture::control

@@ -21,6 +21,8 @@
 // Before t = 0 every trajectory rests at its start point. All positions are in W (z up).
 #include <Eigen/Core>
 #include <array>
+#include <memory>
+#include <string>
 #include <vector>
 
 #include "control/trajectory_point.h"
@@ -139,5 +141,11 @@ class BackAndForthTrajectory : public ReferenceTrajectory {
   double segment_duration_s_ = 0.0;
   double segment_length_m_ = 0.0;
 };
+
+// The thesis trajectories with their default parameters, by name: "circle", "lemniscate"
+// (F.7.2, smooth ramps), "circle_speed_ramp", "lemniscate_speed_ramp" (F.7.4 linear ramp to
+// 5 m/s in 30 s), "back_and_forth" (G.6.2). Throws std::invalid_argument naming the unknown
+// name and listing the valid ones.
+std::unique_ptr<ReferenceTrajectory> MakeThesisTrajectory(const std::string& name);
 
 }  // namespace aperture::control

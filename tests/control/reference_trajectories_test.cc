@@ -206,5 +206,24 @@ TEST(ReferenceTrajectoriesTest, InvalidParametersThrowNamingTheField) {
   }
 }
 
+TEST(ReferenceTrajectoriesTest, ThesisTrajectoriesByName) {
+  const auto circle = MakeThesisTrajectory("circle");
+  EXPECT_NEAR(circle->Evaluate(5.0).v_W.norm(), 4.0, 1e-12);
+  const auto ramp = MakeThesisTrajectory("circle_speed_ramp");
+  EXPECT_NEAR(ramp->Evaluate(30.0).v_W.norm(), 5.0, 1e-12);
+  const auto lemniscate = MakeThesisTrajectory("lemniscate_speed_ramp");
+  EXPECT_TRUE(std::isinf(lemniscate->EndTimeS()));
+  const auto back = MakeThesisTrajectory("back_and_forth");
+  EXPECT_NEAR(back->Evaluate(0.5 * 1.809).v_W.x(), 5.7, 1e-3);  // peak speed mid-segment
+  EXPECT_NE(MakeThesisTrajectory("lemniscate"), nullptr);
+  try {
+    MakeThesisTrajectory("cirle");
+    FAIL() << "expected std::invalid_argument";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("'cirle'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("back_and_forth"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace aperture::control
