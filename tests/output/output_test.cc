@@ -396,6 +396,22 @@ TEST_F(OutputTest, LinePlotSkipsNanPointsAndTicksCoverData) {
   EXPECT_THROW(SvgPlot({"bad"}).AddLine("short", {1, 2}, {1}), std::invalid_argument);
 }
 
+TEST_F(OutputTest, TickLabelsStayDistinctAtLargeAndSmallScales) {
+  // Unix timestamps (large offset, small span) and micro-scale values must not collapse into
+  // identical labels; each label must read back to its tick within half a step.
+  for (const double offset : {1.7e9, 0.0, 3e-6}) {
+    const double span = offset == 0.0 ? 1e-5 : offset * 1e-8;
+    const std::string svg =
+        SvgPlot({"ticks"}).AddLine("s", {offset, offset + span}, {offset, offset + span}).Render();
+    const AxisTicks ticks = ComputeNiceTicks(offset, offset + span);
+    const std::vector<double> labels = TickLabels(svg, "x-tick-labels");
+    ASSERT_EQ(labels.size(), ticks.values.size());
+    for (std::size_t i = 0; i < labels.size(); ++i) {
+      EXPECT_NEAR(labels[i], ticks.values[i], ticks.step / 2) << "offset " << offset;
+    }
+  }
+}
+
 TEST_F(OutputTest, ScatterEmptyAndAllNanPlotsStayWellFormed) {
   const std::string scatter =
       SvgPlot({"s"}).AddScatter("pts", {1, 2, std::nan(""), 4}, {1, 4, 9, HUGE_VAL}).Render();
