@@ -3,13 +3,22 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 
 #include "control/reference_trajectories.h"
 
 namespace aperture::control {
 namespace {
+
+// Measured figure for the XML test report, in scientific notation.
+std::string Sci(double value) {
+  std::ostringstream os;
+  os << std::scientific << std::setprecision(2) << value;
+  return os.str();
+}
 
 constexpr double kDegPerRad = 180.0 / M_PI;
 
@@ -126,7 +135,8 @@ TEST(FlatnessTest, OrientationIsRotationAndSatisfiesDragModelF2AndThrustModelF5)
     EXPECT_NEAR(R.col(0).dot(y_C), 0.0, 1e-12);
     EXPECT_GT(R.col(0).dot(x_C), 0.0);
   }
-  EXPECT_LT(max_residual, 1e-9);  // the brief's bound; exact algebra, round-off ~1e-14
+  RecordProperty("max_F2_residual_mps2", Sci(max_residual));
+  EXPECT_LT(max_residual, 1e-9);  // the project's bound; exact algebra, round-off ~1e-14
 }
 
 TEST(FlatnessTest, BodyRatesMatchNumericDerivativeOfOrientation) {
@@ -138,6 +148,7 @@ TEST(FlatnessTest, BodyRatesMatchNumericDerivativeOfOrientation) {
       max_error = std::max(max_error, (r.omega_B - NumericOmega(t, vehicle, 1e-5)).norm());
     }
     // Central differences with h = 1e-5: truncation ~h^2 |R'''| ~ 1e-9, round-off ~1e-16/h.
+    RecordProperty("max_omega_error_radps", Sci(max_error));
     EXPECT_LT(max_error, 1e-7);
   }
 }
@@ -156,6 +167,7 @@ TEST(FlatnessTest, AngularAccelerationAndThrustRateMatchNumericDerivatives) {
       max_c_dot_error = std::max(max_c_dot_error, std::abs(r.collective_thrust_rate_mps3 - c_dot));
     }
     // Same central-difference budget as the body rates.
+    RecordProperty("max_omega_dot_error_radps2", Sci(max_error));
     EXPECT_LT(max_error, 1e-6);
     EXPECT_LT(max_c_dot_error, 1e-6);
   }
@@ -208,6 +220,29 @@ TEST(FlatnessTest, LemniscateReproducesThesisPeakThrustAndBodyRates) {
   }
   EXPECT_NEAR(max_c, 12.98, 0.005);
   EXPECT_NEAR(max_omega, 136.0, 0.5);
+}
+
+TEST(FlatnessTest, BodyFrameVelocitiesMatchThesisForHeadingZero) {
+  // F.7.2: max nominal velocity 4.0 m/s in the x_B-y_B plane and 0 along z_B on the circle;
+  // 2.8 m/s along x_B and y_B and 1.3 m/s along z_B on the lemniscate (thesis rounding 0.05).
+  const VehicleParameters vehicle = DragFreeVehicle();
+  auto max_body_velocity = [&](const ReferenceTrajectory& trajectory, double period_s) {
+    Eigen::Vector3d max_v_B = Eigen::Vector3d::Zero();
+    for (double t = 4.0; t < 4.0 + period_s; t += 1e-3) {
+      const TrajectoryPoint ref = trajectory.Evaluate(t);
+      const FlatnessResult r = ComputeFlatnessOutputs(ref, vehicle);
+      max_v_B = max_v_B.cwiseMax((r.R_WB.transpose() * ref.v_W).cwiseAbs());
+    }
+    return max_v_B;
+  };
+  const Eigen::Vector3d lemniscate =
+      max_body_velocity(LemniscateTrajectory(), 2.0 * M_PI / std::sqrt(2.0));
+  EXPECT_NEAR(lemniscate.x(), 2.8, 0.05);
+  EXPECT_NEAR(lemniscate.y(), 2.8, 0.05);
+  EXPECT_NEAR(lemniscate.z(), 1.3, 0.05);
+  const Eigen::Vector3d circle = max_body_velocity(CircleTrajectory(), 2.0 * M_PI * 1.8 / 4.0);
+  EXPECT_NEAR(circle.head<2>().maxCoeff(), 4.0, 1e-6);
+  EXPECT_LT(circle.z(), 1e-12);  // z_B is tilted towards the centre, v is tangential
 }
 
 TEST(FlatnessTest, YawSingularityGivesFiniteOutputsFlagAndUprightLimit) {
