@@ -1,5 +1,6 @@
 #include "output/output_folder.h"
 
+#include <exception>
 #include <filesystem>
 #include <stdexcept>
 #include <system_error>
@@ -51,6 +52,19 @@ std::string OutputFolder::WriteSummary(RunStatus status, const std::string& erro
   const std::string path = Path(kSummaryFileName);
   WriteFileAtomically(path, summary_.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
   return path;
+}
+
+void RunAndWriteSummary(OutputFolder& out, const std::function<void()>& body) {
+  try {
+    body();
+  } catch (const std::exception& e) {
+    out.WriteSummary(RunStatus::kFailed, e.what());
+    throw;
+  } catch (...) {
+    out.WriteSummary(RunStatus::kFailed, "unknown exception");
+    throw;
+  }
+  out.WriteSummary(RunStatus::kOk);
 }
 
 }  // namespace aperture::output

@@ -11,6 +11,7 @@
 // removed at construction, so a run that crashes before WriteSummary leaves no summary at all
 // rather than an old one that looks complete.
 #include <chrono>
+#include <functional>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -42,5 +43,12 @@ class OutputFolder {
   nlohmann::json summary_ = nlohmann::json::object();
   std::chrono::steady_clock::time_point start_;
 };
+
+// Runs `body` and always leaves a summary: "ok" when it returns, "failed" with the exception's
+// message when it throws (the exception is then rethrown for main() to report and turn into an
+// exit code).
+//   OutputFolder out(out_dir);
+//   RunAndWriteSummary(out, [&] { ...the command... });
+void RunAndWriteSummary(OutputFolder& out, const std::function<void()>& body);
 
 }  // namespace aperture::output

@@ -25,15 +25,19 @@ std::string Px(double value) {
 }
 
 std::string TickLabel(double value, double step) {
-  char buffer[32];
+  char buffer[48];
+  // Enough digits to tell neighbouring ticks apart (2.5 x 10^k steps need one more).
+  const double step_exponent = std::floor(std::log10(step) + 1e-9);
+  const bool two_and_a_half = std::abs(step / std::pow(10.0, step_exponent) - 2.5) < 1e-9;
+  const int extra = two_and_a_half ? 1 : 0;
   const double magnitude = std::max(std::abs(value), std::abs(step));
   if (magnitude >= 1e6 || step < 1e-4) {
-    std::snprintf(buffer, sizeof(buffer), "%.3g", value);
+    // Exponent notation with as many significant digits as the step resolves (e.g. 1.70000001e+09).
+    const int digits = static_cast<int>(std::floor(std::log10(magnitude) + 1e-9) - step_exponent) +
+                       1 + extra;
+    std::snprintf(buffer, sizeof(buffer), "%.*g", std::clamp(digits, 1, 17), value);
   } else {
-    // Enough decimals to tell neighbouring ticks apart (2.5 x 10^k steps need one more).
-    const double exponent = std::floor(std::log10(step) + 1e-9);
-    const bool two_and_a_half = std::abs(step / std::pow(10.0, exponent) - 2.5) < 1e-9;
-    const int decimals = std::max(0, static_cast<int>(-exponent) + (two_and_a_half ? 1 : 0));
+    const int decimals = std::max(0, static_cast<int>(-step_exponent) + extra);
     std::snprintf(buffer, sizeof(buffer), "%.*f", decimals, value == 0.0 ? 0.0 : value);
   }
   return buffer;

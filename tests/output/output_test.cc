@@ -114,6 +114,25 @@ TEST_F(OutputTest, FailedSummaryCarriesError) {
   EXPECT_THROW(out.WriteSummary(RunStatus::kFailed, ""), std::invalid_argument);
 }
 
+TEST_F(OutputTest, RunAndWriteSummaryRecordsFailureAndRethrows) {
+  OutputFolder out(directory_.string());
+  EXPECT_THROW(RunAndWriteSummary(out,
+                                  [&] {
+                                    out.summary()["counts"]["frames"] = 3;
+                                    throw std::invalid_argument("image 'f3.png' unreadable");
+                                  }),
+               std::invalid_argument);
+  nlohmann::json read = nlohmann::json::parse(ReadFile(out.Path("summary.json")));
+  EXPECT_EQ(read["status"], "failed");
+  EXPECT_EQ(read["error"], "image 'f3.png' unreadable");
+  EXPECT_EQ(read["counts"]["frames"], 3);
+
+  RunAndWriteSummary(out, [&] { out.summary()["counts"]["frames"] = 4; });
+  read = nlohmann::json::parse(ReadFile(out.Path("summary.json")));
+  EXPECT_EQ(read["status"], "ok");
+  EXPECT_FALSE(read.contains("error"));  // a stale error from before must not survive
+}
+
 TEST_F(OutputTest, StaleSummaryIsRemovedWhenFolderIsReused) {
   {
     OutputFolder first(directory_.string());
@@ -377,6 +396,22 @@ TEST_F(OutputTest, LinePlotSkipsNanPointsAndTicksCoverData) {
   EXPECT_THROW(SvgPlot({"bad"}).AddLine("short", {1, 2}, {1}), std::invalid_argument);
 }
 
+TEST_F(OutputTest, TickLabelsStayDistinctAtLargeAndSmallScales) {
+  // Unix timestamps (large offset, small span) and micro-scale values must not collapse into
+  // identical labels; each label must read back to its tick within half a step.
+  for (const double offset : {1.7e9, 0.0, 3e-6}) {
+    const double span = offset == 0.0 ? 1e-5 : offset * 1e-8;
+    const std::string svg =
+        SvgPlot({"ticks"}).AddLine("s", {offset, offset + span}, {offset, offset + span}).Render();
+    const AxisTicks ticks = ComputeNiceTicks(offset, offset + span);
+    const std::vector<double> labels = TickLabels(svg, "x-tick-labels");
+    ASSERT_EQ(labels.size(), ticks.values.size());
+    for (std::size_t i = 0; i < labels.size(); ++i) {
+      EXPECT_NEAR(labels[i], ticks.values[i], ticks.step / 2) << "offset " << offset;
+    }
+  }
+}
+
 TEST_F(OutputTest, ScatterEmptyAndAllNanPlotsStayWellFormed) {
   const std::string scatter =
       SvgPlot({"s"}).AddScatter("pts", {1, 2, std::nan(""), 4}, {1, 4, 9, HUGE_VAL}).Render();
@@ -488,6 +523,19 @@ TEST_F(OutputTest, ProgressBarIsSilentWhenNotATerminal) {
   EXPECT_TRUE(sink.str().empty());
 }
 
+TEST_F(OutputTest, DefaultProgressBarDetectsRedirectedStderr) {
+  // CaptureStderr points fd 2 at a file, so isatty(2) is false whether or not the test itself
+  // runs in a terminal.
+  ::testing::internal::CaptureStderr();
+  {
+    ProgressBar bar("frames", 3);
+    EXPECT_FALSE(bar.enabled());
+    bar.Update(1);
+    bar.Finish();
+  }
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
+}
+
 TEST_F(OutputTest, ProgressBarDrawsLabelCountsAndEndsTheLine) {
   std::ostringstream sink;
   ProgressBar bar("frames", 10, sink, true);
@@ -506,22 +554,27 @@ TEST_F(OutputTest, ProgressBarDrawsLabelCountsAndEndsTheLine) {
 
 // ---- Video ---------------------------------------------------------------------------------------
 
-TEST_F(OutputTest, VideoWriterWritesReadableFileAndRenamesIt) {
+class VideoWriterTest : public OutputTest,
+                        public ::testing::WithParamInterface<VideoFormat> {};
+
+TEST_P(VideoWriterTest, WritesReadableFileAndRenamesIt) {
   fs::create_directories(directory_);
   const cv::Size size(64, 48);
   std::optional<std::string> written;
+  std::string codec;
   {
-    VideoWriter video((directory_ / "overlay").string(), 10.0);
+    VideoWriter video((directory_ / "overlay").string(), 10.0, GetParam());
     for (int i = 0; i < 12; ++i) {
-      cv::Mat frame(size, CV_8UC3, cv::Scalar(20 * (i % 10), 100, 200));
-      video.Write(frame);
+      video.Write(cv::Mat(size, CV_8UC3, cv::Scalar(20 * (i % 10), 100, 200)));
     }
     EXPECT_THROW(video.Write(cv::Mat(10, 10, CV_8UC3)), std::invalid_argument);
     written = video.Close();
-    RecordProperty("codec", video.codec());
-    std::cout << "video codec used: " << video.codec() << " -> " << *written << "\n";
+    codec = video.codec();
   }
   ASSERT_TRUE(written.has_value());
+  // On this platform (Debian 12, OpenCV 4.6 + FFmpeg) mp4v opens, so no fallback is taken.
+  EXPECT_EQ(codec, GetParam() == VideoFormat::kAvi ? "MJPG" : "mp4v");
+  EXPECT_EQ(fs::path(*written).extension(), codec == "MJPG" ? ".avi" : ".mp4");
   EXPECT_EQ(ListFiles(directory_),
             std::vector<std::string>{fs::path(*written).filename().string()});
   cv::VideoCapture capture(*written);
@@ -530,14 +583,25 @@ TEST_F(OutputTest, VideoWriterWritesReadableFileAndRenamesIt) {
   cv::Mat frame;
   while (capture.read(frame)) {
     EXPECT_EQ(frame.size(), size);
-    // Lossy codec: a flat colour comes back within a few grey levels (20 allows mp4v's blocking).
+    // Lossy codecs: a flat colour comes back within a few grey levels (20 is generous for both).
     EXPECT_NEAR(cv::mean(frame)[1], 100.0, 20.0);
+    EXPECT_NEAR(cv::mean(frame)[0], 20.0 * (frames % 10), 20.0);
     ++frames;
   }
   EXPECT_EQ(frames, 12);
+}
 
-  VideoWriter unused((directory_ / "unused").string(), 30.0);
-  EXPECT_FALSE(unused.Close().has_value());
+INSTANTIATE_TEST_SUITE_P(Formats, VideoWriterTest,
+                         ::testing::Values(VideoFormat::kMp4OrAvi, VideoFormat::kAvi));
+
+TEST_F(OutputTest, VideoWriterWithoutFramesWritesNothing) {
+  fs::create_directories(directory_);
+  {
+    VideoWriter unused((directory_ / "unused").string(), 30.0);
+    EXPECT_FALSE(unused.Close().has_value());
+  }
+  EXPECT_TRUE(ListFiles(directory_).empty());
+  EXPECT_THROW(VideoWriter("x", 0.0), std::invalid_argument);
 }
 
 }  // namespace
