@@ -33,7 +33,8 @@ Eigen::VectorXd ToEigen(const std::vector<double>& v) {
 }
 
 std::unique_ptr<CameraModel> Make(const CameraCase& c) {
-  return CreateCameraModel(c.model, c.width, c.height, ToEigen(c.intrinsics), ToEigen(c.distortion));
+  return CreateCameraModel(c.model, c.width, c.height, ToEigen(c.intrinsics),
+                           ToEigen(c.distortion));
 }
 
 // Angle of a bearing off the optical axis [rad].
@@ -97,7 +98,9 @@ TEST_P(CameraModelTest, JacobianMatchesCentralDifferences) {
       J_numeric.col(k) = (px_plus - px_minus) / (2.0 * h);
     }
     EXPECT_LT((J - J_numeric).cwiseAbs().maxCoeff(), 1e-5 * J.cwiseAbs().maxCoeff())
-        << "p_C " << p_C.transpose() << "\nJ\n" << J << "\nnumeric\n" << J_numeric;
+        << "p_C " << p_C.transpose() << "\nJ\n"
+        << J << "\nnumeric\n"
+        << J_numeric;
   }
 }
 
