@@ -3,8 +3,8 @@
 // rotor drag of F.2/F.4/F.5 and the rotor model of G.1-G.5), reproduce the trajectory.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 
 #include "control/flatness.h"
 #include "control/reference_trajectories.h"
@@ -100,8 +100,7 @@ RoundTripError ReplayOpenLoop(const control::ReferenceTrajectory& trajectory, do
     const control::QuadState& x = quad.state();
     error.position_m = std::max(error.position_m, (x.p_WB - ref.p_W).norm());
     error.velocity_mps = std::max(error.velocity_mps, (x.v_W - ref.v_W).norm());
-    error.attitude_rad =
-        std::max(error.attitude_rad, x.q_WB.angularDistance(ref_flat.q_WB));
+    error.attitude_rad = std::max(error.attitude_rad, x.q_WB.angularDistance(ref_flat.q_WB));
   }
   return error;
 }
