@@ -30,6 +30,15 @@
 // Integration: classic RK4 with a fixed step (default 1 ms); (G.7) is solved exactly inside each
 // step (the thrust never crosses its target, so the up/down branch is constant over a step) and
 // its closed form is evaluated at the RK4 stage times. q_WB is renormalized after every step.
+//
+// Typical SITL loop (sim/vehicle/disturbances.h, sim/sensors/imu_sensor.h):
+//   QuadrotorDynamics vehicle(params, initial_state);
+//   for (;;) {
+//     vehicle.SetRotorThrustCommand(mixer_output);        // or SetMotorCommands(u)
+//     disturbances.StepVehicle(0.001, &vehicle);          // or vehicle.Step(0.001)
+//     for (const auto& sample : imu.Update(vehicle.state().t_s, vehicle.SpecificForce_B(),
+//                                          vehicle.state().omega_B)) { autopilot(sample); }
+//   }
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
