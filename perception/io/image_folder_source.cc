@@ -11,6 +11,7 @@ namespace aperture::perception {
 namespace fs = std::filesystem;
 namespace {
 
+constexpr const char* kSkipHint = " (or skip such frames with --skip-bad-frames)";
 constexpr const char* kImageExtensions = ".png .jpg .jpeg .pgm .ppm .pnm .bmp .tif .tiff";
 
 // Image files directly in `folder` (no hidden files, no subfolders), in natural order.
@@ -174,8 +175,7 @@ void ImageFolderSource::SkipOrThrow(const std::string& item, const std::string& 
     RecordSkip(item, reason);
     return;
   }
-  throw std::invalid_argument("'" + item + "' " + reason +
-                              " (or skip such frames with --skip-bad-frames)");
+  throw std::invalid_argument("'" + item + "' " + reason + kSkipHint);
 }
 
 std::optional<Frame> ImageFolderSource::Next() {
@@ -186,7 +186,9 @@ std::optional<Frame> ImageFolderSource::Next() {
     try {
       image = ReadImageFile(file, options_.color_mode);
     } catch (const std::runtime_error& e) {
-      if (!options_.skip_bad_frames) throw;
+      if (!options_.skip_bad_frames) {
+        throw std::runtime_error(std::string(e.what()) + kSkipHint);
+      }
       RecordSkip(file.string(), e.what());
       continue;
     }
