@@ -1,6 +1,9 @@
 #include "config/config_tree.h"
 
+#include <cstdio>
+#include <cstdlib>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <stdexcept>
 
@@ -22,6 +25,86 @@ std::vector<std::string> SplitKey(const std::string& key) {
     segments.push_back(key.substr(start, dot - start));
     if (dot == std::string::npos) return segments;
     start = dot + 1;
+  }
+}
+
+std::string JsonString(const std::string& text) {
+  std::string json = "\"";
+  for (const char c : text) {
+    switch (c) {
+      case '"':
+        json += "\\\"";
+        break;
+      case '\\':
+        json += "\\\\";
+        break;
+      case '\n':
+        json += "\\n";
+        break;
+      case '\t':
+        json += "\\t";
+        break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20) {
+          char escaped[8];
+          std::snprintf(escaped, sizeof(escaped), "\\u%04x", c);
+          json += escaped;
+        } else {
+          json += c;
+        }
+    }
+  }
+  return json + "\"";
+}
+
+std::string JsonScalar(const YAML::Node& node) {
+  const std::string& text = node.Scalar();
+  // yaml-cpp tags quoted scalars "!": the author meant a string, whatever it looks like.
+  if (node.Tag() == "!") return JsonString(text);
+  if (text == "true" || text == "false") return text;
+  if (text.empty() || text == "null" || text == "~") return "null";
+  static const std::regex kDecimal(R"([-+]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][-+]?[0-9]+)?)");
+  if (std::regex_match(text, kDecimal)) {
+    // Re-print so YAML spellings JSON rejects ("+1", ".5", "1.") come out valid.
+    const double value = std::strtod(text.c_str(), nullptr);
+    char buffer[32];
+    std::snprintf(buffer, sizeof(buffer), "%.15g", value);
+    if (std::strtod(buffer, nullptr) != value) {  // shortest text that reads back exactly
+      std::snprintf(buffer, sizeof(buffer), "%.17g", value);
+    }
+    return buffer;
+  }
+  return JsonString(text);
+}
+
+void AppendJson(const YAML::Node& node, std::string* json) {
+  switch (node.Type()) {
+    case YAML::NodeType::Map: {
+      *json += '{';
+      bool first = true;
+      for (auto it = node.begin(); it != node.end(); ++it) {
+        *json += (first ? "" : ",") + JsonString(it->first.Scalar()) + ":";
+        AppendJson(it->second, json);
+        first = false;
+      }
+      *json += '}';
+      return;
+    }
+    case YAML::NodeType::Sequence:
+      *json += '[';
+      for (std::size_t i = 0; i < node.size(); ++i) {
+        if (i > 0) *json += ',';
+        AppendJson(node[i], json);
+      }
+      *json += ']';
+      return;
+    case YAML::NodeType::Scalar:
+      *json += JsonScalar(node);
+      return;
+    case YAML::NodeType::Null:
+    case YAML::NodeType::Undefined:
+      *json += "null";
+      return;
   }
 }
 
@@ -50,8 +133,10 @@ void ConfigTree::MergeYaml(const std::string& yaml_text, const std::string& sour
   }
   if (document.IsNull()) return;  // an empty file changes nothing
   if (!document.IsMap()) {
-    throw std::invalid_argument(source + ": the top level must be a map of sections (key: value), "
-                                "got a " + std::string(document.IsSequence() ? "sequence" : "scalar"));
+    throw std::invalid_argument(source +
+                                ": the top level must be a map of sections (key: value), "
+                                "got a " +
+                                std::string(document.IsSequence() ? "sequence" : "scalar"));
   }
   MergeNode(root_, document, "", ValueOrigin{source, true});
 }
@@ -144,6 +229,12 @@ std::string ConfigTree::ToYaml() const {
   YAML::Emitter emitter;
   emitter << root_;
   return emitter.c_str();
+}
+
+std::string ConfigTree::ToJson() const {
+  std::string json;
+  AppendJson(root_, &json);
+  return json;
 }
 
 }  // namespace aperture::config

@@ -10,11 +10,11 @@
 //   config::ParamReader root = tree.Reader();
 //   root.ReadSection("gap", &gap_params);   // LoadParams(ParamReader&, GapParams*)
 //   root.RejectUnknownKeys();               // typo'd top-level sections fail loudly
+#include <yaml-cpp/yaml.h>
+
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <yaml-cpp/yaml.h>
 
 #include "config/param_reader.h"
 
@@ -41,8 +41,14 @@ class ConfigTree {
   void ApplySet(const std::string& item);
 
   ParamReader Reader() const;
-  // Effective configuration as YAML text (for summary.json / logs).
+  // Effective configuration as YAML text (for logs or a config.yaml next to the results).
   std::string ToYaml() const;
+  // Effective configuration as compact JSON text, for summary.json:
+  //   out.summary()["config"] = nlohmann::json::parse(tree.ToJson());
+  // Plain scalars become JSON numbers (decimal YAML numbers), booleans (true/false), null
+  // (null, ~, empty) or strings; quoted YAML scalars always stay strings. Non-finite numbers
+  // (.nan, .inf), which JSON cannot hold, stay strings.
+  std::string ToJson() const;
   const YAML::Node& root() const { return root_; }
 
  private:

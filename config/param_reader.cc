@@ -28,10 +28,9 @@ std::string Describe(const YAML::Node& node) {
 // YAML 1.2 core-schema special floats plus the plain spellings people type on a command line.
 bool ParseSpecialDouble(const std::string& text, double* value) {
   static const std::map<std::string, double> kSpecial = {
-      {".nan", std::nan("")},         {".NaN", std::nan("")},       {".NAN", std::nan("")},
-      {"nan", std::nan("")},          {".inf", HUGE_VAL},           {".Inf", HUGE_VAL},
-      {".INF", HUGE_VAL},             {"+.inf", HUGE_VAL},          {"inf", HUGE_VAL},
-      {"-.inf", -HUGE_VAL},           {"-.Inf", -HUGE_VAL},         {"-.INF", -HUGE_VAL},
+      {".nan", std::nan("")}, {".NaN", std::nan("")}, {".NAN", std::nan("")}, {"nan", std::nan("")},
+      {".inf", HUGE_VAL},     {".Inf", HUGE_VAL},     {".INF", HUGE_VAL},     {"+.inf", HUGE_VAL},
+      {"inf", HUGE_VAL},      {"-.inf", -HUGE_VAL},   {"-.Inf", -HUGE_VAL},   {"-.INF", -HUGE_VAL},
       {"-inf", -HUGE_VAL}};
   const auto it = kSpecial.find(text);
   if (it == kSpecial.end()) return false;
@@ -73,6 +72,44 @@ void ConvertNode(const YAML::Node& node, const ValueContext& context, int* value
   *value = static_cast<int>(parsed);
 }
 
+void ConvertNode(const YAML::Node& node, const ValueContext& context, float* value) {
+  double wide = 0.0;
+  ConvertNode(node, context, &wide);
+  if (std::isfinite(wide) && std::abs(wide) > std::numeric_limits<float>::max()) {
+    ThrowTypeError(context, node, "a number within single-precision range");
+  }
+  *value = static_cast<float>(wide);
+}
+
+namespace {
+
+unsigned long long ParseUnsigned(const YAML::Node& node, const ValueContext& context,
+                                 unsigned long long max) {
+  const std::string expected = "a non-negative integer up to " + std::to_string(max);
+  if (!node.IsScalar()) ThrowTypeError(context, node, expected);
+  const std::string& text = node.Scalar();
+  // strtoull silently negates "-1"; only digits are accepted.
+  if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos) {
+    ThrowTypeError(context, node, expected);
+  }
+  errno = 0;
+  const unsigned long long parsed = std::strtoull(text.c_str(), nullptr, 10);
+  if (errno == ERANGE || parsed > max) ThrowTypeError(context, node, expected);
+  return parsed;
+}
+
+}  // namespace
+
+void ConvertNode(const YAML::Node& node, const ValueContext& context, unsigned int* value) {
+  *value = static_cast<unsigned int>(
+      ParseUnsigned(node, context, std::numeric_limits<unsigned int>::max()));
+}
+
+void ConvertNode(const YAML::Node& node, const ValueContext& context, unsigned long* value) {
+  *value = static_cast<unsigned long>(
+      ParseUnsigned(node, context, std::numeric_limits<unsigned long>::max()));
+}
+
 void ConvertNode(const YAML::Node& node, const ValueContext& context, bool* value) {
   // YAML 1.2 core schema booleans only: "yes"/"on" are strings there, so they are rejected rather
   // than silently meaning true.
@@ -98,7 +135,8 @@ void ConvertNode(const YAML::Node& node, const ValueContext& context, std::strin
 void ConvertNode(const YAML::Node& node, const ValueContext& context, Eigen::VectorXd* value) {
   std::vector<double> numbers;
   ConvertNode(node, context, &numbers);
-  *value = Eigen::Map<const Eigen::VectorXd>(numbers.data(), static_cast<Eigen::Index>(numbers.size()));
+  *value =
+      Eigen::Map<const Eigen::VectorXd>(numbers.data(), static_cast<Eigen::Index>(numbers.size()));
 }
 
 ParamReader::ParamReader(YAML::Node node, std::string path,
@@ -156,7 +194,8 @@ std::string ParamReader::Locate(const std::string& full_key, const YAML::Mark& m
 }
 
 std::string ParamReader::Where(const std::string& key) const {
-  const YAML::Node child = node_.IsMap() ? static_cast<const YAML::Node&>(node_)[key] : YAML::Node();
+  const YAML::Node child =
+      node_.IsMap() ? static_cast<const YAML::Node&>(node_)[key] : YAML::Node();
   return Locate(FullKey(key), child ? child.Mark() : node_.Mark());
 }
 
@@ -171,8 +210,8 @@ void ParamReader::RejectUnknownKeys() const {
     }
     throw std::invalid_argument(
         Locate(FullKey(key), it->first.Mark()) + ": unknown key '" + FullKey(key) + "'" +
-        (path_.empty() ? "" : " in section '" + path_ + "'") + "; known keys: " +
-        (known_keys_.empty() ? std::string("(none)") : known.str()) +
+        (path_.empty() ? "" : " in section '" + path_ + "'") +
+        "; known keys: " + (known_keys_.empty() ? std::string("(none)") : known.str()) +
         ". Fix the spelling or remove it.");
   }
 }

@@ -1,6 +1,7 @@
 #include "perception/camera/radtan_camera.h"
 
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -12,7 +13,9 @@ namespace {
 // 7 k3 s^3 reaches zero, searched up to r = 1e3 (an 89.9 deg half angle): the radial map folds
 // there. Returns +infinity when it stays positive.
 double FirstFoldRadius(const RadTanDistortion& d) {
-  auto slope = [&d](double s) { return 1.0 + s * (3.0 * d.k1 + s * (5.0 * d.k2 + s * 7.0 * d.k3)); };
+  auto slope = [&d](double s) {
+    return 1.0 + s * (3.0 * d.k1 + s * (5.0 * d.k2 + s * 7.0 * d.k3));
+  };
   // Geometric scan in s from 1e-4 to 1e6, then bisection on the first sign change.
   double s_lo = 0.0;
   for (double s = 1e-4; s <= 1e6; s *= 1.01) {
@@ -99,27 +102,35 @@ Eigen::Vector3d RadTanCamera::Unproject(const Eigen::Vector2d& px) const {
   Eigen::Vector2d xy = xy_d;
   Eigen::Matrix2d J;
   Eigen::Vector2d residual = Distort(xy, &J) - xy_d;
-  for (int iteration = 0; iteration < 50 && residual.norm() > 1e-15; ++iteration) {
-    const Eigen::Vector2d step = J.partialPivLu().solve(residual);
+  double residual_norm = residual.norm();
+  // 1e-11 px: two orders below the 1e-9 px the callers rely on.
+  const double tolerance = 1e-11 / std::max(k_.fx, k_.fy);
+  for (int iteration = 0; iteration < 50 && residual_norm > tolerance; ++iteration) {
+    const Eigen::Vector2d step = J.inverse() * residual;  // closed-form 2x2 inverse
+    bool improved = false;
     double scale = 1.0;
-    Eigen::Vector2d candidate, candidate_residual;
-    do {
-      candidate = xy - scale * step;
-      candidate_residual = Distort(candidate) - xy_d;
-      scale *= 0.5;
-    } while (candidate_residual.norm() >= residual.norm() && scale > 1e-6);
-    if (!(candidate_residual.norm() < residual.norm())) break;
-    xy = candidate;
-    residual = Distort(xy, &J) - xy_d;
+    for (int halving = 0; halving < 20 && !improved; ++halving, scale *= 0.5) {
+      const Eigen::Vector2d candidate = xy - scale * step;
+      Eigen::Matrix2d J_candidate;
+      const Eigen::Vector2d candidate_residual = Distort(candidate, &J_candidate) - xy_d;
+      if (candidate_residual.norm() < residual_norm) {
+        xy = candidate;
+        J = J_candidate;
+        residual = candidate_residual;
+        residual_norm = residual.norm();
+        improved = true;
+      }
+    }
+    if (!improved) break;  // at the floating-point floor (or beyond the fold)
   }
   return Eigen::Vector3d(xy.x(), xy.y(), 1.0).normalized();
 }
 
 std::unique_ptr<CameraModel> RadTanCamera::Scaled(int new_width, int new_height) const {
-  return std::make_unique<RadTanCamera>(
-      new_width, new_height,
-      k_.Scaled(static_cast<double>(new_width) / width(), static_cast<double>(new_height) / height()),
-      d_);
+  return std::make_unique<RadTanCamera>(new_width, new_height,
+                                        k_.Scaled(static_cast<double>(new_width) / width(),
+                                                  static_cast<double>(new_height) / height()),
+                                        d_);
 }
 
 std::unique_ptr<CameraModel> RadTanCamera::Clone() const {

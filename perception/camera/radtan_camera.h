@@ -8,8 +8,8 @@
 // model is treated as valid while the radial map r -> r * radial(r) is increasing, i.e. for
 // r < max_valid_radius() (computed at construction, +infinity when it never folds). Projection of
 // points beyond it returns false, so no point outside the field of view folds into the image.
-// Unproject inverts the distortion with Gauss-Newton (2-D Newton with backtracking) until the
-// residual stops decreasing (machine precision for pixels inside the valid radius).
+// Unproject inverts the distortion with Gauss-Newton (2-D Newton with backtracking) to a
+// residual below 1e-11 px for pixels inside the valid radius.
 #include <Eigen/Core>
 #include <memory>
 #include <string>

@@ -1,0 +1,149 @@
+#include "output/html_report.h"
+
+#include <cstdio>
+#include <map>
+#include <opencv2/imgcodecs.hpp>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "output/atomic_file.h"
+#include "output/base64.h"
+#include "output/svg_plot.h"
+
+namespace aperture::output {
+namespace {
+
+constexpr const char* kStyle = R"css(
+body { font-family: -apple-system, "Segoe UI", Roboto, Helvetica, Arial, sans-serif;
+       max-width: 960px; margin: 2em auto; padding: 0 1em; color: #222; line-height: 1.45; }
+h1 { font-size: 1.6em; border-bottom: 2px solid #444; padding-bottom: 0.2em; }
+h2 { font-size: 1.25em; margin-top: 1.8em; border-bottom: 1px solid #ccc; }
+table { border-collapse: collapse; margin: 0.8em 0; font-size: 0.92em; }
+th, td { border: 1px solid #ccc; padding: 0.25em 0.6em; text-align: left; vertical-align: top; }
+th { background: #f2f2f2; }
+td.number { text-align: right; font-variant-numeric: tabular-nums; }
+figure { margin: 1em 0; }
+figure svg, figure img { max-width: 100%; height: auto; border: 1px solid #ddd; }
+figcaption { font-size: 0.9em; color: #555; margin-top: 0.3em; }
+caption { caption-side: top; text-align: left; font-weight: bold; padding-bottom: 0.3em; }
+)css";
+
+std::string FormatCell(const nlohmann::json& value, bool* is_number) {
+  *is_number = value.is_number();
+  if (value.is_string()) return EscapeXml(value.get<std::string>());
+  if (value.is_number_float()) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof(buffer), "%.6g", value.get<double>());
+    return buffer;
+  }
+  if (value.is_null()) return "&mdash;";
+  return EscapeXml(value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
+}
+
+void Flatten(const nlohmann::json& object, const std::string& prefix,
+             std::vector<std::pair<std::string, nlohmann::json>>* rows) {
+  for (auto it = object.begin(); it != object.end(); ++it) {
+    const std::string key = prefix.empty() ? it.key() : prefix + "." + it.key();
+    if (it->is_object() && !it->empty()) {
+      Flatten(*it, key, rows);
+    } else {
+      rows->emplace_back(key, *it);
+    }
+  }
+}
+
+std::string Cell(const nlohmann::json& value) {
+  bool is_number = false;
+  const std::string text = FormatCell(value, &is_number);
+  return std::string(is_number ? "<td class=\"number\">" : "<td>") + text + "</td>";
+}
+
+std::string Figure(const std::string& content, const std::string& caption) {
+  return "<figure>" + content +
+         (caption.empty() ? "" : "<figcaption>" + EscapeXml(caption) + "</figcaption>") +
+         "</figure>\n";
+}
+
+}  // namespace
+
+HtmlReport::HtmlReport(std::string title) : title_(std::move(title)) {}
+
+void HtmlReport::AddSection(const std::string& heading) {
+  blocks_.push_back("<h2>" + EscapeXml(heading) + "</h2>\n");
+}
+
+void HtmlReport::AddParagraph(const std::string& text) {
+  blocks_.push_back("<p>" + EscapeXml(text) + "</p>\n");
+}
+
+void HtmlReport::AddTable(const nlohmann::json& data, const std::string& caption) {
+  std::ostringstream html;
+  html << "<table>";
+  if (!caption.empty()) html << "<caption>" << EscapeXml(caption) << "</caption>";
+  if (data.is_object()) {
+    std::vector<std::pair<std::string, nlohmann::json>> rows;
+    Flatten(data, "", &rows);
+    for (const auto& [key, value] : rows) {
+      html << "<tr><th>" << EscapeXml(key) << "</th>" << Cell(value) << "</tr>\n";
+    }
+  } else if (data.is_array() && !data.empty() && data.front().is_object()) {
+    std::vector<std::string> columns;
+    std::set<std::string> seen;
+    for (const nlohmann::json& row : data) {
+      for (auto it = row.begin(); row.is_object() && it != row.end(); ++it) {
+        if (seen.insert(it.key()).second) columns.push_back(it.key());
+      }
+    }
+    html << "<tr>";
+    for (const std::string& column : columns) html << "<th>" << EscapeXml(column) << "</th>";
+    html << "</tr>\n";
+    for (const nlohmann::json& row : data) {
+      html << "<tr>";
+      for (const std::string& column : columns) {
+        html << (row.is_object() && row.contains(column) ? Cell(row[column]) : "<td></td>");
+      }
+      html << "</tr>\n";
+    }
+  } else {
+    html << "<tr>" << Cell(data) << "</tr>\n";
+  }
+  html << "</table>\n";
+  blocks_.push_back(html.str());
+}
+
+void HtmlReport::AddSvg(const std::string& svg, const std::string& caption) {
+  blocks_.push_back(Figure(svg, caption));
+}
+
+void HtmlReport::AddImage(const cv::Mat& image, const std::string& caption) {
+  if (image.empty() || image.depth() != CV_8U ||
+      (image.channels() != 1 && image.channels() != 3 && image.channels() != 4)) {
+    throw std::invalid_argument("report image '" + caption +
+                                "' must be a non-empty 8-bit image with 1, 3 or 4 channels");
+  }
+  std::vector<std::uint8_t> png;
+  if (!cv::imencode(".png", image, png)) {
+    throw std::runtime_error("PNG encoding failed for report image '" + caption + "'");
+  }
+  blocks_.push_back(Figure("<img alt=\"" + EscapeXml(caption) + "\" width=\"" +
+                               std::to_string(image.cols) + "\" height=\"" +
+                               std::to_string(image.rows) + "\" src=\"data:image/png;base64," +
+                               Base64Encode(png) + "\"/>",
+                           caption));
+}
+
+std::string HtmlReport::ToHtml() const {
+  std::string html =
+      "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+      "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
+      "<title>" +
+      EscapeXml(title_) + "</title>\n<style>" + kStyle + "</style>\n</head>\n<body>\n<h1>" +
+      EscapeXml(title_) + "</h1>\n";
+  for (const std::string& block : blocks_) html += block;
+  return html + "</body>\n</html>\n";
+}
+
+void HtmlReport::Write(const std::string& path) const { WriteFileAtomically(path, ToHtml()); }
+
+}  // namespace aperture::output

@@ -1,0 +1,43 @@
+#pragma once
+// HtmlReport: one self-contained report.html (inline CSS, inline SVG, images as base64 PNG data
+// URIs) that opens offline in any browser. Blocks appear in the order they are added.
+//
+//   HtmlReport report("aperture run: gap sequence");
+//   report.AddSection("Summary");
+//   report.AddTable(out.summary());                 // key/value table from a JSON object
+//   report.AddSvg(plot.Render(), "Position error over time");
+//   report.AddImage(key_frame, "Frame 120 with detected gap");
+//   report.Write(out.Path("report.html"));          // atomic
+#include <nlohmann/json.hpp>
+#include <opencv2/core/mat.hpp>
+#include <string>
+#include <vector>
+
+namespace aperture::output {
+
+class HtmlReport {
+ public:
+  explicit HtmlReport(std::string title);
+
+  void AddSection(const std::string& heading);
+  void AddParagraph(const std::string& text);  // plain text, escaped
+  // An object becomes a key/value table (nested objects flatten to dotted keys); an array of
+  // objects becomes a table with one row per element and the union of keys as columns. Anything
+  // else is shown as JSON text. Numbers print with up to 6 significant digits.
+  void AddTable(const nlohmann::json& data, const std::string& caption = "");
+  // `svg` is inserted verbatim (trusted: produced by SvgPlot).
+  void AddSvg(const std::string& svg, const std::string& caption = "");
+  // PNG-encodes `image` (8-bit 1/3/4 channels, BGR order as elsewhere in OpenCV) and embeds it.
+  // std::invalid_argument naming `caption` for an empty image or an unsupported type.
+  void AddImage(const cv::Mat& image, const std::string& caption = "");
+
+  std::string ToHtml() const;
+  // Writes ToHtml() atomically to `path`.
+  void Write(const std::string& path) const;
+
+ private:
+  std::string title_;
+  std::vector<std::string> blocks_;  // HTML fragments
+};
+
+}  // namespace aperture::output

@@ -1,0 +1,53 @@
+#pragma once
+// OutputFolder: the `--out DIR` of one command. It owns summary.json, the figures of the run:
+//
+//   OutputFolder out(out_dir);                    // creates DIR (and parents), checks it is
+//   writable out.summary()["inputs"]["sequence"] = path;   // fill as the run goes
+//   ... write CSVs, report.html to out.Path("...") ...
+//   out.WriteSummary(RunStatus::kOk);             // or kFailed with the error message
+//
+// summary.json is written atomically and always carries "status": "ok" | "failed" (plus "error"
+// when failed) and "wall_time_s". A stale summary.json from an earlier run in the same folder is
+// removed at construction, so a run that crashes before WriteSummary leaves no summary at all
+// rather than an old one that looks complete.
+#include <chrono>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace aperture::output {
+
+enum class RunStatus { kOk, kFailed };
+
+class OutputFolder {
+ public:
+  // std::runtime_error naming `directory` when it cannot be created or written to.
+  explicit OutputFolder(const std::string& directory);
+
+  // `directory`/`name`; `name` may contain subfolders, which the caller creates.
+  std::string Path(const std::string& name) const;
+  const std::string& directory() const { return directory_; }
+
+  nlohmann::json& summary() { return summary_; }
+  const nlohmann::json& summary() const { return summary_; }
+
+  // Writes summary.json (atomically). `error` is required for kFailed and ignored for kOk.
+  // Returns the path written.
+  std::string WriteSummary(RunStatus status, const std::string& error = "");
+
+  static constexpr const char* kSummaryFileName = "summary.json";
+
+ private:
+  std::string directory_;
+  nlohmann::json summary_ = nlohmann::json::object();
+  std::chrono::steady_clock::time_point start_;
+};
+
+// Runs `body` and always leaves a summary: "ok" when it returns, "failed" with the exception's
+// message when it throws (the exception is then rethrown for main() to report and turn into an
+// exit code).
+//   OutputFolder out(out_dir);
+//   RunAndWriteSummary(out, [&] { ...the command... });
+void RunAndWriteSummary(OutputFolder& out, const std::function<void()>& body);
+
+}  // namespace aperture::output

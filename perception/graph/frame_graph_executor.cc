@@ -1,0 +1,47 @@
+#include "perception/graph/frame_graph_executor.h"
+
+namespace aperture::perception {
+namespace {
+
+double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+FrameGraphExecutor::FrameGraphExecutor(FrameGraph& graph)
+    : graph_(graph), node_durations_s_(graph.size()) {}
+
+void FrameGraphExecutor::Run(const Frame& frame, FrameSlots& slots) {
+  const auto start = std::chrono::steady_clock::now();
+  graph_.ResetSlots(frame, slots);
+  RunNodes(slots);
+  frame_durations_s_.push_back(SecondsSince(start));
+}
+
+FrameSlots FrameGraphExecutor::Run(const Frame& frame) {
+  FrameSlots slots = graph_.MakeSlots(frame);
+  Run(frame, slots);
+  return slots;
+}
+
+void FrameGraphExecutor::RunNode(std::size_t index, FrameSlots& slots) {
+  NodeContext context = graph_.ContextFor(index, slots);
+  const auto start = std::chrono::steady_clock::now();
+  graph_.node(index).Run(context);
+  node_durations_s_[index].push_back(SecondsSince(start));
+}
+
+std::vector<NodeTiming> FrameGraphExecutor::Timing() const {
+  std::vector<NodeTiming> table;
+  for (std::size_t index : graph_.topological_order()) {
+    table.push_back({graph_.declaration(index).name, SummarizeDurations(node_durations_s_[index])});
+  }
+  return table;
+}
+
+TimingStats FrameGraphExecutor::FrameTiming() const {
+  return SummarizeDurations(frame_durations_s_);
+}
+
+}  // namespace aperture::perception

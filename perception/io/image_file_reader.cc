@@ -1,0 +1,159 @@
+#include "perception/io/image_file_reader.h"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cstdint>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <stdexcept>
+
+namespace aperture::perception {
+namespace {
+
+using Bytes = std::vector<unsigned char>;
+
+uint32_t ReadBigEndian32(const Bytes& bytes, size_t offset) {
+  return (uint32_t{bytes[offset]} << 24) | (uint32_t{bytes[offset + 1]} << 16) |
+         (uint32_t{bytes[offset + 2]} << 8) | uint32_t{bytes[offset + 3]};
+}
+
+uint32_t ReadLittleEndian32(const Bytes& bytes, size_t offset) {
+  return uint32_t{bytes[offset]} | (uint32_t{bytes[offset + 1]} << 8) |
+         (uint32_t{bytes[offset + 2]} << 16) | (uint32_t{bytes[offset + 3]} << 24);
+}
+
+bool StartsWith(const Bytes& bytes, std::initializer_list<unsigned char> prefix) {
+  return bytes.size() >= prefix.size() && std::equal(prefix.begin(), prefix.end(), bytes.begin());
+}
+
+// PNG: 8-byte signature, then chunks of {length (4, big endian), type (4), data, CRC (4)}.
+std::optional<std::string> FindPngTruncation(const Bytes& bytes) {
+  constexpr size_t kSignatureSize = 8;
+  constexpr size_t kChunkOverhead = 12;
+  size_t offset = kSignatureSize;
+  while (offset + kChunkOverhead <= bytes.size()) {
+    const uint64_t length = ReadBigEndian32(bytes, offset);
+    const std::string type(bytes.begin() + offset + 4, bytes.begin() + offset + 8);
+    const uint64_t chunk_end = offset + kChunkOverhead + length;
+    if (chunk_end > bytes.size()) {
+      return "PNG chunk '" + type + "' at byte " + std::to_string(offset) + " needs " +
+             std::to_string(chunk_end) + " bytes but the file has " +
+             std::to_string(bytes.size()) + " (truncated PNG)";
+    }
+    if (type == "IEND") return std::nullopt;
+    offset = chunk_end;
+  }
+  return "PNG ends after " + std::to_string(bytes.size()) +
+         " bytes without its IEND chunk (truncated PNG)";
+}
+
+std::optional<std::string> FindJpegTruncation(const Bytes& bytes) {
+  size_t end = bytes.size();
+  while (end > 2 && bytes[end - 1] == 0) --end;
+  if (end >= 4 && bytes[end - 2] == 0xFF && bytes[end - 1] == 0xD9) return std::nullopt;
+  return "JPEG ends after " + std::to_string(bytes.size()) +
+         " bytes without its end-of-image marker FF D9 (truncated JPEG)";
+}
+
+// Binary PGM (P5) / PPM (P6): "P5 <width> <height> <maxval>" + one whitespace, then the pixels.
+std::optional<std::string> FindPnmTruncation(const Bytes& bytes) {
+  size_t offset = 2;
+  std::array<uint64_t, 3> fields{};  // width, height, maxval
+  for (uint64_t& field : fields) {
+    while (offset < bytes.size() && (std::isspace(bytes[offset]) || bytes[offset] == '#')) {
+      if (bytes[offset] == '#') {
+        while (offset < bytes.size() && bytes[offset] != '\n') ++offset;
+      } else {
+        ++offset;
+      }
+    }
+    if (offset >= bytes.size() || !std::isdigit(bytes[offset])) {
+      return std::string("PGM/PPM header is incomplete (truncated or corrupt)");
+    }
+    while (offset < bytes.size() && std::isdigit(bytes[offset]) && field < (1u << 30)) {
+      field = field * 10 + (bytes[offset] - '0');
+      ++offset;
+    }
+  }
+  ++offset;  // the single whitespace after maxval
+  const uint64_t channels = bytes[1] == '5' ? 1 : 3;
+  const uint64_t bytes_per_sample = fields[2] > 255 ? 2 : 1;
+  const uint64_t needed = offset + fields[0] * fields[1] * channels * bytes_per_sample;
+  if (needed > bytes.size()) {
+    return "PGM/PPM pixel data needs " + std::to_string(needed) + " bytes but the file has " +
+           std::to_string(bytes.size()) + " (truncated image)";
+  }
+  return std::nullopt;
+}
+
+std::optional<std::string> FindBmpTruncation(const Bytes& bytes) {
+  constexpr size_t kFileHeaderSize = 14;
+  if (bytes.size() < kFileHeaderSize) return std::string("BMP header is incomplete (truncated)");
+  const uint32_t declared_size = ReadLittleEndian32(bytes, 2);
+  if (declared_size > bytes.size()) {
+    return "BMP header declares " + std::to_string(declared_size) + " bytes but the file has " +
+           std::to_string(bytes.size()) + " (truncated BMP)";
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<std::string> FindTruncation(const Bytes& bytes) {
+  if (StartsWith(bytes, {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'})) {
+    return FindPngTruncation(bytes);
+  }
+  if (StartsWith(bytes, {0xFF, 0xD8})) return FindJpegTruncation(bytes);
+  if (StartsWith(bytes, {'P', '5'}) || StartsWith(bytes, {'P', '6'})) {
+    return FindPnmTruncation(bytes);
+  }
+  if (StartsWith(bytes, {'B', 'M'})) return FindBmpTruncation(bytes);
+  return std::nullopt;
+}
+
+cv::Mat ReadImageFile(const std::filesystem::path& path, ColorMode mode) {
+  std::ifstream file(path, std::ios::binary | std::ios::ate);
+  if (!file) {
+    throw std::runtime_error("cannot open image file '" + path.string() +
+                             "'; check that it exists and is readable");
+  }
+  Bytes bytes(static_cast<size_t>(file.tellg()));
+  file.seekg(0);
+  if (!file.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()))) {
+    throw std::runtime_error("cannot read image file '" + path.string() +
+                             "'; check that it is a readable regular file");
+  }
+  if (bytes.empty()) {
+    throw std::runtime_error("image file '" + path.string() +
+                             "' is empty; re-export it or remove it from the sequence");
+  }
+  if (const std::optional<std::string> truncation = FindTruncation(bytes)) {
+    throw std::runtime_error("image file '" + path.string() + "' is incomplete: " + *truncation +
+                             "; re-copy or re-export it");
+  }
+  const int flags = mode == ColorMode::kGray ? cv::IMREAD_GRAYSCALE : cv::IMREAD_COLOR;
+  cv::Mat image;
+  try {
+    image = cv::imdecode(bytes, flags);
+  } catch (const cv::Exception& e) {
+    throw std::runtime_error("image file '" + path.string() + "' cannot be decoded (" + e.what() +
+                             "); re-export it");
+  }
+  if (image.empty()) {
+    throw std::runtime_error("image file '" + path.string() +
+                             "' cannot be decoded (corrupt or not an image); re-export it");
+  }
+  return ConvertToColorMode(image, mode);
+}
+
+bool HasImageExtension(const std::filesystem::path& path) {
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  static const std::array<const char*, 9> kExtensions = {
+      ".png", ".jpg", ".jpeg", ".pgm", ".ppm", ".pnm", ".bmp", ".tif", ".tiff"};
+  return std::find(kExtensions.begin(), kExtensions.end(), extension) != kExtensions.end();
+}
+
+}  // namespace aperture::perception

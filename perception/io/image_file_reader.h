@@ -1,0 +1,36 @@
+#pragma once
+// Reading one image file of a sequence completely or not at all.
+//
+// cv::imread accepts a truncated PNG or JPEG and returns a partly decoded image (the missing rows
+// are gray or garbage) with at most a libpng/libjpeg warning on stderr. A frame source must not
+// feed that to a front end, so files are checked for completeness from their own structure before
+// decoding (by content, not by extension):
+//   PNG         every chunk length fits in the file and the chunk sequence reaches IEND;
+//   JPEG        the data ends with the EOI marker FF D9 (trailing zero padding allowed);
+//   PGM/PPM     (binary P5/P6) the pixel payload width*height*channels*bytes is all present;
+//   BMP         the file is at least as long as the size in its header.
+// Other formats (TIFF, ASCII PNM) rely on the decoder's own checks.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <opencv2/core/mat.hpp>
+
+#include "perception/io/frame_source.h"
+
+namespace aperture::perception {
+
+// Why the encoded image `bytes` are incomplete, or nullopt when complete (or of a format
+// without a structural check).
+std::optional<std::string> FindTruncation(const std::vector<unsigned char>& bytes);
+
+// Reads, checks and decodes `path` into an 8-bit image of the given colour mode. Throws
+// std::runtime_error naming the file when it cannot be read, is truncated, or cannot be decoded.
+cv::Mat ReadImageFile(const std::filesystem::path& path, ColorMode mode);
+
+// True when the extension (case-insensitive) is one the image folder source reads:
+// .png .jpg .jpeg .pgm .ppm .pnm .bmp .tif .tiff
+bool HasImageExtension(const std::filesystem::path& path);
+
+}  // namespace aperture::perception

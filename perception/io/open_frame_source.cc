@@ -1,0 +1,47 @@
+#include "perception/io/open_frame_source.h"
+
+#include <filesystem>
+#include <stdexcept>
+
+#include "perception/io/camera_device_source.h"
+#include "perception/io/image_file_reader.h"
+#include "perception/io/image_folder_source.h"
+#include "perception/io/video_file_source.h"
+
+namespace aperture::perception {
+namespace fs = std::filesystem;
+
+std::unique_ptr<FrameSource> OpenFrameSource(const std::string& spec,
+                                             const FrameSourceOptions& options) {
+  const std::string kCameraPrefix = "camera:";
+  if (spec.rfind(kCameraPrefix, 0) == 0) {
+    const std::string number = spec.substr(kCameraPrefix.size());
+    const bool all_digits = !number.empty() && number.size() <= 6 &&
+                            number.find_first_not_of("0123456789") == std::string::npos;
+    if (!all_digits) {
+      throw std::invalid_argument("frame source '" + spec +
+                                  "' is not a camera spec; write camera:<N> with a device index "
+                                  "N >= 0, e.g. camera:0");
+    }
+    return std::make_unique<CameraDeviceSource>(std::stoi(number), options);
+  }
+  if (spec.empty()) {
+    throw std::invalid_argument(
+        "empty frame source; give an image folder, a video file or camera:<N>");
+  }
+  const fs::path path(spec);
+  if (!fs::exists(path)) {
+    throw std::runtime_error("frame source '" + spec +
+                             "' does not exist; give an image folder, a video file or "
+                             "camera:<N>");
+  }
+  if (fs::is_directory(path)) return std::make_unique<ImageFolderSource>(path, options);
+  if (HasImageExtension(path)) {
+    throw std::invalid_argument("frame source '" + spec +
+                                "' is a single image; give the folder that holds the sequence (" +
+                                path.parent_path().string() + ")");
+  }
+  return std::make_unique<VideoFileSource>(path, options);
+}
+
+}  // namespace aperture::perception

@@ -1,0 +1,67 @@
+#include "perception/io/frame_source_options_io.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include <stdexcept>
+
+namespace aperture::perception {
+namespace {
+
+using ::testing::HasSubstr;
+
+FrameSourceOptions Load(const std::string& yaml) {
+  config::ParamReader reader(YAML::Load(yaml), "source.yaml");
+  FrameSourceOptions options;
+  LoadParams(reader, &options);
+  return options;
+}
+
+std::string ErrorOf(const std::string& yaml) {
+  try {
+    Load(yaml);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "accepted: " << yaml;
+  return "";
+}
+
+TEST(FrameSourceOptionsIo, ReadsEveryFieldAndKeepsDefaultsForAbsentKeys) {
+  const FrameSourceOptions all =
+      Load("color_mode: color\nfps: 20\nskip_bad_frames: true\ncamera_id: 2\n");
+  EXPECT_EQ(all.color_mode, ColorMode::kColor);
+  EXPECT_EQ(all.fps, 20.0);
+  EXPECT_TRUE(all.skip_bad_frames);
+  EXPECT_EQ(all.camera_id, 2);
+
+  const FrameSourceOptions defaults;
+  const FrameSourceOptions partial = Load("fps: 30\n");
+  EXPECT_EQ(partial.fps, 30.0);
+  EXPECT_EQ(partial.color_mode, defaults.color_mode);
+  EXPECT_EQ(partial.skip_bad_frames, defaults.skip_bad_frames);
+}
+
+TEST(FrameSourceOptionsIo, BadValuesNameTheLocationAndTheFix) {
+  EXPECT_THAT(ErrorOf("color_mode: rgb\n"), HasSubstr("gray, color"));
+  EXPECT_THAT(ErrorOf("fps: -1\n"), HasSubstr("source.yaml:1:"));
+  EXPECT_THAT(ErrorOf("fps: -1\n"), HasSubstr("positive rate"));
+  EXPECT_THAT(ErrorOf("fps: fast\n"), HasSubstr("fps"));
+  EXPECT_THAT(ErrorOf("skip_bad_frame: true\n"), HasSubstr("skip_bad_frame"));
+}
+
+TEST(FrameSourceOptionsIo, ParsesColorModeWords) {
+  EXPECT_EQ(ParseColorMode("gray"), ColorMode::kGray);
+  EXPECT_EQ(ParseColorMode("color"), ColorMode::kColor);
+  try {
+    ParseColorMode("grey");
+    ADD_FAILURE() << "accepted 'grey'";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_THAT(e.what(), HasSubstr("'grey'"));
+    EXPECT_THAT(e.what(), HasSubstr("gray or color"));
+  }
+}
+
+}  // namespace
+}  // namespace aperture::perception

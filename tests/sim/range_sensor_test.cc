@@ -1,0 +1,117 @@
+#include "sim/sensors/range_sensor.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <gtest/gtest.h>
+
+namespace aperture::sim {
+namespace {
+
+RangeSensorParams NoiselessRange() {
+  RangeSensorParams params;
+  params.noise_sigma_m = 0.0;
+  return params;
+}
+
+control::QuadState StateAt(double height_m, const Eigen::Quaterniond& q_WB) {
+  control::QuadState state;
+  state.p_WB = Eigen::Vector3d(3.0, -1.0, height_m);
+  state.q_WB = q_WB;
+  return state;
+}
+
+TEST(RangeSensorTest, LevelVehicleMeasuresItsHeight) {
+  RangeSensor sensor(NoiselessRange());
+  const auto reading = sensor.Measure(StateAt(2.5, Eigen::Quaterniond::Identity()));
+  EXPECT_TRUE(reading.valid);
+  EXPECT_NEAR(reading.range_m, 2.5, 1e-12);
+}
+
+TEST(RangeSensorTest, TiltedRayMeasuresHeightOverCosineOfTilt) {
+  RangeSensor sensor(NoiselessRange());
+  const double tilt = 0.4;  // below the 30 deg limit
+  for (const Eigen::Vector3d& axis : {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, -1, 0),
+                                      Eigen::Vector3d(1, 1, 0).normalized()}) {
+    // Yaw does not change the tilt of the ray.
+    const Eigen::Quaterniond q_WB =
+        Eigen::AngleAxisd(1.0, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(tilt, axis);
+    const auto reading = sensor.Measure(StateAt(2.0, q_WB));
+    EXPECT_TRUE(reading.valid);
+    EXPECT_NEAR(reading.range_m, 2.0 / std::cos(tilt), 1e-12);
+  }
+}
+
+TEST(RangeSensorTest, InvalidBeyondTiltLimitRangeLimitsOrUpsideDown) {
+  RangeSensor sensor(NoiselessRange());
+  const Eigen::Quaterniond level = Eigen::Quaterniond::Identity();
+  const double limit = sensor.params().max_tilt_rad;
+  EXPECT_TRUE(sensor.Measure(StateAt(1.0, Eigen::Quaterniond(Eigen::AngleAxisd(limit - 1e-3, Eigen::Vector3d::UnitX())))).valid);
+  EXPECT_FALSE(sensor.Measure(StateAt(1.0, Eigen::Quaterniond(Eigen::AngleAxisd(limit + 1e-3, Eigen::Vector3d::UnitX())))).valid);
+  EXPECT_FALSE(sensor.Measure(StateAt(1.0, Eigen::Quaterniond(Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX())))).valid);
+  EXPECT_FALSE(sensor.Measure(StateAt(0.1, level)).valid);   // below min_range_m = 0.2
+  EXPECT_TRUE(sensor.Measure(StateAt(13.9, level)).valid);
+  EXPECT_FALSE(sensor.Measure(StateAt(14.1, level)).valid);  // beyond max_range_m = 14
+  EXPECT_FALSE(sensor.Measure(StateAt(-1.0, level)).valid);  // under the ground
+  // Tilted: 13 m height at 25 deg tilt is 14.34 m of ray, beyond the maximum.
+  EXPECT_FALSE(sensor.Measure(StateAt(13.0, Eigen::Quaterniond(Eigen::AngleAxisd(25.0 * M_PI / 180.0, Eigen::Vector3d::UnitY())))).valid);
+}
+
+TEST(RangeSensorTest, MountOffsetIsRotatedIntoWorld) {
+  RangeSensorParams params = NoiselessRange();
+  params.p_BS = Eigen::Vector3d(0.1, 0.0, -0.05);
+  RangeSensor sensor(params);
+  const double pitch = 0.3;  // nose down for +pitch about y_B: the forward sensor drops
+  const auto reading = sensor.Measure(StateAt(1.0, Eigen::Quaterniond(Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()))));
+  const double sensor_height = 1.0 - 0.1 * std::sin(pitch) - 0.05 * std::cos(pitch);
+  ASSERT_TRUE(reading.valid);
+  EXPECT_NEAR(reading.range_m, sensor_height / std::cos(pitch), 1e-12);
+}
+
+TEST(RangeSensorTest, NoiseStdMatchesSigmaAndIsDeterministic) {
+  RangeSensorParams params;
+  params.noise_sigma_m = 0.02;
+  RangeSensor a(params), b(params);
+  const int n = 20000;
+  double sum = 0.0, sum_sq = 0.0;
+  const control::QuadState state = StateAt(5.0, Eigen::Quaterniond::Identity());
+  for (int k = 0; k < n; ++k) {
+    const auto ra = a.Measure(state), rb = b.Measure(state);
+    ASSERT_TRUE(ra.valid);
+    EXPECT_EQ(ra.range_m, rb.range_m);
+    sum += ra.range_m - 5.0;
+    sum_sq += (ra.range_m - 5.0) * (ra.range_m - 5.0);
+  }
+  const double mean = sum / n, stdev = std::sqrt(sum_sq / n - mean * mean);
+  // Sample std of 2e4 draws: 0.5 % relative std, so 5 % is a 10-sigma bound; mean within 5 sigma.
+  EXPECT_NEAR(stdev / 0.02, 1.0, 0.05);
+  EXPECT_NEAR(mean, 0.0, 5.0 * 0.02 / std::sqrt(n));
+}
+
+TEST(RangeSensorTest, UpdateProducesReadingsAtTheSensorRate) {
+  RangeSensor sensor(NoiselessRange());  // 100 Hz
+  control::QuadState state = StateAt(1.0, Eigen::Quaterniond::Identity());
+  int readings = 0;
+  for (int k = 1; k <= 1000; ++k) {
+    state.t_s = k * 1e-3;
+    if (const auto r = sensor.Update(state)) {
+      EXPECT_NEAR(r->t_s, state.t_s, 0.0);
+      ++readings;
+    }
+  }
+  EXPECT_EQ(readings, 100);
+}
+
+TEST(RangeSensorTest, ValidateNamesTheField) {
+  RangeSensorParams params;
+  params.max_range_m = 0.1;  // below min_range_m
+  try {
+    RangeSensor sensor(params);
+    FAIL() << "max_range_m < min_range_m accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("max_range_m"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace aperture::sim
