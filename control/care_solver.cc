@@ -105,6 +105,9 @@ CareResult SolveContinuousAlgebraicRiccati(const Eigen::MatrixXd& A, const Eigen
                                            const Eigen::MatrixXd& Q, const Eigen::MatrixXd& R,
                                            const CareOptions& options) {
   const auto start = std::chrono::steady_clock::now();
+  auto seconds_since_start = [&start] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
   const Eigen::Index n = A.rows();
   const Eigen::Index m = B.cols();
   if (n == 0 || A.cols() != n) throw std::invalid_argument("CARE: A must be square and non-empty");
@@ -149,6 +152,7 @@ CareResult SolveContinuousAlgebraicRiccati(const Eigen::MatrixXd& A, const Eigen
       // Z singular: H has an eigenvalue at (or numerically on) the imaginary axis.
       result.sign_iterations = k;
       result.status = CareStatus::kNoStabilizingSolution;
+      result.solve_time_s = seconds_since_start();
       return result;
     }
     // Determinant scaling c = |det Z|^(1/2n), computed in logs to avoid overflow.
@@ -167,6 +171,7 @@ CareResult SolveContinuousAlgebraicRiccati(const Eigen::MatrixXd& A, const Eigen
   if (!sign_converged) {
     result.status = Z.allFinite() ? CareStatus::kMaxIterationsReached
                                   : CareStatus::kNoStabilizingSolution;
+    result.solve_time_s = seconds_since_start();
     return result;
   }
   const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(n, n);
@@ -177,6 +182,7 @@ CareResult SolveContinuousAlgebraicRiccati(const Eigen::MatrixXd& A, const Eigen
   if (qr.rank() < n) {
     // The stable subspace is not a graph over the first n coordinates.
     result.status = CareStatus::kNoStabilizingSolution;
+    result.solve_time_s = seconds_since_start();
     return result;
   }
   Eigen::MatrixXd P = qr.solve(N);
@@ -214,8 +220,7 @@ CareResult SolveContinuousAlgebraicRiccati(const Eigen::MatrixXd& A, const Eigen
   result.status = (result.max_closed_loop_real_part < 0.0 && residual.relative < 1e-8)
                       ? CareStatus::kConverged
                       : CareStatus::kNoStabilizingSolution;
-  result.solve_time_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.solve_time_s = seconds_since_start();
   return result;
 }
 

@@ -62,6 +62,15 @@ Eigen::Vector3d BodyTorqueFromRotorThrusts(const VehicleParameters& vehicle,
   return {d * (f[0] - f[1] - f[2] + f[3]), d * (-f[0] - f[1] + f[2] + f[3]), yaw};
 }
 
+Eigen::Vector4d MotorCommandsFromRotorThrusts(const VehicleParameters& vehicle,
+                                              const Eigen::Vector4d& thrust_N) {
+  Eigen::Vector4d u;
+  for (int i = 0; i < 4; ++i) {
+    u[i] = vehicle.rotor.CommandFromThrust(thrust_N[i] / vehicle.rotor_fitness[i]);
+  }
+  return u;
+}
+
 double CollectiveThrustFromRotorThrusts(const VehicleParameters& vehicle,
                                         const Eigen::Vector4d& f) {
   return f.sum() / vehicle.mass_kg;  // (G.2)

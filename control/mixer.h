@@ -12,7 +12,7 @@
 // Rotor fitness (G.2 text): true thrust f_i = gamma_i * (load-cell thrust of G.3), so rotor i's
 // thrust range is gamma_i [f(u_min), f(u_max)] and its drag-torque coefficient is evaluated at its
 // command's operating point, kappa_i = kappa(f_i / gamma_i) (= kappa(f_i) of (G.1) for gamma_i = 1).
-// RotorThrustCommand carries true thrusts; the motor command is
+// RotorThrustCommand carries true thrusts; MotorCommandsFromRotorThrusts gives the motor commands
 // u_i = rotor.CommandFromThrust(f_i / gamma_i).
 //
 // Solving (G.1), (G.2) for given kappa_i: the rows of roll, pitch and collective thrust are
@@ -63,6 +63,12 @@ double RotorTorqueCoefficient(const VehicleParameters& vehicle, int rotor_index,
 // (G.1): body torques [N m] of four true rotor thrusts, with kappa_i from RotorTorqueCoefficient.
 Eigen::Vector3d BodyTorqueFromRotorThrusts(const VehicleParameters& vehicle,
                                            const Eigen::Vector4d& thrust_N);
+// Motor commands u_i = CommandFromThrust(f_i / gamma_i) (inverse of G.3) that produce true
+// thrusts f_i, clamped to [command_min, command_max]. This is what drives
+// sim::QuadrotorDynamics::SetMotorCommands; its SetRotorThrustCommand instead expects load-cell
+// thrusts f_i / gamma_i (a flight controller that does not know gamma_i).
+Eigen::Vector4d MotorCommandsFromRotorThrusts(const VehicleParameters& vehicle,
+                                              const Eigen::Vector4d& thrust_N);
 // (G.2): mass-normalized collective thrust [m/s^2].
 double CollectiveThrustFromRotorThrusts(const VehicleParameters& vehicle,
                                         const Eigen::Vector4d& thrust_N);

@@ -130,7 +130,7 @@ cv::Mat ReadImageFile(const std::filesystem::path& path, ColorMode mode) {
   }
   if (const std::optional<std::string> truncation = FindTruncation(bytes)) {
     throw std::runtime_error("image file '" + path.string() + "' is incomplete: " + *truncation +
-                             "; re-copy or re-export it, or pass --skip-bad-frames");
+                             "; re-copy or re-export it");
   }
   const int flags = mode == ColorMode::kGray ? cv::IMREAD_GRAYSCALE : cv::IMREAD_COLOR;
   cv::Mat image;
@@ -138,12 +138,11 @@ cv::Mat ReadImageFile(const std::filesystem::path& path, ColorMode mode) {
     image = cv::imdecode(bytes, flags);
   } catch (const cv::Exception& e) {
     throw std::runtime_error("image file '" + path.string() + "' cannot be decoded (" + e.what() +
-                             "); re-export it, or pass --skip-bad-frames");
+                             "); re-export it");
   }
   if (image.empty()) {
     throw std::runtime_error("image file '" + path.string() +
-                             "' cannot be decoded (corrupt or not an image); re-export it or "
-                             "pass --skip-bad-frames");
+                             "' cannot be decoded (corrupt or not an image); re-export it");
   }
   return ConvertToColorMode(image, mode);
 }

@@ -7,9 +7,7 @@
 #include <functional>
 #include <stdexcept>
 
-#include "control/mixer.h"
 #include "control/proportional_body_rate_controller.h"
-#include "control/rotor_thrust_estimator.h"
 
 namespace aperture::control {
 namespace {
@@ -164,38 +162,6 @@ TEST(LqrBodyRateController, AngularAccelerationFeedForwardReducesTrackingError) 
   const Tracking without = Simulate(Lqr(lqr), [&](double t) { return reference(t, false); }, 1.0);
   EXPECT_LT(with.integral_abs_error, 0.5 * without.integral_abs_error)
       << with.integral_abs_error << " vs " << without.integral_abs_error;
-}
-
-// Full low-level loop: LQR -> iterative mixer -> rotors with the asymmetric lag (G.7) per rotor;
-// the torque estimate comes from the RotorThrustEstimator fed with the commanded thrusts, which
-// here is an exact model of the rotors, so eta_hat equals the true torque.
-TEST(LqrBodyRateController, ClosedLoopWithMixerAndThrustEstimator) {
-  const VehicleParameters vehicle;
-  const LqrBodyRateController lqr(vehicle);
-  const Mixer mixer(vehicle);
-  RotorThrustEstimator estimator(vehicle);
-  RotorThrustEstimator rotors(vehicle);  // plays the true rotors
-  const Eigen::Matrix3d J = vehicle.Inertia();
-  Eigen::Vector3d omega_B = Eigen::Vector3d::Zero();
-  ThrustRatesCommand command;
-  command.collective_thrust_mps2 = vehicle.gravity_mps2;
-  command.omega_des_B = Eigen::Vector3d(2.0, 1.0, -1.0);
-  int saturated_steps = 0;
-  for (int k = 0; k < 600; ++k) {
-    EXPECT_TRUE(estimator.thrust_N().isApprox(rotors.thrust_N(), 1e-12));
-    const Eigen::Vector3d torque_des =
-        lqr.ComputeTorque(command, omega_B, estimator.BodyTorque_B());
-    const MixerResult mixed = mixer.Mix(torque_des, command.collective_thrust_mps2);
-    saturated_steps += mixed.yaw_torque_saturated || mixed.collective_thrust_saturated;
-    estimator.Propagate(mixed.command, kDt);
-    for (int s = 0; s < 10; ++s) {
-      rotors.Propagate(mixed.command, kDt / 10);
-      const Eigen::Vector3d torque = rotors.BodyTorque_B();
-      omega_B += kDt / 10 * J.inverse() * (torque - omega_B.cross(J * omega_B));
-    }
-  }
-  EXPECT_LT((omega_B - command.omega_des_B).norm(), 1e-3) << omega_B.transpose();
-  EXPECT_EQ(saturated_steps, 0);  // the step stays inside the rotor limits: a linear-regime test
 }
 
 TEST(ProportionalBodyRateController, ImplementsB21) {

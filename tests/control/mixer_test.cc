@@ -229,6 +229,11 @@ TEST(Mixer, RotorFitnessScalesLimitsAndTorqueCoefficients) {
            vehicle.rotor.TorqueCoefficient(f[i] / vehicle.rotor_fitness[i]) * f[i];
   }
   EXPECT_NEAR(yaw, torque_B.z(), kExactTorque_Nm);
+  // Motor commands reproduce the true thrusts through gamma_i f(u_i) (G.3).
+  const Eigen::Vector4d u = MotorCommandsFromRotorThrusts(vehicle, f);
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_NEAR(vehicle.rotor_fitness[i] * vehicle.rotor.ThrustFromCommand(u[i]), f[i], 1e-12);
+  }
   // Saturation pins the weak rotor at its own (lower) maximum.
   const MixerResult saturated = mixer.Mix(Eigen::Vector3d(0.3, 0.0, 0.0), 25.0);
   ExpectWithinLimits(mixer, saturated);
