@@ -30,8 +30,8 @@ void AttitudeControllerGains::Validate() const {
 Eigen::Matrix3d ComputeDesiredAttitude(const Eigen::Vector3d& z_des_W, double heading_rad,
                                        bool* heading_defined) {
   const Eigen::Vector3d x_C(std::cos(heading_rad), std::sin(heading_rad), 0.0);  // (B.16)
-  const Eigen::Vector3d y_C(-x_C.y(), x_C.x(), 0.0);                              // (B.17)
-  Eigen::Vector3d x_tilde = y_C.cross(z_des_W);                                   // (B.18)
+  const Eigen::Vector3d y_C(-x_C.y(), x_C.x(), 0.0);                             // (B.17)
+  Eigen::Vector3d x_tilde = y_C.cross(z_des_W);                                  // (B.18)
   const bool defined = x_tilde.norm() >= kYawSingularity;
   if (!defined) x_tilde = x_C - x_C.dot(z_des_W) * z_des_W;  // |x_tilde| ~ 1 here
   if (heading_defined != nullptr) *heading_defined = defined;

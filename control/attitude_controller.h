@@ -32,9 +32,9 @@ struct AttitudeControllerGains {
 };
 
 struct AttitudeFeedback {
-  Eigen::Vector3d omega_fb_B = Eigen::Vector3d::Zero();       // [p, q, r]_des [rad/s]
-  Eigen::Matrix3d R_des_WB = Eigen::Matrix3d::Identity();     // (B.16)-(B.19)
-  double tilt_error_rad = 0.0;                                 // alpha of (B.11)
+  Eigen::Vector3d omega_fb_B = Eigen::Vector3d::Zero();    // [p, q, r]_des [rad/s]
+  Eigen::Matrix3d R_des_WB = Eigen::Matrix3d::Identity();  // (B.16)-(B.19)
+  double tilt_error_rad = 0.0;                             // alpha of (B.11)
   bool heading_defined = true;
 };
 

@@ -150,13 +150,13 @@ FlatnessResult ComputeFlatnessOutputs(const TrajectoryPoint& reference,
 
   // Body rates (F.17), (F.18), (F.25).
   const double r3_rate = yaw_singular ? 0.0 : psi_dot * x_C.dot(x_B);
-  const Eigen::Vector3d w = system.Solve(x_B.dot(j) + dx * x_B.dot(a),
-                                         -y_B.dot(j) - dy * y_B.dot(a), r3_rate);
+  const Eigen::Vector3d w =
+      system.Solve(x_B.dot(j) + dx * x_B.dot(a), -y_B.dot(j) - dy * y_B.dot(a), r3_rate);
   result.omega_B = w;
 
   // Angular accelerations (F.26)-(F.30).
-  const double c_dot = z_B.dot(j) + w.x() * (dy - dz) * yv + w.y() * (dz - dx) * xv +
-                       dz * z_B.dot(a);  // (F.29)
+  const double c_dot =
+      z_B.dot(j) + w.x() * (dy - dz) * yv + w.y() * (dz - dx) * xv + dz * z_B.dot(a);  // (F.29)
   result.collective_thrust_rate_mps3 = c_dot;
   const Eigen::Matrix3d W = Hat(w);
   const Eigen::Matrix3d D = d.asDiagonal();

@@ -23,8 +23,8 @@
 //    |y_C x alpha| / |alpha| < kYawSingularity (F.11 and F.25 divide by it). Fallback: x_B is
 //    x_C made orthogonal to alpha (Gram-Schmidt), which is the limit of (F.11) when the
 //    singularity is approached with thrust pointing upwards (alpha_z > 0), so the orientation is
-//    continuous from that side; rows (F.25)/(F.28) are replaced by omega_z = omega_dot_z = 0, as the
-//    attitude controller does for its own singularity (thesis B.18 text).
+//    continuous from that side; rows (F.25)/(F.28) are replaced by omega_z = omega_dot_z = 0, as
+//    the attitude controller does for its own singularity (thesis B.18 text).
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <iosfwd>
@@ -39,14 +39,14 @@ const char* ToString(FlatnessStatus status);
 
 struct FlatnessResult {
   FlatnessStatus status = FlatnessStatus::kOk;
-  Eigen::Matrix3d R_WB = Eigen::Matrix3d::Identity();         // [x_B y_B z_B] in W (F.11-F.13)
-  Eigen::Quaterniond q_WB = Eigen::Quaterniond::Identity();   // same rotation as R_WB
-  double collective_thrust_mps2 = 0.0;                        // c (F.14) [m/s^2]
-  double collective_thrust_rate_mps3 = 0.0;                   // c dot (F.29) [m/s^3]
-  double thrust_command_mps2 = 0.0;                           // c_cmd (F.15) [m/s^2]
-  Eigen::Vector3d omega_B = Eigen::Vector3d::Zero();          // body rates [rad/s]
-  Eigen::Vector3d omega_dot_B = Eigen::Vector3d::Zero();      // angular accelerations [rad/s^2]
-  Eigen::Vector3d tau_B_Nm = Eigen::Vector3d::Zero();         // torque input of (F.4) [N m]
+  Eigen::Matrix3d R_WB = Eigen::Matrix3d::Identity();        // [x_B y_B z_B] in W (F.11-F.13)
+  Eigen::Quaterniond q_WB = Eigen::Quaterniond::Identity();  // same rotation as R_WB
+  double collective_thrust_mps2 = 0.0;                       // c (F.14) [m/s^2]
+  double collective_thrust_rate_mps3 = 0.0;                  // c dot (F.29) [m/s^3]
+  double thrust_command_mps2 = 0.0;                          // c_cmd (F.15) [m/s^2]
+  Eigen::Vector3d omega_B = Eigen::Vector3d::Zero();         // body rates [rad/s]
+  Eigen::Vector3d omega_dot_B = Eigen::Vector3d::Zero();     // angular accelerations [rad/s^2]
+  Eigen::Vector3d tau_B_Nm = Eigen::Vector3d::Zero();        // torque input of (F.4) [N m]
 
   bool ok() const { return status == FlatnessStatus::kOk; }
 };

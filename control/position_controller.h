@@ -2,10 +2,11 @@
 // High-level position controller with differential-flatness feed-forward, Faessler thesis
 // (F.31)-(F.38), with the attitude controller of paper B (B.10)-(B.20) for omega_fb (F.37):
 //
-//   a_des = -K_pos (p - p_ref) - K_vel (v - v_ref) + a_ref + R_ref D R_ref^T v_ref + g z_W  (F.31-32)
-//   z_des = a_des / |a_des|, R_des from z_des and psi_ref                                    (F.33-35)
-//   c_cmd = a_des^T z_B - k_h (v^T (x_B + y_B))^2   (z_B, x_B, y_B: current attitude)       (F.36)
-//   omega_des = omega_fb + omega_ref,  omega_dot_des = omega_dot_ref                         (F.37-38)
+//   a_des = -K_pos (p - p_ref) - K_vel (v - v_ref) + a_ref + R_ref D R_ref^T v_ref + g z_W
+//                                                                       (F.31), (F.32)
+//   z_des = a_des / |a_des|, R_des from z_des and psi_ref               (F.33)-(F.35)
+//   c_cmd = a_des^T z_B - k_h (v^T (x_B + y_B))^2, current x_B, y_B, z_B (F.36)
+//   omega_des = omega_fb + omega_ref, omega_dot_des = omega_dot_ref     (F.37), (F.38)
 // where R_ref, omega_ref, omega_dot_ref come from ComputeFlatnessOutputs on the reference.
 //
 // Gains: F writes the feedback with constant diagonal K_pos, K_vel (F.32) and takes omega_fb
@@ -33,21 +34,21 @@
 namespace aperture::control {
 
 struct PositionControllerParams {
-  double p_xy_per_s2 = 5.0;   // horizontal position gain (Table A.2)
-  double p_z_per_s2 = 15.0;   // vertical position gain (Table A.2)
-  double d_xy_per_s = 4.0;    // horizontal velocity gain (Table A.2)
-  double d_z_per_s = 6.0;     // vertical velocity gain (Table A.2)
-  AttitudeControllerGains attitude;  // p_rp = 16.6, p_yaw = 5 (Table A.2)
+  double p_xy_per_s2 = 5.0;           // horizontal position gain (Table A.2)
+  double p_z_per_s2 = 15.0;           // vertical position gain (Table A.2)
+  double d_xy_per_s = 4.0;            // horizontal velocity gain (Table A.2)
+  double d_z_per_s = 6.0;             // vertical velocity gain (Table A.2)
+  AttitudeControllerGains attitude;   // p_rp = 16.6, p_yaw = 5 (Table A.2)
   bool compensate_rotor_drag = true;  // false: D and k_h treated as zero (F.7.4 "not cons. drag")
   // Throws std::invalid_argument naming the gain when one is negative or not finite.
   void Validate() const;
 };
 
 struct PositionControllerOutput {
-  ThrustRatesCommand command;                              // c_cmd, omega_des, omega_dot_des
-  Eigen::Vector3d a_des_W = Eigen::Vector3d::Zero();       // (F.31) [m/s^2]
-  AttitudeFeedback attitude;                               // R_des, omega_fb, tilt error
-  FlatnessResult reference;                                // feed-forward terms (F.37, F.38)
+  ThrustRatesCommand command;                         // c_cmd, omega_des, omega_dot_des
+  Eigen::Vector3d a_des_W = Eigen::Vector3d::Zero();  // (F.31) [m/s^2]
+  AttitudeFeedback attitude;                          // R_des, omega_fb, tilt error
+  FlatnessResult reference;                           // feed-forward terms (F.37, F.38)
   bool thrust_direction_defined = true;
 };
 

@@ -152,8 +152,8 @@ CircleTrajectory::CircleTrajectory(const CircleTrajectoryParams& params)
 TrajectoryPoint CircleTrajectory::Evaluate(double t_s) const {
   const std::array<double, 5> f = phase_.Evaluate(t_s);
   const double r = params_.radius_m;
-  const Eigen::Vector3d u(std::cos(f[0]), std::sin(f[0]), 0.0);   // d^0, d^4
-  const Eigen::Vector3d u1(-u.y(), u.x(), 0.0);                    // d^1 (and -d^3)
+  const Eigen::Vector3d u(std::cos(f[0]), std::sin(f[0]), 0.0);  // d^0, d^4
+  const Eigen::Vector3d u1(-u.y(), u.x(), 0.0);                  // d^1 (and -d^3)
   const std::array<Eigen::Vector3d, 5> P = {params_.center_W + r * u, r * u1, -r * u, -r * u1,
                                             r * u};
   return ComposeWithPhase(t_s, P, f, params_.heading_rad);
@@ -207,8 +207,8 @@ BackAndForthTrajectory::BackAndForthTrajectory(const BackAndForthTrajectoryParam
     throw std::invalid_argument("BackAndForthTrajectoryParams::dwell_s = " +
                                 std::to_string(params.dwell_s) + " must be finite and >= 0");
   }
-  segment_duration_s_ = params.max_speed_mps * kSmoothstepMaxAccel /
-                        (params.max_accel_mps2 * kSmoothstepMaxRate);
+  segment_duration_s_ =
+      params.max_speed_mps * kSmoothstepMaxAccel / (params.max_accel_mps2 * kSmoothstepMaxRate);
   segment_length_m_ = params.max_speed_mps * segment_duration_s_ / kSmoothstepMaxRate;
 }
 
@@ -240,6 +240,23 @@ TrajectoryPoint BackAndForthTrajectory::Evaluate(double t_s) const {
   point.j_W.x() = x[3];
   point.s_W.x() = x[4];
   return point;
+}
+
+// ---------------------------------------------------------------------------- By name
+
+std::unique_ptr<ReferenceTrajectory> MakeThesisTrajectory(const std::string& name) {
+  if (name == "circle") return std::make_unique<CircleTrajectory>();
+  if (name == "lemniscate") return std::make_unique<LemniscateTrajectory>();
+  if (name == "circle_speed_ramp") {
+    return std::make_unique<CircleTrajectory>(CircleTrajectoryParams::ThesisSpeedRamp());
+  }
+  if (name == "lemniscate_speed_ramp") {
+    return std::make_unique<LemniscateTrajectory>(LemniscateTrajectoryParams::ThesisSpeedRamp());
+  }
+  if (name == "back_and_forth") return std::make_unique<BackAndForthTrajectory>();
+  throw std::invalid_argument("unknown reference trajectory '" + name +
+                              "'; use one of circle, lemniscate, circle_speed_ramp, "
+                              "lemniscate_speed_ramp, back_and_forth");
 }
 
 }  // namespace aperture::control

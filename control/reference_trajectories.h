@@ -19,10 +19,11 @@
 //    phase acceleration steps at t = 0 and t = ramp_s (by 5 m/s / 30 s = 0.17 m/s^2 tangential
 //    acceleration on the circle), so jerk and snap are impulses there and are reported as 0.
 // Before t = 0 every trajectory rests at its start point. All positions are in W (z up).
-#include <array>
-#include <vector>
-
 #include <Eigen/Core>
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
 
 #include "control/trajectory_point.h"
 
@@ -71,9 +72,9 @@ class PhaseProfile {
 
 struct CircleTrajectoryParams {
   Eigen::Vector3d center_W{0.0, 0.0, 1.5};
-  double radius_m = 1.8;       // F.7.2
-  double speed_mps = 4.0;      // F.7.2
-  double heading_rad = 0.0;    // constant heading (the thesis figures assume one)
+  double radius_m = 1.8;     // F.7.2
+  double speed_mps = 4.0;    // F.7.2
+  double heading_rad = 0.0;  // constant heading (the thesis figures assume one)
   SpeedRampParams ramp;
   // F.7 speed ramp: 0 -> 5 m/s linearly in 30 s.
   static CircleTrajectoryParams ThesisSpeedRamp();
@@ -93,8 +94,8 @@ class CircleTrajectory : public ReferenceTrajectory {
 
 struct LemniscateTrajectoryParams {
   Eigen::Vector3d center_W{0.0, 0.0, 1.5};
-  double amplitude_m = 2.0;      // F.7.2: x = 2 cos(phi)
-  double max_speed_mps = 4.0;    // F.7.2; sets the full phase rate to max_speed / (sqrt(2) A)
+  double amplitude_m = 2.0;    // F.7.2: x = 2 cos(phi)
+  double max_speed_mps = 4.0;  // F.7.2; sets the full phase rate to max_speed / (sqrt(2) A)
   double heading_rad = 0.0;
   SpeedRampParams ramp;
   // F.7 speed ramp: maximum speed 0 -> 5 m/s linearly in 30 s.
@@ -140,5 +141,11 @@ class BackAndForthTrajectory : public ReferenceTrajectory {
   double segment_duration_s_ = 0.0;
   double segment_length_m_ = 0.0;
 };
+
+// The thesis trajectories with their default parameters, by name: "circle", "lemniscate"
+// (F.7.2, smooth ramps), "circle_speed_ramp", "lemniscate_speed_ramp" (F.7.4 linear ramp to
+// 5 m/s in 30 s), "back_and_forth" (G.6.2). Throws std::invalid_argument naming the unknown
+// name and listing the valid ones.
+std::unique_ptr<ReferenceTrajectory> MakeThesisTrajectory(const std::string& name);
 
 }  // namespace aperture::control

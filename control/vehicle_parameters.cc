@@ -30,10 +30,19 @@ double RotorParameters::DragTorqueFromCommand(double u) const {
 double RotorParameters::CommandFromThrust(double f_N) const {
   const double f = std::clamp(f_N, MinThrust(), MaxThrust());
   const double k0 = thrust_coeffs_N[0], k1 = thrust_coeffs_N[1], k2 = thrust_coeffs_N[2];
-  if (std::abs(k2) < 1e-12) return (f - k0) / k1;
-  // Rising root of k2 u^2 + k1 u + (k0 - f) = 0, the argument of tau in (G.5).
-  const double discriminant = std::max(0.0, k1 * k1 - 4.0 * k2 * (k0 - f));
-  return std::clamp((-k1 + std::sqrt(discriminant)) / (2.0 * k2), command_min, command_max);
+  // Rising root of k2 u^2 + k1 u + (k0 - f) = 0, the argument of tau in (G.5). For k1 >= 0 it is
+  // written as 2 (f - k0) / (k1 + sqrt(D)): the textbook (-k1 + sqrt(D)) / (2 k2) loses all digits
+  // to cancellation when 4 k2 (f - k0) << k1^2 and divides by zero for a linear map (k2 = 0).
+  // For k1 < 0 the textbook form has no cancellation (and Validate() then implies k2 > 0).
+  const double sqrt_discriminant = std::sqrt(std::max(0.0, k1 * k1 - 4.0 * k2 * (k0 - f)));
+  double u = 0.0;
+  if (k1 >= 0.0) {
+    const double denominator = k1 + sqrt_discriminant;
+    u = denominator > 0.0 ? 2.0 * (f - k0) / denominator : 0.0;  // 0: k1 = 0 and f = k0
+  } else {
+    u = (-k1 + sqrt_discriminant) / (2.0 * k2);
+  }
+  return std::clamp(u, command_min, command_max);
 }
 
 double RotorParameters::TorqueCoefficient(double f_N) const {
@@ -59,7 +68,11 @@ void VehicleParameters::Validate() const {
         std::isfinite(thrust_velocity_coeff_kh))) {
     throw std::invalid_argument("vehicle parameters: rotor drag terms (D, A, B, k_h) must be finite");
   }
-  if (!(rotor.command_max > rotor.command_min)) {
+  if (!(rotor.thrust_coeffs_N.allFinite() && rotor.torque_coeffs_Nm.allFinite())) {
+    throw std::invalid_argument("vehicle parameters: rotor.thrust_coeffs_N / torque_coeffs_Nm must be finite");
+  }
+  if (!(std::isfinite(rotor.command_min) && std::isfinite(rotor.command_max) &&
+        rotor.command_max > rotor.command_min)) {
     throw std::invalid_argument("vehicle parameter 'rotor.command_max' must exceed 'command_min'");
   }
   // The thrust map must rise over the command range for (G.5) to be well defined.
@@ -70,6 +83,21 @@ void VehicleParameters::Validate() const {
     throw std::invalid_argument(
         "vehicle parameter 'rotor.thrust_coeffs_N' must give a non-negative thrust that increases "
         "over [command_min, command_max]");
+  }
+  // kappa(f) of (G.5) must stay positive: the mixer divides the yaw torque by sum(kappa_i).
+  const Eigen::Vector3d& kt = rotor.torque_coeffs_Nm;
+  double torque_min = std::min(rotor.DragTorqueFromCommand(rotor.command_min),
+                               rotor.DragTorqueFromCommand(rotor.command_max));
+  if (kt[2] > 0.0) {
+    const double u_vertex = -kt[1] / (2.0 * kt[2]);
+    if (u_vertex > rotor.command_min && u_vertex < rotor.command_max) {
+      torque_min = std::min(torque_min, rotor.DragTorqueFromCommand(u_vertex));
+    }
+  }
+  if (!(torque_min > 0.0)) {
+    throw std::invalid_argument(
+        "vehicle parameter 'rotor.torque_coeffs_Nm' must give a positive drag torque over "
+        "[command_min, command_max] (min " + std::to_string(torque_min) + " N m)");
   }
 }
 

@@ -1,5 +1,6 @@
 #include "output/output_folder.h"
 
+#include <exception>
 #include <filesystem>
 #include <stdexcept>
 #include <system_error>
@@ -49,8 +50,22 @@ std::string OutputFolder::WriteSummary(RunStatus status, const std::string& erro
   summary_["wall_time_s"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   const std::string path = Path(kSummaryFileName);
-  WriteFileAtomically(path, summary_.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+  WriteFileAtomically(
+      path, summary_.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
   return path;
+}
+
+void RunAndWriteSummary(OutputFolder& out, const std::function<void()>& body) {
+  try {
+    body();
+  } catch (const std::exception& e) {
+    out.WriteSummary(RunStatus::kFailed, e.what());
+    throw;
+  } catch (...) {
+    out.WriteSummary(RunStatus::kFailed, "unknown exception");
+    throw;
+  }
+  out.WriteSummary(RunStatus::kOk);
 }
 
 }  // namespace aperture::output

@@ -1,8 +1,8 @@
 #pragma once
 // OutputFolder: the `--out DIR` of one command. It owns summary.json, the figures of the run:
 //
-//   OutputFolder out(out_dir);                    // creates DIR (and parents), checks it is writable
-//   out.summary()["inputs"]["sequence"] = path;   // fill as the run goes
+//   OutputFolder out(out_dir);                    // creates DIR (and parents), checks it is
+//   writable out.summary()["inputs"]["sequence"] = path;   // fill as the run goes
 //   ... write CSVs, report.html to out.Path("...") ...
 //   out.WriteSummary(RunStatus::kOk);             // or kFailed with the error message
 //
@@ -11,9 +11,9 @@
 // removed at construction, so a run that crashes before WriteSummary leaves no summary at all
 // rather than an old one that looks complete.
 #include <chrono>
-#include <string>
-
+#include <functional>
 #include <nlohmann/json.hpp>
+#include <string>
 
 namespace aperture::output {
 
@@ -42,5 +42,12 @@ class OutputFolder {
   nlohmann::json summary_ = nlohmann::json::object();
   std::chrono::steady_clock::time_point start_;
 };
+
+// Runs `body` and always leaves a summary: "ok" when it returns, "failed" with the exception's
+// message when it throws (the exception is then rethrown for main() to report and turn into an
+// exit code).
+//   OutputFolder out(out_dir);
+//   RunAndWriteSummary(out, [&] { ...the command... });
+void RunAndWriteSummary(OutputFolder& out, const std::function<void()>& body);
 
 }  // namespace aperture::output

@@ -4,21 +4,22 @@
 #include <exception>
 #include <filesystem>
 #include <iostream>
-#include <stdexcept>
-#include <system_error>
-
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
+#include <stdexcept>
+#include <system_error>
+#include <vector>
 
 namespace aperture::output {
 
-VideoWriter::VideoWriter(std::string path_stem, double fps_hz)
+VideoWriter::VideoWriter(std::string path_stem, double fps_hz, VideoFormat format)
     : path_stem_(std::move(path_stem)),
       fps_hz_(fps_hz),
+      format_(format),
       uncaught_exceptions_at_open_(std::uncaught_exceptions()) {
   if (!(std::isfinite(fps_hz) && fps_hz > 0)) {
-    throw std::invalid_argument("video '" + path_stem_ + "': frame rate " +
-                                std::to_string(fps_hz) + " Hz must be positive");
+    throw std::invalid_argument("video '" + path_stem_ + "': frame rate " + std::to_string(fps_hz) +
+                                " Hz must be positive");
   }
 }
 
@@ -42,12 +43,14 @@ void VideoWriter::Open(const cv::Mat& first_frame) {
     const char* extension;
   };
   // mp4 plays everywhere; MJPG/avi is the container every OpenCV build can write.
-  for (const Choice& choice : {Choice{"mp4v", ".mp4"}, Choice{"MJPG", ".avi"}}) {
+  std::vector<Choice> choices = {Choice{"mp4v", ".mp4"}, Choice{"MJPG", ".avi"}};
+  if (format_ == VideoFormat::kAvi) choices.erase(choices.begin());
+  for (const Choice& choice : choices) {
     const std::string partial = path_stem_ + ".partial" + choice.extension;
     auto writer = std::make_unique<cv::VideoWriter>();
     const std::string& c = choice.codec;
-    if (writer->open(partial, cv::VideoWriter::fourcc(c[0], c[1], c[2], c[3]), fps_hz_,
-                     frame_size_, true) &&
+    if (writer->open(partial, cv::VideoWriter::fourcc(c[0], c[1], c[2], c[3]), fps_hz_, frame_size_,
+                     true) &&
         writer->isOpened()) {
       writer_ = std::move(writer);
       codec_ = choice.codec;
@@ -58,9 +61,10 @@ void VideoWriter::Open(const cv::Mat& first_frame) {
     std::error_code ignored;  // a failed open may leave an empty file behind
     std::filesystem::remove(partial, ignored);
   }
-  throw std::runtime_error("cannot open a video writer for '" + path_stem_ +
-                           ".mp4' or '.avi' (no mp4v or MJPG encoder in this OpenCV build, or "
-                           "the folder is not writable)");
+  throw std::runtime_error("cannot open a video writer for '" + path_stem_ + "' (" +
+                           (format_ == VideoFormat::kAvi ? "MJPG .avi" : "mp4v .mp4 or MJPG .avi") +
+                           "): no such encoder in this OpenCV build, or the folder is not "
+                           "writable");
 }
 
 void VideoWriter::Write(const cv::Mat& frame) {

@@ -1,8 +1,8 @@
 #pragma once
 // VideoWriter: an overlay video in the output folder, opened on the first frame (size and colour
 // taken from it). It tries MPEG-4 Part 2 ('mp4v') in "<stem>.mp4" first and falls back to Motion
-// JPEG ('MJPG') in "<stem>.avi" when the OpenCV build cannot open that (on Debian 12 with OpenCV
-// 4.6 + FFmpeg both open; the test checks that one of them does and reads it back). Frames go to
+// JPEG ('MJPG') in "<stem>.avi" when the OpenCV build cannot open that. On Debian 12 (OpenCV 4.6
+// with its FFmpeg backend) both work; tests write and read back each. Frames go to
 // "<stem>.partial.<ext>", renamed on Close(), so an interrupted run leaves no video that looks
 // complete.
 //
@@ -10,10 +10,9 @@
 //   video.Write(overlay_bgr);                    // every frame; same size as the first
 //   std::optional<std::string> file = video.Close();   // "…/overlay.mp4", nullopt without frames
 #include <memory>
+#include <opencv2/core/mat.hpp>
 #include <optional>
 #include <string>
-
-#include <opencv2/core/mat.hpp>
 
 namespace cv {
 class VideoWriter;
@@ -21,10 +20,15 @@ class VideoWriter;
 
 namespace aperture::output {
 
+enum class VideoFormat {
+  kMp4OrAvi,  // mp4v/.mp4, falling back to MJPG/.avi
+  kAvi,       // MJPG/.avi only: frame-exact JPEG frames, larger files
+};
+
 class VideoWriter {
  public:
   // std::invalid_argument for fps_hz <= 0 or non-finite.
-  VideoWriter(std::string path_stem, double fps_hz);
+  VideoWriter(std::string path_stem, double fps_hz, VideoFormat format = VideoFormat::kMp4OrAvi);
   ~VideoWriter();
   VideoWriter(const VideoWriter&) = delete;
   VideoWriter& operator=(const VideoWriter&) = delete;
@@ -45,6 +49,7 @@ class VideoWriter {
 
   std::string path_stem_;
   double fps_hz_;
+  VideoFormat format_;
   std::unique_ptr<cv::VideoWriter> writer_;
   std::string codec_;
   std::string partial_path_, final_path_;

@@ -63,6 +63,9 @@ void LoadParams(config::ParamReader& reader, QuadrotorDynamicsParams* params) {
   config::ParamReader vehicle = reader.Section("vehicle");
   LoadVehicleParameters(vehicle, &params->vehicle);
   reader.Read("max_integration_step_s", &params->max_integration_step_s);
+  reader.Read("rotor_lag_enabled", &params->rotor_lag_enabled);
+  reader.Read("ground_contact_enabled", &params->ground_contact_enabled);
+  reader.Read("ground_height_m", &params->ground_height_m);
   reader.RejectUnknownKeys();
   ValidateAt(reader, *params);
 }

@@ -12,6 +12,9 @@
 //     rotor: {thrust_coeffs_N: [0.9, 1.6, 0.75], time_constant_up_s: 0.011}
 //     rotor_fitness: [1, 1, 1, 1]
 //   max_integration_step_s: 0.001   # QuadrotorDynamicsParams (the map above is its `vehicle`)
+//   rotor_lag_enabled: true
+//   ground_contact_enabled: false
+//   ground_height_m: 0.0
 //
 //   disturbances:
 //     steady_wind_W_mps: [0, 0, 0]

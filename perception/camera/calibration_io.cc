@@ -16,8 +16,7 @@ namespace {
 
 [[noreturn]] void Fail(const std::string& path, const std::string& field,
                        const std::string& problem) {
-  throw std::invalid_argument("calibration file '" + path + "', field '" + field + "': " +
-                              problem);
+  throw std::invalid_argument("calibration file '" + path + "', field '" + field + "': " + problem);
 }
 
 // Everything a file describes, in our names, before the camera model is built.
@@ -66,8 +65,8 @@ Eigen::Vector4d IntrinsicsFromCameraMatrix(const FlatMatrix& K, const std::strin
                                            const std::string& field) {
   CheckMatrixShape(K, path, field);
   if (K.rows != 3 || K.cols != 3) {
-    Fail(path, field, "expected a 3x3 matrix, got " + std::to_string(K.rows) + "x" +
-                          std::to_string(K.cols));
+    Fail(path, field,
+         "expected a 3x3 matrix, got " + std::to_string(K.rows) + "x" + std::to_string(K.cols));
   }
   const std::vector<double>& k = K.data;
   // Our models have no skew; a tiny skew is calibration noise, anything larger is another model.
@@ -82,8 +81,9 @@ Eigen::VectorXd VectorFromMatrix(const FlatMatrix& m, const std::string& path,
                                  const std::string& field) {
   CheckMatrixShape(m, path, field);
   if (m.rows > 1 && m.cols > 1) {
-    Fail(path, field, "expected a row or column vector, got " + std::to_string(m.rows) + "x" +
-                          std::to_string(m.cols));
+    Fail(path, field,
+         "expected a row or column vector, got " + std::to_string(m.rows) + "x" +
+             std::to_string(m.cols));
   }
   return Eigen::Map<const Eigen::VectorXd>(m.data.data(), static_cast<Eigen::Index>(m.data.size()));
 }
@@ -92,10 +92,11 @@ Eigen::Isometry3d TransformFromMatrix(const FlatMatrix& m, const std::string& pa
                                       const std::string& field) {
   CheckMatrixShape(m, path, field);
   if (m.rows != 4 || m.cols != 4) {
-    Fail(path, field, "expected a 4x4 matrix, got " + std::to_string(m.rows) + "x" +
-                          std::to_string(m.cols));
+    Fail(path, field,
+         "expected a 4x4 matrix, got " + std::to_string(m.rows) + "x" + std::to_string(m.cols));
   }
-  const Eigen::Matrix4d T = Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(m.data.data());
+  const Eigen::Matrix4d T =
+      Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(m.data.data());
   const Eigen::Matrix3d R = T.topLeftCorner<3, 3>();
   // Calibration tools write rotations to ~1e-9; 1e-6 rejects scaled or sheared matrices only.
   if (T.row(3) != Eigen::RowVector4d(0, 0, 0, 1) ||
@@ -170,10 +171,10 @@ CameraCalibration LoadOpenCv(const std::string& path) {
   parsed.intrinsics = IntrinsicsFromCameraMatrix(
       ReadOpenCvMatrix(RequireNode(fs, "camera_matrix", path), path, "camera_matrix"), path,
       "camera_matrix");
-  parsed.distortion = VectorFromMatrix(
-      ReadOpenCvMatrix(RequireNode(fs, "distortion_coefficients", path), path,
-                       "distortion_coefficients"),
-      path, "distortion_coefficients");
+  parsed.distortion =
+      VectorFromMatrix(ReadOpenCvMatrix(RequireNode(fs, "distortion_coefficients", path), path,
+                                        "distortion_coefficients"),
+                       path, "distortion_coefficients");
   parsed.model = "radtan";  // OpenCV's calibration sample writes no model: plumb bob.
   const cv::FileNode model = fs["distortion_model"];
   if (!model.empty() && !model.isNone()) {
@@ -285,17 +286,17 @@ void EmitRosMatrix(YAML::Emitter& out, const std::string& key, const Eigen::Matr
 CameraCalibration LoadRos(const std::string& path) {
   const YAML::Node root = LoadYaml(path);
   ParsedCalibration parsed;
-  parsed.width = As<int>(Require(root, "image_width", path, "image_width"), path, "image_width",
-                         "an integer");
-  parsed.height = As<int>(Require(root, "image_height", path, "image_height"), path,
-                          "image_height", "an integer");
+  parsed.width =
+      As<int>(Require(root, "image_width", path, "image_width"), path, "image_width", "an integer");
+  parsed.height = As<int>(Require(root, "image_height", path, "image_height"), path, "image_height",
+                          "an integer");
   if (root["camera_name"])
     parsed.name = As<std::string>(root["camera_name"], path, "camera_name", "a string");
   parsed.intrinsics =
       IntrinsicsFromCameraMatrix(ReadRosMatrix(root, "camera_matrix", path), path, "camera_matrix");
-  const std::string model = As<std::string>(Require(root, "distortion_model", path,
-                                                    "distortion_model"),
-                                            path, "distortion_model", "a string");
+  const std::string model =
+      As<std::string>(Require(root, "distortion_model", path, "distortion_model"), path,
+                      "distortion_model", "a string");
   if (model == "plumb_bob") {
     parsed.model = "radtan";
   } else if (model == "equidistant") {
@@ -322,7 +323,8 @@ void SaveRos(const CameraCalibration& calib, const std::string& path) {
   const Eigen::Matrix3d K = CameraMatrix(cam.intrinsics());
   EmitRosMatrix(out, "camera_matrix", K);
   const bool equidistant = cam.model_name() == "equidistant";
-  out << YAML::Key << "distortion_model" << YAML::Value << (equidistant ? "equidistant" : "plumb_bob");
+  out << YAML::Key << "distortion_model" << YAML::Value
+      << (equidistant ? "equidistant" : "plumb_bob");
   // ROS has no distortion-free model: a pinhole camera is plumb_bob with zero coefficients.
   const Eigen::VectorXd d =
       cam.model_name() == "pinhole" ? Eigen::VectorXd::Zero(5) : cam.distortion();
@@ -344,33 +346,33 @@ CameraCalibration LoadKalibr(const std::string& path, const std::string& camera_
   auto field = [&camera_key](const std::string& key) { return camera_key + "." + key; };
   ParsedCalibration parsed;
   parsed.name = camera_key;
-  const std::string camera_model = As<std::string>(
-      Require(cam, "camera_model", path, field("camera_model")), path, field("camera_model"),
-      "a string");
+  const std::string camera_model =
+      As<std::string>(Require(cam, "camera_model", path, field("camera_model")), path,
+                      field("camera_model"), "a string");
   if (camera_model != "pinhole") {
     Fail(path, field("camera_model"),
          "unsupported projection '" + camera_model + "'; only pinhole is supported");
   }
-  const auto intrinsics = As<std::vector<double>>(
-      Require(cam, "intrinsics", path, field("intrinsics")), path, field("intrinsics"),
-      "a list [fu, fv, pu, pv]");
+  const auto intrinsics =
+      As<std::vector<double>>(Require(cam, "intrinsics", path, field("intrinsics")), path,
+                              field("intrinsics"), "a list [fu, fv, pu, pv]");
   if (intrinsics.size() != 4) {
     Fail(path, field("intrinsics"),
          "expected 4 values [fu, fv, pu, pv], got " + std::to_string(intrinsics.size()));
   }
   parsed.intrinsics = Eigen::Vector4d(intrinsics.data());
-  const auto resolution = As<std::vector<int>>(
-      Require(cam, "resolution", path, field("resolution")), path, field("resolution"),
-      "a list [width, height]");
+  const auto resolution =
+      As<std::vector<int>>(Require(cam, "resolution", path, field("resolution")), path,
+                           field("resolution"), "a list [width, height]");
   if (resolution.size() != 2) {
     Fail(path, field("resolution"),
          "expected 2 values [width, height], got " + std::to_string(resolution.size()));
   }
   parsed.width = resolution[0];
   parsed.height = resolution[1];
-  const std::string model = As<std::string>(
-      Require(cam, "distortion_model", path, field("distortion_model")), path,
-      field("distortion_model"), "a string");
+  const std::string model =
+      As<std::string>(Require(cam, "distortion_model", path, field("distortion_model")), path,
+                      field("distortion_model"), "a string");
   if (model == "radtan" || model == "equidistant") {
     parsed.model = model;
   } else if (model == "none") {
@@ -379,16 +381,16 @@ CameraCalibration LoadKalibr(const std::string& path, const std::string& camera_
     Fail(path, field("distortion_model"),
          "unsupported model '" + model + "'; expected radtan, equidistant or none");
   }
-  const auto coeffs = As<std::vector<double>>(
-      Require(cam, "distortion_coeffs", path, field("distortion_coeffs")), path,
-      field("distortion_coeffs"), "a list of numbers");
+  const auto coeffs =
+      As<std::vector<double>>(Require(cam, "distortion_coeffs", path, field("distortion_coeffs")),
+                              path, field("distortion_coeffs"), "a list of numbers");
   parsed.distortion =
       Eigen::Map<const Eigen::VectorXd>(coeffs.data(), static_cast<Eigen::Index>(coeffs.size()));
   if (cam["T_cam_imu"]) {
     const auto rows = As<std::vector<std::vector<double>>>(cam["T_cam_imu"], path,
                                                            field("T_cam_imu"), "a 4x4 list");
-    FlatMatrix m{static_cast<int>(rows.size()), rows.empty() ? 0 : static_cast<int>(rows[0].size()),
-                 {}};
+    FlatMatrix m{
+        static_cast<int>(rows.size()), rows.empty() ? 0 : static_cast<int>(rows[0].size()), {}};
     for (const auto& row : rows) {
       if (static_cast<int>(row.size()) != m.cols)
         Fail(path, field("T_cam_imu"), "rows have different lengths");
@@ -432,14 +434,18 @@ CalibrationFormat ParseCalibrationFormat(const std::string& name) {
   if (name == "opencv") return CalibrationFormat::kOpenCv;
   if (name == "ros") return CalibrationFormat::kRos;
   if (name == "kalibr") return CalibrationFormat::kKalibr;
-  throw std::invalid_argument("calibration format '" + name + "' is unknown; use opencv, ros or kalibr");
+  throw std::invalid_argument("calibration format '" + name +
+                              "' is unknown; use opencv, ros or kalibr");
 }
 
 std::string CalibrationFormatName(CalibrationFormat format) {
   switch (format) {
-    case CalibrationFormat::kOpenCv: return "opencv";
-    case CalibrationFormat::kRos: return "ros";
-    case CalibrationFormat::kKalibr: return "kalibr";
+    case CalibrationFormat::kOpenCv:
+      return "opencv";
+    case CalibrationFormat::kRos:
+      return "ros";
+    case CalibrationFormat::kKalibr:
+      return "kalibr";
   }
   return "unknown";
 }
@@ -465,9 +471,12 @@ CalibrationFormat DetectCalibrationFormat(const std::string& path) {
 
 CameraCalibration LoadCameraCalibration(const std::string& path, const std::string& kalibr_camera) {
   switch (DetectCalibrationFormat(path)) {
-    case CalibrationFormat::kOpenCv: return LoadOpenCv(path);
-    case CalibrationFormat::kRos: return LoadRos(path);
-    case CalibrationFormat::kKalibr: return LoadKalibr(path, kalibr_camera);
+    case CalibrationFormat::kOpenCv:
+      return LoadOpenCv(path);
+    case CalibrationFormat::kRos:
+      return LoadRos(path);
+    case CalibrationFormat::kKalibr:
+      return LoadKalibr(path, kalibr_camera);
   }
   Fail(path, "(format)", "unknown format");
 }
@@ -477,9 +486,12 @@ void SaveCameraCalibration(const CameraCalibration& calib, const std::string& pa
   if (!calib.camera)
     throw std::invalid_argument("SaveCameraCalibration('" + path + "'): calibration has no camera");
   switch (format) {
-    case CalibrationFormat::kOpenCv: return SaveOpenCv(calib, path);
-    case CalibrationFormat::kRos: return SaveRos(calib, path);
-    case CalibrationFormat::kKalibr: return SaveKalibr(calib, path);
+    case CalibrationFormat::kOpenCv:
+      return SaveOpenCv(calib, path);
+    case CalibrationFormat::kRos:
+      return SaveRos(calib, path);
+    case CalibrationFormat::kKalibr:
+      return SaveKalibr(calib, path);
   }
 }
 

@@ -52,9 +52,12 @@ cv::Ptr<cv::FeatureDetector> MakeCircleDetector() {
 
 std::string StatusName(CameraCalibrationResult::Status status) {
   switch (status) {
-    case CameraCalibrationResult::Status::kOk: return "ok";
-    case CameraCalibrationResult::Status::kTooFewImages: return "too_few_images";
-    case CameraCalibrationResult::Status::kSolverFailed: return "solver_failed";
+    case CameraCalibrationResult::Status::kOk:
+      return "ok";
+    case CameraCalibrationResult::Status::kTooFewImages:
+      return "too_few_images";
+    case CameraCalibrationResult::Status::kSolverFailed:
+      return "solver_failed";
   }
   return "unknown";
 }
@@ -83,8 +86,7 @@ PatternSpec ParsePatternSpec(const std::string& spec) {
       FailSpec(spec, "size '" + size + "' is not COLSxROWS");
     }
   }
-  if (pattern.cols < 2 || pattern.rows < 2 ||
-      pattern.cols * pattern.rows < 6) {
+  if (pattern.cols < 2 || pattern.rows < 2 || pattern.cols * pattern.rows < 6) {
     FailSpec(spec, "size '" + size + "' is too small (at least 2 per side and 6 points)");
   }
   {
@@ -127,8 +129,10 @@ std::optional<std::vector<Eigen::Vector2d>> DetectCalibrationPattern(const cv::M
     for (int r = 0; r < pattern.rows; ++r) {
       for (int c = 0; c < pattern.cols; ++c) {
         const cv::Point2f& p = points[r * pattern.cols + c];
-        if (c + 1 < pattern.cols) min_distance = std::min(min_distance, cv::norm(points[r * pattern.cols + c + 1] - p));
-        if (r + 1 < pattern.rows) min_distance = std::min(min_distance, cv::norm(points[(r + 1) * pattern.cols + c] - p));
+        if (c + 1 < pattern.cols)
+          min_distance = std::min(min_distance, cv::norm(points[r * pattern.cols + c + 1] - p));
+        if (r + 1 < pattern.rows)
+          min_distance = std::min(min_distance, cv::norm(points[(r + 1) * pattern.cols + c] - p));
       }
     }
     const int half = std::clamp(static_cast<int>(0.4 * min_distance), 2, 5);
@@ -206,10 +210,9 @@ CameraCalibrationResult CalibrateFromImages(const std::vector<CalibrationImage>&
       // px there) and keep the attempt with the lower RMS.
       cv::Mat K_pinhole, d_pinhole;
       std::vector<cv::Mat> r_pinhole, t_pinhole;
-      cv::calibrateCamera(object_points, image_points, image_size, K_pinhole, d_pinhole, r_pinhole,
-                          t_pinhole,
-                          cv::CALIB_FIX_K1 | cv::CALIB_FIX_K2 | cv::CALIB_FIX_K3 |
-                              cv::CALIB_ZERO_TANGENT_DIST);
+      cv::calibrateCamera(
+          object_points, image_points, image_size, K_pinhole, d_pinhole, r_pinhole, t_pinhole,
+          cv::CALIB_FIX_K1 | cv::CALIB_FIX_K2 | cv::CALIB_FIX_K3 | cv::CALIB_ZERO_TANGENT_DIST);
       double best_rms = std::numeric_limits<double>::infinity();
       for (const bool from_pinhole : {false, true}) {
         cv::Matx33d K_attempt = from_pinhole ? cv::Matx33d(K_pinhole) : cv::Matx33d::eye();

@@ -6,12 +6,11 @@
 // successful result certifies the returned CameraModel, not only OpenCV's internal one.
 #include <Eigen/Core>
 #include <memory>
+#include <opencv2/core/mat.hpp>
 #include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
-
-#include <opencv2/core/mat.hpp>
 
 #include "perception/camera/camera_model.h"
 
@@ -20,9 +19,9 @@ namespace aperture::perception {
 struct PatternSpec {
   enum class Kind { kChessboard, kCircles };
   Kind kind = Kind::kChessboard;
-  int cols = 9;               // inner corners per row (chessboard) or circles per row (grid)
-  int rows = 6;               // inner corners per column or circles per column
-  double spacing_m = 0.025;   // square side or circle centre distance [m]
+  int cols = 9;              // inner corners per row (chessboard) or circles per row (grid)
+  int rows = 6;              // inner corners per column or circles per column
+  double spacing_m = 0.025;  // square side or circle centre distance [m]
 };
 
 // "chessboard:COLSxROWS:SPACING_M" or "circles:COLSxROWS:SPACING_M", e.g. "chessboard:9x6:0.025".
@@ -52,16 +51,16 @@ struct CalibratorOptions {
 
 struct ImageCalibrationResult {
   std::string name;
-  bool found = false;  // target detected (only these images are used)
+  bool found = false;   // target detected (only these images are used)
   double rms_px = 0.0;  // reprojection RMS of this image's points with the final model
 };
 
 struct CameraCalibrationResult {
   enum class Status { kOk, kTooFewImages, kSolverFailed };
   Status status = Status::kTooFewImages;
-  std::string message;  // why status is not kOk
+  std::string message;                        // why status is not kOk
   std::shared_ptr<const CameraModel> camera;  // set when status == kOk
-  double rms_px = 0.0;  // RMS over all points of |reprojection error| [px]
+  double rms_px = 0.0;                        // RMS over all points of |reprojection error| [px]
   int images_used = 0;
   std::vector<ImageCalibrationResult> per_image;  // one per input image, in input order
 };

@@ -20,8 +20,8 @@ void CheckDistortionCount(const std::string& model_name, const Eigen::VectorXd& 
 
 }  // namespace
 
-std::unique_ptr<CameraModel> CreateCameraModel(const std::string& model_name, int width,
-                                               int height, const Eigen::VectorXd& intrinsics,
+std::unique_ptr<CameraModel> CreateCameraModel(const std::string& model_name, int width, int height,
+                                               const Eigen::VectorXd& intrinsics,
                                                const Eigen::VectorXd& distortion) {
   if (intrinsics.size() != 4) {
     throw std::invalid_argument("camera intrinsics: expected 4 values [fx, fy, cx, cy], got " +

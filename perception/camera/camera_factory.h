@@ -12,8 +12,8 @@ namespace aperture::perception {
 // distortion (OpenCV order): pinhole none; radtan k1 k2 p1 p2 [k3] (4 or 5); equidistant
 // k1 k2 k3 k4 (4). Throws std::invalid_argument naming the field (model, width, height,
 // intrinsics, fx, fy, cx, cy, distortion) and what is expected.
-std::unique_ptr<CameraModel> CreateCameraModel(const std::string& model_name, int width,
-                                               int height, const Eigen::VectorXd& intrinsics,
+std::unique_ptr<CameraModel> CreateCameraModel(const std::string& model_name, int width, int height,
+                                               const Eigen::VectorXd& intrinsics,
                                                const Eigen::VectorXd& distortion);
 
 }  // namespace aperture::perception

@@ -123,10 +123,10 @@ Eigen::Vector3d EquidistantCamera::Unproject(const Eigen::Vector2d& px) const {
 }
 
 std::unique_ptr<CameraModel> EquidistantCamera::Scaled(int new_width, int new_height) const {
-  return std::make_unique<EquidistantCamera>(
-      new_width, new_height,
-      k_.Scaled(static_cast<double>(new_width) / width(), static_cast<double>(new_height) / height()),
-      d_);
+  return std::make_unique<EquidistantCamera>(new_width, new_height,
+                                             k_.Scaled(static_cast<double>(new_width) / width(),
+                                                       static_cast<double>(new_height) / height()),
+                                             d_);
 }
 
 std::unique_ptr<CameraModel> EquidistantCamera::Clone() const {

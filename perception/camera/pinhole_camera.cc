@@ -52,9 +52,9 @@ Eigen::Vector3d PinholeCamera::Unproject(const Eigen::Vector2d& px) const {
 }
 
 std::unique_ptr<CameraModel> PinholeCamera::Scaled(int new_width, int new_height) const {
-  return std::make_unique<PinholeCamera>(
-      new_width, new_height,
-      k_.Scaled(static_cast<double>(new_width) / width(), static_cast<double>(new_height) / height()));
+  return std::make_unique<PinholeCamera>(new_width, new_height,
+                                         k_.Scaled(static_cast<double>(new_width) / width(),
+                                                   static_cast<double>(new_height) / height()));
 }
 
 std::unique_ptr<CameraModel> PinholeCamera::Clone() const {

@@ -13,7 +13,9 @@ namespace {
 // 7 k3 s^3 reaches zero, searched up to r = 1e3 (an 89.9 deg half angle): the radial map folds
 // there. Returns +infinity when it stays positive.
 double FirstFoldRadius(const RadTanDistortion& d) {
-  auto slope = [&d](double s) { return 1.0 + s * (3.0 * d.k1 + s * (5.0 * d.k2 + s * 7.0 * d.k3)); };
+  auto slope = [&d](double s) {
+    return 1.0 + s * (3.0 * d.k1 + s * (5.0 * d.k2 + s * 7.0 * d.k3));
+  };
   // Geometric scan in s from 1e-4 to 1e6, then bisection on the first sign change.
   double s_lo = 0.0;
   for (double s = 1e-4; s <= 1e6; s *= 1.01) {
@@ -125,10 +127,10 @@ Eigen::Vector3d RadTanCamera::Unproject(const Eigen::Vector2d& px) const {
 }
 
 std::unique_ptr<CameraModel> RadTanCamera::Scaled(int new_width, int new_height) const {
-  return std::make_unique<RadTanCamera>(
-      new_width, new_height,
-      k_.Scaled(static_cast<double>(new_width) / width(), static_cast<double>(new_height) / height()),
-      d_);
+  return std::make_unique<RadTanCamera>(new_width, new_height,
+                                        k_.Scaled(static_cast<double>(new_width) / width(),
+                                                  static_cast<double>(new_height) / height()),
+                                        d_);
 }
 
 std::unique_ptr<CameraModel> RadTanCamera::Clone() const {

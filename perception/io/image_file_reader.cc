@@ -5,7 +5,6 @@
 #include <cctype>
 #include <cstdint>
 #include <fstream>
-#include <iterator>
 #include <opencv2/imgcodecs.hpp>
 #include <stdexcept>
 
@@ -114,19 +113,24 @@ std::optional<std::string> FindTruncation(const Bytes& bytes) {
 }
 
 cv::Mat ReadImageFile(const std::filesystem::path& path, ColorMode mode) {
-  std::ifstream file(path, std::ios::binary);
+  std::ifstream file(path, std::ios::binary | std::ios::ate);
   if (!file) {
     throw std::runtime_error("cannot open image file '" + path.string() +
                              "'; check that it exists and is readable");
   }
-  const Bytes bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  Bytes bytes(static_cast<size_t>(file.tellg()));
+  file.seekg(0);
+  if (!file.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()))) {
+    throw std::runtime_error("cannot read image file '" + path.string() +
+                             "'; check that it is a readable regular file");
+  }
   if (bytes.empty()) {
     throw std::runtime_error("image file '" + path.string() +
                              "' is empty; re-export it or remove it from the sequence");
   }
   if (const std::optional<std::string> truncation = FindTruncation(bytes)) {
     throw std::runtime_error("image file '" + path.string() + "' is incomplete: " + *truncation +
-                             "; re-copy or re-export it, or pass --skip-bad-frames");
+                             "; re-copy or re-export it");
   }
   const int flags = mode == ColorMode::kGray ? cv::IMREAD_GRAYSCALE : cv::IMREAD_COLOR;
   cv::Mat image;
@@ -134,12 +138,11 @@ cv::Mat ReadImageFile(const std::filesystem::path& path, ColorMode mode) {
     image = cv::imdecode(bytes, flags);
   } catch (const cv::Exception& e) {
     throw std::runtime_error("image file '" + path.string() + "' cannot be decoded (" + e.what() +
-                             "); re-export it, or pass --skip-bad-frames");
+                             "); re-export it");
   }
   if (image.empty()) {
     throw std::runtime_error("image file '" + path.string() +
-                             "' cannot be decoded (corrupt or not an image); re-export it or "
-                             "pass --skip-bad-frames");
+                             "' cannot be decoded (corrupt or not an image); re-export it");
   }
   return ConvertToColorMode(image, mode);
 }

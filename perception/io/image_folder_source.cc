@@ -11,6 +11,7 @@ namespace aperture::perception {
 namespace fs = std::filesystem;
 namespace {
 
+constexpr const char* kSkipHint = " (or skip such frames with --skip-bad-frames)";
 constexpr const char* kImageExtensions = ".png .jpg .jpeg .pgm .ppm .pnm .bmp .tif .tiff";
 
 // Image files directly in `folder` (no hidden files, no subfolders), in natural order.
@@ -41,28 +42,33 @@ std::string SizeText(const cv::Size& size) {
   return std::to_string(size.width) + "x" + std::to_string(size.height);
 }
 
+// "seq/" -> "seq", so that parent_path() is the parent folder.
+fs::path WithoutTrailingSeparator(const fs::path& folder) {
+  return folder.has_filename() || !folder.has_parent_path() ? folder : folder.parent_path();
+}
+
 }  // namespace
 
 ImageFolderSource::ImageFolderSource(const fs::path& folder, const FrameSourceOptions& options)
-    : folder_(folder), options_(options) {
+    : folder_(WithoutTrailingSeparator(folder)), options_(options) {
   CheckFrameSourceOptions(options);
-  if (!fs::exists(folder)) {
-    throw std::runtime_error("image folder '" + folder.string() +
+  if (!fs::exists(folder_)) {
+    throw std::runtime_error("image folder '" + folder_.string() +
                              "' does not exist; check the path given as the frame source");
   }
-  if (!fs::is_directory(folder)) {
-    throw std::invalid_argument("'" + folder.string() +
+  if (!fs::is_directory(folder_)) {
+    throw std::invalid_argument("'" + folder_.string() +
                                 "' is not a folder; give the folder that holds the images");
   }
-  fs::path image_folder = folder;
-  files_ = ListImages(folder);
+  fs::path image_folder = folder_;
+  files_ = ListImages(folder_);
   // A EuRoC camera folder (cam0/ with data.csv and data/) may be given instead of cam0/data/.
-  if (files_.empty() && fs::is_directory(folder / "data") && fs::exists(folder / "data.csv")) {
-    image_folder = folder / "data";
+  if (files_.empty() && fs::is_directory(folder_ / "data") && fs::exists(folder_ / "data.csv")) {
+    image_folder = folder_ / "data";
     files_ = ListImages(image_folder);
   }
   if (files_.empty()) {
-    throw std::runtime_error("image folder '" + folder.string() + "' contains no images (" +
+    throw std::runtime_error("image folder '" + folder_.string() + "' contains no images (" +
                              kImageExtensions +
                              "); give the folder that directly holds the frame files");
   }
@@ -72,7 +78,7 @@ ImageFolderSource::ImageFolderSource(const fs::path& folder, const FrameSourceOp
 void ImageFolderSource::AssignTimes(const fs::path& image_folder) {
   const fs::path times_txt = image_folder / "times.txt";
   fs::path data_csv = image_folder / "data.csv";
-  if (!fs::exists(data_csv)) data_csv = image_folder.parent_path() / "data.csv";
+  if (!fs::exists(data_csv)) data_csv = fs::absolute(image_folder).parent_path() / "data.csv";
 
   if (fs::exists(times_txt)) {
     time_source_ = "times.txt";
@@ -169,8 +175,7 @@ void ImageFolderSource::SkipOrThrow(const std::string& item, const std::string& 
     RecordSkip(item, reason);
     return;
   }
-  throw std::invalid_argument("'" + item + "' " + reason +
-                              " (or skip such frames with --skip-bad-frames)");
+  throw std::invalid_argument("'" + item + "' " + reason + kSkipHint);
 }
 
 std::optional<Frame> ImageFolderSource::Next() {
@@ -181,7 +186,9 @@ std::optional<Frame> ImageFolderSource::Next() {
     try {
       image = ReadImageFile(file, options_.color_mode);
     } catch (const std::runtime_error& e) {
-      if (!options_.skip_bad_frames) throw;
+      if (!options_.skip_bad_frames) {
+        throw std::runtime_error(std::string(e.what()) + kSkipHint);
+      }
       RecordSkip(file.string(), e.what());
       continue;
     }

@@ -107,6 +107,14 @@ TimestampTable ParseTimesTxt(std::istream& in, const std::string& source) {
       throw std::invalid_argument(LineRef(source, line_number, line) + ": " +
                                   std::to_string(fields.size()) + " fields" + kFormatHelp);
     }
+    // Unix time in seconds is ~1.7e9; a value this large is ms, us or ns written as seconds.
+    constexpr double kMaxPlausibleSeconds = 1e11;
+    if (std::abs(*t_s) >= kMaxPlausibleSeconds) {
+      throw std::invalid_argument(LineRef(source, line_number, line) +
+                                  ": time is too large for seconds (milli/micro/nanoseconds?); "
+                                  "times.txt is in seconds, convert it or use a EuRoC data.csv "
+                                  "for nanoseconds");
+    }
     const bool is_pair = !name.empty();
     if (pair_form && *pair_form != is_pair) {
       throw std::invalid_argument(LineRef(source, line_number, line) +

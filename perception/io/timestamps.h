@@ -30,7 +30,8 @@ struct TimestampTable {
 
 // Parses a times.txt stream. `source` names the file in error messages. Throws
 // std::invalid_argument naming the file and line for an unparsable line, a line with more than
-// two fields, a non-finite time, or a mix of the two forms. Does not check ordering.
+// two fields, a non-finite time, a time >= 1e11 (not seconds: ms/us/ns), or a mix of the two
+// forms. Does not check ordering.
 TimestampTable ParseTimesTxt(std::istream& in, const std::string& source);
 
 // Parses a EuRoC data.csv stream ("<timestamp ns>,<file name>" per line, '#' lines skipped).

@@ -27,6 +27,17 @@ void QuadrotorDynamicsParams::Validate() const {
     throw std::invalid_argument("QuadrotorDynamicsParams.max_integration_step_s must be > 0, got " +
                                 std::to_string(max_integration_step_s));
   }
+  if (!std::isfinite(ground_height_m)) {
+    throw std::invalid_argument("QuadrotorDynamicsParams.ground_height_m must be finite");
+  }
+  const double fastest_lag_s =
+      std::min(vehicle.rotor.time_constant_up_s, vehicle.rotor.time_constant_down_s);
+  if (rotor_lag_enabled && fastest_lag_s < max_integration_step_s) {
+    throw std::invalid_argument(
+        "QuadrotorDynamicsParams: rotor time constant " + std::to_string(fastest_lag_s) +
+        " s is shorter than max_integration_step_s " + std::to_string(max_integration_step_s) +
+        " s; RK4 cannot resolve that lag: reduce the step or set rotor_lag_enabled = false");
+  }
 }
 
 QuadrotorDynamics::QuadrotorDynamics(const QuadrotorDynamicsParams& params,
@@ -46,6 +57,8 @@ void QuadrotorDynamics::SetState(const control::QuadState& state) {
   RequireValidState(state);
   state_ = state;
   state_.q_WB.normalize();
+  on_ground_ = false;
+  ResolveGroundContact();
 }
 
 void QuadrotorDynamics::SetMotorCommands(const Eigen::Vector4d& u) {
@@ -54,6 +67,7 @@ void QuadrotorDynamics::SetMotorCommands(const Eigen::Vector4d& u) {
   }
   const control::RotorParameters& rotor = params_.vehicle.rotor;
   commands_ = u.cwiseMax(rotor.command_min).cwiseMin(rotor.command_max);
+  if (!params_.rotor_lag_enabled) SettleRotors();
 }
 
 void QuadrotorDynamics::SetRotorThrustCommand(const control::RotorThrustCommand& command) {
@@ -132,14 +146,38 @@ double QuadrotorDynamics::CollectiveThrust_mps2() const {
       .collective_thrust_mps2;
 }
 
-Eigen::Vector3d QuadrotorDynamics::SpecificForce_B() const {
+Eigen::Vector3d QuadrotorDynamics::FreeSpecificForce_B() const {
   return ComputeForces(state_.q_WB.toRotationMatrix(), state_.v_W, state_.omega_B, f_check_N_)
       .specific_force_B;
 }
 
+Eigen::Vector3d QuadrotorDynamics::SpecificForce_B() const {
+  if (on_ground_) {
+    return state_.q_WB.conjugate() * (params_.vehicle.gravity_mps2 * Eigen::Vector3d::UnitZ());
+  }
+  return FreeSpecificForce_B();
+}
+
 Eigen::Vector3d QuadrotorDynamics::Acceleration_W() const {
-  return state_.q_WB.toRotationMatrix() * SpecificForce_B() -
-         params_.vehicle.gravity_mps2 * Eigen::Vector3d::UnitZ();
+  return state_.q_WB * SpecificForce_B() - params_.vehicle.gravity_mps2 * Eigen::Vector3d::UnitZ();
+}
+
+void QuadrotorDynamics::ResolveGroundContact() {
+  if (!params_.ground_contact_enabled) return;
+  const double ground_m = params_.ground_height_m;
+  if (state_.p_WB.z() > ground_m || state_.v_W.z() > 0.0) {
+    on_ground_ = false;
+    return;
+  }
+  if (!on_ground_) last_touchdown_speed_mps_ = state_.v_W.norm();
+  on_ground_ = true;
+  state_.p_WB.z() = ground_m;
+  state_.v_W.setZero();
+  state_.omega_B.setZero();
+  // Upright on the gear: keep the heading of x_B, drop roll and pitch.
+  const Eigen::Vector3d x_B_W = state_.q_WB * Eigen::Vector3d::UnitX();
+  const double yaw = std::atan2(x_B_W.y(), x_B_W.x());
+  state_.q_WB = Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
 }
 
 QuadrotorDynamics::Derivative QuadrotorDynamics::ComputeDerivative(
@@ -212,7 +250,10 @@ void QuadrotorDynamics::Step(double dt_s) {
   const int sub_steps =
       std::max(1, static_cast<int>(std::ceil(dt_s / params_.max_integration_step_s - 1e-9)));
   const double h_s = dt_s / sub_steps;
-  for (int k = 0; k < sub_steps; ++k) StepRk4(h_s);
+  for (int k = 0; k < sub_steps; ++k) {
+    StepRk4(h_s);
+    ResolveGroundContact();
+  }
 }
 
 }  // namespace aperture::sim

@@ -30,6 +30,15 @@
 // Integration: classic RK4 with a fixed step (default 1 ms); (G.7) is solved exactly inside each
 // step (the thrust never crosses its target, so the up/down branch is constant over a step) and
 // its closed form is evaluated at the RK4 stage times. q_WB is renormalized after every step.
+//
+// Typical SITL loop (sim/vehicle/disturbances.h, sim/sensors/imu_sensor.h):
+//   QuadrotorDynamics vehicle(params, initial_state);
+//   for (;;) {
+//     vehicle.SetRotorThrustCommand(mixer_output);        // or SetMotorCommands(u)
+//     disturbances.StepVehicle(0.001, &vehicle);          // or vehicle.Step(0.001)
+//     for (const auto& sample : imu.Update(vehicle.state().t_s, vehicle.SpecificForce_B(),
+//                                          vehicle.state().omega_B)) { autopilot(sample); }
+//   }
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -44,8 +53,21 @@ struct QuadrotorDynamicsParams {
   // Largest RK4 step [s]; Step(dt) is split into equal sub-steps no longer than this. 1 ms
   // resolves the 11 ms rotor time constant (step error of RK4 ~ (h/tau)^5) and body dynamics.
   double max_integration_step_s = 0.001;
+  // false: every rotor produces f(u) the moment u is set, (G.7) is bypassed. For comparisons with
+  // models that assume instantaneous thrust (flatness, F.1-F.5); a tiny time constant is not the
+  // same, since RK4 samples the thrust at the start of a step, before such a fast lag has moved.
+  bool rotor_lag_enabled = true;
+  // Ground plane z_W = ground_height_m with landing gear (off by default: the plain model F.1-F.5).
+  // After each RK4 step, a vehicle at or below the plane and not climbing is put to rest on it:
+  // p_z = ground, v = 0, omega = 0, roll and pitch removed (yaw kept) -- an inelastic touchdown on
+  // gear that keeps it upright, with static friction. It lifts off once the thrust exceeds its
+  // weight. While resting, the specific force is the ground reaction R^T g z_W. Crashes (tip-over,
+  // bounce) are not modelled; last_touchdown_speed_mps() lets a caller judge them.
+  bool ground_contact_enabled = false;
+  double ground_height_m = 0.0;
 
-  // Throws std::invalid_argument naming the field (delegates to VehicleParameters::Validate).
+  // Throws std::invalid_argument naming the field (delegates to VehicleParameters::Validate), and
+  // when the lag is enabled but a rotor time constant is shorter than max_integration_step_s.
   void Validate() const;
 };
 
@@ -74,7 +96,8 @@ class QuadrotorDynamics {
   // Advances the state by dt_s > 0 (throws std::invalid_argument otherwise) with inputs held.
   void Step(double dt_s);
 
-  // Replaces the rigid-body state (rotors unchanged); throws like the constructor.
+  // Replaces the rigid-body state (rotors unchanged; with ground contact, a state at or below the
+  // ground and not climbing is put to rest on it); throws like the constructor.
   void SetState(const control::QuadState& state);
   const control::QuadState& state() const { return state_; }
   const QuadrotorDynamicsParams& params() const { return params_; }
@@ -85,14 +108,20 @@ class QuadrotorDynamics {
   Eigen::Vector4d RotorThrusts_N() const;
   // Commands that would produce the current thrusts in steady state (argument of (G.4)).
   Eigen::Vector4d EffectiveMotorCommands() const;
+  // True while resting on the ground plane (ground_contact_enabled only).
+  bool on_ground() const { return on_ground_; }
+  // |v_W| at the most recent touchdown, 0 before the first [m/s].
+  double last_touchdown_speed_mps() const { return last_touchdown_speed_mps_; }
+
   // Mass-normalized collective thrust c of (F.5) at the current state [m/s^2].
   double CollectiveThrust_mps2() const;
   // Body torque eta of (G.1) from the rotors only (no drag torques of F.4, no external) [N m].
   Eigen::Vector3d RotorTorque_B() const;
   // What an ideal accelerometer at the centre of mass reads: all non-gravitational forces over
-  // mass, in B: c z_B - D R^T v_a + R^T F_ext / m [m/s^2]. Impulses (Dirac forces) are not seen.
+  // mass, in B: c z_B - D R^T v_a + R^T F_ext / m [m/s^2]; resting on the ground, R^T g z_W.
+  // Impulses (Dirac forces) are not seen.
   Eigen::Vector3d SpecificForce_B() const;
-  // Linear acceleration v' of (F.2) at the current state [m/s^2].
+  // Linear acceleration v' of (F.2) at the current state (0 while resting on the ground) [m/s^2].
   Eigen::Vector3d Acceleration_W() const;
 
  private:
@@ -119,6 +148,9 @@ class QuadrotorDynamics {
   // Closed-form solution of (G.7) after `elapsed_s` from f_check_start.
   Eigen::Vector4d RotorThrustsAfter(const Eigen::Vector4d& f_check_start, double elapsed_s) const;
   void StepRk4(double h_s);
+  void ResolveGroundContact();
+  // Specific force of the free vehicle (no ground reaction) at the current state, in B.
+  Eigen::Vector3d FreeSpecificForce_B() const;
 
   QuadrotorDynamicsParams params_;
   control::QuadState state_;
@@ -129,6 +161,8 @@ class QuadrotorDynamics {
   Eigen::Vector3d external_torque_B_ = Eigen::Vector3d::Zero();
   Eigen::Matrix3d inertia_, inertia_inverse_;
   Eigen::Matrix<double, 3, 4> rotor_positions_B_;
+  bool on_ground_ = false;
+  double last_touchdown_speed_mps_ = 0.0;
 };
 
 }  // namespace aperture::sim

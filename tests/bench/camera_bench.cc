@@ -13,11 +13,13 @@ namespace {
 std::unique_ptr<CameraModel> MakeCamera(int index) {
   switch (index) {
     case 0:
-      return CreateCameraModel("pinhole", 752, 480, Eigen::Vector4d(458.654, 457.296, 367.215, 248.375),
+      return CreateCameraModel("pinhole", 752, 480,
+                               Eigen::Vector4d(458.654, 457.296, 367.215, 248.375),
                                Eigen::VectorXd());
     case 1:  // EuRoC cam0
-      return CreateCameraModel("radtan", 752, 480, Eigen::Vector4d(458.654, 457.296, 367.215, 248.375),
-                               Eigen::Vector4d(-0.28340811, 0.07395907, 0.00019359, 1.76187114e-05));
+      return CreateCameraModel(
+          "radtan", 752, 480, Eigen::Vector4d(458.654, 457.296, 367.215, 248.375),
+          Eigen::Vector4d(-0.28340811, 0.07395907, 0.00019359, 1.76187114e-05));
     default:  // 180 deg fisheye
       return CreateCameraModel("equidistant", 752, 480, Eigen::Vector4d(140.0, 140.0, 375.5, 239.5),
                                Eigen::Vector4d(-0.02, 0.003, 0.0, 0.0));
@@ -27,7 +29,8 @@ std::unique_ptr<CameraModel> MakeCamera(int index) {
 // 1024 random in-image pixels (fixed seed).
 std::vector<Eigen::Vector2d> Pixels(const CameraModel& camera) {
   std::mt19937 rng(1);
-  std::uniform_real_distribution<double> u(0.0, camera.width() - 1.0), v(0.0, camera.height() - 1.0);
+  std::uniform_real_distribution<double> u(0.0, camera.width() - 1.0),
+      v(0.0, camera.height() - 1.0);
   std::vector<Eigen::Vector2d> pixels(1024);
   for (auto& px : pixels) px = Eigen::Vector2d(u(rng), v(rng));
   return pixels;

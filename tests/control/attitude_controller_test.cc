@@ -29,7 +29,7 @@ struct LoopRun {
 
 // Kinematic closed loop: the body follows the commanded rates exactly (perfect inner loop).
 LoopRun Simulate(const AttitudeControllerGains& gains, const Eigen::Quaterniond& q0,
-             const Eigen::Vector3d& z_des, double heading, double duration_s, double dt) {
+                 const Eigen::Vector3d& z_des, double heading, double duration_s, double dt) {
   const AttitudeController controller(gains);
   LoopRun run;
   Eigen::Quaterniond q = q0;
@@ -74,7 +74,8 @@ TEST(AttitudeControllerTest, RollPitchHasPriorityAndIsDecoupledFromYaw) {
   const LoopRun without_yaw = Simulate(no_yaw, kStart, kZDes, kHeading, 1.0, kDt);
   double max_difference = 0.0;
   for (size_t k = 0; k < with_yaw.tilt_rad.size(); ++k) {
-    max_difference = std::max(max_difference, std::abs(with_yaw.tilt_rad[k] - without_yaw.tilt_rad[k]));
+    max_difference =
+        std::max(max_difference, std::abs(with_yaw.tilt_rad[k] - without_yaw.tilt_rad[k]));
   }
   // Exactly equal in continuous time (yaw rate never moves z_B); the held-rate discretization
   // couples them at O(dt).
@@ -116,9 +117,9 @@ TEST(AttitudeControllerTest, DesiredAttitudeFollowsHeadingDefinition) {
   EXPECT_GT(R.col(0).dot(x_C), 0.0);
   // Level thrust: the desired attitude is the pure heading rotation.
   const Eigen::Matrix3d level = ComputeDesiredAttitude(Eigen::Vector3d::UnitZ(), kHeading);
-  EXPECT_LT((level - Eigen::AngleAxisd(kHeading, Eigen::Vector3d::UnitZ()).toRotationMatrix())
-                .norm(),
-            1e-15);
+  EXPECT_LT(
+      (level - Eigen::AngleAxisd(kHeading, Eigen::Vector3d::UnitZ()).toRotationMatrix()).norm(),
+      1e-15);
 }
 
 TEST(AttitudeControllerTest, UpsideDownErrorRotatesAboutBodyX) {

@@ -203,7 +203,7 @@ TEST(FlatnessTest, CircleReproducesThesisThrustAndBodyRates) {
   const VehicleParameters vehicle = DragFreeVehicle();
   for (double t = 4.0; t < 8.0; t += 0.25) {  // inside the full-speed part (ramp ends at 3 s)
     const FlatnessResult r = ComputeFlatnessOutputs(circle.Evaluate(t), vehicle);
-    EXPECT_NEAR(r.collective_thrust_mps2, 13.24, 0.005);  // thesis rounds to 0.01
+    EXPECT_NEAR(r.collective_thrust_mps2, 13.24, 0.005);              // thesis rounds to 0.01
     EXPECT_NEAR(r.omega_B.head<2>().norm() * kDegPerRad, 85.0, 0.5);  // thesis rounds to 1 deg/s
   }
 }

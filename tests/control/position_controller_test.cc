@@ -24,7 +24,7 @@ std::string Sci(double value) {
 VehicleParameters DragVehicle() {
   VehicleParameters vehicle;
   vehicle.rotor_drag_D_per_s = Eigen::Vector3d(0.544, 0.386, 0.0);  // F.7.3, circle
-  vehicle.thrust_velocity_coeff_kh = 0.009;                           // F.7.3
+  vehicle.thrust_velocity_coeff_kh = 0.009;                         // F.7.3
   return vehicle;
 }
 

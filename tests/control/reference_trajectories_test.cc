@@ -80,8 +80,8 @@ TEST(ReferenceTrajectoriesTest, CircleFliesRadiusAndSpeedOfThesisAndStopsAtRest)
   // Ten loops at full speed plus half a loop's length in each ramp: the phase at the end.
   const double loops = 10.0 + 2.0 * (0.5 * 3.0 * 4.0 / 1.8) / (2.0 * M_PI);
   const Eigen::Vector3d expected_end =
-      params.center_W + 1.8 * Eigen::Vector3d(std::cos(2.0 * M_PI * loops),
-                                              std::sin(2.0 * M_PI * loops), 0.0);
+      params.center_W +
+      1.8 * Eigen::Vector3d(std::cos(2.0 * M_PI * loops), std::sin(2.0 * M_PI * loops), 0.0);
   EXPECT_LT((end.p_W - expected_end).norm(), 1e-9);
 }
 
@@ -203,6 +203,25 @@ TEST(ReferenceTrajectoriesTest, InvalidParametersThrowNamingTheField) {
     FAIL() << "expected std::invalid_argument";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("max_accel_mps2"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ReferenceTrajectoriesTest, ThesisTrajectoriesByName) {
+  const auto circle = MakeThesisTrajectory("circle");
+  EXPECT_NEAR(circle->Evaluate(5.0).v_W.norm(), 4.0, 1e-12);
+  const auto ramp = MakeThesisTrajectory("circle_speed_ramp");
+  EXPECT_NEAR(ramp->Evaluate(30.0).v_W.norm(), 5.0, 1e-12);
+  const auto lemniscate = MakeThesisTrajectory("lemniscate_speed_ramp");
+  EXPECT_TRUE(std::isinf(lemniscate->EndTimeS()));
+  const auto back = MakeThesisTrajectory("back_and_forth");
+  EXPECT_NEAR(back->Evaluate(0.5 * 1.809).v_W.x(), 5.7, 1e-3);  // peak speed mid-segment
+  EXPECT_NE(MakeThesisTrajectory("lemniscate"), nullptr);
+  try {
+    MakeThesisTrajectory("cirle");
+    FAIL() << "expected std::invalid_argument";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("'cirle'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("back_and_forth"), std::string::npos) << e.what();
   }
 }
 

@@ -1,20 +1,20 @@
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
 #include <random>
 #include <regex>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
-#include <opencv2/videoio.hpp>
 
 #include "output/atomic_file.h"
 #include "output/base64.h"
@@ -114,6 +114,25 @@ TEST_F(OutputTest, FailedSummaryCarriesError) {
   EXPECT_THROW(out.WriteSummary(RunStatus::kFailed, ""), std::invalid_argument);
 }
 
+TEST_F(OutputTest, RunAndWriteSummaryRecordsFailureAndRethrows) {
+  OutputFolder out(directory_.string());
+  EXPECT_THROW(RunAndWriteSummary(out,
+                                  [&] {
+                                    out.summary()["counts"]["frames"] = 3;
+                                    throw std::invalid_argument("image 'f3.png' unreadable");
+                                  }),
+               std::invalid_argument);
+  nlohmann::json read = nlohmann::json::parse(ReadFile(out.Path("summary.json")));
+  EXPECT_EQ(read["status"], "failed");
+  EXPECT_EQ(read["error"], "image 'f3.png' unreadable");
+  EXPECT_EQ(read["counts"]["frames"], 3);
+
+  RunAndWriteSummary(out, [&] { out.summary()["counts"]["frames"] = 4; });
+  read = nlohmann::json::parse(ReadFile(out.Path("summary.json")));
+  EXPECT_EQ(read["status"], "ok");
+  EXPECT_FALSE(read.contains("error"));  // a stale error from before must not survive
+}
+
 TEST_F(OutputTest, StaleSummaryIsRemovedWhenFolderIsReused) {
   {
     OutputFolder first(directory_.string());
@@ -157,7 +176,8 @@ TEST_F(OutputTest, AtomicFileDiscardsOnExceptionAndCommitsOtherwise) {
   EXPECT_EQ(ListFiles(directory_), std::vector<std::string>{"data.txt"});
 }
 
-// ---- CSV -----------------------------------------------------------------------------------------
+// ---- CSV
+// -----------------------------------------------------------------------------------------
 
 TEST_F(OutputTest, CsvNumbersReadBackExactly) {
   fs::create_directories(directory_);
@@ -193,7 +213,8 @@ TEST_F(OutputTest, CsvNumbersReadBackExactly) {
   EXPECT_EQ(ListFiles(directory_), std::vector<std::string>{"series.csv"});
 }
 
-// ---- TUM trajectory ------------------------------------------------------------------------------
+// ---- TUM trajectory
+// ------------------------------------------------------------------------------
 
 TEST_F(OutputTest, TumLinesParseBackToTheSamePoses) {
   fs::create_directories(directory_);
@@ -202,10 +223,10 @@ TEST_F(OutputTest, TumLinesParseBackToTheSamePoses) {
   std::vector<Eigen::Isometry3d> poses;
   for (int i = 0; i < 20; ++i) {
     Eigen::Isometry3d T_WB = Eigen::Isometry3d::Identity();
-    T_WB.linear() = Eigen::Quaterniond(uniform(random), uniform(random), uniform(random),
-                                       uniform(random))
-                        .normalized()
-                        .toRotationMatrix();
+    T_WB.linear() =
+        Eigen::Quaterniond(uniform(random), uniform(random), uniform(random), uniform(random))
+            .normalized()
+            .toRotationMatrix();
     T_WB.translation() = Eigen::Vector3d(uniform(random), uniform(random), uniform(random)) * 10;
     poses.push_back(T_WB);
   }
@@ -236,7 +257,8 @@ TEST_F(OutputTest, TumLinesParseBackToTheSamePoses) {
   EXPECT_EQ(lines.back(), "10 1 2 3 0 0 0 1");
 }
 
-// ---- Ticks and box statistics --------------------------------------------------------------------
+// ---- Ticks and box statistics
+// --------------------------------------------------------------------
 
 TEST_F(OutputTest, NiceTicksCoverTheDataWithRoundSteps) {
   const std::vector<std::pair<double, double>> ranges = {
@@ -248,10 +270,9 @@ TEST_F(OutputTest, NiceTicksCoverTheDataWithRoundSteps) {
     EXPECT_GE(ticks.values.size(), 3u);
     EXPECT_LE(ticks.values.size(), 12u);
     const double mantissa = ticks.step / std::pow(10.0, std::floor(std::log10(ticks.step)));
-    EXPECT_THAT(mantissa, ::testing::AnyOf(::testing::DoubleNear(1.0, 1e-9),
-                                           ::testing::DoubleNear(2.0, 1e-9),
-                                           ::testing::DoubleNear(2.5, 1e-9),
-                                           ::testing::DoubleNear(5.0, 1e-9)));
+    EXPECT_THAT(mantissa, ::testing::AnyOf(
+                              ::testing::DoubleNear(1.0, 1e-9), ::testing::DoubleNear(2.0, 1e-9),
+                              ::testing::DoubleNear(2.5, 1e-9), ::testing::DoubleNear(5.0, 1e-9)));
     for (const double tick : ticks.values) {
       // Every tick is an integer multiple of the step (relative 1e-9 for rounding).
       EXPECT_NEAR(tick / ticks.step, std::round(tick / ticks.step), 1e-9);
@@ -282,7 +303,8 @@ TEST_F(OutputTest, BoxStatsMatchHandComputedQuartiles) {
   EXPECT_EQ(ComputeBoxStats({}).count, 0u);
 }
 
-// ---- SVG -----------------------------------------------------------------------------------------
+// ---- SVG
+// -----------------------------------------------------------------------------------------
 
 // Checks that every element is closed in order (a minimal XML well-formedness check: no
 // attributes containing '>' are produced by SvgPlot).
@@ -371,10 +393,26 @@ TEST_F(OutputTest, LinePlotSkipsNanPointsAndTicksCoverData) {
   ASSERT_GE(y_ticks.size(), 2u);
   EXPECT_LE(x_ticks.front(), 0.0);
   EXPECT_GE(x_ticks.back(), 4.9);
-  EXPECT_LE(y_ticks.front(), -24.5);  // min of the ramp
-  EXPECT_GE(y_ticks.back(), 4.0);     // max of 3 sin + 1
+  EXPECT_LE(y_ticks.front(), -24.5);            // min of the ramp
+  EXPECT_GE(y_ticks.back(), 4.0);               // max of 3 sin + 1
   EXPECT_THAT(svg, HasSubstr(">sine</text>"));  // legend
   EXPECT_THROW(SvgPlot({"bad"}).AddLine("short", {1, 2}, {1}), std::invalid_argument);
+}
+
+TEST_F(OutputTest, TickLabelsStayDistinctAtLargeAndSmallScales) {
+  // Unix timestamps (large offset, small span) and micro-scale values must not collapse into
+  // identical labels; each label must read back to its tick within half a step.
+  for (const double offset : {1.7e9, 0.0, 3e-6}) {
+    const double span = offset == 0.0 ? 1e-5 : offset * 1e-8;
+    const std::string svg =
+        SvgPlot({"ticks"}).AddLine("s", {offset, offset + span}, {offset, offset + span}).Render();
+    const AxisTicks ticks = ComputeNiceTicks(offset, offset + span);
+    const std::vector<double> labels = TickLabels(svg, "x-tick-labels");
+    ASSERT_EQ(labels.size(), ticks.values.size());
+    for (std::size_t i = 0; i < labels.size(); ++i) {
+      EXPECT_NEAR(labels[i], ticks.values[i], ticks.step / 2) << "offset " << offset;
+    }
+  }
 }
 
 TEST_F(OutputTest, ScatterEmptyAndAllNanPlotsStayWellFormed) {
@@ -417,13 +455,17 @@ TEST_F(OutputTest, BoxPlotDrawsOneBoxPerNonEmptyGroup) {
   EXPECT_GE(TickLabels(svg, "y-tick-labels").back(), 50.0);
 }
 
-// ---- Base64 and HTML -----------------------------------------------------------------------------
+// ---- Base64 and HTML
+// -----------------------------------------------------------------------------
 
 TEST_F(OutputTest, Base64MatchesRfc4648Vectors) {
-  const std::vector<std::pair<std::string, std::string>> vectors = {
-      {"", ""},         {"f", "Zg=="},         {"fo", "Zm8="},
-      {"foo", "Zm9v"},  {"foob", "Zm9vYg=="},  {"fooba", "Zm9vYmE="},
-      {"foobar", "Zm9vYmFy"}};
+  const std::vector<std::pair<std::string, std::string>> vectors = {{"", ""},
+                                                                    {"f", "Zg=="},
+                                                                    {"fo", "Zm8="},
+                                                                    {"foo", "Zm9v"},
+                                                                    {"foob", "Zm9vYg=="},
+                                                                    {"fooba", "Zm9vYmE="},
+                                                                    {"foobar", "Zm9vYmFy"}};
   for (const auto& [plain, encoded] : vectors) {
     const std::vector<std::uint8_t> bytes(plain.begin(), plain.end());
     EXPECT_EQ(Base64Encode(bytes), encoded);
@@ -476,7 +518,8 @@ TEST_F(OutputTest, HtmlReportEmbedsPngThatDecodesToTheSameImage) {
   EXPECT_THROW(report.AddImage(cv::Mat(), "missing frame"), std::invalid_argument);
 }
 
-// ---- Progress bar --------------------------------------------------------------------------------
+// ---- Progress bar
+// --------------------------------------------------------------------------------
 
 TEST_F(OutputTest, ProgressBarIsSilentWhenNotATerminal) {
   std::ostringstream sink;
@@ -486,6 +529,19 @@ TEST_F(OutputTest, ProgressBarIsSilentWhenNotATerminal) {
     bar.Finish();
   }
   EXPECT_TRUE(sink.str().empty());
+}
+
+TEST_F(OutputTest, DefaultProgressBarDetectsRedirectedStderr) {
+  // CaptureStderr points fd 2 at a file, so isatty(2) is false whether or not the test itself
+  // runs in a terminal.
+  ::testing::internal::CaptureStderr();
+  {
+    ProgressBar bar("frames", 3);
+    EXPECT_FALSE(bar.enabled());
+    bar.Update(1);
+    bar.Finish();
+  }
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
 }
 
 TEST_F(OutputTest, ProgressBarDrawsLabelCountsAndEndsTheLine) {
@@ -504,24 +560,29 @@ TEST_F(OutputTest, ProgressBarDrawsLabelCountsAndEndsTheLine) {
   EXPECT_EQ(sink.str().size(), length);
 }
 
-// ---- Video ---------------------------------------------------------------------------------------
+// ---- Video
+// ---------------------------------------------------------------------------------------
 
-TEST_F(OutputTest, VideoWriterWritesReadableFileAndRenamesIt) {
+class VideoWriterTest : public OutputTest, public ::testing::WithParamInterface<VideoFormat> {};
+
+TEST_P(VideoWriterTest, WritesReadableFileAndRenamesIt) {
   fs::create_directories(directory_);
   const cv::Size size(64, 48);
   std::optional<std::string> written;
+  std::string codec;
   {
-    VideoWriter video((directory_ / "overlay").string(), 10.0);
+    VideoWriter video((directory_ / "overlay").string(), 10.0, GetParam());
     for (int i = 0; i < 12; ++i) {
-      cv::Mat frame(size, CV_8UC3, cv::Scalar(20 * (i % 10), 100, 200));
-      video.Write(frame);
+      video.Write(cv::Mat(size, CV_8UC3, cv::Scalar(20 * (i % 10), 100, 200)));
     }
     EXPECT_THROW(video.Write(cv::Mat(10, 10, CV_8UC3)), std::invalid_argument);
     written = video.Close();
-    RecordProperty("codec", video.codec());
-    std::cout << "video codec used: " << video.codec() << " -> " << *written << "\n";
+    codec = video.codec();
   }
   ASSERT_TRUE(written.has_value());
+  // On this platform (Debian 12, OpenCV 4.6 + FFmpeg) mp4v opens, so no fallback is taken.
+  EXPECT_EQ(codec, GetParam() == VideoFormat::kAvi ? "MJPG" : "mp4v");
+  EXPECT_EQ(fs::path(*written).extension(), codec == "MJPG" ? ".avi" : ".mp4");
   EXPECT_EQ(ListFiles(directory_),
             std::vector<std::string>{fs::path(*written).filename().string()});
   cv::VideoCapture capture(*written);
@@ -530,14 +591,25 @@ TEST_F(OutputTest, VideoWriterWritesReadableFileAndRenamesIt) {
   cv::Mat frame;
   while (capture.read(frame)) {
     EXPECT_EQ(frame.size(), size);
-    // Lossy codec: a flat colour comes back within a few grey levels (20 allows mp4v's blocking).
+    // Lossy codecs: a flat colour comes back within a few grey levels (20 is generous for both).
     EXPECT_NEAR(cv::mean(frame)[1], 100.0, 20.0);
+    EXPECT_NEAR(cv::mean(frame)[0], 20.0 * (frames % 10), 20.0);
     ++frames;
   }
   EXPECT_EQ(frames, 12);
+}
 
-  VideoWriter unused((directory_ / "unused").string(), 30.0);
-  EXPECT_FALSE(unused.Close().has_value());
+INSTANTIATE_TEST_SUITE_P(Formats, VideoWriterTest,
+                         ::testing::Values(VideoFormat::kMp4OrAvi, VideoFormat::kAvi));
+
+TEST_F(OutputTest, VideoWriterWithoutFramesWritesNothing) {
+  fs::create_directories(directory_);
+  {
+    VideoWriter unused((directory_ / "unused").string(), 30.0);
+    EXPECT_FALSE(unused.Close().has_value());
+  }
+  EXPECT_TRUE(ListFiles(directory_).empty());
+  EXPECT_THROW(VideoWriter("x", 0.0), std::invalid_argument);
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 // Calibration files: reading files as the tools write them, save/load round trips in every
 // format, format detection, and errors that name the file and the field.
+#include "perception/camera/calibration_io.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -8,26 +10,13 @@
 #include <string>
 #include <tuple>
 
-#include "perception/camera/calibration_io.h"
 #include "perception/camera/camera_factory.h"
+#include "tests/perception/temp_directory.h"
 
 namespace aperture::perception {
 namespace {
 
 const std::string kDataDir = std::string(APERTURE_TEST_DATA_DIR) + "/calibration/";
-
-std::string TempPath(const std::string& file_name) {
-  const std::filesystem::path dir =
-      std::filesystem::path(::testing::TempDir()) / "aperture_calibration_io_test";
-  std::filesystem::create_directories(dir);
-  return (dir / file_name).string();
-}
-
-std::string WriteFile(const std::string& file_name, const std::string& content) {
-  const std::string path = TempPath(file_name);
-  std::ofstream(path) << content;
-  return path;
-}
 
 TEST(CalibrationIoTest, LoadsOpenCvCalibrationSampleOutput) {
   const std::string path = kDataDir + "opencv_sample.yaml";
@@ -38,8 +27,8 @@ TEST(CalibrationIoTest, LoadsOpenCvCalibrationSampleOutput) {
   EXPECT_EQ(calib.camera->width(), 640);
   EXPECT_EQ(calib.camera->height(), 480);
   EXPECT_EQ(calib.camera->intrinsics(),
-            Eigen::Vector4d(5.3591573396163199e+02, 5.3598120025513981e+02,
-                            3.4228315473308373e+02, 2.3557082909788173e+02));
+            Eigen::Vector4d(5.3591573396163199e+02, 5.3598120025513981e+02, 3.4228315473308373e+02,
+                            2.3557082909788173e+02));
   ASSERT_EQ(calib.camera->distortion().size(), 5);
   EXPECT_EQ(calib.camera->distortion()[4], 2.3839153080878486e-01);
   EXPECT_TRUE(calib.T_BC.isApprox(Eigen::Isometry3d::Identity()));
@@ -93,14 +82,13 @@ TEST_P(CalibrationRoundTripTest, SaveThenLoadIsIdentity) {
   if (model == "equidistant") distortion = Eigen::Vector4d(-0.0102, 0.0471, -0.0444, 0.0083);
   const std::string model_name = model == "radtan4" ? "radtan" : model;
   CameraCalibration calib;
-  calib.camera = CreateCameraModel(model_name, 752, 480,
-                                   Eigen::Vector4d(458.654321, 457.2961, 367.215, 248.3751),
-                                   distortion);
+  calib.camera = CreateCameraModel(
+      model_name, 752, 480, Eigen::Vector4d(458.654321, 457.2961, 367.215, 248.3751), distortion);
   calib.T_BC = Eigen::Translation3d(0.1, -0.02, 0.035) *
                Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized());
   calib.name = "front_left";
-  const std::string path =
-      TempPath("round_trip_" + CalibrationFormatName(format) + "_" + model + ".yaml");
+  const test_support::TempDirectory temp;
+  const std::string path = (temp.path() / ("round_trip_" + model + ".yaml")).string();
   SaveCameraCalibration(calib, path, format);
   EXPECT_EQ(DetectCalibrationFormat(path), format);
   const CameraCalibration loaded = LoadCameraCalibration(path);
@@ -146,7 +134,9 @@ std::ostream& operator<<(std::ostream& os, const InvalidFileCase& c) { return os
 class InvalidCalibrationFileTest : public ::testing::TestWithParam<InvalidFileCase> {};
 
 TEST_P(InvalidCalibrationFileTest, ErrorNamesFileAndField) {
-  const std::string path = WriteFile("bad_" + GetParam().label + ".yaml", GetParam().content);
+  const test_support::TempDirectory temp;
+  const std::string path = (temp.path() / ("bad_" + GetParam().label + ".yaml")).string();
+  std::ofstream(path) << GetParam().content;
   try {
     LoadCameraCalibration(path);
     FAIL() << "no error for " << GetParam().label;
@@ -211,12 +201,14 @@ INSTANTIATE_TEST_SUITE_P(
                             OpenCvD(5),
                         "camera_matrix"},
         InvalidFileCase{"ros_missing_distortion_model", kRosK + kRosD, "distortion_model"},
-        InvalidFileCase{"ros_unknown_model", kRosK + "distortion_model: rational_polynomial\n" + kRosD,
+        InvalidFileCase{"ros_unknown_model",
+                        kRosK + "distortion_model: rational_polynomial\n" + kRosD,
                         "distortion_model"},
         InvalidFileCase{"ros_negative_fy",
                         "image_width: 640\nimage_height: 480\ncamera_matrix:\n  rows: 3\n  cols: "
                         "3\n  data: [500, 0, 320, 0, -500, 240, 0, 0, 1]\n"
-                        "distortion_model: plumb_bob\n" + kRosD,
+                        "distortion_model: plumb_bob\n" +
+                            kRosD,
                         "fy"},
         InvalidFileCase{"ros_rows_cols_mismatch",
                         kRosK + "distortion_model: plumb_bob\ndistortion_coefficients:\n  rows: 1\n"
@@ -225,39 +217,42 @@ INSTANTIATE_TEST_SUITE_P(
         InvalidFileCase{"ros_missing_height",
                         "image_width: 640\ncamera_matrix:\n  rows: 3\n  cols: 3\n"
                         "  data: [500, 0, 320, 0, 500, 240, 0, 0, 1]\n"
-                        "distortion_model: plumb_bob\n" + kRosD,
+                        "distortion_model: plumb_bob\n" +
+                            kRosD,
                         "image_height"},
         InvalidFileCase{"kalibr_missing_intrinsics",
                         "cam0:\n  camera_model: pinhole\n  distortion_model: radtan\n"
                         "  distortion_coeffs: [0, 0, 0, 0]\n  resolution: [640, 480]\n",
                         "cam0.intrinsics"},
-        InvalidFileCase{"kalibr_three_intrinsics",
-                        Kalibr("pinhole", "[500, 500, 320]", "radtan", "[0, 0, 0, 0]", "[640, 480]"),
-                        "cam0.intrinsics"},
-        InvalidFileCase{"kalibr_omni",
-                        Kalibr("omni", "[500, 500, 320, 240]", "radtan", "[0, 0, 0, 0]",
-                               "[640, 480]"),
-                        "cam0.camera_model"},
-        InvalidFileCase{"kalibr_three_coefficients",
-                        Kalibr("pinhole", "[500, 500, 320, 240]", "radtan", "[0, 0, 0]",
-                               "[640, 480]"),
-                        "distortion"},
-        InvalidFileCase{"kalibr_bad_resolution",
-                        Kalibr("pinhole", "[500, 500, 320, 240]", "equidistant", "[0, 0, 0, 0]",
-                               "[640]"),
-                        "cam0.resolution"},
-        InvalidFileCase{"kalibr_scaled_rotation",
-                        Kalibr("pinhole", "[500, 500, 320, 240]", "radtan", "[0, 0, 0, 0]",
-                               "[640, 480]",
-                               "  T_cam_imu:\n  - [2, 0, 0, 0]\n  - [0, 1, 0, 0]\n"
-                               "  - [0, 0, 1, 0]\n  - [0, 0, 0, 1]\n"),
-                        "cam0.T_cam_imu"},
+        InvalidFileCase{
+            "kalibr_three_intrinsics",
+            Kalibr("pinhole", "[500, 500, 320]", "radtan", "[0, 0, 0, 0]", "[640, 480]"),
+            "cam0.intrinsics"},
+        InvalidFileCase{
+            "kalibr_omni",
+            Kalibr("omni", "[500, 500, 320, 240]", "radtan", "[0, 0, 0, 0]", "[640, 480]"),
+            "cam0.camera_model"},
+        InvalidFileCase{
+            "kalibr_three_coefficients",
+            Kalibr("pinhole", "[500, 500, 320, 240]", "radtan", "[0, 0, 0]", "[640, 480]"),
+            "distortion"},
+        InvalidFileCase{
+            "kalibr_bad_resolution",
+            Kalibr("pinhole", "[500, 500, 320, 240]", "equidistant", "[0, 0, 0, 0]", "[640]"),
+            "cam0.resolution"},
+        InvalidFileCase{
+            "kalibr_scaled_rotation",
+            Kalibr("pinhole", "[500, 500, 320, 240]", "radtan", "[0, 0, 0, 0]", "[640, 480]",
+                   "  T_cam_imu:\n  - [2, 0, 0, 0]\n  - [0, 1, 0, 0]\n"
+                   "  - [0, 0, 1, 0]\n  - [0, 0, 0, 1]\n"),
+            "cam0.T_cam_imu"},
         InvalidFileCase{"not_yaml", "image_width: [640\n", "(file)"},
         InvalidFileCase{"unknown_format", "foo: 1\n", "(format)"}),
     [](const auto& info) { return info.param.label; });
 
 TEST(CalibrationIoTest, MissingFileNamesThePath) {
-  const std::string path = TempPath("does_not_exist.yaml");
+  const test_support::TempDirectory temp;
+  const std::string path = (temp.path() / "does_not_exist.yaml").string();
   try {
     LoadCameraCalibration(path);
     FAIL();
@@ -282,7 +277,8 @@ TEST(CalibrationIoTest, ImageSizeCheckNamesFileAndBothSizes) {
 }
 
 TEST(CalibrationIoTest, FormatNamesParse) {
-  for (auto format : {CalibrationFormat::kOpenCv, CalibrationFormat::kRos, CalibrationFormat::kKalibr})
+  for (auto format :
+       {CalibrationFormat::kOpenCv, CalibrationFormat::kRos, CalibrationFormat::kKalibr})
     EXPECT_EQ(ParseCalibrationFormat(CalibrationFormatName(format)), format);
   EXPECT_THROW(ParseCalibrationFormat("matlab"), std::invalid_argument);
 }

@@ -1,5 +1,7 @@
 // Intrinsic calibration: pattern-spec parsing, recovery of known intrinsics from synthetic views
 // rendered with our camera models, and calibration of real photos of a circle grid (ViSP data).
+#include "perception/camera/camera_calibrator.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -13,8 +15,8 @@
 #include <string>
 
 #include "perception/camera/calibration_io.h"
-#include "perception/camera/camera_calibrator.h"
 #include "perception/camera/camera_factory.h"
+#include "tests/perception/temp_directory.h"
 
 namespace aperture::perception {
 namespace {
@@ -127,8 +129,7 @@ TEST_P(SyntheticCalibrationTest, RecoversTheRenderingCamera) {
   // corners (steepest tilt, strongest distortion) measured 0.08-0.10 px, bound 0.2 px.
   EXPECT_LT(max_detection_error_px, 0.2);
 
-  const CameraCalibrationResult result =
-      CalibrateFromImages(images, pattern, c.calibration_model);
+  const CameraCalibrationResult result = CalibrateFromImages(images, pattern, c.calibration_model);
   std::cout << c.label << ": max detection error " << max_detection_error_px << " px\n"
             << result << "\n";
   ASSERT_EQ(result.status, CameraCalibrationResult::Status::kOk) << result;
@@ -160,21 +161,20 @@ TEST_P(SyntheticCalibrationTest, RecoversTheRenderingCamera) {
   EXPECT_LT(max_model_error_px, 1.0);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Models, SyntheticCalibrationTest,
-    ::testing::Values(SyntheticCase{"radtan",
-                                    "radtan",
-                                    {520.0, 518.0, 322.5, 236.2},
-                                    {-0.25, 0.08, 0.001, -0.0008},
-                                    CalibrationModel::kRadTan,
-                                    1.0},
-                      SyntheticCase{"fisheye",
-                                    "equidistant",
-                                    {260.0, 261.0, 318.0, 242.0},
-                                    {-0.01, 0.02, -0.005, 0.001},
-                                    CalibrationModel::kFisheye,
-                                    0.55}),
-    [](const auto& info) { return info.param.label; });
+INSTANTIATE_TEST_SUITE_P(Models, SyntheticCalibrationTest,
+                         ::testing::Values(SyntheticCase{"radtan",
+                                                         "radtan",
+                                                         {520.0, 518.0, 322.5, 236.2},
+                                                         {-0.25, 0.08, 0.001, -0.0008},
+                                                         CalibrationModel::kRadTan,
+                                                         1.0},
+                                           SyntheticCase{"fisheye",
+                                                         "equidistant",
+                                                         {260.0, 261.0, 318.0, 242.0},
+                                                         {-0.01, 0.02, -0.005, 0.001},
+                                                         CalibrationModel::kFisheye,
+                                                         0.55}),
+                         [](const auto& info) { return info.param.label; });
 
 // ------------------------------------------------------------------ real photos -------------
 
@@ -195,6 +195,7 @@ TEST(CameraCalibratorTest, CalibratesViSPCircleGridPhotos) {
     images.push_back({name, cv::imread(path, cv::IMREAD_GRAYSCALE)});
   }
   const PatternSpec pattern = ParsePatternSpec("circles:6x6:0.03");
+  const test_support::TempDirectory temp;
   std::vector<Eigen::Vector4d> intrinsics;
   for (const CalibrationModel model : {CalibrationModel::kRadTan, CalibrationModel::kFisheye}) {
     const CameraCalibrationResult result = CalibrateFromImages(images, pattern, model);
@@ -212,9 +213,8 @@ TEST(CameraCalibratorTest, CalibratesViSPCircleGridPhotos) {
     CameraCalibration calib;
     calib.camera = result.camera;
     calib.name = "visp_grid36";
-    const std::string path = (std::filesystem::path(::testing::TempDir()) /
-                              ("visp_grid36_" + result.camera->model_name() + ".yaml"))
-                                 .string();
+    const std::string path =
+        (temp.path() / ("visp_grid36_" + result.camera->model_name() + ".yaml")).string();
     SaveCameraCalibration(calib, path, CalibrationFormat::kOpenCv);
     const CameraCalibration loaded = LoadCameraCalibration(path);
     EXPECT_EQ(loaded.camera->model_name(), result.camera->model_name());
@@ -242,14 +242,14 @@ TEST(CameraCalibratorTest, ParsesPatternSpecs) {
   const PatternSpec circles = ParsePatternSpec("circles:6x5:0.03");
   EXPECT_EQ(circles.kind, PatternSpec::Kind::kCircles);
   EXPECT_EQ(circles.rows, 5);
-  for (const auto& [spec, part] : std::vector<std::pair<std::string, std::string>>{
-           {"chessboard:9x6", "three"},
-           {"hexagons:9x6:0.02", "hexagons"},
-           {"chessboard:9by6:0.02", "9by6"},
-           {"chessboard:9x6x2:0.02", "9x6x2"},
-           {"chessboard:1x6:0.02", "too small"},
-           {"circles:6x6:-0.03", "-0.03"},
-           {"circles:6x6:3cm", "3cm"}}) {
+  for (const auto& [spec, part] :
+       std::vector<std::pair<std::string, std::string>>{{"chessboard:9x6", "three"},
+                                                        {"hexagons:9x6:0.02", "hexagons"},
+                                                        {"chessboard:9by6:0.02", "9by6"},
+                                                        {"chessboard:9x6x2:0.02", "9x6x2"},
+                                                        {"chessboard:1x6:0.02", "too small"},
+                                                        {"circles:6x6:-0.03", "-0.03"},
+                                                        {"circles:6x6:3cm", "3cm"}}) {
     try {
       ParsePatternSpec(spec);
       ADD_FAILURE() << spec;
@@ -267,7 +267,8 @@ TEST(CameraCalibratorTest, ReportsImagesWithoutTargetAndRejectsMixedSizes) {
   std::vector<CalibrationImage> blank = {{"a.png", cv::Mat(480, 640, CV_8UC1, cv::Scalar(90))},
                                          {"b.png", cv::Mat(480, 640, CV_8UC1, cv::Scalar(200))},
                                          {"c.png", cv::Mat(480, 640, CV_8UC1, cv::Scalar(30))}};
-  const CameraCalibrationResult result = CalibrateFromImages(blank, pattern, CalibrationModel::kRadTan);
+  const CameraCalibrationResult result =
+      CalibrateFromImages(blank, pattern, CalibrationModel::kRadTan);
   EXPECT_EQ(result.status, CameraCalibrationResult::Status::kTooFewImages);
   EXPECT_EQ(result.images_used, 0);
   EXPECT_FALSE(result.camera);

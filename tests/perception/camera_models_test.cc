@@ -33,7 +33,8 @@ Eigen::VectorXd ToEigen(const std::vector<double>& v) {
 }
 
 std::unique_ptr<CameraModel> Make(const CameraCase& c) {
-  return CreateCameraModel(c.model, c.width, c.height, ToEigen(c.intrinsics), ToEigen(c.distortion));
+  return CreateCameraModel(c.model, c.width, c.height, ToEigen(c.intrinsics),
+                           ToEigen(c.distortion));
 }
 
 // Angle of a bearing off the optical axis [rad].
@@ -97,7 +98,9 @@ TEST_P(CameraModelTest, JacobianMatchesCentralDifferences) {
       J_numeric.col(k) = (px_plus - px_minus) / (2.0 * h);
     }
     EXPECT_LT((J - J_numeric).cwiseAbs().maxCoeff(), 1e-5 * J.cwiseAbs().maxCoeff())
-        << "p_C " << p_C.transpose() << "\nJ\n" << J << "\nnumeric\n" << J_numeric;
+        << "p_C " << p_C.transpose() << "\nJ\n"
+        << J << "\nnumeric\n"
+        << J_numeric;
   }
 }
 
@@ -240,6 +243,26 @@ TEST(EquidistantCameraTest, ProjectsBeyondNinetyDegreesOffAxis) {
   }
   Eigen::Vector2d px;
   EXPECT_FALSE(cam.Project(Eigen::Vector3d(0.0, 0.0, -1.0), &px));  // straight behind
+}
+
+// Just off the optical axis the general formula (theta_d / rho) takes over from the pinhole
+// limit used on the axis; both sides must agree with the first-order model f/Z (relative
+// corrections are O(theta^2) < 1e-12 here).
+TEST(EquidistantCameraTest, JacobianIsContinuousAcrossTheAxisSpecialCase) {
+  const EquidistantCamera cam(752, 480, {140.0, 141.0, 375.5, 239.5}, {-0.02, 0.003, 0.01, 0.0});
+  const double z = 2.0;
+  Eigen::Matrix<double, 2, 3> J_axis;
+  J_axis << 140.0 / z, 0, 0, 0, 141.0 / z, 0;
+  for (double rho_over_z : {1e-10, 1e-8 * 0.999, 1e-8 * 1.001, 1e-7}) {
+    const Eigen::Vector3d p_C(0.6 * rho_over_z * z, -0.8 * rho_over_z * z, z);
+    Eigen::Vector2d px;
+    Eigen::Matrix<double, 2, 3> J;
+    ASSERT_TRUE(cam.Project(p_C, &px, &J));
+    EXPECT_LT((J.leftCols<2>() - J_axis.leftCols<2>()).cwiseAbs().maxCoeff(), 1e-9) << J;
+    // d px / dZ = -f X / Z^2 to first order.
+    EXPECT_NEAR(J(0, 2), -140.0 * p_C.x() / (z * z), 1e-9);
+    EXPECT_NEAR(px.x(), 375.5 + 140.0 * p_C.x() / z, 1e-9);
+  }
 }
 
 TEST(EquidistantCameraTest, ValidAngleEndsWhereThetaDStopsIncreasing) {

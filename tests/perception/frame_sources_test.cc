@@ -178,7 +178,8 @@ fs::path WriteEurocCamera(const fs::path& root, const std::string& extra_csv_lin
 TEST(ImageFolderSource, EurocDataCsvFromCameraFolderOrItsDataFolder) {
   test_support::TempDirectory dir;
   const fs::path cam0 = WriteEurocCamera(dir.path());
-  for (const fs::path& spec : {cam0, cam0 / "data"}) {
+  // With a trailing separator too: the parent of "cam0/data/" must still be cam0.
+  for (const fs::path& spec : {cam0, cam0 / "data", cam0 / "data" / ""}) {
     ImageFolderSource source(spec, Options(0.0));
     EXPECT_EQ(source.TimeSource(), "data.csv") << spec;
     const std::vector<Frame> frames = ReadAll(source);

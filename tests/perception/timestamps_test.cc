@@ -57,6 +57,10 @@ TEST(TimesTxt, MalformedLinesNameTheFileAndLine) {
   EXPECT_THAT(ErrorOf([] { ParseTimes("0.1 0.2\n"); }), HasSubstr("exactly one file name"));
   EXPECT_THAT(ErrorOf([] { ParseTimes("nan\n"); }), HasSubstr("not a number"));
   EXPECT_THAT(ErrorOf([] { ParseTimes("0.1\na.png 0.2\n"); }), HasSubstr("mixes"));
+  // Nanoseconds or milliseconds written where seconds belong.
+  EXPECT_THAT(ErrorOf([] { ParseTimes("1403636579763555584\n"); }), HasSubstr("too large"));
+  EXPECT_THAT(ErrorOf([] { ParseTimes("a.png 1403636579763\n"); }), HasSubstr("too large"));
+  EXPECT_EQ(ParseTimes("1403636579.763555\n").t_s.size(), 1u);  // Unix seconds are fine
 }
 
 TEST(EurocCsv, ParsesNanosecondsToSecondsExactlyInTheIntegerPart) {

@@ -152,6 +152,21 @@ TEST(QuadrotorDynamicsTest, MotorStepResponsesMatchUpAndDownTimeConstants) {
   EXPECT_NEAR(tau_down, params.vehicle.rotor.time_constant_down_s, 1e-6);
 }
 
+TEST(QuadrotorDynamicsTest, DisabledRotorLagAppliesThrustImmediately) {
+  QuadrotorDynamicsParams params;
+  params.rotor_lag_enabled = false;
+  QuadrotorDynamics vehicle(params);
+  const Eigen::Vector4d u(0.5, -0.2, 0.1, 0.9);
+  vehicle.SetMotorCommands(u);
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_DOUBLE_EQ(vehicle.RotorThrusts_N()[i], params.vehicle.rotor.ThrustFromCommand(u[i]));
+  }
+  vehicle.Step(0.001);
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_DOUBLE_EQ(vehicle.RotorThrusts_N()[i], params.vehicle.rotor.ThrustFromCommand(u[i]));
+  }
+}
+
 TEST(QuadrotorDynamicsTest, ThrustCommandsAreScaledByFitnessAndClamped) {
   QuadrotorDynamicsParams params;
   params.vehicle.rotor_fitness = Eigen::Vector4d(0.8, 1.0, 1.1, 0.9);
@@ -260,12 +275,84 @@ TEST(QuadrotorDynamicsTest, RejectsBadInputsNamingThem) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("mass_kg"), std::string::npos) << e.what();
   }
+  params = QuadrotorDynamicsParams();
+  params.vehicle.rotor.time_constant_up_s = 1e-4;  // faster than the 1 ms step can resolve
+  EXPECT_THROW(QuadrotorDynamics{params}, std::invalid_argument);
+  params.rotor_lag_enabled = false;
+  EXPECT_NO_THROW(QuadrotorDynamics{params});
   QuadrotorDynamics vehicle{QuadrotorDynamicsParams()};
   EXPECT_THROW(vehicle.Step(0.0), std::invalid_argument);
   EXPECT_THROW(vehicle.SetMotorCommands(Eigen::Vector4d::Constant(NAN)), std::invalid_argument);
   control::QuadState bad;
   bad.q_WB.coeffs() << 0.0, 0.0, 0.0, 2.0;
   EXPECT_THROW(vehicle.SetState(bad), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace aperture::sim
+
+namespace aperture::sim {
+namespace {
+
+QuadrotorDynamicsParams GroundParams() {
+  QuadrotorDynamicsParams params;
+  params.ground_contact_enabled = true;
+  params.ground_height_m = 0.2;
+  return params;
+}
+
+TEST(GroundContactTest, IdleVehicleRestsOnTheGroundAndFeelsItsReaction) {
+  control::QuadState initial;
+  initial.p_WB = Eigen::Vector3d(1.0, 2.0, 0.2);
+  QuadrotorDynamics vehicle(GroundParams(), initial);  // idle thrust 4 x 0.05 N < weight 4.4 N
+  vehicle.Step(1.0);
+  EXPECT_TRUE(vehicle.on_ground());
+  EXPECT_TRUE(vehicle.state().p_WB.isApprox(initial.p_WB, 1e-12));
+  EXPECT_EQ(vehicle.state().v_W, Eigen::Vector3d::Zero());
+  EXPECT_TRUE(vehicle.SpecificForce_B().isApprox(Eigen::Vector3d(0, 0, 9.81), 1e-12));
+  EXPECT_NEAR(vehicle.Acceleration_W().norm(), 0.0, 1e-12);
+}
+
+TEST(GroundContactTest, TakesOffWhenThrustExceedsWeight) {
+  const QuadrotorDynamicsParams params = GroundParams();
+  control::QuadState initial;
+  initial.p_WB.z() = params.ground_height_m;
+  QuadrotorDynamics vehicle(params, initial);
+  control::RotorThrustCommand command;
+  command.thrust_N.setConstant(1.5);  // c = 6 / 0.45 = 13.33 m/s^2
+  vehicle.SetRotorThrustCommand(command);
+  vehicle.SettleRotors();
+  vehicle.Step(1.0);
+  EXPECT_FALSE(vehicle.on_ground());
+  // D has no z component: a straight climb at c - g from rest.
+  const double climb = 0.5 * (6.0 / 0.45 - 9.81);
+  EXPECT_NEAR(vehicle.state().p_WB.z(), params.ground_height_m + climb, 1e-9);
+}
+
+TEST(GroundContactTest, DropLandsAtFreeFallSpeedAndComesToRestUpright) {
+  QuadrotorDynamicsParams params = GroundParams();
+  params.vehicle.rotor.thrust_coeffs_N = Eigen::Vector3d(0.8, 1.6, 0.8);  // motors off: f(-1) = 0
+  params.vehicle.rotor_drag_D_per_s.setZero();
+  const double drop_m = 1.0;
+  control::QuadState initial;
+  initial.p_WB.z() = params.ground_height_m + drop_m;
+  const double yaw = 0.7;
+  initial.q_WB = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+                 Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitX());
+  QuadrotorDynamics vehicle(params, initial);
+  EXPECT_FALSE(vehicle.on_ground());
+  vehicle.Step(1.0);  // lands after sqrt(2 h / g) = 0.45 s
+  EXPECT_TRUE(vehicle.on_ground());
+  // Touchdown is detected at the end of the 1 ms step that crosses the plane: the speed is then
+  // up to g * 1 ms above sqrt(2 g h).
+  const double g = params.vehicle.gravity_mps2;
+  EXPECT_GE(vehicle.last_touchdown_speed_mps(), std::sqrt(2.0 * g * drop_m));
+  EXPECT_LE(vehicle.last_touchdown_speed_mps(), std::sqrt(2.0 * g * drop_m) + g * 1e-3);
+  EXPECT_NEAR(vehicle.state().p_WB.z(), params.ground_height_m, 0.0);
+  const Eigen::Vector3d z_B_W = vehicle.state().q_WB * Eigen::Vector3d::UnitZ();
+  EXPECT_TRUE(z_B_W.isApprox(Eigen::Vector3d::UnitZ(), 1e-12));
+  const Eigen::Vector3d x_B_W = vehicle.state().q_WB * Eigen::Vector3d::UnitX();
+  EXPECT_NEAR(std::atan2(x_B_W.y(), x_B_W.x()), yaw, 1e-12);
 }
 
 }  // namespace

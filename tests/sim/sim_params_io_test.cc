@@ -36,6 +36,7 @@ vehicle:
   rotor: {time_constant_down_s: 0.03}
   rotor_fitness: [1, 0.9, 1, 1]
 max_integration_step_s: 0.0005
+rotor_lag_enabled: false
 )");
   EXPECT_EQ(params.vehicle.mass_kg, 0.6);
   EXPECT_EQ(params.vehicle.rotor_drag_D_per_s, Eigen::Vector3d(0.4, 0.3, 0.1));
@@ -44,6 +45,7 @@ max_integration_step_s: 0.0005
   EXPECT_EQ(params.vehicle.rotor.time_constant_up_s, control::RotorParameters().time_constant_up_s);
   EXPECT_EQ(params.vehicle.rotor_fitness[1], 0.9);
   EXPECT_EQ(params.max_integration_step_s, 0.0005);
+  EXPECT_FALSE(params.rotor_lag_enabled);
 }
 
 TEST(SimParamsIoTest, LoadsGustsAndPushesFromRows) {

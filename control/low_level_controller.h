@@ -1,0 +1,60 @@
+#pragma once
+// The flight-controller side of the control stack (DESIGN.md data flow, Faessler thesis App. G):
+// one call per low-level control period turns the high-level ThrustRatesCommand and the gyro
+// rates into rotor thrusts and motor commands:
+//   body-rate law (LQR (G.12) with eta_hat, or the P baseline (B.21))
+//   -> mixer (iterative G.4 or one-shot; prioritized saturation Algorithm 4 or clipping)
+//   -> RotorThrustEstimator propagated with the thrusts actually commanded (G.7),
+//      giving eta_hat for the next period.
+#include <Eigen/Core>
+
+#include "control/commands.h"
+#include "control/lqr_body_rate_controller.h"
+#include "control/mixer.h"
+#include "control/proportional_body_rate_controller.h"
+#include "control/rotor_thrust_estimator.h"
+#include "control/vehicle_parameters.h"
+
+namespace aperture::control {
+
+struct LowLevelControllerParameters {
+  enum class BodyRateLaw { kLqr, kProportional };
+  BodyRateLaw body_rate_law = BodyRateLaw::kLqr;       // the thesis' proposal
+  LqrBodyRateParameters lqr;                           // used with kLqr
+  ProportionalBodyRateParameters proportional;         // used with kProportional (low gain)
+  MixerParameters mixer;
+};
+
+struct LowLevelOutput {
+  Eigen::Vector3d torque_des_B = Eigen::Vector3d::Zero();  // body-rate law output [N m]
+  MixerResult mix;                                         // thrusts [N] and saturation report
+  Eigen::Vector4d motor_commands = Eigen::Vector4d::Zero();  // u_i for the ESCs (inverse G.3)
+};
+
+class LowLevelController {
+ public:
+  // Throws std::invalid_argument for invalid vehicle or controller parameters.
+  explicit LowLevelController(const VehicleParameters& vehicle,
+                              const LowLevelControllerParameters& params = {});
+
+  // One control period: omega_B are the gyro rates [rad/s]; the returned thrusts are meant to be
+  // held for dt_s > 0 [s], over which the thrust estimate is propagated. Throws
+  // std::invalid_argument for non-finite inputs or dt_s <= 0.
+  LowLevelOutput Step(const ThrustRatesCommand& command, const Eigen::Vector3d& omega_B,
+                      double dt_s);
+
+  // Re-initializes the rotor thrust estimate (e.g. zeros for motors off on the ground).
+  void ResetThrustEstimate(const Eigen::Vector4d& thrust_N) { estimator_.Reset(thrust_N); }
+  const RotorThrustEstimator& estimator() const { return estimator_; }
+  const LqrBodyRateController& lqr() const { return lqr_; }
+
+ private:
+  VehicleParameters vehicle_;
+  LowLevelControllerParameters params_;
+  LqrBodyRateController lqr_;
+  ProportionalBodyRateController proportional_;
+  Mixer mixer_;
+  RotorThrustEstimator estimator_;
+};
+
+}  // namespace aperture::control
