@@ -1,7 +1,5 @@
 #include "apps/command_support.h"
 
-#include <iostream>
-
 namespace aperture::apps {
 
 void AddCommonOptions(CLI::App* command, CommonOptions* options) {
@@ -18,19 +16,6 @@ void AddCommonOptions(CLI::App* command, CommonOptions* options) {
 config::ConfigTree LoadConfig(const CommonOptions& options, const std::string& defaults_yaml) {
   return config::ConfigTree::FromCommandLine(defaults_yaml, options.config_files,
                                              options.set_items);
-}
-
-int RunAndSummarize(const std::string& command_name, output::OutputFolder& out,
-                    const std::function<void()>& body) {
-  try {
-    body();
-  } catch (const std::exception& e) {
-    std::cerr << "aperture " << command_name << ": error: " << e.what() << "\n";
-    out.WriteSummary(output::RunStatus::kFailed, e.what());
-    return 1;
-  }
-  out.WriteSummary(output::RunStatus::kOk);
-  return 0;
 }
 
 }  // namespace aperture::apps
