@@ -83,8 +83,8 @@ BENCHMARK(BM_ProportionalControlLaw);
 // range(2): request scale (1 unsaturated, 4 mostly saturated).
 void BM_Mixer(benchmark::State& state) {
   MixerParameters params;
-  params.mixing = state.range(0) == 0 ? MixerParameters::Mixing::kIterative
-                                      : MixerParameters::Mixing::kOneShot;
+  params.mixing =
+      state.range(0) == 0 ? MixerParameters::Mixing::kIterative : MixerParameters::Mixing::kOneShot;
   params.saturation = state.range(1) == 0 ? MixerParameters::Saturation::kPrioritized
                                           : MixerParameters::Saturation::kClip;
   const Mixer mixer(VehicleParameters(), params);
@@ -95,7 +95,8 @@ void BM_Mixer(benchmark::State& state) {
     const Request& r = requests[i++ & 255];
     const MixerResult result = mixer.Mix(r.torque_B, r.thrust_mps2);
     iterations += result.iterations;
-    saturated += result.yaw_torque_saturated || result.collective_thrust_saturated || result.clipped;
+    saturated +=
+        result.yaw_torque_saturated || result.collective_thrust_saturated || result.clipped;
     benchmark::DoNotOptimize(result);
   }
   state.counters["solves_per_mix"] =
