@@ -32,10 +32,18 @@ std::string JsonString(const std::string& text) {
   std::string json = "\"";
   for (const char c : text) {
     switch (c) {
-      case '"': json += "\\\""; break;
-      case '\\': json += "\\\\"; break;
-      case '\n': json += "\\n"; break;
-      case '\t': json += "\\t"; break;
+      case '"':
+        json += "\\\"";
+        break;
+      case '\\':
+        json += "\\\\";
+        break;
+      case '\n':
+        json += "\\n";
+        break;
+      case '\t':
+        json += "\\t";
+        break;
       default:
         if (static_cast<unsigned char>(c) < 0x20) {
           char escaped[8];
@@ -125,8 +133,10 @@ void ConfigTree::MergeYaml(const std::string& yaml_text, const std::string& sour
   }
   if (document.IsNull()) return;  // an empty file changes nothing
   if (!document.IsMap()) {
-    throw std::invalid_argument(source + ": the top level must be a map of sections (key: value), "
-                                "got a " + std::string(document.IsSequence() ? "sequence" : "scalar"));
+    throw std::invalid_argument(source +
+                                ": the top level must be a map of sections (key: value), "
+                                "got a " +
+                                std::string(document.IsSequence() ? "sequence" : "scalar"));
   }
   MergeNode(root_, document, "", ValueOrigin{source, true});
 }

@@ -10,11 +10,11 @@
 //   config::ParamReader root = tree.Reader();
 //   root.ReadSection("gap", &gap_params);   // LoadParams(ParamReader&, GapParams*)
 //   root.RejectUnknownKeys();               // typo'd top-level sections fail loudly
+#include <yaml-cpp/yaml.h>
+
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <yaml-cpp/yaml.h>
 
 #include "config/param_reader.h"
 

@@ -28,10 +28,9 @@ std::string Describe(const YAML::Node& node) {
 // YAML 1.2 core-schema special floats plus the plain spellings people type on a command line.
 bool ParseSpecialDouble(const std::string& text, double* value) {
   static const std::map<std::string, double> kSpecial = {
-      {".nan", std::nan("")},         {".NaN", std::nan("")},       {".NAN", std::nan("")},
-      {"nan", std::nan("")},          {".inf", HUGE_VAL},           {".Inf", HUGE_VAL},
-      {".INF", HUGE_VAL},             {"+.inf", HUGE_VAL},          {"inf", HUGE_VAL},
-      {"-.inf", -HUGE_VAL},           {"-.Inf", -HUGE_VAL},         {"-.INF", -HUGE_VAL},
+      {".nan", std::nan("")}, {".NaN", std::nan("")}, {".NAN", std::nan("")}, {"nan", std::nan("")},
+      {".inf", HUGE_VAL},     {".Inf", HUGE_VAL},     {".INF", HUGE_VAL},     {"+.inf", HUGE_VAL},
+      {"inf", HUGE_VAL},      {"-.inf", -HUGE_VAL},   {"-.Inf", -HUGE_VAL},   {"-.INF", -HUGE_VAL},
       {"-inf", -HUGE_VAL}};
   const auto it = kSpecial.find(text);
   if (it == kSpecial.end()) return false;
@@ -136,7 +135,8 @@ void ConvertNode(const YAML::Node& node, const ValueContext& context, std::strin
 void ConvertNode(const YAML::Node& node, const ValueContext& context, Eigen::VectorXd* value) {
   std::vector<double> numbers;
   ConvertNode(node, context, &numbers);
-  *value = Eigen::Map<const Eigen::VectorXd>(numbers.data(), static_cast<Eigen::Index>(numbers.size()));
+  *value =
+      Eigen::Map<const Eigen::VectorXd>(numbers.data(), static_cast<Eigen::Index>(numbers.size()));
 }
 
 ParamReader::ParamReader(YAML::Node node, std::string path,
@@ -194,7 +194,8 @@ std::string ParamReader::Locate(const std::string& full_key, const YAML::Mark& m
 }
 
 std::string ParamReader::Where(const std::string& key) const {
-  const YAML::Node child = node_.IsMap() ? static_cast<const YAML::Node&>(node_)[key] : YAML::Node();
+  const YAML::Node child =
+      node_.IsMap() ? static_cast<const YAML::Node&>(node_)[key] : YAML::Node();
   return Locate(FullKey(key), child ? child.Mark() : node_.Mark());
 }
 
@@ -209,8 +210,8 @@ void ParamReader::RejectUnknownKeys() const {
     }
     throw std::invalid_argument(
         Locate(FullKey(key), it->first.Mark()) + ": unknown key '" + FullKey(key) + "'" +
-        (path_.empty() ? "" : " in section '" + path_ + "'") + "; known keys: " +
-        (known_keys_.empty() ? std::string("(none)") : known.str()) +
+        (path_.empty() ? "" : " in section '" + path_ + "'") +
+        "; known keys: " + (known_keys_.empty() ? std::string("(none)") : known.str()) +
         ". Fix the spelling or remove it.");
   }
 }

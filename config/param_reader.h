@@ -4,20 +4,23 @@
 // A struct's loader reads every field it knows, then rejects whatever is left:
 //
 //   void LoadParams(config::ParamReader& reader, GapParams* params) {
-//     reader.Read("roll_deg", &params->roll_deg);          // absent key: the in-class default stays
-//     reader.ReadEnum("mode", &params->mode, {{"fast", Mode::kFast}, {"exact", Mode::kExact}});
-//     reader.ReadSection("detector", &params->detector);   // calls LoadParams(reader, &detector)
-//     reader.RejectUnknownKeys();
+//     reader.Read("roll_deg", &params->roll_deg);          // absent key: the in-class default
+//     stays reader.ReadEnum("mode", &params->mode, {{"fast", Mode::kFast}, {"exact",
+//     Mode::kExact}}); reader.ReadSection("detector", &params->detector);   // calls
+//     LoadParams(reader, &detector) reader.RejectUnknownKeys();
 //   }
 //
 // Errors are std::invalid_argument whose message starts with the location of the offending value
 // ("gap.yaml:12:3" for a file, "--set gap.roll_deg=abc" for a command-line override), then the
 // full dotted key and what was expected (the type, the allowed enum values, or the known keys).
 //
-// Supported field types: double, float, int, unsigned, std::size_t, bool, std::string, fixed-size Eigen matrices of double
-// (vectors from a flat sequence, matrices from a sequence of rows or a flat row-major sequence),
-// Eigen::VectorXd, std::vector<T> of any supported T, enums via ReadEnum, nested structs via
-// ReadSection/Section.
+// Supported field types: double, float, int, unsigned, std::size_t, bool, std::string, fixed-size
+// Eigen matrices of double (vectors from a flat sequence, matrices from a sequence of rows or a
+// flat row-major sequence), Eigen::VectorXd, std::vector<T> of any supported T, enums via ReadEnum,
+// nested structs via ReadSection/Section.
+#include <yaml-cpp/yaml.h>
+
+#include <Eigen/Core>
 #include <map>
 #include <memory>
 #include <set>
@@ -25,9 +28,6 @@
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <Eigen/Core>
-#include <yaml-cpp/yaml.h>
 
 namespace aperture::config {
 
@@ -127,13 +127,13 @@ void ConvertNode(const YAML::Node& node, const ValueContext& context,
   static_assert(Rows > 0 && Cols > 0, "use Eigen::VectorXd or std::vector for dynamic sizes");
   const std::string shape = Cols == 1 ? "a sequence of " + std::to_string(Rows) + " numbers"
                                       : "a " + std::to_string(Rows) + "x" + std::to_string(Cols) +
-                                            " matrix as " + std::to_string(Rows) +
-                                            " rows of " + std::to_string(Cols) +
-                                            " numbers or " + std::to_string(Rows * Cols) +
-                                            " numbers row-major";
+                                            " matrix as " + std::to_string(Rows) + " rows of " +
+                                            std::to_string(Cols) + " numbers or " +
+                                            std::to_string(Rows * Cols) + " numbers row-major";
   if (!node.IsSequence()) ThrowTypeError(context, node, shape);
   Eigen::Matrix<double, Rows, Cols, Options, Rows, Cols> result;
-  if (node.size() == static_cast<std::size_t>(Rows * Cols) && (Cols == 1 || !node[0].IsSequence())) {
+  if (node.size() == static_cast<std::size_t>(Rows * Cols) &&
+      (Cols == 1 || !node[0].IsSequence())) {
     for (int i = 0; i < Rows * Cols; ++i) {
       ConvertNode(node[i], {context.where, context.key + "[" + std::to_string(i) + "]"},
                   &result(i / Cols, i % Cols));
@@ -145,10 +145,10 @@ void ConvertNode(const YAML::Node& node, const ValueContext& context,
         ThrowTypeError(context, node, shape);
       }
       for (int c = 0; c < Cols; ++c) {
-        ConvertNode(row[c],
-                    {context.where, context.key + "[" + std::to_string(r) + "][" +
-                                        std::to_string(c) + "]"},
-                    &result(r, c));
+        ConvertNode(
+            row[c],
+            {context.where, context.key + "[" + std::to_string(r) + "][" + std::to_string(c) + "]"},
+            &result(r, c));
       }
     }
   } else {

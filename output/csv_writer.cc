@@ -31,8 +31,8 @@ CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& co
 
 void CsvWriter::CheckWidth(std::size_t width) const {
   if (width != column_count_) {
-    throw std::invalid_argument("CSV row " + std::to_string(rows_written_ + 1) + " of '" +
-                                path() + "' has " + std::to_string(width) + " values, expected " +
+    throw std::invalid_argument("CSV row " + std::to_string(rows_written_ + 1) + " of '" + path() +
+                                "' has " + std::to_string(width) + " values, expected " +
                                 std::to_string(column_count_) + " (one per column)");
   }
 }

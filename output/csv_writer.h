@@ -19,7 +19,8 @@ using CsvCell = std::variant<double, std::string>;
 
 class CsvWriter {
  public:
-  // std::invalid_argument when `columns` is empty; std::runtime_error when `path` cannot be written.
+  // std::invalid_argument when `columns` is empty; std::runtime_error when `path` cannot be
+  // written.
   CsvWriter(const std::string& path, const std::vector<std::string>& columns);
 
   // Each row must have exactly one value per column (std::invalid_argument naming the file).

@@ -2,11 +2,10 @@
 
 #include <cstdio>
 #include <map>
+#include <opencv2/imgcodecs.hpp>
 #include <set>
 #include <sstream>
 #include <stdexcept>
-
-#include <opencv2/imgcodecs.hpp>
 
 #include "output/atomic_file.h"
 #include "output/base64.h"
@@ -135,10 +134,12 @@ void HtmlReport::AddImage(const cv::Mat& image, const std::string& caption) {
 }
 
 std::string HtmlReport::ToHtml() const {
-  std::string html = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-                     "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
-                     "<title>" + EscapeXml(title_) + "</title>\n<style>" + kStyle +
-                     "</style>\n</head>\n<body>\n<h1>" + EscapeXml(title_) + "</h1>\n";
+  std::string html =
+      "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+      "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
+      "<title>" +
+      EscapeXml(title_) + "</title>\n<style>" + kStyle + "</style>\n</head>\n<body>\n<h1>" +
+      EscapeXml(title_) + "</h1>\n";
   for (const std::string& block : blocks_) html += block;
   return html + "</body>\n</html>\n";
 }

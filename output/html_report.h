@@ -8,11 +8,10 @@
 //   report.AddSvg(plot.Render(), "Position error over time");
 //   report.AddImage(key_frame, "Frame 120 with detected gap");
 //   report.Write(out.Path("report.html"));          // atomic
-#include <string>
-#include <vector>
-
 #include <nlohmann/json.hpp>
 #include <opencv2/core/mat.hpp>
+#include <string>
+#include <vector>
 
 namespace aperture::output {
 

@@ -11,7 +11,8 @@ template <typename Derived>
 nlohmann::json EigenToJson(const Eigen::DenseBase<Derived>& value) {
   nlohmann::json json = nlohmann::json::array();
   if (value.cols() == 1) {
-    for (Eigen::Index r = 0; r < value.rows(); ++r) json.push_back(static_cast<double>(value(r, 0)));
+    for (Eigen::Index r = 0; r < value.rows(); ++r)
+      json.push_back(static_cast<double>(value(r, 0)));
     return json;
   }
   for (Eigen::Index r = 0; r < value.rows(); ++r) {

@@ -50,7 +50,8 @@ std::string OutputFolder::WriteSummary(RunStatus status, const std::string& erro
   summary_["wall_time_s"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   const std::string path = Path(kSummaryFileName);
-  WriteFileAtomically(path, summary_.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+  WriteFileAtomically(
+      path, summary_.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
   return path;
 }
 

@@ -1,8 +1,8 @@
 #pragma once
 // OutputFolder: the `--out DIR` of one command. It owns summary.json, the figures of the run:
 //
-//   OutputFolder out(out_dir);                    // creates DIR (and parents), checks it is writable
-//   out.summary()["inputs"]["sequence"] = path;   // fill as the run goes
+//   OutputFolder out(out_dir);                    // creates DIR (and parents), checks it is
+//   writable out.summary()["inputs"]["sequence"] = path;   // fill as the run goes
 //   ... write CSVs, report.html to out.Path("...") ...
 //   out.WriteSummary(RunStatus::kOk);             // or kFailed with the error message
 //
@@ -12,9 +12,8 @@
 // rather than an old one that looks complete.
 #include <chrono>
 #include <functional>
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 namespace aperture::output {
 

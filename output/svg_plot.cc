@@ -33,8 +33,8 @@ std::string TickLabel(double value, double step) {
   const double magnitude = std::max(std::abs(value), std::abs(step));
   if (magnitude >= 1e6 || step < 1e-4) {
     // Exponent notation with as many significant digits as the step resolves (e.g. 1.70000001e+09).
-    const int digits = static_cast<int>(std::floor(std::log10(magnitude) + 1e-9) - step_exponent) +
-                       1 + extra;
+    const int digits =
+        static_cast<int>(std::floor(std::log10(magnitude) + 1e-9) - step_exponent) + 1 + extra;
     std::snprintf(buffer, sizeof(buffer), "%.*g", std::clamp(digits, 1, 17), value);
   } else {
     const int decimals = std::max(0, static_cast<int>(-step_exponent) + extra);
@@ -68,7 +68,8 @@ class Canvas {
     return left_ + (value - x_ticks_.min()) / (x_ticks_.max() - x_ticks_.min()) * (right_ - left_);
   }
   double Y(double value) const {
-    return bottom_ - (value - y_ticks_.min()) / (y_ticks_.max() - y_ticks_.min()) * (bottom_ - top_);
+    return bottom_ -
+           (value - y_ticks_.min()) / (y_ticks_.max() - y_ticks_.min()) * (bottom_ - top_);
   }
   double left() const { return left_; }
   double right() const { return right_; }
@@ -78,8 +79,8 @@ class Canvas {
   // draws categorical labels itself.
   void Begin(std::ostringstream& svg, bool numeric_x_ticks) const {
     const int width = options_.width_px, height = options_.height_px;
-    svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\""
-        << height << "\" viewBox=\"0 0 " << width << ' ' << height
+    svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
+        << "\" viewBox=\"0 0 " << width << ' ' << height
         << "\" font-family=\"sans-serif\" font-size=\"11\" class=\"plot\">\n"
         << "<rect x=\"0\" y=\"0\" width=\"" << width << "\" height=\"" << height
         << "\" fill=\"white\"/>\n";
@@ -108,9 +109,8 @@ class Canvas {
       }
       svg << "</g>\n";
     }
-    svg << "<rect x=\"" << Px(left_) << "\" y=\"" << Px(top_) << "\" width=\""
-        << Px(right_ - left_) << "\" height=\"" << Px(bottom_ - top_)
-        << "\" fill=\"none\" stroke=\"black\"/>\n";
+    svg << "<rect x=\"" << Px(left_) << "\" y=\"" << Px(top_) << "\" width=\"" << Px(right_ - left_)
+        << "\" height=\"" << Px(bottom_ - top_) << "\" fill=\"none\" stroke=\"black\"/>\n";
     if (!options_.x_label.empty()) {
       svg << "<text x=\"" << Px((left_ + right_) / 2) << "\" y=\"" << Px(height - 8.0)
           << "\" text-anchor=\"middle\">" << EscapeXml(options_.x_label) << "</text>\n";
@@ -133,7 +133,8 @@ class Canvas {
         << "\" fill=\"white\" fill-opacity=\"0.85\" stroke=\"#999\"/>\n";
     for (std::size_t i = 0; i < names.size(); ++i) {
       const double row = y + 12 + 16.0 * i;
-      svg << "<rect x=\"" << Px(x + 5) << "\" y=\"" << Px(row - 7) << "\" width=\"14\" height=\"8\" "
+      svg << "<rect x=\"" << Px(x + 5) << "\" y=\"" << Px(row - 7)
+          << "\" width=\"14\" height=\"8\" "
           << "fill=\"" << Colour(i) << "\"/><text x=\"" << Px(x + 23) << "\" y=\"" << Px(row)
           << "\">" << EscapeXml(names[i]) << "</text>\n";
     }
@@ -148,10 +149,9 @@ class Canvas {
 
 void CheckOptions(const SvgPlotOptions& options) {
   if (options.width_px < 160 || options.height_px < 120) {
-    throw std::invalid_argument("plot '" + options.title + "' is " +
-                                std::to_string(options.width_px) + "x" +
-                                std::to_string(options.height_px) +
-                                " px; use at least 160x120 to leave room for the axes");
+    throw std::invalid_argument(
+        "plot '" + options.title + "' is " + std::to_string(options.width_px) + "x" +
+        std::to_string(options.height_px) + " px; use at least 160x120 to leave room for the axes");
   }
 }
 
@@ -162,12 +162,23 @@ std::string EscapeXml(const std::string& text) {
   escaped.reserve(text.size());
   for (const char c : text) {
     switch (c) {
-      case '&': escaped += "&amp;"; break;
-      case '<': escaped += "&lt;"; break;
-      case '>': escaped += "&gt;"; break;
-      case '"': escaped += "&quot;"; break;
-      case '\'': escaped += "&#39;"; break;
-      default: escaped += c;
+      case '&':
+        escaped += "&amp;";
+        break;
+      case '<':
+        escaped += "&lt;";
+        break;
+      case '>':
+        escaped += "&gt;";
+        break;
+      case '"':
+        escaped += "&quot;";
+        break;
+      case '\'':
+        escaped += "&#39;";
+        break;
+      default:
+        escaped += c;
     }
   }
   return escaped;
@@ -187,8 +198,11 @@ AxisTicks ComputeNiceTicks(double data_min, double data_max, int target_tick_cou
   const double raw_step = (data_max - data_min) / std::max(1, target_tick_count - 1);
   const double magnitude = std::pow(10.0, std::floor(std::log10(raw_step)));
   const double residual = raw_step / magnitude;
-  const double nice = residual <= 1.0 ? 1.0 : residual <= 2.0 ? 2.0 : residual <= 2.5 ? 2.5
-                      : residual <= 5.0 ? 5.0 : 10.0;
+  const double nice = residual <= 1.0   ? 1.0
+                      : residual <= 2.0 ? 2.0
+                      : residual <= 2.5 ? 2.5
+                      : residual <= 5.0 ? 5.0
+                                        : 10.0;
   AxisTicks ticks;
   ticks.step = nice * magnitude;
   // The small tolerance keeps a bound that is already a tick value from adding an extra tick.
@@ -257,8 +271,8 @@ SvgPlot& SvgPlot::AddScatter(const std::string& name, const std::vector<double>&
 SvgPlot& SvgPlot::Add(const std::string& name, const std::vector<double>& x,
                       const std::vector<double>& y, bool line) {
   if (x.size() != y.size()) {
-    throw std::invalid_argument("plot '" + options_.title + "', series '" + name + "': " +
-                                std::to_string(x.size()) + " x values but " +
+    throw std::invalid_argument("plot '" + options_.title + "', series '" + name +
+                                "': " + std::to_string(x.size()) + " x values but " +
                                 std::to_string(y.size()) + " y values; they must pair up");
   }
   series_.push_back(Series{name, x, y, line});
@@ -331,8 +345,8 @@ std::string SvgPlot::Histogram(const SvgPlotOptions& options,
   }
   if (bin_count <= 0) {
     // Sturges' rule: adequate for the roughly unimodal error distributions plotted here.
-    bin_count = largest == 0 ? 1
-                             : static_cast<int>(std::ceil(std::log2(static_cast<double>(largest)))) + 1;
+    bin_count =
+        largest == 0 ? 1 : static_cast<int>(std::ceil(std::log2(static_cast<double>(largest)))) + 1;
   }
   const AxisTicks x_ticks = ComputeNiceTicks(range.min, range.max);
   double low = range.min, high = range.max;
@@ -363,9 +377,9 @@ std::string SvgPlot::Histogram(const SvgPlotOptions& options,
       if (counts[s][b] == 0) continue;
       const double x0 = canvas.X(low + b * width), x1 = canvas.X(low + (b + 1) * width);
       const double y = canvas.Y(counts[s][b]);
-      svg << "<rect class=\"bin\" data-count=\"" << counts[s][b] << "\" x=\"" << Px(x0)
-          << "\" y=\"" << Px(y) << "\" width=\"" << Px(x1 - x0) << "\" height=\""
-          << Px(canvas.bottom() - y) << "\"/>\n";
+      svg << "<rect class=\"bin\" data-count=\"" << counts[s][b] << "\" x=\"" << Px(x0) << "\" y=\""
+          << Px(y) << "\" width=\"" << Px(x1 - x0) << "\" height=\"" << Px(canvas.bottom() - y)
+          << "\"/>\n";
     }
     svg << "</g>\n";
   }
@@ -374,7 +388,8 @@ std::string SvgPlot::Histogram(const SvgPlotOptions& options,
   return svg.str();
 }
 
-std::string SvgPlot::BoxPlot(const SvgPlotOptions& options, const std::vector<NamedValues>& groups) {
+std::string SvgPlot::BoxPlot(const SvgPlotOptions& options,
+                             const std::vector<NamedValues>& groups) {
   CheckOptions(options);
   Range range;
   for (const NamedValues& group : groups) {
@@ -390,9 +405,8 @@ std::string SvgPlot::BoxPlot(const SvgPlotOptions& options, const std::vector<Na
       0.3 * (canvas.right() - canvas.left()) / std::max<double>(groups.size(), 1);
   for (std::size_t g = 0; g < groups.size(); ++g) {
     const double center = canvas.X(static_cast<double>(g));
-    svg << "<text class=\"category\" x=\"" << Px(center) << "\" y=\""
-        << Px(canvas.bottom() + 16) << "\" text-anchor=\"middle\">" << EscapeXml(groups[g].name)
-        << "</text>\n";
+    svg << "<text class=\"category\" x=\"" << Px(center) << "\" y=\"" << Px(canvas.bottom() + 16)
+        << "\" text-anchor=\"middle\">" << EscapeXml(groups[g].name) << "</text>\n";
     const BoxStats stats = ComputeBoxStats(groups[g].values);
     if (stats.count == 0) continue;
     const std::string left = Px(center - half_width), right = Px(center + half_width);
@@ -414,8 +428,8 @@ std::string SvgPlot::BoxPlot(const SvgPlotOptions& options, const std::vector<Na
           << "\"/>\n";
     }
     for (const double outlier : stats.outliers) {
-      svg << "<circle class=\"outlier\" cx=\"" << Px(center) << "\" cy=\""
-          << Px(canvas.Y(outlier)) << "\" r=\"2.5\" fill=\"none\"/>\n";
+      svg << "<circle class=\"outlier\" cx=\"" << Px(center) << "\" cy=\"" << Px(canvas.Y(outlier))
+          << "\" r=\"2.5\" fill=\"none\"/>\n";
     }
     svg << "</g>\n";
   }

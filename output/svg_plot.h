@@ -28,7 +28,7 @@ struct SvgPlotOptions {
   std::string title;
   std::string x_label;
   std::string y_label;
-  int width_px = 640;   // viewBox size; the page scales it to the column width
+  int width_px = 640;  // viewBox size; the page scales it to the column width
   int height_px = 360;
 };
 
@@ -68,8 +68,8 @@ class SvgPlot {
   std::string Render() const;
 
   // Counts per bin; all series share the bins. bin_count 0 = Sturges' rule on the largest series.
-  static std::string Histogram(const SvgPlotOptions& options, const std::vector<NamedValues>& series,
-                               int bin_count = 0);
+  static std::string Histogram(const SvgPlotOptions& options,
+                               const std::vector<NamedValues>& series, int bin_count = 0);
   // One box per group, groups side by side in the given order.
   static std::string BoxPlot(const SvgPlotOptions& options, const std::vector<NamedValues>& groups);
 
@@ -79,8 +79,8 @@ class SvgPlot {
     std::vector<double> x, y;
     bool line;
   };
-  SvgPlot& Add(const std::string& name, const std::vector<double>& x,
-               const std::vector<double>& y, bool line);
+  SvgPlot& Add(const std::string& name, const std::vector<double>& x, const std::vector<double>& y,
+               bool line);
 
   SvgPlotOptions options_;
   std::vector<Series> series_;

@@ -21,9 +21,9 @@ void TumTrajectoryWriter::Write(double t_s, const Eigen::Vector3d& p_WB,
   }
   const Eigen::Quaterniond q = q_WB.normalized();
   std::ostream& out = file_.stream();
-  out << FormatDouble(t_s) << ' ' << FormatDouble(p_WB.x()) << ' ' << FormatDouble(p_WB.y())
-      << ' ' << FormatDouble(p_WB.z()) << ' ' << FormatDouble(q.x()) << ' '
-      << FormatDouble(q.y()) << ' ' << FormatDouble(q.z()) << ' ' << FormatDouble(q.w()) << '\n';
+  out << FormatDouble(t_s) << ' ' << FormatDouble(p_WB.x()) << ' ' << FormatDouble(p_WB.y()) << ' '
+      << FormatDouble(p_WB.z()) << ' ' << FormatDouble(q.x()) << ' ' << FormatDouble(q.y()) << ' '
+      << FormatDouble(q.z()) << ' ' << FormatDouble(q.w()) << '\n';
   ++poses_written_;
 }
 

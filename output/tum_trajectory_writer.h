@@ -7,9 +7,8 @@
 //   TumTrajectoryWriter tum(out.Path("estimate.tum"));
 //   tum.Write(state.t_s, T_WB);
 //   tum.Close();
-#include <string>
-
 #include <Eigen/Geometry>
+#include <string>
 
 #include "output/atomic_file.h"
 

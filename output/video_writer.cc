@@ -4,12 +4,11 @@
 #include <exception>
 #include <filesystem>
 #include <iostream>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
 #include <stdexcept>
 #include <system_error>
 #include <vector>
-
-#include <opencv2/imgproc.hpp>
-#include <opencv2/videoio.hpp>
 
 namespace aperture::output {
 
@@ -19,8 +18,8 @@ VideoWriter::VideoWriter(std::string path_stem, double fps_hz, VideoFormat forma
       format_(format),
       uncaught_exceptions_at_open_(std::uncaught_exceptions()) {
   if (!(std::isfinite(fps_hz) && fps_hz > 0)) {
-    throw std::invalid_argument("video '" + path_stem_ + "': frame rate " +
-                                std::to_string(fps_hz) + " Hz must be positive");
+    throw std::invalid_argument("video '" + path_stem_ + "': frame rate " + std::to_string(fps_hz) +
+                                " Hz must be positive");
   }
 }
 
@@ -50,8 +49,8 @@ void VideoWriter::Open(const cv::Mat& first_frame) {
     const std::string partial = path_stem_ + ".partial" + choice.extension;
     auto writer = std::make_unique<cv::VideoWriter>();
     const std::string& c = choice.codec;
-    if (writer->open(partial, cv::VideoWriter::fourcc(c[0], c[1], c[2], c[3]), fps_hz_,
-                     frame_size_, true) &&
+    if (writer->open(partial, cv::VideoWriter::fourcc(c[0], c[1], c[2], c[3]), fps_hz_, frame_size_,
+                     true) &&
         writer->isOpened()) {
       writer_ = std::move(writer);
       codec_ = choice.codec;

@@ -10,10 +10,9 @@
 //   video.Write(overlay_bgr);                    // every frame; same size as the first
 //   std::optional<std::string> file = video.Close();   // "…/overlay.mp4", nullopt without frames
 #include <memory>
+#include <opencv2/core/mat.hpp>
 #include <optional>
 #include <string>
-
-#include <opencv2/core/mat.hpp>
 
 namespace cv {
 class VideoWriter;

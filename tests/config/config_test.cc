@@ -1,11 +1,11 @@
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
 #include <string>
-
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
 
 #include "config/config_tree.h"
 #include "config/param_reader.h"
@@ -49,9 +49,9 @@ void LoadParams(ParamReader& reader, TestParams* params) {
   reader.Read("p_BC", &params->p_BC);
   reader.Read("inertia_kgm2", &params->inertia_kgm2);
   reader.Read("leds", &params->leds);
-  reader.ReadEnum("body_rate", &params->body_rate,
-                  {{"proportional", BodyRateController::kProportional},
-                   {"lqr", BodyRateController::kLqr}});
+  reader.ReadEnum(
+      "body_rate", &params->body_rate,
+      {{"proportional", BodyRateController::kProportional}, {"lqr", BodyRateController::kLqr}});
   reader.ReadSection("detector", &params->detector);
   reader.RejectUnknownKeys();
 }
@@ -116,8 +116,8 @@ TEST_F(ConfigFileTest, LayersApplyInOrderDefaultsFileSet) {
       "vehicle: {mass_kg: 1.0, rotors: 6, name: from_defaults, detector: {pyramid_levels: 2}}",
       {file}, {"vehicle.name=from_set", "vehicle.detector.pyramid_levels=5"});
   const TestParams params = LoadVehicle(tree);
-  EXPECT_EQ(params.mass_kg, 1.25);  // file beats defaults
-  EXPECT_EQ(params.rotors, 6);      // defaults survive where nothing overrides them
+  EXPECT_EQ(params.mass_kg, 1.25);     // file beats defaults
+  EXPECT_EQ(params.rotors, 6);         // defaults survive where nothing overrides them
   EXPECT_EQ(params.name, "from_set");  // --set beats file
   // Nested maps merge key by key: threshold from the file, levels from --set.
   EXPECT_EQ(params.detector.threshold, 0.75);
@@ -150,8 +150,9 @@ TEST_F(ConfigFileTest, UnknownKeyNamesFileLineKeyAndKnownKeys) {
 TEST_F(ConfigFileTest, OverriddenUnknownKeyPointsAtTheLaterFile) {
   const std::string first = WriteFile("first.yaml", "vehicle: {extra: 1}\n");
   const std::string second = WriteFile("second.yaml", "# comment\n\nvehicle:\n  extra: 2\n");
-  const std::string message =
-      ErrorOf([&] { LoadVehicle(ConfigTree::FromCommandLine("", {first, second}, {})); });
+  const std::string message = ErrorOf([&] {
+    LoadVehicle(ConfigTree::FromCommandLine("", {first, second}, {}));
+  });
   EXPECT_THAT(message, HasSubstr(second + ":4:3"));
   EXPECT_THAT(message, ::testing::Not(HasSubstr("first.yaml")));
 }
@@ -174,8 +175,8 @@ TEST_F(ConfigFileTest, WrongTypeNamesFileLineKeyAndExpectedType) {
   ConfigTree tree;
   tree.MergeFile(file);
   EXPECT_THAT(ErrorOf([&] { LoadVehicle(tree); }),
-              AllOf(HasSubstr(file + ":3:12"), HasSubstr("vehicle.mass_kg"),
-                    HasSubstr("a number"), HasSubstr("'heavy'")));
+              AllOf(HasSubstr(file + ":3:12"), HasSubstr("vehicle.mass_kg"), HasSubstr("a number"),
+                    HasSubstr("'heavy'")));
 }
 
 TEST_F(ConfigFileTest, WrongTypeFromSetKeepsSetLocationAfterFileMerge) {
@@ -234,18 +235,16 @@ TEST_F(ConfigFileTest, VectorsMatricesAndSequencesFromFileAndSet) {
   EXPECT_EQ(from_file.inertia_kgm2, expected);
 
   const TestParams from_set = LoadVehicle(ConfigTree::FromCommandLine(
-      "", {file},
-      {"vehicle.leds=[[0,0,0],[1,0,0]]", "vehicle.inertia_kgm2=[9,8,7,6,5,4,3,2,1]"}));
+      "", {file}, {"vehicle.leds=[[0,0,0],[1,0,0]]", "vehicle.inertia_kgm2=[9,8,7,6,5,4,3,2,1]"}));
   ASSERT_EQ(from_set.leds.size(), 2u);
   EXPECT_EQ(from_set.leds[1], Eigen::Vector3d(1, 0, 0));
   Eigen::Matrix3d flat;
   flat << 9, 8, 7, 6, 5, 4, 3, 2, 1;  // flat lists are row-major
   EXPECT_EQ(from_set.inertia_kgm2, flat);
 
-  EXPECT_THAT(ErrorOf([&] {
-                LoadVehicle(ConfigTree::FromCommandLine("", {}, {"vehicle.p_BC=[1,2]"}));
-              }),
-              AllOf(HasSubstr("vehicle.p_BC"), HasSubstr("3 numbers")));
+  EXPECT_THAT(
+      ErrorOf([&] { LoadVehicle(ConfigTree::FromCommandLine("", {}, {"vehicle.p_BC=[1,2]"})); }),
+      AllOf(HasSubstr("vehicle.p_BC"), HasSubstr("3 numbers")));
   EXPECT_THAT(ErrorOf([&] {
                 LoadVehicle(ConfigTree::FromCommandLine("", {}, {"vehicle.leds=[[0,0,x]]"}));
               }),

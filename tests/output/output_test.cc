@@ -1,20 +1,20 @@
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
 #include <random>
 #include <regex>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
-#include <opencv2/videoio.hpp>
 
 #include "output/atomic_file.h"
 #include "output/base64.h"
@@ -176,7 +176,8 @@ TEST_F(OutputTest, AtomicFileDiscardsOnExceptionAndCommitsOtherwise) {
   EXPECT_EQ(ListFiles(directory_), std::vector<std::string>{"data.txt"});
 }
 
-// ---- CSV -----------------------------------------------------------------------------------------
+// ---- CSV
+// -----------------------------------------------------------------------------------------
 
 TEST_F(OutputTest, CsvNumbersReadBackExactly) {
   fs::create_directories(directory_);
@@ -212,7 +213,8 @@ TEST_F(OutputTest, CsvNumbersReadBackExactly) {
   EXPECT_EQ(ListFiles(directory_), std::vector<std::string>{"series.csv"});
 }
 
-// ---- TUM trajectory ------------------------------------------------------------------------------
+// ---- TUM trajectory
+// ------------------------------------------------------------------------------
 
 TEST_F(OutputTest, TumLinesParseBackToTheSamePoses) {
   fs::create_directories(directory_);
@@ -221,10 +223,10 @@ TEST_F(OutputTest, TumLinesParseBackToTheSamePoses) {
   std::vector<Eigen::Isometry3d> poses;
   for (int i = 0; i < 20; ++i) {
     Eigen::Isometry3d T_WB = Eigen::Isometry3d::Identity();
-    T_WB.linear() = Eigen::Quaterniond(uniform(random), uniform(random), uniform(random),
-                                       uniform(random))
-                        .normalized()
-                        .toRotationMatrix();
+    T_WB.linear() =
+        Eigen::Quaterniond(uniform(random), uniform(random), uniform(random), uniform(random))
+            .normalized()
+            .toRotationMatrix();
     T_WB.translation() = Eigen::Vector3d(uniform(random), uniform(random), uniform(random)) * 10;
     poses.push_back(T_WB);
   }
@@ -255,7 +257,8 @@ TEST_F(OutputTest, TumLinesParseBackToTheSamePoses) {
   EXPECT_EQ(lines.back(), "10 1 2 3 0 0 0 1");
 }
 
-// ---- Ticks and box statistics --------------------------------------------------------------------
+// ---- Ticks and box statistics
+// --------------------------------------------------------------------
 
 TEST_F(OutputTest, NiceTicksCoverTheDataWithRoundSteps) {
   const std::vector<std::pair<double, double>> ranges = {
@@ -267,10 +270,9 @@ TEST_F(OutputTest, NiceTicksCoverTheDataWithRoundSteps) {
     EXPECT_GE(ticks.values.size(), 3u);
     EXPECT_LE(ticks.values.size(), 12u);
     const double mantissa = ticks.step / std::pow(10.0, std::floor(std::log10(ticks.step)));
-    EXPECT_THAT(mantissa, ::testing::AnyOf(::testing::DoubleNear(1.0, 1e-9),
-                                           ::testing::DoubleNear(2.0, 1e-9),
-                                           ::testing::DoubleNear(2.5, 1e-9),
-                                           ::testing::DoubleNear(5.0, 1e-9)));
+    EXPECT_THAT(mantissa, ::testing::AnyOf(
+                              ::testing::DoubleNear(1.0, 1e-9), ::testing::DoubleNear(2.0, 1e-9),
+                              ::testing::DoubleNear(2.5, 1e-9), ::testing::DoubleNear(5.0, 1e-9)));
     for (const double tick : ticks.values) {
       // Every tick is an integer multiple of the step (relative 1e-9 for rounding).
       EXPECT_NEAR(tick / ticks.step, std::round(tick / ticks.step), 1e-9);
@@ -301,7 +303,8 @@ TEST_F(OutputTest, BoxStatsMatchHandComputedQuartiles) {
   EXPECT_EQ(ComputeBoxStats({}).count, 0u);
 }
 
-// ---- SVG -----------------------------------------------------------------------------------------
+// ---- SVG
+// -----------------------------------------------------------------------------------------
 
 // Checks that every element is closed in order (a minimal XML well-formedness check: no
 // attributes containing '>' are produced by SvgPlot).
@@ -390,8 +393,8 @@ TEST_F(OutputTest, LinePlotSkipsNanPointsAndTicksCoverData) {
   ASSERT_GE(y_ticks.size(), 2u);
   EXPECT_LE(x_ticks.front(), 0.0);
   EXPECT_GE(x_ticks.back(), 4.9);
-  EXPECT_LE(y_ticks.front(), -24.5);  // min of the ramp
-  EXPECT_GE(y_ticks.back(), 4.0);     // max of 3 sin + 1
+  EXPECT_LE(y_ticks.front(), -24.5);            // min of the ramp
+  EXPECT_GE(y_ticks.back(), 4.0);               // max of 3 sin + 1
   EXPECT_THAT(svg, HasSubstr(">sine</text>"));  // legend
   EXPECT_THROW(SvgPlot({"bad"}).AddLine("short", {1, 2}, {1}), std::invalid_argument);
 }
@@ -452,13 +455,17 @@ TEST_F(OutputTest, BoxPlotDrawsOneBoxPerNonEmptyGroup) {
   EXPECT_GE(TickLabels(svg, "y-tick-labels").back(), 50.0);
 }
 
-// ---- Base64 and HTML -----------------------------------------------------------------------------
+// ---- Base64 and HTML
+// -----------------------------------------------------------------------------
 
 TEST_F(OutputTest, Base64MatchesRfc4648Vectors) {
-  const std::vector<std::pair<std::string, std::string>> vectors = {
-      {"", ""},         {"f", "Zg=="},         {"fo", "Zm8="},
-      {"foo", "Zm9v"},  {"foob", "Zm9vYg=="},  {"fooba", "Zm9vYmE="},
-      {"foobar", "Zm9vYmFy"}};
+  const std::vector<std::pair<std::string, std::string>> vectors = {{"", ""},
+                                                                    {"f", "Zg=="},
+                                                                    {"fo", "Zm8="},
+                                                                    {"foo", "Zm9v"},
+                                                                    {"foob", "Zm9vYg=="},
+                                                                    {"fooba", "Zm9vYmE="},
+                                                                    {"foobar", "Zm9vYmFy"}};
   for (const auto& [plain, encoded] : vectors) {
     const std::vector<std::uint8_t> bytes(plain.begin(), plain.end());
     EXPECT_EQ(Base64Encode(bytes), encoded);
@@ -511,7 +518,8 @@ TEST_F(OutputTest, HtmlReportEmbedsPngThatDecodesToTheSameImage) {
   EXPECT_THROW(report.AddImage(cv::Mat(), "missing frame"), std::invalid_argument);
 }
 
-// ---- Progress bar --------------------------------------------------------------------------------
+// ---- Progress bar
+// --------------------------------------------------------------------------------
 
 TEST_F(OutputTest, ProgressBarIsSilentWhenNotATerminal) {
   std::ostringstream sink;
@@ -552,10 +560,10 @@ TEST_F(OutputTest, ProgressBarDrawsLabelCountsAndEndsTheLine) {
   EXPECT_EQ(sink.str().size(), length);
 }
 
-// ---- Video ---------------------------------------------------------------------------------------
+// ---- Video
+// ---------------------------------------------------------------------------------------
 
-class VideoWriterTest : public OutputTest,
-                        public ::testing::WithParamInterface<VideoFormat> {};
+class VideoWriterTest : public OutputTest, public ::testing::WithParamInterface<VideoFormat> {};
 
 TEST_P(VideoWriterTest, WritesReadableFileAndRenamesIt) {
   fs::create_directories(directory_);
