@@ -8,6 +8,8 @@ find_package(CLI11 REQUIRED)
 find_package(NLopt REQUIRED)
 find_package(GTest REQUIRED)
 find_package(benchmark REQUIRED)
+# libapriltag-dev ships a CMake config (target apriltag::apriltag, includes <apriltag/...>).
+find_package(apriltag REQUIRED)
 
 set(APERTURE_OPENCV_CORE opencv_core opencv_imgproc opencv_imgcodecs)
 set(APERTURE_OPENCV_ALL opencv_core opencv_imgproc opencv_imgcodecs opencv_videoio opencv_calib3d

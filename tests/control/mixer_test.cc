@@ -43,10 +43,9 @@ TEST_P(MixerUnsaturated, IterativeReproducesRequestThroughG1G2) {
   // Independent forward evaluation of (G.1), (G.2) with kappa(f_i) of (G.5).
   const Eigen::Vector4d& f = result.command.thrust_N;
   const double d = std::sqrt(2.0) / 2.0 * vehicle.arm_length_m;
-  const double yaw = vehicle.rotor.TorqueCoefficient(f[0]) * f[0] -
-                     vehicle.rotor.TorqueCoefficient(f[1]) * f[1] +
-                     vehicle.rotor.TorqueCoefficient(f[2]) * f[2] -
-                     vehicle.rotor.TorqueCoefficient(f[3]) * f[3];
+  const double yaw =
+      vehicle.rotor.TorqueCoefficient(f[0]) * f[0] - vehicle.rotor.TorqueCoefficient(f[1]) * f[1] +
+      vehicle.rotor.TorqueCoefficient(f[2]) * f[2] - vehicle.rotor.TorqueCoefficient(f[3]) * f[3];
   EXPECT_NEAR(d * (f[0] - f[1] - f[2] + f[3]), c.torque_B.x(), kExactTorque_Nm);
   EXPECT_NEAR(d * (-f[0] - f[1] + f[2] + f[3]), c.torque_B.y(), kExactTorque_Nm);
   EXPECT_NEAR(yaw, c.torque_B.z(), kExactTorque_Nm);
@@ -59,17 +58,17 @@ TEST_P(MixerUnsaturated, IterativeReproducesRequestThroughG1G2) {
   MixerParameters three;
   three.max_iterations = 3;
   const MixerResult after_three = Mixer(vehicle, three).Mix(c.torque_B, c.thrust_mps2);
-  EXPECT_NEAR(after_three.applied_torque_B.z(), c.torque_B.z(), 1e-3 * std::abs(c.torque_B.z()) + 1e-12);
+  EXPECT_NEAR(after_three.applied_torque_B.z(), c.torque_B.z(),
+              1e-3 * std::abs(c.torque_B.z()) + 1e-12);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Requests, MixerUnsaturated,
-    ::testing::Values(MixCase{Eigen::Vector3d::Zero(), 9.81},
-                      MixCase{Eigen::Vector3d(0.05, -0.03, 0.004), 9.81},
-                      MixCase{Eigen::Vector3d(-0.1, 0.08, -0.01), 12.0},
-                      MixCase{Eigen::Vector3d(0.0, 0.0, 0.03), 9.81},
-                      MixCase{Eigen::Vector3d(0.12, 0.1, 0.02), 18.0},
-                      MixCase{Eigen::Vector3d(0.01, 0.0, -0.005), 3.0}));
+INSTANTIATE_TEST_SUITE_P(Requests, MixerUnsaturated,
+                         ::testing::Values(MixCase{Eigen::Vector3d::Zero(), 9.81},
+                                           MixCase{Eigen::Vector3d(0.05, -0.03, 0.004), 9.81},
+                                           MixCase{Eigen::Vector3d(-0.1, 0.08, -0.01), 12.0},
+                                           MixCase{Eigen::Vector3d(0.0, 0.0, 0.03), 9.81},
+                                           MixCase{Eigen::Vector3d(0.12, 0.1, 0.02), 18.0},
+                                           MixCase{Eigen::Vector3d(0.01, 0.0, -0.005), 3.0}));
 
 TEST(Mixer, OneShotHasYawErrorIterativeDoesNot) {
   const VehicleParameters vehicle;

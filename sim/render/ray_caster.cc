@@ -1,0 +1,338 @@
+#include "sim/render/ray_caster.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace aperture::sim {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kMinT = 1e-9;  // ignore hits at the ray origin [m]
+constexpr size_t kMaxCachedCameras = 4;
+// LED blob: window half-width and ground-truth mask radius in sigmas.
+constexpr double kLedWindowSigmas = 4.5;
+constexpr double kLedMaskSigmas = 2.0;
+
+float Luminance(const Rgb& c) { return 0.299f * c.x() + 0.587f * c.y() + 0.114f * c.z(); }
+
+// One non-LED object prepared for a frame: everything in or relative to the camera frame C.
+struct FrameObject {
+  const Primitive* primitive;
+  const Material* material;
+  int id;
+  Eigen::Matrix3d R_OC;
+  Eigen::Vector3d p_OC;          // camera centre in O
+  Eigen::Vector3d to_light_O;    // unit vector towards the light, in O
+  bool bounded;
+  Eigen::Vector3d center_C;      // bounding sphere centre in C
+  double center_sq;
+  double radius;
+  double radius_sq;
+};
+
+struct FrameContext {
+  std::vector<FrameObject> objects;
+  Eigen::Matrix3d R_WC;
+};
+
+// Nearest hit along the unit ray d_C from the camera centre with t < t_max; returns the index in
+// objects (or -1) and fills *hit. Tries `hint` first so its hit tightens t for the early-outs.
+int TraceRay(const Eigen::Vector3d& d_C, const std::vector<FrameObject>& objects, int hint,
+             double t_max, LocalHit* hit) {
+  int best = -1;
+  double best_t = t_max;
+  LocalHit candidate;
+  auto test = [&](int i) {
+    const FrameObject& f = objects[static_cast<size_t>(i)];
+    if (f.bounded) {
+      const double tca = f.center_C.dot(d_C);
+      if (tca + f.radius < 0.0 || tca - f.radius >= best_t) return;
+      if (f.center_sq - tca * tca > f.radius_sq) return;
+    }
+    if (IntersectPrimitive(*f.primitive, f.p_OC, f.R_OC * d_C, kMinT, best_t, &candidate)) {
+      best_t = candidate.t_m;
+      best = i;
+      *hit = candidate;
+    }
+  };
+  const int n = static_cast<int>(objects.size());
+  if (hint >= 0) test(hint);
+  for (int i = 0; i < n; ++i) {
+    if (i != hint) test(i);
+  }
+  return best;
+}
+
+Rgb Shade(const Scene& scene, const FrameContext& frame, const Eigen::Vector3d& d_C, int index,
+          const LocalHit& hit) {
+  if (index < 0) return scene.sky.Radiance(frame.R_WC * d_C);
+  const FrameObject& f = frame.objects[static_cast<size_t>(index)];
+  Eigen::Vector3d n_O = hit.n_O;
+  if (n_O.dot(f.R_OC * d_C) > 0.0) n_O = -n_O;  // two-sided: the side facing the camera
+  const float lambert = static_cast<float>(std::max(0.0, n_O.dot(f.to_light_O)));
+  return f.material->Albedo(hit.uv_m) *
+         (scene.lighting.ambient + scene.lighting.directional * lambert);
+}
+
+// Mass of N(mu, sigma^2) in [i - 0.5, i + 0.5] for i = first .. first + n - 1.
+std::vector<double> PixelIntegrals(double mu, double sigma, int first, int n) {
+  std::vector<double> w(static_cast<size_t>(n));
+  const double k = 1.0 / (std::sqrt(2.0) * sigma);
+  for (int j = 0; j < n; ++j) {
+    const double x = first + j;
+    w[static_cast<size_t>(j)] = 0.5 * (std::erf((x + 0.5 - mu) * k) - std::erf((x - 0.5 - mu) * k));
+  }
+  return w;
+}
+
+Eigen::Vector3d AnyPerpendicular(const Eigen::Vector3d& v) {
+  const Eigen::Vector3d a = std::abs(v.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  return v.cross(a).normalized();
+}
+
+}  // namespace
+
+// Unit rays in C for every pixel centre and (supersampling > 1) every sub-pixel sample.
+struct RayCaster::RayTable {
+  std::string model_name;
+  int width = 0;
+  int height = 0;
+  int supersampling = 1;
+  std::array<Eigen::Vector3d, 5> fingerprint;
+  std::vector<Eigen::Vector3f> center;  // width * height
+  std::vector<Eigen::Vector3f> sub;     // width * height * k * k (empty for k = 1)
+};
+
+namespace {
+
+std::array<Eigen::Vector3d, 5> Fingerprint(const perception::CameraModel& camera) {
+  const double w = camera.width() - 1.0;
+  const double h = camera.height() - 1.0;
+  return {camera.Unproject({0.0, 0.0}), camera.Unproject({w, 0.0}), camera.Unproject({0.0, h}),
+          camera.Unproject({w, h}), camera.Unproject({0.37 * w, 0.61 * h})};
+}
+
+}  // namespace
+
+RayCaster::RayCaster() = default;
+RayCaster::~RayCaster() = default;
+
+const RayCaster::RayTable& RayCaster::Rays(const perception::CameraModel& camera,
+                                           int supersampling) {
+  const auto fingerprint = Fingerprint(camera);
+  for (size_t i = 0; i < ray_cache_.size(); ++i) {
+    const RayTable& t = *ray_cache_[i];
+    if (t.width == camera.width() && t.height == camera.height() &&
+        t.supersampling == supersampling && t.model_name == camera.model_name() &&
+        t.fingerprint == fingerprint) {
+      std::rotate(ray_cache_.begin() + static_cast<long>(i),
+                  ray_cache_.begin() + static_cast<long>(i) + 1, ray_cache_.end());
+      return *ray_cache_.back();
+    }
+  }
+  auto table = std::make_unique<RayTable>();
+  table->model_name = camera.model_name();
+  table->width = camera.width();
+  table->height = camera.height();
+  table->supersampling = supersampling;
+  table->fingerprint = fingerprint;
+  const int w = camera.width();
+  const int k = supersampling;
+  table->center.resize(static_cast<size_t>(w) * camera.height());
+  if (k > 1) table->sub.resize(table->center.size() * static_cast<size_t>(k * k));
+  tbb::parallel_for(tbb::blocked_range<int>(0, camera.height()), [&](const tbb::blocked_range<int>& rows) {
+    for (int y = rows.begin(); y < rows.end(); ++y) {
+      for (int x = 0; x < w; ++x) {
+        const size_t p = static_cast<size_t>(y) * w + x;
+        table->center[p] = camera.Unproject({double(x), double(y)}).normalized().cast<float>();
+        for (int sy = 0; sy < k && k > 1; ++sy) {
+          for (int sx = 0; sx < k; ++sx) {
+            // One sample per cell of a k x k grid, shifted inside its cell so that all k^2
+            // samples have distinct x and distinct y offsets (n-rooks within strata): edge
+            // coverage of near-axis-aligned edges is then quantized in k^2 steps, not k.
+            const double ox = (sx * k + sy + 0.5) / (k * k);
+            const double oy = (sy * k + sx + 0.5) / (k * k);
+            const Eigen::Vector2d px(x - 0.5 + ox, y - 0.5 + oy);
+            table->sub[p * k * k + static_cast<size_t>(sy * k + sx)] =
+                camera.Unproject(px).normalized().cast<float>();
+          }
+        }
+      }
+    }
+  });
+  if (ray_cache_.size() >= kMaxCachedCameras) ray_cache_.erase(ray_cache_.begin());
+  ray_cache_.push_back(std::move(table));
+  return *ray_cache_.back();
+}
+
+RenderOutput RayCaster::Render(const Scene& scene, const perception::CameraModel& camera,
+                               const Eigen::Isometry3d& T_WC, const RenderOptions& options) {
+  RenderOutput output;
+  Render(scene, camera, T_WC, options, &output);
+  return output;
+}
+
+void RayCaster::Render(const Scene& scene, const perception::CameraModel& camera,
+                       const Eigen::Isometry3d& T_WC, const RenderOptions& options,
+                       RenderOutput* output) {
+  if (options.supersampling < 1) {
+    throw std::invalid_argument("RenderOptions.supersampling = " +
+                                std::to_string(options.supersampling) + " must be >= 1");
+  }
+  if (!T_WC.matrix().allFinite()) {
+    throw std::invalid_argument("RayCaster::Render: T_WC is not finite; pass a valid camera pose");
+  }
+  const int w = camera.width();
+  const int h = camera.height();
+  const int k = options.supersampling;
+  const RayTable& rays = Rays(camera, k);
+
+  // Per-frame preparation: objects into the camera frame.
+  FrameContext frame;
+  frame.R_WC = T_WC.linear();
+  const Eigen::Vector3d to_light_W = -scene.lighting.direction_W.normalized();
+  std::vector<const SceneObject*> leds;
+  for (const SceneObject& object : scene.objects()) {
+    if (std::holds_alternative<Led>(object.primitive)) {
+      leds.push_back(&object);
+      continue;
+    }
+    FrameObject f;
+    f.primitive = &object.primitive;
+    f.material = &object.material;
+    f.id = object.id;
+    const Eigen::Isometry3d T_OC = object.T_WO.inverse() * T_WC;
+    f.R_OC = T_OC.linear();
+    f.p_OC = T_OC.translation();
+    f.to_light_O = object.T_WO.linear().transpose() * to_light_W;
+    f.radius = BoundingRadius(object.primitive);
+    f.bounded = std::isfinite(f.radius);
+    f.center_C = T_WC.inverse() * (object.T_WO * BoundingCenter(object.primitive));
+    f.center_sq = f.center_C.squaredNorm();
+    f.radius_sq = f.radius * f.radius;
+    frame.objects.push_back(f);
+  }
+
+  const int image_type = options.color ? CV_32FC3 : CV_32FC1;
+  output->radiance.create(h, w, image_type);
+  if (options.ground_truth) {
+    output->depth_C.create(h, w, CV_32FC1);
+    output->object_id.create(h, w, CV_32SC1);
+  } else {
+    output->depth_C.release();
+    output->object_id.release();
+  }
+  const float scale = options.reflectance_scale;
+  const float inv_samples = 1.0f / static_cast<float>(k * k);
+
+  tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& row_range) {
+    for (int y = row_range.begin(); y < row_range.end(); ++y) {
+      int hint = -1;  // per row, so results never depend on how rows are split among threads
+      float* gray = options.color ? nullptr : output->radiance.ptr<float>(y);
+      cv::Vec3f* bgr = options.color ? output->radiance.ptr<cv::Vec3f>(y) : nullptr;
+      float* depth = options.ground_truth ? output->depth_C.ptr<float>(y) : nullptr;
+      int32_t* ids = options.ground_truth ? output->object_id.ptr<int32_t>(y) : nullptr;
+      LocalHit hit;
+      for (int x = 0; x < w; ++x) {
+        const size_t p = static_cast<size_t>(y) * w + x;
+        Rgb sum = Rgb::Zero();
+        if (k == 1) {
+          const Eigen::Vector3d d = rays.center[p].cast<double>();
+          const int index = TraceRay(d, frame.objects, hint, kInf, &hit);
+          sum = Shade(scene, frame, d, index, hit);
+          if (depth) {
+            depth[x] = index < 0 ? std::numeric_limits<float>::infinity()
+                                 : static_cast<float>(hit.t_m * d.z());
+            ids[x] = index < 0 ? 0 : frame.objects[static_cast<size_t>(index)].id;
+          }
+          hint = index;
+        } else {
+          for (int s = 0; s < k * k; ++s) {
+            const Eigen::Vector3d d = rays.sub[p * k * k + static_cast<size_t>(s)].cast<double>();
+            const int index = TraceRay(d, frame.objects, hint, kInf, &hit);
+            sum += Shade(scene, frame, d, index, hit);
+            hint = index;
+          }
+          sum *= inv_samples;
+          if (depth) {
+            const Eigen::Vector3d d = rays.center[p].cast<double>();
+            const int index = TraceRay(d, frame.objects, hint, kInf, &hit);
+            depth[x] = index < 0 ? std::numeric_limits<float>::infinity()
+                                 : static_cast<float>(hit.t_m * d.z());
+            ids[x] = index < 0 ? 0 : frame.objects[static_cast<size_t>(index)].id;
+          }
+        }
+        sum *= scale;
+        if (gray) {
+          gray[x] = Luminance(sum);
+        } else {
+          bgr[x] = cv::Vec3f(sum.z(), sum.y(), sum.x());
+        }
+      }
+    }
+  });
+
+  // LEDs: exact pixel integrals of an isotropic Gaussian around the projected centre.
+  const Eigen::Isometry3d T_CW = T_WC.inverse();
+  for (const SceneObject* led_object : leds) {
+    const Led& led = std::get<Led>(led_object->primitive);
+    const Eigen::Vector3d p_C = T_CW * led_object->T_WO.translation();
+    Eigen::Vector2d px;
+    if (!camera.Project(p_C, &px)) continue;
+    const double distance = p_C.norm();
+    if (!(distance > led.radius_m)) continue;  // camera inside the emitter
+    LocalHit occluder;
+    if (TraceRay(p_C / distance, frame.objects, -1, distance - led.radius_m, &occluder) >= 0) {
+      continue;
+    }
+    double projected_radius_px = 0.0;
+    const Eigen::Vector3d e1 = AnyPerpendicular(p_C);
+    const Eigen::Vector3d e2 = p_C.normalized().cross(e1);
+    int projected = 0;
+    for (const Eigen::Vector3d& e : {e1, e2}) {
+      Eigen::Vector2d px_edge;
+      if (camera.Project(p_C + led.radius_m * e, &px_edge)) {
+        projected_radius_px += (px_edge - px).norm();
+        ++projected;
+      }
+    }
+    if (projected > 0) projected_radius_px /= projected;
+    const double sigma = std::max(options.min_led_sigma_px, 0.5 * projected_radius_px);
+    const double energy = led.intensity / (distance * distance);
+    const int x0 = std::max(0, static_cast<int>(std::floor(px.x() - kLedWindowSigmas * sigma)));
+    const int x1 = std::min(w - 1, static_cast<int>(std::ceil(px.x() + kLedWindowSigmas * sigma)));
+    const int y0 = std::max(0, static_cast<int>(std::floor(px.y() - kLedWindowSigmas * sigma)));
+    const int y1 = std::min(h - 1, static_cast<int>(std::ceil(px.y() + kLedWindowSigmas * sigma)));
+    if (x0 > x1 || y0 > y1) continue;
+    const std::vector<double> wx = PixelIntegrals(px.x(), sigma, x0, x1 - x0 + 1);
+    const std::vector<double> wy = PixelIntegrals(px.y(), sigma, y0, y1 - y0 + 1);
+    const float gray_value = Luminance(led.color);
+    const float depth_led = static_cast<float>(p_C.z());
+    for (int y = y0; y <= y1; ++y) {
+      for (int x = x0; x <= x1; ++x) {
+        const float e = static_cast<float>(energy * wx[static_cast<size_t>(x - x0)] *
+                                           wy[static_cast<size_t>(y - y0)]);
+        if (options.color) {
+          output->radiance.at<cv::Vec3f>(y, x) +=
+              cv::Vec3f(e * led.color.z(), e * led.color.y(), e * led.color.x());
+        } else {
+          output->radiance.at<float>(y, x) += e * gray_value;
+        }
+        if (options.ground_truth &&
+            std::hypot(x - px.x(), y - px.y()) <= kLedMaskSigmas * sigma &&
+            depth_led < output->depth_C.at<float>(y, x)) {
+          output->depth_C.at<float>(y, x) = depth_led;
+          output->object_id.at<int32_t>(y, x) = led_object->id;
+        }
+      }
+    }
+  }
+}
+
+}  // namespace aperture::sim

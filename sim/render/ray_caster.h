@@ -1,0 +1,75 @@
+#pragma once
+// CPU ray-casting renderer. For a camera model (perception/camera/camera_model.h; any model, e.g.
+// a 180 deg fisheye, since each pixel's ray is CameraModel::Unproject) and a camera pose T_WC it
+// renders the scene's linear radiance plus per-pixel ground truth:
+//   radiance   CV_32FC1 (luminance 0.299 R + 0.587 G + 0.114 B) or CV_32FC3 (BGR), linear,
+//              1.0 = white albedo under full light; LEDs may exceed 1 (the sensor clips).
+//   depth_C    CV_32FC1, z_C of the surface seen through the pixel centre [m]; +inf for sky.
+//   object_id  CV_32SC1, Scene object id through the pixel centre (LEDs: within 2 sigma of the
+//              blob centre), 0 for sky.
+// Shading: Lambertian, Scene::lighting (ambient + one directional light, no shadows); sky from
+// Scene::sky. With supersampling k, each pixel averages k x k rays, one per cell of a k x k
+// sub-pixel grid with all x and all y offsets distinct (box filter; ground truth stays on the
+// pixel centre ray).
+//
+// LEDs (Led primitives) are drawn as an isotropic Gaussian radiance distribution centred on the
+// projected emitter centre, integrated exactly over each pixel's square footprint (erf
+// differences: the limit of infinite supersampling), so the blob's intensity-weighted centroid
+// is the projected centre (bias ~exp(-2 pi^2 sigma^2) px, < 1e-3 px for sigma >= 0.6 px).
+// sigma = max(min_led_sigma_px, half the projected emitter radius); energy = intensity / d^2
+// (d: camera-emitter distance [m]). An LED is drawn when its centre projects and no surface is
+// between camera and emitter.
+//
+// Speed: per-pixel rays are computed once per camera (cached, keyed by the model's name, size
+// and a fingerprint of its rays), per frame each object gets its transform into the camera frame
+// and a bounding sphere; rows run in parallel (oneTBB) and each row first tries the object hit
+// by its previous pixel. Output is independent of the thread count (rows are independent).
+// A RayCaster is not safe for concurrent Render calls (the ray cache); use one per thread.
+#include <Eigen/Geometry>
+#include <memory>
+#include <opencv2/core/mat.hpp>
+#include <string>
+#include <vector>
+
+#include "perception/camera/camera_model.h"
+#include "sim/scene/scene.h"
+
+namespace aperture::sim {
+
+struct RenderOptions {
+  bool color = false;      // false: gray CV_32FC1; true: BGR CV_32FC3
+  int supersampling = 1;   // k >= 1: k x k rays per pixel (2-3 for sub-pixel-accurate edges)
+  bool ground_truth = true;  // fill depth_C and object_id
+  // Multiplies surface and sky radiance, not LEDs: < 1 for infrared mode (dark scene, bright
+  // emitters; camera_effects.h).
+  float reflectance_scale = 1.0f;
+  double min_led_sigma_px = 0.6;  // floor of the LED blob sigma (optics blur of a point source)
+};
+
+struct RenderOutput {
+  cv::Mat radiance;
+  cv::Mat depth_C;
+  cv::Mat object_id;
+};
+
+class RayCaster {
+ public:
+  RayCaster();
+  ~RayCaster();
+
+  // Renders into *output (buffers reused when their size and type match). Throws
+  // std::invalid_argument for supersampling < 1 or a non-finite T_WC.
+  void Render(const Scene& scene, const perception::CameraModel& camera,
+              const Eigen::Isometry3d& T_WC, const RenderOptions& options,
+              RenderOutput* output);
+  RenderOutput Render(const Scene& scene, const perception::CameraModel& camera,
+                      const Eigen::Isometry3d& T_WC, const RenderOptions& options = {});
+
+ private:
+  struct RayTable;
+  const RayTable& Rays(const perception::CameraModel& camera, int supersampling);
+
+  std::vector<std::unique_ptr<RayTable>> ray_cache_;  // most recently used last
+};
+
+}  // namespace aperture::sim

@@ -1,0 +1,106 @@
+#include "sim/scene/apriltag_object.h"
+
+#include <apriltag/apriltag.h>
+#include <apriltag/tag16h5.h>
+#include <apriltag/tag25h9.h>
+#include <apriltag/tag36h11.h>
+#include <apriltag/tagCircle21h7.h>
+#include <apriltag/tagCircle49h12.h>
+#include <apriltag/tagCustom48h12.h>
+#include <apriltag/tagStandard41h12.h>
+#include <apriltag/tagStandard52h13.h>
+
+#include <memory>
+#include <opencv2/imgproc.hpp>
+#include <stdexcept>
+
+namespace aperture::sim {
+namespace {
+
+struct FamilyFunctions {
+  const char* name;
+  apriltag_family_t* (*create)();
+  void (*destroy)(apriltag_family_t*);
+};
+
+constexpr FamilyFunctions kFamilies[] = {
+    {"tag36h11", tag36h11_create, tag36h11_destroy},
+    {"tag25h9", tag25h9_create, tag25h9_destroy},
+    {"tag16h5", tag16h5_create, tag16h5_destroy},
+    {"tagStandard41h12", tagStandard41h12_create, tagStandard41h12_destroy},
+    {"tagStandard52h13", tagStandard52h13_create, tagStandard52h13_destroy},
+    {"tagCircle21h7", tagCircle21h7_create, tagCircle21h7_destroy},
+    {"tagCircle49h12", tagCircle49h12_create, tagCircle49h12_destroy},
+    {"tagCustom48h12", tagCustom48h12_create, tagCustom48h12_destroy},
+};
+
+using FamilyPtr = std::unique_ptr<apriltag_family_t, void (*)(apriltag_family_t*)>;
+
+FamilyPtr CreateFamily(const std::string& family) {
+  for (const FamilyFunctions& f : kFamilies) {
+    if (family == f.name) return FamilyPtr(f.create(), f.destroy);
+  }
+  std::string known;
+  for (const FamilyFunctions& f : kFamilies) known += std::string(known.empty() ? "" : ", ") + f.name;
+  throw std::invalid_argument("AprilTag family '" + family + "' unknown; use one of " + known);
+}
+
+}  // namespace
+
+cv::Mat MakeAprilTagImage(const std::string& family, int id) {
+  const FamilyPtr fam = CreateFamily(family);
+  if (id < 0 || id >= static_cast<int>(fam->ncodes)) {
+    throw std::invalid_argument("AprilTag id " + std::to_string(id) + " outside family " + family +
+                                " (ids 0.." + std::to_string(fam->ncodes - 1) + ")");
+  }
+  const int total = fam->total_width;
+  cv::Mat image(total, total, CV_8UC1, cv::Scalar(0));
+  // White ring just outside the black border (inside it for reversed-border families).
+  const int white_border_width = fam->width_at_border + (fam->reversed_border ? 0 : 2);
+  const int white_border_start = (total - white_border_width) / 2;
+  cv::rectangle(image, cv::Rect(white_border_start, white_border_start, white_border_width,
+                                white_border_width),
+                cv::Scalar(255), 1);
+  // Data bits: most significant bit first, at (bit_x, bit_y) from the black border's corner.
+  const int border_start = (total - fam->width_at_border) / 2;
+  const uint64_t code = fam->codes[id];
+  for (uint32_t i = 0; i < fam->nbits; ++i) {
+    if (code & (uint64_t{1} << (fam->nbits - i - 1))) {
+      image.at<uint8_t>(static_cast<int>(fam->bit_y[i]) + border_start,
+                        static_cast<int>(fam->bit_x[i]) + border_start) = 255;
+    }
+  }
+  return image;
+}
+
+double AprilTagPatternSize(const std::string& family, double tag_size_m) {
+  const FamilyPtr fam = CreateFamily(family);
+  return tag_size_m * fam->total_width / fam->width_at_border;
+}
+
+SceneObject MakeAprilTagObject(const std::string& family, int id, double tag_size_m,
+                               const Eigen::Isometry3d& T_WO) {
+  if (!(tag_size_m > 0.0)) {
+    throw std::invalid_argument("MakeAprilTagObject: tag_size_m = " + std::to_string(tag_size_m) +
+                                " must be > 0");
+  }
+  const cv::Mat bits = MakeAprilTagImage(family, id);
+  cv::Mat rgb(bits.size(), CV_32FC3);
+  for (int y = 0; y < bits.rows; ++y) {
+    for (int x = 0; x < bits.cols; ++x) {
+      const float albedo = bits.at<uint8_t>(y, x) ? 0.95f : 0.05f;
+      rgb.at<cv::Vec3f>(y, x) = cv::Vec3f(albedo, albedo, albedo);
+    }
+  }
+  const double pattern_m = AprilTagPatternSize(family, tag_size_m);
+  SceneObject object;
+  object.name = "tag" + std::to_string(id);
+  object.primitive = Rectangle{Eigen::Vector2d(pattern_m, pattern_m), {}, {}};
+  object.material.texture = std::make_shared<const Texture>(
+      rgb, pattern_m / bits.cols, Texture::Filter::kNearest, Texture::Wrap::kClamp);
+  object.material.color = Rgb::Ones();
+  object.T_WO = T_WO;
+  return object;
+}
+
+}  // namespace aperture::sim
