@@ -1,24 +1,191 @@
+// aperture run: perception front ends on a camera, a video or an image sequence.
+//
+//   aperture run --source DIR|VIDEO|camera:N --frontends image_quality --out OUT [--video]
+//
+// Writes OUT/summary.json (inputs, effective config, frame counts, skipped frames, per-node
+// timing, metric statistics), OUT/frames.csv (one row per frame: t_s, index, every node metric),
+// OUT/report.html (metric plots, timing, key frames with overlays) and with --video the overlay
+// video OUT/overlay.mp4 (or .avi).
+#include <algorithm>
+#include <filesystem>
 #include <iostream>
+#include <map>
+#include <memory>
+#include <optional>
 
+#include "apps/command_support.h"
 #include "apps/commands.h"
+#include "apps/run_report.h"
+#include "output/csv_writer.h"
+#include "output/progress_bar.h"
+#include "output/video_writer.h"
+#include "perception/camera/calibration_io.h"
+#include "perception/graph/builtin_front_ends.h"
+#include "perception/graph/front_end_registry.h"
+#include "perception/graph/parallel_executor.h"
+#include "perception/graph/serial_executor.h"
+#include "perception/io/open_frame_source.h"
 
 namespace aperture::apps {
+namespace {
 
-void AddRunCommand(CLI::App& app, int* exit_code) {
-  auto* command = app.add_subcommand("run", "Run perception front ends on a camera or sequence");
-  command->allow_extras();
-  command->callback([exit_code] {
-    std::cerr << "aperture run: not available yet.\n";
-    *exit_code = 3;
-  });
+struct RunOptions {
+  CommonOptions common;
+  std::string source;
+  double fps = 0.0;
+  bool color = false;
+  bool skip_bad_frames = false;
+  std::string front_ends = "image_quality";
+  std::string calibration_path;
+  bool parallel = false;
+  bool video = false;
+  int max_frames = 0;
+};
+
+void RunFrontEnds(const RunOptions& options, output::OutputFolder& out) {
+  const config::ConfigTree tree = LoadConfig(options.common, "");
+  const std::vector<std::string> front_end_names =
+      perception::SplitFrontEndList(options.front_ends);
+  perception::FrontEndRegistry registry;
+  perception::RegisterBuiltinFrontEnds(registry);
+  // Each front end reads the config section named after it; any other section is a typo.
+  config::ParamReader root = tree.Reader();
+  perception::FrameGraph graph = registry.BuildGraph(front_end_names, root);
+  root.RejectUnknownKeys();
+
+  perception::FrameSourceOptions source_options;
+  source_options.fps = options.fps;
+  source_options.color_mode =
+      options.color ? perception::ColorMode::kColor : perception::ColorMode::kGray;
+  source_options.skip_bad_frames = options.skip_bad_frames;
+  std::unique_ptr<perception::FrameSource> source =
+      perception::OpenFrameSource(options.source, source_options);
+  std::optional<perception::CameraCalibration> calibration;
+  if (!options.calibration_path.empty()) {
+    calibration = perception::LoadCameraCalibration(options.calibration_path);
+  }
+
+  nlohmann::json& summary = out.summary();
+  summary["command"] = "run";
+  summary["inputs"] = {{"source", options.source},
+                       {"source_description", source->Describe()},
+                       {"front_ends", front_end_names},
+                       {"calibration", options.calibration_path},
+                       {"executor", options.parallel ? "parallel" : "serial"}};
+  summary["config"] = nlohmann::json::parse(tree.ToJson());
+
+  std::unique_ptr<perception::FrameGraphExecutor> executor;
+  if (options.parallel) {
+    executor = std::make_unique<perception::ParallelExecutor>(graph);
+  } else {
+    executor = std::make_unique<perception::SerialExecutor>(graph);
+  }
+  std::size_t expected = source->SizeHint().value_or(0);
+  if (options.max_frames > 0 && (expected == 0 || expected > size_t(options.max_frames))) {
+    expected = options.max_frames;
+  }
+  output::ProgressBar progress("frames", expected);
+  std::unique_ptr<output::CsvWriter> csv;
+  std::vector<std::string> metric_names;
+  std::unique_ptr<output::VideoWriter> video;
+  RunRecord record;
+  std::optional<perception::FrameSlots> slots;
+  while (options.max_frames <= 0 || record.frame_count() < size_t(options.max_frames)) {
+    std::optional<perception::Frame> frame = source->Next();
+    if (!frame) break;
+    if (!slots) {
+      slots = graph.MakeSlots(*frame);
+      if (calibration) {
+        perception::CheckCalibrationImageSize(*calibration, frame->image.cols, frame->image.rows);
+      }
+    }
+    executor->Run(*frame, *slots);
+    const std::map<std::string, double> metrics = graph.CollectMetrics(*slots);
+    if (!csv) {
+      std::vector<std::string> columns{"t_s", "index"};
+      for (const auto& [name, value] : metrics) metric_names.push_back(name);
+      columns.insert(columns.end(), metric_names.begin(), metric_names.end());
+      csv = std::make_unique<output::CsvWriter>(out.Path("frames.csv"), columns);
+    }
+    std::vector<double> row{frame->t_s, double(frame->index)};
+    for (const std::string& name : metric_names) {
+      const auto it = metrics.find(name);
+      if (it == metrics.end()) {
+        throw std::logic_error("front end metric '" + name + "' missing at frame " +
+                               std::to_string(frame->index) + " (metrics must be emitted every frame)");
+      }
+      row.push_back(it->second);
+    }
+    csv->WriteRow(row);
+    const cv::Mat overlay = graph.RenderOverlay(*slots);
+    if (options.video) {
+      if (!video) {
+        // Sequences without a rate play back at 30 Hz, a typical camera rate.
+        video = std::make_unique<output::VideoWriter>(out.Path("overlay"),
+                                                      options.fps > 0 ? options.fps : 30.0);
+      }
+      video->Write(overlay);
+    }
+    record.Add(*frame, row, overlay, expected);
+    progress.Update(record.frame_count());
+  }
+  progress.Finish();
+  if (record.frame_count() == 0) {
+    throw std::runtime_error("source '" + options.source + "' produced no frames (" +
+                             source->Describe() + ")");
+  }
+  csv->Close();
+
+  summary["frames"] = record.frame_count();
+  summary["skipped_frames"] = source->SkippedFrames().size();
+  nlohmann::json skipped = nlohmann::json::array();
+  for (const auto& skip : source->SkippedFrames()) {
+    skipped.push_back({{"item", skip.item}, {"reason", skip.reason}});
+  }
+  summary["skipped"] = skipped;
+  summary["timing"] = TimingJson(executor->Timing(), executor->FrameTiming());
+  summary["metrics"] = record.MetricStatistics(metric_names);
+  nlohmann::json outputs = {{"csv", "frames.csv"}, {"report", "report.html"}};
+  if (video) {
+    if (const std::optional<std::string> path = video->Close()) {
+      outputs["video"] = std::filesystem::path(*path).filename().string();
+    }
+  }
+  summary["outputs"] = outputs;
+  WriteRunReport(out, record, metric_names);
 }
 
-void AddCalibrateCommand(CLI::App& app, int* exit_code) {
-  auto* command = app.add_subcommand("calibrate", "Calibrate a camera from pattern images");
-  command->allow_extras();
-  command->callback([exit_code] {
-    std::cerr << "aperture calibrate: not available yet.\n";
-    *exit_code = 3;
+}  // namespace
+
+void AddRunCommand(CLI::App& app, int* exit_code) {
+  auto options = std::make_shared<RunOptions>();
+  CLI::App* command =
+      app.add_subcommand("run", "Run perception front ends on a camera, video or image folder");
+  command->add_option("--source", options->source,
+                      "Image folder, video file, or camera:N (device index)")
+      ->required();
+  command->add_option("--frontends", options->front_ends,
+                      "Comma-separated front ends to run (known: image_quality)");
+  command->add_option("--fps", options->fps,
+                      "Frame rate [Hz] for sources without timestamps")
+      ->check(CLI::PositiveNumber);
+  command->add_flag("--color", options->color, "Read colour (BGR) frames instead of gray");
+  command->add_flag("--skip-bad-frames", options->skip_bad_frames,
+                    "Skip corrupt, truncated or wrong-size frames with a warning (counted in "
+                    "summary.json) instead of failing");
+  command->add_option("--calib", options->calibration_path,
+                      "Camera calibration (OpenCV, ROS camera_info or Kalibr YAML)")
+      ->check(CLI::ExistingFile);
+  command->add_flag("--parallel", options->parallel,
+                    "Run independent front ends concurrently (oneTBB)");
+  command->add_flag("--video", options->video, "Write the overlay video");
+  command->add_option("--max-frames", options->max_frames, "Stop after N frames (0 = all)")
+      ->check(CLI::NonNegativeNumber);
+  AddCommonOptions(command, &options->common);
+  command->callback([options, exit_code] {
+    output::OutputFolder out(options->common.out_dir);
+    output::RunAndWriteSummary(out, [&] { RunFrontEnds(*options, out); });
+    *exit_code = 0;
   });
 }
 

@@ -129,7 +129,8 @@ CareResult SolveContinuousAlgebraicRiccati(const Eigen::MatrixXd& A, const Eigen
   RequireSymmetric(R, "R");
   const Eigen::LLT<Eigen::MatrixXd> R_llt(R);
   if (R_llt.info() != Eigen::Success) {
-    throw std::invalid_argument("CARE: R must be positive definite (give every input a weight > 0)");
+    throw std::invalid_argument(
+        "CARE: R must be positive definite (give every input a weight > 0)");
   }
   if (Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(Q, Eigen::EigenvaluesOnly)
           .eigenvalues()
@@ -148,7 +149,8 @@ CareResult SolveContinuousAlgebraicRiccati(const Eigen::MatrixXd& A, const Eigen
   for (int k = 0; k < options.max_sign_iterations; ++k) {
     const Eigen::PartialPivLU<Eigen::MatrixXd> lu(Z);
     const Eigen::VectorXd lu_diagonal = lu.matrixLU().diagonal().cwiseAbs();
-    if (!(lu_diagonal.minCoeff() > std::numeric_limits<double>::epsilon() * lu_diagonal.maxCoeff())) {
+    if (!(lu_diagonal.minCoeff() >
+          std::numeric_limits<double>::epsilon() * lu_diagonal.maxCoeff())) {
       // Z singular: H has an eigenvalue at (or numerically on) the imaginary axis.
       result.sign_iterations = k;
       result.status = CareStatus::kNoStabilizingSolution;
@@ -169,8 +171,8 @@ CareResult SolveContinuousAlgebraicRiccati(const Eigen::MatrixXd& A, const Eigen
     }
   }
   if (!sign_converged) {
-    result.status = Z.allFinite() ? CareStatus::kMaxIterationsReached
-                                  : CareStatus::kNoStabilizingSolution;
+    result.status =
+        Z.allFinite() ? CareStatus::kMaxIterationsReached : CareStatus::kNoStabilizingSolution;
     result.solve_time_s = seconds_since_start();
     return result;
   }

@@ -34,19 +34,19 @@ struct CareOptions {
 };
 
 enum class CareStatus {
-  kConverged,                // P is the stabilizing solution, A - BK is Hurwitz.
-  kNoStabilizingSolution,    // H has eigenvalues on (or numerically at) the imaginary axis, or
-                             // (A, B) is not stabilizable / (A, Q) has unobservable modes on it.
-  kMaxIterationsReached,     // sign iteration did not converge within max_sign_iterations.
+  kConverged,              // P is the stabilizing solution, A - BK is Hurwitz.
+  kNoStabilizingSolution,  // H has eigenvalues on (or numerically at) the imaginary axis, or
+                           // (A, B) is not stabilizable / (A, Q) has unobservable modes on it.
+  kMaxIterationsReached,   // sign iteration did not converge within max_sign_iterations.
 };
 
 std::string ToString(CareStatus status);
 
 struct CareResult {
   CareStatus status = CareStatus::kNoStabilizingSolution;
-  Eigen::MatrixXd P;        // n x n, symmetric
-  Eigen::MatrixXd K;        // m x n, K = R^{-1} B^T P
-  double residual = 0.0;    // Frobenius norm of A^T P + P A - P B R^{-1} B^T P + Q
+  Eigen::MatrixXd P;      // n x n, symmetric
+  Eigen::MatrixXd K;      // m x n, K = R^{-1} B^T P
+  double residual = 0.0;  // Frobenius norm of A^T P + P A - P B R^{-1} B^T P + Q
   // residual / (||A^T P|| + ||P A|| + ||P B R^{-1} B^T P|| + ||Q||) (Frobenius): the residual
   // relative to the size of the terms that cancel; ~1e-16 means solved to round-off.
   double relative_residual = 0.0;
@@ -72,6 +72,7 @@ CareResult SolveContinuousAlgebraicRiccati(const Eigen::MatrixXd& A, const Eigen
 // the complex Schur form of A). Returns std::nullopt when lambda_i(A) + conj(lambda_j(A))
 // (numerically) vanishes for some i, j, i.e. the equation is singular. Throws
 // std::invalid_argument on dimension mismatch or non-finite entries.
-std::optional<Eigen::MatrixXd> SolveContinuousLyapunov(const Eigen::MatrixXd& A, const Eigen::MatrixXd& C);
+std::optional<Eigen::MatrixXd> SolveContinuousLyapunov(const Eigen::MatrixXd& A,
+                                                       const Eigen::MatrixXd& C);
 
 }  // namespace aperture::control

@@ -23,10 +23,9 @@ LowLevelOutput LowLevelController::Step(const ThrustRatesCommand& command,
         "the high-level controller)");
   }
   LowLevelOutput output;
-  output.torque_des_B =
-      params_.body_rate_law == LowLevelControllerParameters::BodyRateLaw::kLqr
-          ? lqr_.ComputeTorque(command, omega_B, estimator_.BodyTorque_B())
-          : proportional_.ComputeTorque(command.omega_des_B, omega_B);
+  output.torque_des_B = params_.body_rate_law == LowLevelControllerParameters::BodyRateLaw::kLqr
+                            ? lqr_.ComputeTorque(command, omega_B, estimator_.BodyTorque_B())
+                            : proportional_.ComputeTorque(command.omega_des_B, omega_B);
   output.mix = mixer_.Mix(output.torque_des_B, command.collective_thrust_mps2);
   output.motor_commands = MotorCommandsFromRotorThrusts(vehicle_, output.mix.command.thrust_N);
   estimator_.Propagate(output.mix.command, dt_s);

@@ -19,15 +19,15 @@ namespace aperture::control {
 
 struct LowLevelControllerParameters {
   enum class BodyRateLaw { kLqr, kProportional };
-  BodyRateLaw body_rate_law = BodyRateLaw::kLqr;       // the thesis' proposal
-  LqrBodyRateParameters lqr;                           // used with kLqr
-  ProportionalBodyRateParameters proportional;         // used with kProportional (low gain)
+  BodyRateLaw body_rate_law = BodyRateLaw::kLqr;  // the thesis' proposal
+  LqrBodyRateParameters lqr;                      // used with kLqr
+  ProportionalBodyRateParameters proportional;    // used with kProportional (low gain)
   MixerParameters mixer;
 };
 
 struct LowLevelOutput {
-  Eigen::Vector3d torque_des_B = Eigen::Vector3d::Zero();  // body-rate law output [N m]
-  MixerResult mix;                                         // thrusts [N] and saturation report
+  Eigen::Vector3d torque_des_B = Eigen::Vector3d::Zero();    // body-rate law output [N m]
+  MixerResult mix;                                           // thrusts [N] and saturation report
   Eigen::Vector4d motor_commands = Eigen::Vector4d::Zero();  // u_i for the ESCs (inverse G.3)
 };
 

@@ -93,10 +93,10 @@ Mixer::Mixer(const VehicleParameters& vehicle, const MixerParameters& params)
     throw std::invalid_argument("MixerParameters.one_shot_torque_coefficient_m must be finite");
   }
   half_sqrt2_arm_m_ = 0.5 * std::sqrt(2.0) * vehicle_.arm_length_m;
-  one_shot_kappa_m_ = params_.one_shot_torque_coefficient_m > 0.0
-                          ? params_.one_shot_torque_coefficient_m
-                          : vehicle_.rotor.TorqueCoefficient(0.25 * vehicle_.mass_kg *
-                                                             vehicle_.gravity_mps2);
+  one_shot_kappa_m_ =
+      params_.one_shot_torque_coefficient_m > 0.0
+          ? params_.one_shot_torque_coefficient_m
+          : vehicle_.rotor.TorqueCoefficient(0.25 * vehicle_.mass_kg * vehicle_.gravity_mps2);
   min_thrust_N_ = vehicle_.rotor_fitness * vehicle_.rotor.MinThrust();
   max_thrust_N_ = vehicle_.rotor_fitness * vehicle_.rotor.MaxThrust();
 }
@@ -161,10 +161,12 @@ void Mixer::SaturatePrioritized(const Eigen::Vector4d& f0, double yaw_torque_des
   }
 }
 
-MixerResult Mixer::Mix(const Eigen::Vector3d& torque_des_B, double collective_thrust_des_mps2) const {
+MixerResult Mixer::Mix(const Eigen::Vector3d& torque_des_B,
+                       double collective_thrust_des_mps2) const {
   if (!torque_des_B.allFinite() || !std::isfinite(collective_thrust_des_mps2)) {
-    throw std::invalid_argument("Mixer::Mix: torque_des_B and collective_thrust_des_mps2 must be "
-                                "finite (check the body-rate controller output)");
+    throw std::invalid_argument(
+        "Mixer::Mix: torque_des_B and collective_thrust_des_mps2 must be "
+        "finite (check the body-rate controller output)");
   }
   MixerResult result;
   const double sum_N = vehicle_.mass_kg * collective_thrust_des_mps2;  // (G.2)

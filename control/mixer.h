@@ -10,16 +10,16 @@
 //    assured magnitude), then collective thrust, then clip. Plain clipping as the baseline.
 //
 // Rotor fitness (G.2 text): true thrust f_i = gamma_i * (load-cell thrust of G.3), so rotor i's
-// thrust range is gamma_i [f(u_min), f(u_max)] and its drag-torque coefficient is evaluated at its
-// command's operating point, kappa_i = kappa(f_i / gamma_i) (= kappa(f_i) of (G.1) for gamma_i = 1).
-// RotorThrustCommand carries true thrusts; MotorCommandsFromRotorThrusts gives the motor commands
-// u_i = rotor.CommandFromThrust(f_i / gamma_i).
+// thrust range is gamma_i [f(u_min), f(u_max)] and its drag-torque coefficient is evaluated at
+// its command's operating point, kappa_i = kappa(f_i / gamma_i) (kappa(f_i) of (G.1) when
+// gamma_i = 1). RotorThrustCommand carries true thrusts; MotorCommandsFromRotorThrusts gives the
+// motor commands u_i = rotor.CommandFromThrust(f_i / gamma_i).
 //
 // Solving (G.1), (G.2) for given kappa_i: the rows of roll, pitch and collective thrust are
-// orthogonal with the yaw direction s = (+1, -1, +1, -1) (RotorYawSign), so
-// f = f0 + t s with f0 fixed by (eta_x, eta_y, c) and t = (eta_z - sum s_i kappa_i f0_i) / sum kappa_i.
-// Moving along s changes only the yaw torque, shifting all thrusts equally only the collective
-// thrust (and eta_z through kappa): Algorithm 4 is a line search along these two directions.
+// orthogonal with the yaw direction s = (+1, -1, +1, -1) (RotorYawSign), so f = f0 + t s with f0
+// fixed by (eta_x, eta_y, c) and t = (eta_z - sum_i s_i kappa_i f0_i) / sum_i kappa_i. Moving
+// along s changes only the yaw torque, shifting all thrusts equally only the collective thrust
+// (and eta_z through kappa): Algorithm 4 is a line search along these two directions.
 #include <Eigen/Core>
 #include <ostream>
 
@@ -45,12 +45,12 @@ struct MixerParameters {
 };
 
 struct MixerResult {
-  RotorThrustCommand command;          // true thrusts, within each rotor's limits
-  int iterations = 0;                  // number of (G.1)/(G.2) solves
-  bool converged = true;               // iterative mixer met the tolerance (always true one-shot)
-  bool yaw_torque_saturated = false;   // Algorithm 4 changed eta_z
+  RotorThrustCommand command;         // true thrusts, within each rotor's limits
+  int iterations = 0;                 // number of (G.1)/(G.2) solves
+  bool converged = true;              // iterative mixer met the tolerance (always true one-shot)
+  bool yaw_torque_saturated = false;  // Algorithm 4 changed eta_z
   bool collective_thrust_saturated = false;  // Algorithm 4 shifted all thrusts
-  bool clipped = false;                // some thrust was clipped to its limit
+  bool clipped = false;                      // some thrust was clipped to its limit
   // Wrench the returned thrusts produce under (G.1), (G.2) with kappa_i of the rotor model.
   Eigen::Vector3d applied_torque_B = Eigen::Vector3d::Zero();  // [N m]
   double applied_collective_thrust_mps2 = 0.0;

@@ -22,8 +22,9 @@ void RotorThrustEstimator::Reset(const Eigen::Vector4d& thrust_N) {
 
 void RotorThrustEstimator::Propagate(const RotorThrustCommand& command, double dt_s) {
   if (!(dt_s > 0.0) || !std::isfinite(dt_s)) {
-    throw std::invalid_argument("RotorThrustEstimator::Propagate: dt_s must be finite and > 0, got " +
-                                std::to_string(dt_s));
+    throw std::invalid_argument(
+        "RotorThrustEstimator::Propagate: dt_s must be finite and > 0, got " +
+        std::to_string(dt_s));
   }
   if (!command.thrust_N.allFinite()) {
     throw std::invalid_argument("RotorThrustEstimator::Propagate: command.thrust_N must be finite");

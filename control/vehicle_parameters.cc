@@ -8,7 +8,9 @@
 namespace aperture::control {
 namespace {
 
-double EvaluateQuadratic(const Eigen::Vector3d& k, double u) { return (k[2] * u + k[1]) * u + k[0]; }
+double EvaluateQuadratic(const Eigen::Vector3d& k, double u) {
+  return (k[2] * u + k[1]) * u + k[0];
+}
 
 void RequirePositive(double value, const std::string& field) {
   if (!(std::isfinite(value) && value > 0.0)) {
@@ -66,10 +68,12 @@ void VehicleParameters::Validate() const {
   for (int i = 0; i < 4; ++i) RequirePositive(rotor_fitness[i], "rotor_fitness");
   if (!(rotor_drag_D_per_s.allFinite() && rotor_drag_A.allFinite() && rotor_drag_B.allFinite() &&
         std::isfinite(thrust_velocity_coeff_kh))) {
-    throw std::invalid_argument("vehicle parameters: rotor drag terms (D, A, B, k_h) must be finite");
+    throw std::invalid_argument(
+        "vehicle parameters: rotor drag terms (D, A, B, k_h) must be finite");
   }
   if (!(rotor.thrust_coeffs_N.allFinite() && rotor.torque_coeffs_Nm.allFinite())) {
-    throw std::invalid_argument("vehicle parameters: rotor.thrust_coeffs_N / torque_coeffs_Nm must be finite");
+    throw std::invalid_argument(
+        "vehicle parameters: rotor.thrust_coeffs_N / torque_coeffs_Nm must be finite");
   }
   if (!(std::isfinite(rotor.command_min) && std::isfinite(rotor.command_max) &&
         rotor.command_max > rotor.command_min)) {
@@ -97,7 +101,8 @@ void VehicleParameters::Validate() const {
   if (!(torque_min > 0.0)) {
     throw std::invalid_argument(
         "vehicle parameter 'rotor.torque_coeffs_Nm' must give a positive drag torque over "
-        "[command_min, command_max] (min " + std::to_string(torque_min) + " N m)");
+        "[command_min, command_max] (min " +
+        std::to_string(torque_min) + " N m)");
   }
 }
 

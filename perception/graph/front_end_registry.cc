@@ -39,17 +39,22 @@ const std::string& FrontEndRegistry::Description(const std::string& name) const 
 }
 
 std::unique_ptr<Node> FrontEndRegistry::Create(const std::string& name,
-                                               const NodeParams& params) const {
+                                               config::ParamReader& params) const {
   std::unique_ptr<Node> node = Find(name).factory(params);
   if (!node) {
     throw std::invalid_argument("FrontEndRegistry: the factory of '" + name + "' returned no node");
   }
+  params.RejectUnknownKeys();
   return node;
 }
 
+std::unique_ptr<Node> FrontEndRegistry::Create(const std::string& name) const {
+  config::ParamReader defaults(YAML::Node(), name + " defaults");
+  return Create(name, defaults);
+}
+
 FrameGraph FrontEndRegistry::BuildGraph(
-    const std::vector<std::string>& front_ends,
-    const std::map<std::string, NodeParams>& params_by_front_end) const {
+    const std::vector<std::string>& front_ends, config::ParamReader& root) const {
   if (front_ends.empty()) {
     std::string known;
     for (const std::string& name : Names()) known += " " + name;
@@ -61,11 +66,15 @@ FrameGraph FrontEndRegistry::BuildGraph(
     if (!seen.insert(name).second) {
       throw std::invalid_argument("front end '" + name + "' is listed twice");
     }
-    const auto params = params_by_front_end.find(name);
-    nodes.push_back(
-        Create(name, params == params_by_front_end.end() ? NodeParams{} : params->second));
+    config::ParamReader params = root.Section(name);
+    nodes.push_back(Create(name, params));
   }
   return FrameGraph(std::move(nodes));
+}
+
+FrameGraph FrontEndRegistry::BuildGraph(const std::vector<std::string>& front_ends) const {
+  config::ParamReader defaults(YAML::Node(), "defaults");
+  return BuildGraph(front_ends, defaults);
 }
 
 std::vector<std::string> SplitFrontEndList(const std::string& comma_separated) {

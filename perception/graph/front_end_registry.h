@@ -1,14 +1,15 @@
 #pragma once
 // Front ends by name, so `aperture run --frontends a,b` can compose a FrameGraph. A front end is a
-// factory making one Node from its parameters (key -> value strings; the factory reads them with
-// ParamReader and rejects unknown keys).
+// factory making one Node from its parameters: the config section named after the front end
+// (`--set image_quality.histogram_bins=32`), read strictly with config::ParamReader.
 //
 // No self-registration (static initializers in a static library get dropped by the linker): the
 // application owns a registry and calls RegisterBuiltinFrontEnds(registry) (builtin_front_ends.h).
 //
 //   FrontEndRegistry registry;
 //   RegisterBuiltinFrontEnds(registry);
-//   FrameGraph graph = registry.BuildGraph(SplitFrontEndList("image_quality,tags"), params);
+//   config::ParamReader root = config_tree.Reader();
+//   FrameGraph graph = registry.BuildGraph(SplitFrontEndList("image_quality,tags"), root);
 #include <functional>
 #include <map>
 #include <memory>
@@ -17,11 +18,13 @@
 
 #include "perception/graph/frame_graph.h"
 #include "perception/graph/node.h"
-#include "perception/graph/param_reader.h"
+#include "config/param_reader.h"
 
 namespace aperture::perception {
 
-using FrontEndFactory = std::function<std::unique_ptr<Node>(const NodeParams& params)>;
+// Reads its parameters from `params` (config::ParamReader::Read...); the registry rejects the
+// keys it did not read.
+using FrontEndFactory = std::function<std::unique_ptr<Node>(config::ParamReader& params)>;
 
 class FrontEndRegistry {
  public:
@@ -32,16 +35,21 @@ class FrontEndRegistry {
   std::vector<std::string> Names() const;  // sorted
   const std::string& Description(const std::string& name) const;
 
-  // Throws std::invalid_argument for an unknown name (listing the known ones) and passes on the
-  // factory's errors (bad or unknown parameters).
-  std::unique_ptr<Node> Create(const std::string& name, const NodeParams& params = {}) const;
+  // Throws std::invalid_argument for an unknown name (listing the known ones), passes on the
+  // factory's errors (bad parameters) and rejects parameters the factory did not read.
+  std::unique_ptr<Node> Create(const std::string& name, config::ParamReader& params) const;
+  // With all parameters at their defaults.
+  std::unique_ptr<Node> Create(const std::string& name) const;
 
-  // One node per front end, in the given order; params_by_front_end[name] configures front end
-  // `name` (entries for front ends not listed are ignored, so one config can serve many runs).
+  // One node per front end, in the given order; section `name` of `root` configures front end
+  // `name` (root.Section(name), so the sections read are marked known in `root`; the caller
+  // decides whether other sections are errors with root.RejectUnknownKeys()).
   // Throws std::invalid_argument on an empty list, a repeated or unknown name, bad parameters,
   // or an invalid graph (e.g. a front end that needs another one not listed).
   FrameGraph BuildGraph(const std::vector<std::string>& front_ends,
-                        const std::map<std::string, NodeParams>& params_by_front_end = {}) const;
+                        config::ParamReader& root) const;
+  // With all parameters at their defaults.
+  FrameGraph BuildGraph(const std::vector<std::string>& front_ends) const;
 
  private:
   struct Entry {

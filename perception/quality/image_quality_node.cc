@@ -8,15 +8,11 @@
 
 namespace aperture::perception {
 
-std::unique_ptr<Node> ImageQualityNode::Create(const NodeParams& params) {
-  ParamReader reader(kName, params);
+std::unique_ptr<Node> ImageQualityNode::Create(config::ParamReader& params) {
   ImageQualityParams quality_params;
-  quality_params.histogram_bins = reader.Int("histogram_bins", quality_params.histogram_bins);
-  quality_params.over_exposed_level =
-      reader.Int("over_exposed_level", quality_params.over_exposed_level);
-  quality_params.under_exposed_level =
-      reader.Int("under_exposed_level", quality_params.under_exposed_level);
-  reader.CheckAllUsed();
+  params.Read("histogram_bins", &quality_params.histogram_bins);
+  params.Read("over_exposed_level", &quality_params.over_exposed_level);
+  params.Read("under_exposed_level", &quality_params.under_exposed_level);
   return std::make_unique<ImageQualityNode>(quality_params);
 }
 

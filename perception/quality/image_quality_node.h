@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "perception/graph/node.h"
-#include "perception/graph/param_reader.h"
+#include "config/param_reader.h"
 #include "perception/quality/image_quality_analyzer.h"
 
 namespace aperture::perception {
@@ -25,7 +25,7 @@ class ImageQualityNode final : public Node {
 
   // Parameters: histogram_bins, over_exposed_level, under_exposed_level (ImageQualityParams);
   // unknown keys or unparsable values throw std::invalid_argument.
-  static std::unique_ptr<Node> Create(const NodeParams& params);
+  static std::unique_ptr<Node> Create(config::ParamReader& params);
 
   std::string Name() const override { return kName; }
   std::vector<SlotSpec> Inputs() const override;

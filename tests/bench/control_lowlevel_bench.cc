@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "control/care_solver.h"
+#include "control/low_level_controller.h"
 #include "control/lqr_body_rate_controller.h"
 #include "control/mixer.h"
 #include "control/proportional_body_rate_controller.h"
@@ -83,8 +84,8 @@ BENCHMARK(BM_ProportionalControlLaw);
 // range(2): request scale (1 unsaturated, 4 mostly saturated).
 void BM_Mixer(benchmark::State& state) {
   MixerParameters params;
-  params.mixing = state.range(0) == 0 ? MixerParameters::Mixing::kIterative
-                                      : MixerParameters::Mixing::kOneShot;
+  params.mixing =
+      state.range(0) == 0 ? MixerParameters::Mixing::kIterative : MixerParameters::Mixing::kOneShot;
   params.saturation = state.range(1) == 0 ? MixerParameters::Saturation::kPrioritized
                                           : MixerParameters::Saturation::kClip;
   const Mixer mixer(VehicleParameters(), params);
@@ -95,7 +96,8 @@ void BM_Mixer(benchmark::State& state) {
     const Request& r = requests[i++ & 255];
     const MixerResult result = mixer.Mix(r.torque_B, r.thrust_mps2);
     iterations += result.iterations;
-    saturated += result.yaw_torque_saturated || result.collective_thrust_saturated || result.clipped;
+    saturated +=
+        result.yaw_torque_saturated || result.collective_thrust_saturated || result.clipped;
     benchmark::DoNotOptimize(result);
   }
   state.counters["solves_per_mix"] =
@@ -110,6 +112,23 @@ BENCHMARK(BM_Mixer)
     ->Args({1, 1, 1})
     ->Args({0, 0, 4})
     ->Args({1, 1, 4});
+
+// Whole flight-controller step: LQR (G.12) + iterative mixer + saturation + motor commands +
+// thrust-estimator update.
+void BM_LowLevelControllerStep(benchmark::State& state) {
+  const VehicleParameters vehicle;
+  LowLevelController controller(vehicle);
+  const std::vector<Request> requests = Requests(1.0);
+  ThrustRatesCommand command;
+  command.collective_thrust_mps2 = 9.81;
+  command.omega_des_B = Eigen::Vector3d(1.0, -0.5, 0.3);
+  size_t i = 0;
+  for (auto _ : state) {
+    const Request& r = requests[i++ & 255];
+    benchmark::DoNotOptimize(controller.Step(command, r.omega_B, 0.001));
+  }
+}
+BENCHMARK(BM_LowLevelControllerStep);
 
 void BM_CareBodyRate(benchmark::State& state) {
   const VehicleParameters vehicle;

@@ -99,12 +99,12 @@ INSTANTIATE_TEST_SUITE_P(Seeds, CareRandomSystem, ::testing::Range(0, 40));
 
 TEST(CareSolver, ReportsUnstabilizableSystem) {
   // x_dot = x with no input: the unstable mode cannot be stabilized.
-  const CareResult unstable = SolveContinuousAlgebraicRiccati(Scalar(1.0), Scalar(0.0), Scalar(1.0),
-                                                              Scalar(1.0));
+  const CareResult unstable =
+      SolveContinuousAlgebraicRiccati(Scalar(1.0), Scalar(0.0), Scalar(1.0), Scalar(1.0));
   EXPECT_FALSE(unstable.ok()) << unstable;
   // Unweighted integrator with no input: eigenvalue 0 of H on the imaginary axis.
-  const CareResult marginal = SolveContinuousAlgebraicRiccati(Scalar(0.0), Scalar(0.0), Scalar(0.0),
-                                                              Scalar(1.0));
+  const CareResult marginal =
+      SolveContinuousAlgebraicRiccati(Scalar(0.0), Scalar(0.0), Scalar(0.0), Scalar(1.0));
   EXPECT_FALSE(marginal.ok()) << marginal;
 }
 

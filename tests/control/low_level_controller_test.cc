@@ -24,8 +24,8 @@ struct Vehicle {
     const Eigen::Matrix3d J = params.Inertia();
     for (int s = 0; s < kSubsteps; ++s) {
       rotors.Propagate(command, kDt / kSubsteps);
-      omega_B += kDt / kSubsteps * J.inverse() *
-                 (rotors.BodyTorque_B() - omega_B.cross(J * omega_B));
+      omega_B +=
+          kDt / kSubsteps * J.inverse() * (rotors.BodyTorque_B() - omega_B.cross(J * omega_B));
     }
   }
 };
@@ -38,7 +38,7 @@ struct LoopRun {
 };
 
 LoopRun Track(LowLevelControllerParameters::BodyRateLaw law, const Eigen::Vector3d& omega_des,
-          double duration_s) {
+              double duration_s) {
   const VehicleParameters vehicle_params;
   LowLevelControllerParameters params;
   params.body_rate_law = law;
@@ -51,12 +51,13 @@ LoopRun Track(LowLevelControllerParameters::BodyRateLaw law, const Eigen::Vector
   for (double t = 0.0; t < duration_s; t += kDt) {
     const LowLevelOutput out = controller.Step(command, vehicle.omega_B, kDt);
     const MixerResult& mix = out.mix;
-    run.saturated_steps += mix.yaw_torque_saturated || mix.collective_thrust_saturated || mix.clipped;
+    run.saturated_steps +=
+        mix.yaw_torque_saturated || mix.collective_thrust_saturated || mix.clipped;
     vehicle.Step(mix.command);
     // The estimator sees the thrusts actually commanded, so it tracks the true rotors exactly.
-    run.max_estimate_mismatch_N =
-        std::max(run.max_estimate_mismatch_N,
-                 (controller.estimator().thrust_N() - vehicle.rotors.thrust_N()).cwiseAbs().maxCoeff());
+    run.max_estimate_mismatch_N = std::max(
+        run.max_estimate_mismatch_N,
+        (controller.estimator().thrust_N() - vehicle.rotors.thrust_N()).cwiseAbs().maxCoeff());
     run.final_error = omega_des - vehicle.omega_B;
     run.integral_abs_error += kDt * run.final_error.cwiseAbs().sum();
   }
@@ -70,8 +71,8 @@ TEST(LowLevelController, HoverCommandGivesEqualHoverThrusts) {
   command.collective_thrust_mps2 = vehicle.gravity_mps2;
   const LowLevelOutput out = controller.Step(command, Eigen::Vector3d::Zero(), kDt);
   EXPECT_NEAR(out.torque_des_B.norm(), 0.0, 1e-15);
-  EXPECT_TRUE(out.mix.command.thrust_N.isApproxToConstant(0.25 * vehicle.mass_kg * vehicle.gravity_mps2,
-                                                          1e-12));
+  EXPECT_TRUE(out.mix.command.thrust_N.isApproxToConstant(
+      0.25 * vehicle.mass_kg * vehicle.gravity_mps2, 1e-12));
   for (int i = 0; i < 4; ++i) {
     EXPECT_NEAR(vehicle.rotor.ThrustFromCommand(out.motor_commands[i]), out.mix.command.thrust_N[i],
                 1e-12);
@@ -93,8 +94,8 @@ TEST(LowLevelController, LqrLoopTracksRateStepThroughMixerAndRotorLag) {
 TEST(LowLevelController, EstimatorFollowsSaturatedThrusts) {
   // A violent step saturates the mixer; the estimator is fed the limited thrusts and still
   // matches the rotors, and the loop recovers to the (feasible) rate.
-  const LoopRun run = Track(LowLevelControllerParameters::BodyRateLaw::kLqr,
-                        Eigen::Vector3d(25.0, 0.0, 8.0), 1.0);
+  const LoopRun run =
+      Track(LowLevelControllerParameters::BodyRateLaw::kLqr, Eigen::Vector3d(25.0, 0.0, 8.0), 1.0);
   EXPECT_GT(run.saturated_steps, 0);
   EXPECT_LT(run.max_estimate_mismatch_N, 1e-12);
   EXPECT_LT(run.final_error.norm(), 1e-2) << run.final_error.transpose();

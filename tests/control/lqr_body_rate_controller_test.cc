@@ -86,14 +86,14 @@ TEST(LqrBodyRateController, GainsEquivalentToHighGainProportional) {
   const LqrBodyRateController lqr(vehicle);
   ASSERT_TRUE(lqr.care_result().ok()) << lqr.care_result();
   const Eigen::Vector3d p_high = ProportionalBodyRateParameters::HighGain().rate_gains_per_s;
-  const double alpha = 0.5 * (vehicle.rotor.time_constant_up_s + vehicle.rotor.time_constant_down_s);
+  const double alpha =
+      0.5 * (vehicle.rotor.time_constant_up_s + vehicle.rotor.time_constant_down_s);
   EXPECT_DOUBLE_EQ(lqr.model().time_constant_s, alpha);
   for (int i = 0; i < 3; ++i) {
     // (G.11): the rate gain equals J p of controller (b) (G.6.2).
     const double k_omega = vehicle.inertia_diag_kgm2[i] * p_high[i];
     EXPECT_NEAR(lqr.gain()(i, i), k_omega, 1e-10 * k_omega);
-    EXPECT_NEAR(lqr.gain()(i, 3 + i),
-                std::sqrt(1.0 + 2.0 * alpha * p_high[i]) - 1.0, 1e-9);
+    EXPECT_NEAR(lqr.gain()(i, 3 + i), std::sqrt(1.0 + 2.0 * alpha * p_high[i]) - 1.0, 1e-9);
   }
   // The helper reproduces the documented defaults for the Table A.2 inertia.
   const LqrBodyRateParameters from_gains =
@@ -150,16 +150,18 @@ TEST(LqrBodyRateController, AngularAccelerationFeedForwardReducesTrackingError) 
   auto reference = [&](double t, bool feed_forward) {
     ThrustRatesCommand command;
     const double w = 2.0 * kPi * frequency_hz;
-    command.omega_des_B = Eigen::Vector3d(amplitude * std::sin(w * t), 0.0,
-                                          0.5 * amplitude * std::cos(w * t));
+    command.omega_des_B =
+        Eigen::Vector3d(amplitude * std::sin(w * t), 0.0, 0.5 * amplitude * std::cos(w * t));
     if (feed_forward) {
       command.omega_dot_des_B = Eigen::Vector3d(amplitude * w * std::cos(w * t), 0.0,
                                                 -0.5 * amplitude * w * std::sin(w * t));
     }
     return command;
   };
-  const Tracking with = Simulate(Lqr(lqr), [&](double t) { return reference(t, true); }, 1.0);
-  const Tracking without = Simulate(Lqr(lqr), [&](double t) { return reference(t, false); }, 1.0);
+  const Tracking with = Simulate(
+      Lqr(lqr), [&](double t) { return reference(t, true); }, 1.0);
+  const Tracking without = Simulate(
+      Lqr(lqr), [&](double t) { return reference(t, false); }, 1.0);
   EXPECT_LT(with.integral_abs_error, 0.5 * without.integral_abs_error)
       << with.integral_abs_error << " vs " << without.integral_abs_error;
 }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 #include <stdexcept>
 
 #include "control/vehicle_parameters.h"
@@ -43,10 +44,9 @@ TEST_P(MixerUnsaturated, IterativeReproducesRequestThroughG1G2) {
   // Independent forward evaluation of (G.1), (G.2) with kappa(f_i) of (G.5).
   const Eigen::Vector4d& f = result.command.thrust_N;
   const double d = std::sqrt(2.0) / 2.0 * vehicle.arm_length_m;
-  const double yaw = vehicle.rotor.TorqueCoefficient(f[0]) * f[0] -
-                     vehicle.rotor.TorqueCoefficient(f[1]) * f[1] +
-                     vehicle.rotor.TorqueCoefficient(f[2]) * f[2] -
-                     vehicle.rotor.TorqueCoefficient(f[3]) * f[3];
+  const double yaw =
+      vehicle.rotor.TorqueCoefficient(f[0]) * f[0] - vehicle.rotor.TorqueCoefficient(f[1]) * f[1] +
+      vehicle.rotor.TorqueCoefficient(f[2]) * f[2] - vehicle.rotor.TorqueCoefficient(f[3]) * f[3];
   EXPECT_NEAR(d * (f[0] - f[1] - f[2] + f[3]), c.torque_B.x(), kExactTorque_Nm);
   EXPECT_NEAR(d * (-f[0] - f[1] + f[2] + f[3]), c.torque_B.y(), kExactTorque_Nm);
   EXPECT_NEAR(yaw, c.torque_B.z(), kExactTorque_Nm);
@@ -59,17 +59,17 @@ TEST_P(MixerUnsaturated, IterativeReproducesRequestThroughG1G2) {
   MixerParameters three;
   three.max_iterations = 3;
   const MixerResult after_three = Mixer(vehicle, three).Mix(c.torque_B, c.thrust_mps2);
-  EXPECT_NEAR(after_three.applied_torque_B.z(), c.torque_B.z(), 1e-3 * std::abs(c.torque_B.z()) + 1e-12);
+  EXPECT_NEAR(after_three.applied_torque_B.z(), c.torque_B.z(),
+              1e-3 * std::abs(c.torque_B.z()) + 1e-12);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Requests, MixerUnsaturated,
-    ::testing::Values(MixCase{Eigen::Vector3d::Zero(), 9.81},
-                      MixCase{Eigen::Vector3d(0.05, -0.03, 0.004), 9.81},
-                      MixCase{Eigen::Vector3d(-0.1, 0.08, -0.01), 12.0},
-                      MixCase{Eigen::Vector3d(0.0, 0.0, 0.03), 9.81},
-                      MixCase{Eigen::Vector3d(0.12, 0.1, 0.02), 18.0},
-                      MixCase{Eigen::Vector3d(0.01, 0.0, -0.005), 3.0}));
+INSTANTIATE_TEST_SUITE_P(Requests, MixerUnsaturated,
+                         ::testing::Values(MixCase{Eigen::Vector3d::Zero(), 9.81},
+                                           MixCase{Eigen::Vector3d(0.05, -0.03, 0.004), 9.81},
+                                           MixCase{Eigen::Vector3d(-0.1, 0.08, -0.01), 12.0},
+                                           MixCase{Eigen::Vector3d(0.0, 0.0, 0.03), 9.81},
+                                           MixCase{Eigen::Vector3d(0.12, 0.1, 0.02), 18.0},
+                                           MixCase{Eigen::Vector3d(0.01, 0.0, -0.005), 3.0}));
 
 TEST(Mixer, OneShotHasYawErrorIterativeDoesNot) {
   const VehicleParameters vehicle;
@@ -206,6 +206,47 @@ TEST(MixerSaturation, AssuredYawTorqueIsKept) {
   const MixerResult small = mixer.Mix(Eigen::Vector3d(0.0, 0.0, 0.03), 9.81);
   EXPECT_FALSE(small.yaw_torque_saturated);
   EXPECT_NEAR(small.applied_torque_B.z(), 0.03, kExactTorque_Nm);
+}
+
+// Algorithm 4's guarantees as invariants over random requests, from unsaturated to hopeless
+// (fixed seed; rotor fitness and an assured yaw torque make the limits uneven).
+TEST(MixerSaturation, PrioritiesHoldForRandomRequests) {
+  VehicleParameters vehicle;
+  vehicle.rotor_fitness = Eigen::Vector4d(0.95, 1.05, 1.0, 0.9);
+  MixerParameters params;
+  params.assured_yaw_torque_Nm = 0.01;
+  const Mixer mixer(vehicle, params);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int counts[4] = {0, 0, 0, 0};  // none, yaw, thrust, clipped
+  for (int k = 0; k < 4000; ++k) {
+    const double scale = 0.25 + 3.0 * (k % 8) / 7.0;
+    const Eigen::Vector3d torque_B =
+        scale * Eigen::Vector3d(0.1 * u(rng), 0.1 * u(rng), 0.03 * u(rng));
+    const double thrust = 9.81 * (1.0 + 0.8 * u(rng));
+    const MixerResult r = mixer.Mix(torque_B, thrust);
+    ExpectWithinLimits(mixer, r);
+    const Eigen::Vector3d& eta = r.applied_torque_B;
+    if (!r.clipped) {  // roll and pitch are always kept unless clipping was needed
+      ASSERT_NEAR(eta.x(), torque_B.x(), kExactTorque_Nm) << r;
+      ASSERT_NEAR(eta.y(), torque_B.y(), kExactTorque_Nm) << r;
+    }
+    if (!r.clipped && !r.collective_thrust_saturated) {
+      ASSERT_NEAR(r.applied_collective_thrust_mps2, thrust, kExactThrust_mps2) << r;
+    }
+    if (!r.clipped && !r.collective_thrust_saturated && !r.yaw_torque_saturated) {
+      ASSERT_NEAR(eta.z(), torque_B.z(), kExactTorque_Nm) << r;
+    }
+    if (r.yaw_torque_saturated && !r.collective_thrust_saturated && !r.clipped) {
+      // Yaw only given up, towards zero, never below the assured magnitude.
+      ASSERT_LE(std::abs(eta.z()), std::abs(torque_B.z()) + kExactTorque_Nm) << r;
+      ASSERT_GE(std::abs(eta.z()), params.assured_yaw_torque_Nm - kExactTorque_Nm) << r;
+      ASSERT_GE(eta.z() * torque_B.z(), 0.0) << r;
+    }
+    ++counts[r.clipped ? 3 : r.collective_thrust_saturated ? 2 : r.yaw_torque_saturated ? 1 : 0];
+  }
+  // The sweep reaches every level of Algorithm 4.
+  for (int level = 0; level < 4; ++level) EXPECT_GT(counts[level], 20) << "level " << level;
 }
 
 TEST(Mixer, RotorFitnessScalesLimitsAndTorqueCoefficients) {

@@ -15,7 +15,8 @@ TEST(RotorThrustEstimator, FollowsAsymmetricFirstOrderModelG7) {
   const double alpha_up = vehicle.rotor.time_constant_up_s;
   const double alpha_down = vehicle.rotor.time_constant_down_s;
   RotorThrustEstimator estimator(vehicle);
-  EXPECT_TRUE(estimator.thrust_N().isApproxToConstant(0.25 * vehicle.mass_kg * vehicle.gravity_mps2));
+  EXPECT_TRUE(
+      estimator.thrust_N().isApproxToConstant(0.25 * vehicle.mass_kg * vehicle.gravity_mps2));
   estimator.Reset(Eigen::Vector4d::Constant(1.0));
   // Rotors 0 and 2 step up to 2 N, rotors 1 and 3 down to 0.5 N, at the same time.
   RotorThrustCommand command;

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "perception/graph/builtin_front_ends.h"
-#include "perception/graph/param_reader.h"
+#include "config/config_tree.h"
 #include "perception/graph/serial_executor.h"
 #include "perception/quality/image_quality_analyzer.h"
 
@@ -41,11 +41,18 @@ class ExposureAlarmNode final : public Node {
   }
 };
 
+// Creates image_quality with one `--set`-style override, as `aperture run --set` would.
+std::unique_ptr<Node> CreateWithSet(const FrontEndRegistry& registry, const std::string& item) {
+  config::ConfigTree tree;
+  tree.ApplySet(item);
+  config::ParamReader params = tree.Reader().Section("image_quality");
+  return registry.Create("image_quality", params);
+}
+
 FrontEndRegistry MakeRegistry() {
   FrontEndRegistry registry;
   RegisterBuiltinFrontEnds(registry);
-  registry.Register("exposure_alarm", "test node", [](const NodeParams& params) {
-    ParamReader(std::string("exposure_alarm"), params).CheckAllUsed();
+  registry.Register("exposure_alarm", "test node", [](config::ParamReader&) {
     return std::make_unique<ExposureAlarmNode>();
   });
   return registry;
@@ -73,7 +80,7 @@ TEST(FrontEndRegistry, RejectsDuplicateRegistrationAndRepeatedSelection) {
   FrontEndRegistry registry = MakeRegistry();
   EXPECT_THAT(ErrorOf([&] {
                 registry.Register("image_quality", "again",
-                                  [](const NodeParams&) { return std::unique_ptr<Node>(); });
+                                  [](config::ParamReader&) { return std::unique_ptr<Node>(); });
               }),
               HasSubstr("'image_quality'"));
   EXPECT_THAT(ErrorOf([&] {
@@ -86,9 +93,14 @@ TEST(FrontEndRegistry, RejectsDuplicateRegistrationAndRepeatedSelection) {
 TEST(FrontEndRegistry, ComposesFrontEndsIntoOneGraphWithTheirParams) {
   const FrontEndRegistry registry = MakeRegistry();
   // Listed consumer first: the graph orders by data, not by the list.
-  FrameGraph graph = registry.BuildGraph(
-      SplitFrontEndList("exposure_alarm, image_quality"),
-      {{"image_quality", {{"histogram_bins", "32"}}}, {"not_selected", {{"anything", "1"}}}});
+  config::ConfigTree tree;
+  tree.ApplySet("image_quality.histogram_bins=32");
+  tree.ApplySet("not_selected.anything=1");
+  config::ParamReader root = tree.Reader();
+  FrameGraph graph =
+      registry.BuildGraph(SplitFrontEndList("exposure_alarm, image_quality"), root);
+  // Sections of front ends that were not selected are left for the caller to judge.
+  EXPECT_THAT(ErrorOf([&] { root.RejectUnknownKeys(); }), HasSubstr("not_selected"));
   EXPECT_EQ(graph.TopologicalNames(),
             (std::vector<std::string>{"image_quality", "exposure_alarm"}));
   SerialExecutor executor(graph);
@@ -108,31 +120,18 @@ TEST(FrontEndRegistry, MissingDependencyFrontEndIsAGraphError) {
 TEST(FrontEndRegistry, UnknownOrBadParameterNamesTheKey) {
   const FrontEndRegistry registry = MakeRegistry();
   EXPECT_THAT(ErrorOf([&] {
-                registry.Create("image_quality", {{"histogram_bin", "8"}});
+                CreateWithSet(registry, "image_quality.histogram_bin=8");
               }),
-              AllOf(HasSubstr("image_quality"), HasSubstr("'histogram_bin'"),
-                    HasSubstr("'histogram_bins'")));
+              AllOf(HasSubstr("--set image_quality.histogram_bin=8"),
+                    HasSubstr("'image_quality.histogram_bin'"), HasSubstr("histogram_bins")));
   EXPECT_THAT(ErrorOf([&] {
-                registry.Create("image_quality", {{"histogram_bins", "8x"}});
+                CreateWithSet(registry, "image_quality.histogram_bins=8x");
               }),
-              AllOf(HasSubstr("'histogram_bins'"), HasSubstr("'8x'")));
+              AllOf(HasSubstr("'image_quality.histogram_bins'"), HasSubstr("'8x'")));
   EXPECT_THAT(ErrorOf([&] {
-                registry.Create("image_quality", {{"histogram_bins", "0"}});
+                CreateWithSet(registry, "image_quality.histogram_bins=0");
               }),
               HasSubstr("histogram_bins = 0"));
-}
-
-TEST(ParamReader, ParsesTypesAndFallsBackToDefaults) {
-  const NodeParams params{{"gain", "2.5"}, {"count", "-3"}, {"enabled", "false"}, {"mode", "x"}};
-  ParamReader reader("node", params);
-  EXPECT_EQ(reader.Double("gain", 1.0), 2.5);
-  EXPECT_EQ(reader.Int("count", 0), -3);
-  EXPECT_FALSE(reader.Bool("enabled", true));
-  EXPECT_EQ(reader.String("mode", "y"), "x");
-  EXPECT_EQ(reader.Double("absent", 7.0), 7.0);
-  EXPECT_NO_THROW(reader.CheckAllUsed());
-  EXPECT_THAT(ErrorOf([&] { reader.Bool("mode", true); }), HasSubstr("'mode' = 'x'"));
-  EXPECT_THAT(ErrorOf([&] { reader.Int("gain", 0); }), HasSubstr("'gain' = '2.5'"));
 }
 
 TEST(SplitFrontEndList, TrimsAndRejectsEmptyEntries) {

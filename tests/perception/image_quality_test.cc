@@ -133,7 +133,8 @@ TEST(ImageQualityAnalyzer, RejectsBadInputAndParams) {
 
 TEST(ImageQualityNode, EmitsTheAnalyzerResultsAsMetricsAndDrawsAnOverlay) {
   std::vector<std::unique_ptr<Node>> nodes;
-  nodes.push_back(ImageQualityNode::Create({{"histogram_bins", "8"}}));
+  config::ParamReader params(YAML::Load("histogram_bins: 8"), "test.yaml");
+  nodes.push_back(ImageQualityNode::Create(params));
   FrameGraph graph(std::move(nodes));
   SerialExecutor executor(graph);
   Frame frame;
