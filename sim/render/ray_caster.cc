@@ -69,14 +69,24 @@ int TraceRay(const Eigen::Vector3d& d_C, const std::vector<FrameObject>& objects
   return best;
 }
 
+// sample_angle_rad: angular size of the sample (pixel angle / supersampling) for the texture
+// footprint: distance * angle, stretched by 1 / sqrt(cos incidence) (geometric mean of the
+// footprint's two axes).
 Rgb Shade(const Scene& scene, const FrameContext& frame, const Eigen::Vector3d& d_C, int index,
-          const LocalHit& hit) {
+          const LocalHit& hit, double sample_angle_rad) {
   if (index < 0) return scene.sky.Radiance(frame.R_WC * d_C);
   const FrameObject& f = frame.objects[static_cast<size_t>(index)];
   Eigen::Vector3d n_O = hit.n_O;
-  if (n_O.dot(f.R_OC * d_C) > 0.0) n_O = -n_O;  // two-sided: the side facing the camera
+  double cos_incidence = n_O.dot(f.R_OC * d_C);
+  if (cos_incidence > 0.0) {
+    n_O = -n_O;  // two-sided: the side facing the camera
+  } else {
+    cos_incidence = -cos_incidence;
+  }
   const float lambert = static_cast<float>(std::max(0.0, n_O.dot(f.to_light_O)));
-  return f.material->Albedo(hit.uv_m) *
+  const double footprint_m =
+      hit.t_m * sample_angle_rad / std::sqrt(std::max(cos_incidence, 1e-3));
+  return f.material->Albedo(hit.uv_m, footprint_m) *
          (scene.lighting.ambient + scene.lighting.directional * lambert);
 }
 
@@ -107,6 +117,7 @@ struct RayCaster::RayTable {
   std::array<Eigen::Vector3d, 5> fingerprint;
   std::vector<Eigen::Vector3f> center;  // width * height
   std::vector<Eigen::Vector3f> sub;     // width * height * k * k (empty for k = 1)
+  std::vector<float> pixel_angle_rad;   // angular pixel size (to the right / lower neighbour)
 };
 
 namespace {
@@ -163,6 +174,24 @@ const RayCaster::RayTable& RayCaster::Rays(const perception::CameraModel& camera
                 camera.Unproject(px).normalized().cast<float>();
           }
         }
+      }
+    }
+  });
+  table->pixel_angle_rad.resize(table->center.size());
+  const int h = camera.height();
+  tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
+    auto angle = [&](size_t a, size_t b) {
+      const Eigen::Vector3d u = table->center[a].cast<double>();
+      const Eigen::Vector3d v = table->center[b].cast<double>();
+      return std::atan2(u.cross(v).norm(), u.dot(v));
+    };
+    for (int y = rows.begin(); y < rows.end(); ++y) {
+      for (int x = 0; x < w; ++x) {
+        const size_t p = static_cast<size_t>(y) * w + x;
+        const size_t horizontal = x + 1 < w ? p + 1 : p - 1;
+        const size_t vertical = y + 1 < h ? p + w : p - w;
+        table->pixel_angle_rad[p] = static_cast<float>(
+            std::max(w > 1 ? angle(p, horizontal) : 0.0, h > 1 ? angle(p, vertical) : 0.0));
       }
     }
   });
@@ -245,7 +274,7 @@ void RayCaster::Render(const Scene& scene, const perception::CameraModel& camera
         if (k == 1) {
           const Eigen::Vector3d d = rays.center[p].cast<double>();
           const int index = TraceRay(d, frame.objects, hint, kInf, &hit);
-          sum = Shade(scene, frame, d, index, hit);
+          sum = Shade(scene, frame, d, index, hit, rays.pixel_angle_rad[p]);
           if (depth) {
             depth[x] = index < 0 ? std::numeric_limits<float>::infinity()
                                  : static_cast<float>(hit.t_m * d.z());
@@ -253,10 +282,11 @@ void RayCaster::Render(const Scene& scene, const perception::CameraModel& camera
           }
           hint = index;
         } else {
+          const double sample_angle = rays.pixel_angle_rad[p] / k;
           for (int s = 0; s < k * k; ++s) {
             const Eigen::Vector3d d = rays.sub[p * k * k + static_cast<size_t>(s)].cast<double>();
             const int index = TraceRay(d, frame.objects, hint, kInf, &hit);
-            sum += Shade(scene, frame, d, index, hit);
+            sum += Shade(scene, frame, d, index, hit, sample_angle);
             hint = index;
           }
           sum *= inv_samples;

@@ -8,7 +8,8 @@
 //   object_id  CV_32SC1, Scene object id through the pixel centre (LEDs: within 2 sigma of the
 //              blob centre), 0 for sky.
 // Shading: Lambertian, Scene::lighting (ambient + one directional light, no shadows); sky from
-// Scene::sky. With supersampling k, each pixel averages k x k rays, one per cell of a k x k
+// Scene::sky. Textures are sampled at the mip level matching each sample's footprint on the
+// surface (distance * angular sample size / sqrt(cos incidence)). With supersampling k, each pixel averages k x k rays, one per cell of a k x k
 // sub-pixel grid with all x and all y offsets distinct (box filter; ground truth stays on the
 // pixel centre ray).
 //

@@ -29,10 +29,11 @@ struct Material {
   double texture_scale = 1.0;
   Eigen::Vector2d texture_offset_m = Eigen::Vector2d::Zero();
 
-  Rgb Albedo(const Eigen::Vector2d& uv_m) const {
+  // footprint_m: surface size one sample covers [m] (texture mip level selection).
+  Rgb Albedo(const Eigen::Vector2d& uv_m, double footprint_m = 0.0) const {
     if (!texture) return color;
     const Eigen::Vector2d st = (uv_m + texture_offset_m) / texture_scale;
-    return color.cwiseProduct(texture->Sample(st.x(), st.y()));
+    return color.cwiseProduct(texture->Sample(st.x(), st.y(), footprint_m / texture_scale));
   }
 };
 

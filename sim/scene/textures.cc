@@ -103,6 +103,20 @@ Texture::Texture(const cv::Mat& image_rgb, double texel_size_m, Filter filter, W
     throw std::invalid_argument("Texture: texel_size_m = " + std::to_string(texel_size_m) +
                                 " must be > 0");
   }
+  BuildMipLevels();
+}
+
+void Texture::BuildMipLevels() {
+  levels_ = {image_};
+  if (filter_ != Filter::kBilinear) return;  // nearest textures (tags) stay exact
+  while (levels_.back().cols >= 2 && levels_.back().rows >= 2 && levels_.back().cols % 2 == 0 &&
+         levels_.back().rows % 2 == 0) {
+    cv::Mat next;
+    // An exact 2:1 INTER_AREA resize is the 2 x 2 box average (no wrap needed: sizes are even).
+    cv::resize(levels_.back(), next, cv::Size(levels_.back().cols / 2, levels_.back().rows / 2), 0,
+               0, cv::INTER_AREA);
+    levels_.push_back(next);
+  }
 }
 
 Texture Texture::Checkerboard(double square_size_m, int squares_x, int squares_y,
@@ -125,19 +139,35 @@ Texture Texture::Checkerboard(double square_size_m, int squares_x, int squares_y
   return t;
 }
 
-Rgb Texture::SampleTexel(int column, int row) const {
-  if (wrap_ == Wrap::kRepeat) {
-    column = WrapIndex(column, image_.cols);
-    row = WrapIndex(row, image_.rows);
+namespace {
+
+// Texel index pair (i0, i1 = next texel) and weight of i1 for texel coordinate x (texel centres
+// at integers), wrapped or clamped to [0, n).
+struct TexelSpan {
+  int i0;
+  int i1;
+  float w1;
+};
+
+inline TexelSpan Span(double x, int n, bool repeat) {
+  const double fx = std::floor(x);
+  TexelSpan s;
+  s.w1 = static_cast<float>(x - fx);
+  if (repeat) {
+    // One floating-point wrap instead of two integer modulos per sample.
+    const double wrapped = fx - n * std::floor(fx * (1.0 / n));
+    s.i0 = std::clamp(static_cast<int>(wrapped), 0, n - 1);
+    s.i1 = s.i0 + 1 == n ? 0 : s.i0 + 1;
   } else {
-    column = std::clamp(column, 0, image_.cols - 1);
-    row = std::clamp(row, 0, image_.rows - 1);
+    s.i0 = static_cast<int>(std::clamp(fx, 0.0, n - 1.0));
+    s.i1 = static_cast<int>(std::clamp(fx + 1.0, 0.0, n - 1.0));
   }
-  const cv::Vec3f& v = image_.at<cv::Vec3f>(row, column);
-  return {v[0], v[1], v[2]};
+  return s;
 }
 
-Rgb Texture::Sample(double u_m, double v_m) const {
+}  // namespace
+
+Rgb Texture::Sample(double u_m, double v_m, double footprint_m) const {
   if (image_.empty()) {
     const double su = (u_m - margin_m_) / texel_size_m_;
     const double sv = (v_m - margin_m_) / texel_size_m_;
@@ -150,21 +180,33 @@ Rgb Texture::Sample(double u_m, double v_m) const {
     const bool even = (static_cast<long long>(iu) + static_cast<long long>(iv)) % 2 == 0;
     return even ? dark_ : light_;
   }
-  // Texel centres sit at (i + 0.5) * texel_size_m.
-  const double x = u_m / texel_size_m_ - 0.5;
-  const double y = v_m / texel_size_m_ - 0.5;
-  if (filter_ == Filter::kNearest) {
-    return SampleTexel(static_cast<int>(std::floor(x + 0.5)), static_cast<int>(std::floor(y + 0.5)));
+  const bool repeat = wrap_ == Wrap::kRepeat;
+  // Finest level whose texels are at least the footprint / 2 (nearest textures: level 0 only).
+  size_t level = 0;
+  double texel = texel_size_m_;
+  while (level + 1 < levels_.size() && footprint_m >= 2.0 * texel) {
+    texel *= 2.0;
+    ++level;
   }
-  const double fx = std::floor(x);
-  const double fy = std::floor(y);
-  const float tx = static_cast<float>(x - fx);
-  const float ty = static_cast<float>(y - fy);
-  const int c = static_cast<int>(fx);
-  const int r = static_cast<int>(fy);
-  const Rgb top = SampleTexel(c, r) * (1.0f - tx) + SampleTexel(c + 1, r) * tx;
-  const Rgb bottom = SampleTexel(c, r + 1) * (1.0f - tx) + SampleTexel(c + 1, r + 1) * tx;
-  return top * (1.0f - ty) + bottom * ty;
+  const cv::Mat& image = levels_[level];
+  // Texel centres sit at (i + 0.5) * texel.
+  const double x = u_m / texel - 0.5;
+  const double y = v_m / texel - 0.5;
+  if (filter_ == Filter::kNearest) {
+    const TexelSpan sx = Span(std::floor(x + 0.5), image.cols, repeat);
+    const TexelSpan sy = Span(std::floor(y + 0.5), image.rows, repeat);
+    const float* t = image.ptr<float>(sy.i0) + 3 * sx.i0;
+    return {t[0], t[1], t[2]};
+  }
+  const TexelSpan sx = Span(x, image.cols, repeat);
+  const TexelSpan sy = Span(y, image.rows, repeat);
+  const float* row0 = image.ptr<float>(sy.i0);
+  const float* row1 = image.ptr<float>(sy.i1);
+  const Eigen::Map<const Rgb> t00(row0 + 3 * sx.i0), t01(row0 + 3 * sx.i1);
+  const Eigen::Map<const Rgb> t10(row1 + 3 * sx.i0), t11(row1 + 3 * sx.i1);
+  const Rgb top = t00 + (t01 - t00) * sx.w1;
+  const Rgb bottom = t10 + (t11 - t10) * sx.w1;
+  return top + (bottom - top) * sy.w1;
 }
 
 std::shared_ptr<const Texture> MakeValueNoiseTexture(const ProceduralTextureParams& params,

@@ -3,11 +3,15 @@
 // primitives.h for each primitive's (u, v)) to an RGB albedo in [0, 1]. Image textures hold
 // texels of a known physical size (texel_size_m) and are sampled with bilinear or nearest
 // filtering, repeating or clamped at the border; the checkerboard is analytic (exact edges, the
-// renderer's supersampling anti-aliases them). Every procedural generator is seeded and
+// renderer's supersampling anti-aliases them). Bilinear image textures keep a mip pyramid
+// (2 x 2 box averages): a sample whose footprint covers several texels reads the level whose
+// texels match the footprint, which removes aliasing (shimmer) of distant textures and keeps
+// lookups cache-friendly. Every procedural generator is seeded and
 // deterministic: the same arguments give the same texels on every run and thread count.
 #include <Eigen/Core>
 #include <cstdint>
 #include <memory>
+#include <vector>
 #include <opencv2/core/mat.hpp>
 
 namespace aperture::sim {
@@ -35,17 +39,19 @@ class Texture {
                               const Rgb& light = Rgb::Constant(0.95f),
                               const Rgb& border_color = Rgb::Constant(0.95f));
 
-  // Albedo at surface coordinates (u_m, v_m).
-  Rgb Sample(double u_m, double v_m) const;
+  // Albedo at surface coordinates (u_m, v_m). footprint_m: size of the surface patch one sample
+  // stands for [m] (0: finest level); selects the mip level of bilinear image textures.
+  Rgb Sample(double u_m, double v_m, double footprint_m = 0.0) const;
 
   double texel_size_m() const { return texel_size_m_; }
   const cv::Mat& image() const { return image_; }  // CV_32FC3 RGB; empty for a checkerboard
 
  private:
   Texture() = default;
-  Rgb SampleTexel(int column, int row) const;
+  void BuildMipLevels();
 
   cv::Mat image_;
+  std::vector<cv::Mat> levels_;  // levels_[0] = image_, each next one half the size
   double texel_size_m_ = 1.0;
   Filter filter_ = Filter::kBilinear;
   Wrap wrap_ = Wrap::kRepeat;

@@ -51,6 +51,19 @@ TEST(TexturesTest, BilinearSamplingInterpolatesTexelCentresAndRepeats) {
   EXPECT_THROW(Texture(image, 0.0), std::invalid_argument);
 }
 
+TEST(TexturesTest, LargeFootprintsReadTheAveragedMipLevel) {
+  // Alternating black / white texels (1 cm): a sample covering 8 cm must see their mean, 0.5,
+  // instead of aliasing to 0 or 1; a point sample at a texel centre sees the texel.
+  cv::Mat image(64, 64, CV_32FC3);
+  for (int y = 0; y < 64; ++y) {
+    for (int x = 0; x < 64; ++x) image.at<cv::Vec3f>(y, x) = cv::Vec3f::all(static_cast<float>((x + y) % 2));
+  }
+  const Texture t(image, 0.01);
+  EXPECT_NEAR(t.Sample(0.005, 0.005, 0.0).x(), 0.0f, kTol);
+  EXPECT_NEAR(t.Sample(0.015, 0.005, 0.0).x(), 1.0f, kTol);
+  for (const double u : {0.005, 0.013, 0.2371}) EXPECT_NEAR(t.Sample(u, 0.31, 0.08).x(), 0.5f, kTol);
+}
+
 using Generator = std::shared_ptr<const Texture> (*)(const ProceduralTextureParams&);
 
 std::shared_ptr<const Texture> Noise(const ProceduralTextureParams& p) { return MakeValueNoiseTexture(p); }
