@@ -184,18 +184,17 @@ void ApproachPlanner::ScorePerception(const MotionPrimitive& primitive,
   double sum_sq = 0.0, max_angle = 0.0;
   for (int s = 0; s < n; ++s) {
     const double t = s * dt;
-    const Eigen::Vector3d p =
-        p0 + t * (v0 + t * (a2 + t * (g6 + t * (b24 + t * a120))));
-    const Eigen::Vector3d c = c0 + t * (g + t * (b2 + t * a6));  // a - g_W
-    const double c_norm = c.norm();
-    const Eigen::Vector3d z_B = c_norm > 1e-9 ? Eigen::Vector3d(c / c_norm) : Eigen::Vector3d::UnitZ();
+    const Eigen::Vector3d p = p0 + t * (v0 + t * (a2 + t * (g6 + t * (b24 + t * a120))));
+    const Eigen::Vector3d c = c0 + t * (g + t * (b2 + t * a6));  // thrust vector a - g_W
     const Eigen::Vector3d d = gap_center_W - p;
-    const double d_sq = d.squaredNorm();
+    // (9) with z_B = c / |c| folded in: cos(theta) = (sqrt(1-k^2) |d x c| + k <d, c>) / (|d||c|),
+    // |d x c| = sqrt(|d|^2 |c|^2 - <d, c>^2): two square roots and one division per sample.
+    const double dc = d.dot(c);
+    const double product = d.squaredNorm() * c.squaredNorm();
     double angle = 0.0;
-    if (d_sq > 0.0) {
-      const double d_z = d.dot(z_B);
-      const double d_perp = std::sqrt(std::max(0.0, d_sq - d_z * d_z));
-      const double cosine = (sqrt_1_k2_ * d_perp + k_ * d_z) / std::sqrt(d_sq);  // (9)
+    if (product > 0.0) {
+      const double cross = std::sqrt(std::max(0.0, product - dc * dc));
+      const double cosine = (sqrt_1_k2_ * cross + k_ * dc) / std::sqrt(product);
       angle = std::acos(std::clamp(cosine, -1.0, 1.0));
     }
     sum_sq += angle * angle;
