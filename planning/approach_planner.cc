@@ -220,6 +220,12 @@ ApproachCandidate ApproachPlanner::EvaluateCandidate(const ApproachTarget& targe
 }
 
 ApproachPlan ApproachPlanner::Plan(const ApproachTarget& target) const {
+  if (!(target.p_W.allFinite() && target.v_W.allFinite() && target.a_W.allFinite() &&
+        target.gap_center_W.allFinite())) {
+    throw std::invalid_argument(
+        "ApproachPlanner::Plan: the target has a non-finite component; build it from a "
+        "successful traverse optimisation (ApproachTarget::FromTraverse)");
+  }
   const auto start_time = std::chrono::steady_clock::now();
   const Eigen::Matrix3d R_WA = ApproachFrame(target);
   const Eigen::Vector3i& counts = parameters_.start_counts;
@@ -271,7 +277,7 @@ ApproachCandidate ApproachPlanner::Replan(const ApproachTarget& target, const Ei
   candidate.primitive = MotionPrimitive(p_W, v_W, a_W, target.p_W, target.v_W, target.a_W,
                                         remaining_s);
   candidate.feasibility = CheckInputFeasibility(candidate.primitive, parameters_.limits);
-  candidate.gap_in_view = true;  // not evaluated when replanning (no cost, Sec. V-B)
+  ScorePerception(candidate.primitive, target.gap_center_W, candidate);
   return candidate;
 }
 

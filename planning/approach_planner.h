@@ -7,6 +7,10 @@
 // yaw rotation can achieve at each trajectory sample (8), and d_0 the distance from the start to
 // the gap centre. The planner returns the lowest-cost candidate that passes the input-feasibility
 // test (primitive_feasibility.h) and keeps the gap within max_view_angle_rad at every sample.
+// The approach ends with the traverse's thrust |<g, e3>| (traverse_trajectory.h): gaps whose short
+// side is near horizontal need a near free-fall traverse, which f_min > 0 rightly rejects.
+// Body rates are bounded for the position trajectory (omega_xy); the heading rate that the
+// perception-aware yaw adds is not part of the feasibility test.
 //
 // Camera model of the yaw planning: the camera sits at the centre of mass (p_C = p; the lever arm
 // of a few cm is negligible against metres to the gap), its optical axis is optical_axis_B in the
@@ -106,12 +110,14 @@ class ApproachPlanner {
                                       double duration_s) const;
   // The lowest-cost valid candidate over the grid. Ties keep the first in (duration, x, y, z)
   // order. Candidates whose perception cost already exceeds the best are not feasibility-tested,
-  // which does not change the result. No heap allocation in the loop.
+  // which does not change the result. No heap allocation in the loop. Throws
+  // std::invalid_argument for a non-finite target.
   ApproachPlan Plan(const ApproachTarget& target) const;
 
   // Replanning during execution (Sec. II-C, V-A): the primitive from the current state to the
-  // target over the remaining time, with its feasibility. No cost; the caller keeps the previous
-  // trajectory unless the verdict is kFeasible. Throws std::invalid_argument for remaining_s <= 0.
+  // target over the remaining time, with its feasibility and view angles (the cost is filled in
+  // but there is nothing to compare it with). The caller keeps the previous trajectory unless
+  // IsValid() (Sec. V-A). Throws std::invalid_argument for remaining_s <= 0.
   ApproachCandidate Replan(const ApproachTarget& target, const Eigen::Vector3d& p_W,
                            const Eigen::Vector3d& v_W, const Eigen::Vector3d& a_W,
                            double remaining_s) const;

@@ -207,6 +207,7 @@ TEST(ApproachPlanner, ReplanFromThePlannedStateReproducesThePlan) {
       planner.Replan(target, primitive.Position(tau), primitive.Velocity(tau),
                      primitive.Acceleration(tau), primitive.duration_s() - tau);
   EXPECT_EQ(replan.feasibility, Feasibility::kFeasible);
+  EXPECT_TRUE(replan.IsValid());
   for (double s = 0.0; s <= primitive.duration_s() - tau; s += 0.05) {
     // 1e-9 m: coefficient rounding of O(1) trajectories.
     EXPECT_LT((replan.primitive.Position(s) - primitive.Position(tau + s)).norm(), 1e-9);

@@ -127,6 +127,17 @@ INSTANTIATE_TEST_SUITE_P(GapOrientations, TraverseTest,
                                            GapCase{45.0, -20.0},   // g_Pi,2 < 0: climbing
                                            GapCase{70.0, -35.0}, GapCase{90.0, 0.0}));
 
+// With v_0,max = 0.5 m/s a 45 deg gap has no feasible (d, t_c): |v_0|^2 >= v_1^2 + v_2^2 with
+// v_1 = |g1| t_c and v_2 >= d_min / t_c - g2 t_c / 2 (g2 = 0 here) gives |v_0|^2 >= 2 |g1| d_min
+// = 3.5 (m/s)^2 > 0.25. The result says so instead of returning a violating trajectory as valid.
+TEST(TraverseTrajectory, ReportsAnInfeasibleProblem) {
+  TraverseParameters parameters;
+  parameters.max_start_speed_mps = 0.5;
+  const TraverseOptimizationResult result = OptimizeTraverseTrajectory(MakeGap(45.0, 0.0), parameters);
+  EXPECT_NE(result.status, TraverseOptimizationResult::Status::kSuccess);
+  EXPECT_GT(result.max_constraint_violation, 1e-3);
+}
+
 TEST(TraverseTrajectory, RejectsBadInput) {
   const GapPose gap = MakeGap(30.0, 0.0);
   EXPECT_THROW(TraverseTrajectory(gap, -0.1, 0.3, 9.81), std::invalid_argument);
