@@ -109,6 +109,8 @@ void ApproachPlannerParameters::Validate() const {
   Require(std::isfinite(start_distance_normalization_m) && start_distance_normalization_m > 0.0,
           "start_distance_normalization_m", start_distance_normalization_m,
           "must be finite and > 0");
+  Require(!std::isnan(min_height_m) && min_height_m < std::numeric_limits<double>::infinity(),
+          "min_height_m", min_height_m, "must be a height or -infinity (no floor)");
   Require(std::isfinite(max_view_angle_rad) && max_view_angle_rad > 0.0, "max_view_angle_rad",
           max_view_angle_rad, "must be finite and > 0");
   const double axis_norm = optical_axis_B.norm();
@@ -215,8 +217,14 @@ ApproachCandidate ApproachPlanner::EvaluateCandidate(const ApproachTarget& targe
   candidate.primitive =
       MotionPrimitive(start_W, zero, zero, target.p_W, target.v_W, target.a_W, duration_s);
   ScorePerception(candidate.primitive, target.gap_center_W, candidate);
+  candidate.above_floor = AboveFloor(candidate.primitive);
   candidate.feasibility = CheckInputFeasibility(candidate.primitive, parameters_.limits);
   return candidate;
+}
+
+bool ApproachPlanner::AboveFloor(const MotionPrimitive& primitive) const {
+  return !std::isfinite(parameters_.min_height_m) ||
+         MinimumProjection(primitive, Eigen::Vector3d::UnitZ()) >= parameters_.min_height_m;
 }
 
 ApproachPlan ApproachPlanner::Plan(const ApproachTarget& target) const {
@@ -251,6 +259,8 @@ ApproachPlan ApproachPlanner::Plan(const ApproachTarget& target) const {
               MotionPrimitive(start_W, zero, zero, target.p_W, target.v_W, target.a_W, duration_s);
           ScorePerception(candidate.primitive, target.gap_center_W, candidate);
           if (!candidate.gap_in_view || !(candidate.cost < best_cost)) continue;
+          candidate.above_floor = AboveFloor(candidate.primitive);
+          if (!candidate.above_floor) continue;
           ++plan.feasibility_tests;
           candidate.feasibility = CheckInputFeasibility(candidate.primitive, parameters_.limits);
           if (candidate.feasibility != Feasibility::kFeasible) continue;
@@ -278,6 +288,7 @@ ApproachCandidate ApproachPlanner::Replan(const ApproachTarget& target, const Ei
                                         remaining_s);
   candidate.feasibility = CheckInputFeasibility(candidate.primitive, parameters_.limits);
   ScorePerception(candidate.primitive, target.gap_center_W, candidate);
+  candidate.above_floor = AboveFloor(candidate.primitive);
   return candidate;
 }
 

@@ -19,6 +19,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <iosfwd>
+#include <limits>
 #include <optional>
 
 #include "control/trajectory_point.h"
@@ -71,6 +72,9 @@ struct ApproachPlannerParameters {
   // rejected; 80 deg keeps it inside a 180 deg fisheye with margin.
   double max_view_angle_rad = 1.396;
   Eigen::Vector3d optical_axis_B{1.0, 0.0, 0.0};  // forward-facing camera: k = 0 as in the paper
+  // Floor: candidates whose height z_W drops below this anywhere (MinimumProjection, exact) are
+  // rejected. -infinity (the default, since the floor height is scene knowledge) disables it.
+  double min_height_m = -std::numeric_limits<double>::infinity();
   FeasibilityLimits limits;
   // Throws std::invalid_argument naming the field for empty ranges, counts < 1, non-positive
   // durations/normalisations, an optical axis that is zero or parallel to z_B, or bad limits.
@@ -81,16 +85,19 @@ struct ApproachCandidate {
   MotionPrimitive primitive;
   Feasibility feasibility = Feasibility::kIndeterminable;
   bool gap_in_view = false;           // view angle <= max_view_angle_rad at every sample
+  bool above_floor = true;            // height >= min_height_m over [0, T]
   double view_angle_rms_rad = 0.0;    // theta_rms
   double start_distance_m = 0.0;      // d_0
   double cost = 0.0;                  // (10)
-  bool IsValid() const { return feasibility == Feasibility::kFeasible && gap_in_view; }
+  bool IsValid() const {
+    return feasibility == Feasibility::kFeasible && gap_in_view && above_floor;
+  }
 };
 
 struct ApproachPlan {
   std::optional<ApproachCandidate> best;  // empty when no candidate is valid
   int64_t candidates = 0;                 // grid size
-  int64_t feasibility_tests = 0;          // candidates whose cost could beat the best so far
+  int64_t feasibility_tests = 0;          // candidates that could beat the best so far
   double solve_time_s = 0.0;
 };
 std::ostream& operator<<(std::ostream& os, const ApproachPlan& plan);
@@ -131,6 +138,7 @@ class ApproachPlanner {
   // theta samples and d_0 into candidate (perception part of (10)).
   void ScorePerception(const MotionPrimitive& primitive, const Eigen::Vector3d& gap_center_W,
                        ApproachCandidate& candidate) const;
+  bool AboveFloor(const MotionPrimitive& primitive) const;
   double HeadingAt(const MotionPrimitive& primitive, const Eigen::Vector3d& gap_center_W,
                    double t_s) const;
 

@@ -46,4 +46,11 @@ const char* ToString(Feasibility feasibility);
 Feasibility CheckInputFeasibility(const MotionPrimitive& primitive,
                                   const FeasibilityLimits& limits);
 
+// Linear position constraints (Mueller et al. 2015, Sec. on position feasibility; not in the
+// project note): the minimum of <normal_W, p(t)> over [0, T], exact up to ~1e-15 relative. The
+// projection is a quintic; its interior extrema are roots of the quartic <n, v(t)>, isolated
+// through the chain of derivatives (each polynomial is monotone between the roots of its
+// derivative) and refined by bisection. A floor at height h: MinimumProjection(p, z_W) >= h.
+double MinimumProjection(const MotionPrimitive& primitive, const Eigen::Vector3d& normal_W);
+
 }  // namespace aperture::planning

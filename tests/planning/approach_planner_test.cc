@@ -113,12 +113,14 @@ ApproachPlannerParameters SmallGrid() {
 // mixed enough that feasibility decides (a cheaper but invalid candidate exists).
 TEST(ApproachPlanner, PicksTheMinimumCostValidCandidate) {
   const ApproachTarget target = TestTarget();
-  const ApproachPlanner planner(SmallGrid());
+  ApproachPlannerParameters parameters = SmallGrid();
+  parameters.min_height_m = 1.0;  // cuts the lowest starts (~0.8 m) and some dipping candidates
+  const ApproachPlanner planner(parameters);
   const ApproachPlannerParameters& p = planner.parameters();
   double best_cost = 1e300, cheapest_any = 1e300;
   Eigen::Vector3d best_start = Eigen::Vector3d::Zero();
   double best_duration = 0.0;
-  int valid = 0, total = 0;
+  int valid = 0, total = 0, below_floor = 0;
   for (int n = 0; n < p.duration_count; ++n) {
     for (int i = 0; i < p.start_counts[0]; ++i) {
       for (int j = 0; j < p.start_counts[1]; ++j) {
@@ -127,6 +129,7 @@ TEST(ApproachPlanner, PicksTheMinimumCostValidCandidate) {
           const ApproachCandidate c = planner.EvaluateCandidate(target, start, planner.Duration(n));
           ++total;
           cheapest_any = std::min(cheapest_any, c.cost);
+          below_floor += c.above_floor ? 0 : 1;
           if (!c.IsValid()) continue;
           ++valid;
           if (c.cost < best_cost) {
@@ -141,6 +144,7 @@ TEST(ApproachPlanner, PicksTheMinimumCostValidCandidate) {
   ASSERT_GT(valid, 0);
   EXPECT_LT(valid, total);
   EXPECT_LT(cheapest_any, best_cost);  // feasibility matters for the choice
+  EXPECT_GT(below_floor, 0);
 
   const ApproachPlan plan = planner.Plan(target);
   std::ostringstream printed;
