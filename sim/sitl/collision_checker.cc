@@ -1,5 +1,6 @@
 #include "sim/sitl/collision_checker.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -78,12 +79,21 @@ std::optional<Collision> CollisionChecker::Check(const Scene* scene,
   }
   if (scene == nullptr || scene->objects().empty()) return std::nullopt;
 
+  const auto IsIgnored = [this](const std::string& name) {
+    return std::find(params_.ignored_objects.begin(), params_.ignored_objects.end(), name) !=
+           params_.ignored_objects.end();
+  };
   std::optional<Collision> nearest;
   double nearest_fraction = std::numeric_limits<double>::infinity();
   // Keeps the hit reached after the smallest fraction of its ray's length.
   const auto cast = [&](const Eigen::Vector3d& o_W, const Eigen::Vector3d& d_W, double length_m,
                         const std::string& part) {
-    const std::optional<Hit> hit = scene->Intersect(o_W, d_W, 0.0, length_m);
+    double t_start_m = 0.0;
+    std::optional<Hit> hit = scene->Intersect(o_W, d_W, t_start_m, length_m);
+    while (hit && IsIgnored(scene->object(hit->object_id).name)) {
+      t_start_m = hit->t_m;  // Intersect's interval is open: the next surface along the ray
+      hit = scene->Intersect(o_W, d_W, t_start_m, length_m);
+    }
     if (!hit) return;
     const double fraction = hit->t_m / length_m;
     if (fraction < nearest_fraction) {

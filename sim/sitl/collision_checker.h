@@ -15,7 +15,7 @@
 // The ray test is conservative to within the angular spacing of the rays: a flat surface is
 // detected once it is closer than radius * cos(half the spacing) (~0.93 radius for 64 rays);
 // a thin edge (a hole's rim) may pass between rays of the sphere by up to that gap. LEDs are not
-// solid (Scene::Intersect ignores them).
+// solid (Scene::Intersect ignores them); neither are `ignored_objects` (rays continue past them).
 #include <Eigen/Core>
 #include <optional>
 #include <string>
@@ -32,6 +32,8 @@ struct CollisionParams {
   double propeller_radius_m = 0.0635;  // 5 inch propellers
   bool ground_enabled = true;          // the plane z_W = ground_height_m is solid
   double ground_height_m = 0.0;
+  // Scene objects that are not obstacles (e.g. parts attached to the vehicle body, markers).
+  std::vector<std::string> ignored_objects;
   int sphere_rays = 64;
   int disk_rays = 12;
   // Throws std::invalid_argument naming the field (radii <= 0 or non-finite, ray counts < 6).

@@ -150,7 +150,7 @@ SitlRunner::SitlRunner(const SitlRunnerParams& params, const Scene* scene)
 
 SitlRunner::~SitlRunner() = default;
 
-SitlResult SitlRunner::Run(perception::Autopilot& autopilot, const SitlFrameObserver& observer) {
+SitlResult SitlRunner::Run(perception::Autopilot& autopilot, const SitlHooks& hooks) {
   const Clock::time_point wall_start = Clock::now();
   SitlResult result;
   result.autopilot_name = autopilot.name();
@@ -223,13 +223,14 @@ SitlResult SitlRunner::Run(perception::Autopilot& autopilot, const SitlFrameObse
         ++runtime.stats.frames_dropped;
         continue;
       }
+      if (hooks.before_render) hooks.before_render(t_s, state);
       const Eigen::Isometry3d T_BC = camera.T_BC;
       CapturedFrame captured = runtime.effects.Capture(
           ray_caster_, *scene_, *camera.model,
           [&history, &T_BC](double t) { return history.T_WB(t) * T_BC; },
           t_s - 0.5 * camera.effects.exposure_s, slot, camera.render);
       captured.frame.camera_id = static_cast<int>(c);
-      if (observer) observer(static_cast<int>(c), captured, state);
+      if (hooks.on_frame) hooks.on_frame(static_cast<int>(c), captured, state);
       runtime.in_flight.emplace_back(t_s + camera.latency_s, captured.frame);
     }
     result.timing.render_s += SecondsSince(section);

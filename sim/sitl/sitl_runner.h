@@ -131,10 +131,17 @@ struct SitlResult {
 const char* ToString(
     SitlResult::Outcome outcome);  // "duration_reached", "autopilot_done", "collision"
 
-// Observer of every rendered frame (delivered or not yet): camera index, the capture with its
-// ground truth, and the vehicle state at the end of exposure. For videos and reports.
-using SitlFrameObserver =
-    std::function<void(int camera_index, const CapturedFrame& frame, const control::QuadState&)>;
+// Optional callbacks into a run.
+struct SitlHooks {
+  // Called before every camera frame is rendered, with the time at the end of exposure and the
+  // vehicle state then: the owner of the (mutable) scene moves objects here (scripted targets,
+  // objects attached to the body). Called once per frame, so motion blur sees them static.
+  std::function<void(double t_s, const control::QuadState& state)> before_render;
+  // Every rendered frame (before its delivery latency): camera index, the capture with its
+  // ground truth, the vehicle state at the end of exposure. For videos and reports.
+  std::function<void(int camera_index, const CapturedFrame& frame, const control::QuadState&)>
+      on_frame;
+};
 
 class SitlRunner {
  public:
@@ -143,7 +150,7 @@ class SitlRunner {
   SitlRunner(const SitlRunnerParams& params, const Scene* scene);
   ~SitlRunner();
   // Runs one flight from params.initial_state; each call starts afresh (same seeds -> same run).
-  SitlResult Run(perception::Autopilot& autopilot, const SitlFrameObserver& observer = {});
+  SitlResult Run(perception::Autopilot& autopilot, const SitlHooks& hooks = {});
   const SitlRunnerParams& params() const { return params_; }
 
  private:

@@ -72,6 +72,10 @@ TEST_F(CollisionCheckerTest, DetectsAWallWithinTheBodyRadiusOnly) {
   EXPECT_EQ(hit->object_name, "ceiling");
   EXPECT_EQ(hit->part, "body");
   EXPECT_NEAR(hit->contact_p_W.z(), 4.95, 1e-9);
+  // An ignored object is transparent to the check.
+  params_.ignored_objects = {"ceiling"};
+  const CollisionChecker ignoring(vehicle_, params_);
+  EXPECT_FALSE(ignoring.Check(&scene, StateAt(near), near).has_value());
 }
 
 TEST_F(CollisionCheckerTest, SweepCatchesTunnellingThroughAThinPlate) {

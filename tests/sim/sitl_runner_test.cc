@@ -158,10 +158,11 @@ CameraRunOutput RunWithCamera(std::uint64_t seed, const Scene& scene) {
   autopilot_params.waypoints.push_back(Waypoint{Eigen::Vector3d(0.5, 0.2, 1.2), 0.0, 0.0});
   GroundTruthAutopilot autopilot(params.dynamics.vehicle, autopilot_params);
   CameraRunOutput out;
-  out.result =
-      runner.Run(autopilot, [&out](int, const CapturedFrame& frame, const control::QuadState&) {
-        out.hashes.push_back(HashImage(frame.frame.image));
-      });
+  SitlHooks hooks;
+  hooks.on_frame = [&out](int, const CapturedFrame& frame, const control::QuadState&) {
+    out.hashes.push_back(HashImage(frame.frame.image));
+  };
+  out.result = runner.Run(autopilot, hooks);
   return out;
 }
 
@@ -231,7 +232,10 @@ TEST(SitlRunner, FramesAreDroppedAtTheConfiguredRate) {
   params.SetSeed(3);
   SitlRunner runner(params, &scene);
   RecordingAutopilot autopilot(params.dynamics.vehicle, HoverAt(params.initial_state.p_WB));
-  const SitlResult result = runner.Run(autopilot);
+  int renders = 0;
+  SitlHooks hooks;
+  hooks.before_render = [&renders](double, const control::QuadState&) { ++renders; };
+  const SitlResult result = runner.Run(autopilot, hooks);
   ASSERT_EQ(result.cameras.size(), 1u);
   const SitlCameraStats& stats = result.cameras[0];
   EXPECT_EQ(stats.frames_due, 301);  // 30 Hz over [0, 10] s inclusive
@@ -239,6 +243,7 @@ TEST(SitlRunner, FramesAreDroppedAtTheConfiguredRate) {
   // Binomial(301, 0.3): mean 90.3, sigma 7.95; 4 sigma keeps the seeded test far from the edge.
   EXPECT_NEAR(stats.frames_dropped, 0.3 * 301, 4.0 * 7.95);
   EXPECT_EQ(static_cast<int>(autopilot.frames.size()), stats.frames_delivered);
+  EXPECT_EQ(renders, stats.frames_delivered);  // dropped frames are not rendered
   // Frame indices keep counting through drops: the gaps add up to the dropped count.
   int gaps = 0;
   for (size_t i = 1; i < autopilot.frames.size(); ++i) {
