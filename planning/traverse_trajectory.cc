@@ -132,7 +132,7 @@ TraverseTrajectory::TraverseTrajectory(const GapPose& gap, double d_m, double ti
   const Eigen::Vector3d g_W(0.0, 0.0, -gravity_mps2);
   plane_gravity_W_ = g_W - g_W.dot(e3_W_) * e3_W_;  // (1)
   const double t_c = time_to_gap_s;
-  l_m_ = -0.5 * g1_ * t_c * t_c;                       // (4) solved for l
+  l_m_ = 0.5 * std::abs(g1_) * t_c * t_c;  // (4) solved for l (g1 <= 0)
   p0_W_ = gap.p_WG - l_m_ * e1_W_ - d_m_ * e2_W_;     // (3a)
   v0_W_ = StartVelocity1(g1_, t_c) * e1_W_ + StartVelocity2(g2_, d_m_, t_c) * e2_W_;  // (3b)
   // End when p_2 = 2 d: g2 t^2 / 2 + v_2 t - 2 d = 0, smallest positive root in the form that
