@@ -7,6 +7,10 @@
 // yaw rotation can achieve at each trajectory sample (8), and d_0 the distance from the start to
 // the gap centre. The planner returns the lowest-cost candidate that passes the input-feasibility
 // test (primitive_feasibility.h) and keeps the gap within max_view_angle_rad at every sample.
+// The approach ends with the traverse's thrust |<g, e3>| (traverse_trajectory.h): gaps whose short
+// side is near horizontal need a near free-fall traverse, which f_min > 0 rightly rejects.
+// Body rates are bounded for the position trajectory (omega_xy); the heading rate that the
+// perception-aware yaw adds is not part of the feasibility test.
 //
 // Camera model of the yaw planning: the camera sits at the centre of mass (p_C = p; the lever arm
 // of a few cm is negligible against metres to the gap), its optical axis is optical_axis_B in the
@@ -15,6 +19,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <iosfwd>
+#include <limits>
 #include <optional>
 
 #include "control/trajectory_point.h"
@@ -48,8 +53,9 @@ struct ApproachTarget {
 struct ApproachPlannerParameters {
   // Start positions: a grid of start_counts points per axis over [offset_min, offset_max] in the
   // approach frame A at the traverse start: x_A backwards (horizontal projection of -v_0, or of
-  // p_0 - gap centre when v_0 is vertical, or x_W), z_A up, y_A = z_A x x_A. A count of 1 uses offset_min. Defaults span
-  // 1-4 m behind the traverse start, +-1.5 m sideways and +-1 m in height.
+  // p_0 - gap centre when v_0 is vertical, or x_W), z_A up, y_A = z_A x x_A. A count of 1 uses
+  // offset_min. Defaults span 1-4 m behind the traverse start, +-1.5 m sideways and +-1 m in
+  // height.
   Eigen::Vector3d start_offset_min_A{1.0, -1.5, -1.0};
   Eigen::Vector3d start_offset_max_A{4.0, 1.5, 1.0};
   Eigen::Vector3i start_counts{7, 7, 5};
@@ -67,6 +73,9 @@ struct ApproachPlannerParameters {
   // rejected; 80 deg keeps it inside a 180 deg fisheye with margin.
   double max_view_angle_rad = 1.396;
   Eigen::Vector3d optical_axis_B{1.0, 0.0, 0.0};  // forward-facing camera: k = 0 as in the paper
+  // Floor: candidates whose height z_W drops below this anywhere (MinimumProjection, exact) are
+  // rejected. -infinity (the default, since the floor height is scene knowledge) disables it.
+  double min_height_m = -std::numeric_limits<double>::infinity();
   FeasibilityLimits limits;
   // Throws std::invalid_argument naming the field for empty ranges, counts < 1, non-positive
   // durations/normalisations, an optical axis that is zero or parallel to z_B, or bad limits.
@@ -76,17 +85,20 @@ struct ApproachPlannerParameters {
 struct ApproachCandidate {
   MotionPrimitive primitive;
   Feasibility feasibility = Feasibility::kIndeterminable;
-  bool gap_in_view = false;           // view angle <= max_view_angle_rad at every sample
-  double view_angle_rms_rad = 0.0;    // theta_rms
-  double start_distance_m = 0.0;      // d_0
-  double cost = 0.0;                  // (10)
-  bool IsValid() const { return feasibility == Feasibility::kFeasible && gap_in_view; }
+  bool gap_in_view = false;         // view angle <= max_view_angle_rad at every sample
+  bool above_floor = true;          // height >= min_height_m over [0, T]
+  double view_angle_rms_rad = 0.0;  // theta_rms
+  double start_distance_m = 0.0;    // d_0
+  double cost = 0.0;                // (10)
+  bool IsValid() const {
+    return feasibility == Feasibility::kFeasible && gap_in_view && above_floor;
+  }
 };
 
 struct ApproachPlan {
   std::optional<ApproachCandidate> best;  // empty when no candidate is valid
   int64_t candidates = 0;                 // grid size
-  int64_t feasibility_tests = 0;          // candidates whose cost could beat the best so far
+  int64_t feasibility_tests = 0;          // candidates that could beat the best so far
   double solve_time_s = 0.0;
 };
 std::ostream& operator<<(std::ostream& os, const ApproachPlan& plan);
@@ -106,12 +118,14 @@ class ApproachPlanner {
                                       double duration_s) const;
   // The lowest-cost valid candidate over the grid. Ties keep the first in (duration, x, y, z)
   // order. Candidates whose perception cost already exceeds the best are not feasibility-tested,
-  // which does not change the result. No heap allocation in the loop.
+  // which does not change the result. No heap allocation in the loop. Throws
+  // std::invalid_argument for a non-finite target.
   ApproachPlan Plan(const ApproachTarget& target) const;
 
   // Replanning during execution (Sec. II-C, V-A): the primitive from the current state to the
-  // target over the remaining time, with its feasibility. No cost; the caller keeps the previous
-  // trajectory unless the verdict is kFeasible. Throws std::invalid_argument for remaining_s <= 0.
+  // target over the remaining time, with its feasibility and view angles (the cost is filled in
+  // but there is nothing to compare it with). The caller keeps the previous trajectory unless
+  // IsValid() (Sec. V-A). Throws std::invalid_argument for remaining_s <= 0.
   ApproachCandidate Replan(const ApproachTarget& target, const Eigen::Vector3d& p_W,
                            const Eigen::Vector3d& v_W, const Eigen::Vector3d& a_W,
                            double remaining_s) const;
@@ -125,11 +139,12 @@ class ApproachPlanner {
   // theta samples and d_0 into candidate (perception part of (10)).
   void ScorePerception(const MotionPrimitive& primitive, const Eigen::Vector3d& gap_center_W,
                        ApproachCandidate& candidate) const;
+  bool AboveFloor(const MotionPrimitive& primitive) const;
   double HeadingAt(const MotionPrimitive& primitive, const Eigen::Vector3d& gap_center_W,
                    double t_s) const;
 
   ApproachPlannerParameters parameters_;
-  double k_ = 0.0;        // <optical axis, z_B> of (7)
+  double k_ = 0.0;  // <optical axis, z_B> of (7)
   double sqrt_1_k2_ = 1.0;
 };
 

@@ -104,7 +104,75 @@ struct SectionChecker {
   }
 };
 
+// Polynomial c[0] + c[1] t + ... + c[degree] t^degree.
+double EvaluatePolynomial(const double* c, int degree, double t) {
+  double value = c[degree];
+  for (int i = degree - 1; i >= 0; --i) value = value * t + c[i];
+  return value;
+}
+
+// Real roots of the polynomial in (a, b), ascending, into roots (at most degree of them); returns
+// the count. Between consecutive roots of the derivative the polynomial is monotone, so each such
+// interval holds at most one root, found by bisection to double precision.
+int RootsInInterval(const double* c, int degree, double a, double b, double* roots) {
+  if (degree == 0) return 0;
+  if (degree == 1) {
+    if (c[1] == 0.0) return 0;
+    const double t = -c[0] / c[1];
+    roots[0] = t;
+    return (t > a && t < b) ? 1 : 0;
+  }
+  double derivative[5];
+  for (int i = 1; i <= degree; ++i) derivative[i - 1] = i * c[i];
+  double breaks[6];
+  int count = 0;
+  breaks[count++] = a;
+  count += RootsInInterval(derivative, degree - 1, a, b, breaks + 1);
+  breaks[count++] = b;
+  int found = 0;
+  for (int k = 0; k + 1 < count; ++k) {
+    double lo = breaks[k], hi = breaks[k + 1];
+    double f_lo = EvaluatePolynomial(c, degree, lo);
+    const double f_hi = EvaluatePolynomial(c, degree, hi);
+    if (f_lo == 0.0 && k > 0) {
+      roots[found++] = lo;  // a root at an interior break (double root)
+      continue;
+    }
+    if ((f_lo < 0.0) == (f_hi < 0.0) || f_hi == 0.0) continue;
+    for (int iteration = 0; iteration < 200 && hi - lo > 0.0; ++iteration) {
+      const double mid = 0.5 * (lo + hi);
+      if (mid <= lo || mid >= hi) break;
+      const double f_mid = EvaluatePolynomial(c, degree, mid);
+      if ((f_mid < 0.0) == (f_lo < 0.0)) {
+        lo = mid;
+        f_lo = f_mid;
+      } else {
+        hi = mid;
+      }
+    }
+    roots[found++] = 0.5 * (lo + hi);
+  }
+  return found;
+}
+
 }  // namespace
+
+double MinimumProjection(const MotionPrimitive& primitive, const Eigen::Vector3d& normal_W) {
+  const Eigen::Vector3d& n = normal_W;
+  const double q[6] = {n.dot(primitive.initial_position_W()),
+                       n.dot(primitive.initial_velocity_W()),
+                       n.dot(primitive.initial_acceleration_W()) / 2.0,
+                       n.dot(primitive.gamma()) / 6.0,
+                       n.dot(primitive.beta()) / 24.0,
+                       n.dot(primitive.alpha()) / 120.0};
+  const double dq[5] = {q[1], 2.0 * q[2], 3.0 * q[3], 4.0 * q[4], 5.0 * q[5]};
+  const double T = primitive.duration_s();
+  double minimum = std::min(q[0], EvaluatePolynomial(q, 5, T));
+  double roots[4];
+  const int count = RootsInInterval(dq, 4, 0.0, T, roots);
+  for (int i = 0; i < count; ++i) minimum = std::min(minimum, EvaluatePolynomial(q, 5, roots[i]));
+  return minimum;
+}
 
 FeasibilityLimits FeasibilityLimits::FromVehicle(const control::VehicleParameters& vehicle,
                                                  double max_body_rate_radps) {

@@ -86,7 +86,8 @@ GapPose TestGap() {
   gap.p_WG = Eigen::Vector3d(5.0, 0.5, 1.8);
   Eigen::Matrix3d R0;
   R0 << Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitX();
-  gap.R_WG = Eigen::AngleAxisd(30.0 * kPi / 180.0, Eigen::Vector3d::UnitX()).toRotationMatrix() * R0;
+  gap.R_WG =
+      Eigen::AngleAxisd(30.0 * kPi / 180.0, Eigen::Vector3d::UnitX()).toRotationMatrix() * R0;
   return gap;
 }
 
@@ -113,12 +114,14 @@ ApproachPlannerParameters SmallGrid() {
 // mixed enough that feasibility decides (a cheaper but invalid candidate exists).
 TEST(ApproachPlanner, PicksTheMinimumCostValidCandidate) {
   const ApproachTarget target = TestTarget();
-  const ApproachPlanner planner(SmallGrid());
+  ApproachPlannerParameters parameters = SmallGrid();
+  parameters.min_height_m = 1.0;  // cuts the lowest starts (~0.8 m) and some dipping candidates
+  const ApproachPlanner planner(parameters);
   const ApproachPlannerParameters& p = planner.parameters();
   double best_cost = 1e300, cheapest_any = 1e300;
   Eigen::Vector3d best_start = Eigen::Vector3d::Zero();
   double best_duration = 0.0;
-  int valid = 0, total = 0;
+  int valid = 0, total = 0, below_floor = 0;
   for (int n = 0; n < p.duration_count; ++n) {
     for (int i = 0; i < p.start_counts[0]; ++i) {
       for (int j = 0; j < p.start_counts[1]; ++j) {
@@ -127,6 +130,7 @@ TEST(ApproachPlanner, PicksTheMinimumCostValidCandidate) {
           const ApproachCandidate c = planner.EvaluateCandidate(target, start, planner.Duration(n));
           ++total;
           cheapest_any = std::min(cheapest_any, c.cost);
+          below_floor += c.above_floor ? 0 : 1;
           if (!c.IsValid()) continue;
           ++valid;
           if (c.cost < best_cost) {
@@ -141,6 +145,7 @@ TEST(ApproachPlanner, PicksTheMinimumCostValidCandidate) {
   ASSERT_GT(valid, 0);
   EXPECT_LT(valid, total);
   EXPECT_LT(cheapest_any, best_cost);  // feasibility matters for the choice
+  EXPECT_GT(below_floor, 0);
 
   const ApproachPlan plan = planner.Plan(target);
   std::ostringstream printed;
@@ -187,10 +192,11 @@ TEST(ApproachPlanner, SampledHeadingKeepsTheGapCentred) {
   // Heading rate agrees with a wider central difference of the heading (5 ms step: the heading
   // is smooth, the difference of the two estimates is O(h^2 psi''') << 1e-3 rad/s).
   const double t = 0.5 * primitive.duration_s(), h = 5e-3;
-  const double rate = std::remainder(planner.Sample(primitive, target.gap_center_W, t + h).heading_rad -
-                                         planner.Sample(primitive, target.gap_center_W, t - h).heading_rad,
-                                     2.0 * kPi) /
-                      (2.0 * h);
+  const double rate =
+      std::remainder(planner.Sample(primitive, target.gap_center_W, t + h).heading_rad -
+                         planner.Sample(primitive, target.gap_center_W, t - h).heading_rad,
+                     2.0 * kPi) /
+      (2.0 * h);
   EXPECT_NEAR(planner.Sample(primitive, target.gap_center_W, t).heading_rate_radps, rate, 1e-3);
 }
 
@@ -207,6 +213,7 @@ TEST(ApproachPlanner, ReplanFromThePlannedStateReproducesThePlan) {
       planner.Replan(target, primitive.Position(tau), primitive.Velocity(tau),
                      primitive.Acceleration(tau), primitive.duration_s() - tau);
   EXPECT_EQ(replan.feasibility, Feasibility::kFeasible);
+  EXPECT_TRUE(replan.IsValid());
   for (double s = 0.0; s <= primitive.duration_s() - tau; s += 0.05) {
     // 1e-9 m: coefficient rounding of O(1) trajectories.
     EXPECT_LT((replan.primitive.Position(s) - primitive.Position(tau + s)).norm(), 1e-9);
