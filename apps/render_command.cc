@@ -59,12 +59,13 @@ std::string FrameName(int index) {
 void RenderDataset(const RenderCommandOptions& options, output::OutputFolder& out) {
   // Explicit flags win over --config files and --set items.
   CommonOptions common = options.common;
-  if (!options.trajectory.empty()) common.set_items.push_back("trajectory.kind=" + options.trajectory);
-  if (options.frames > 0) common.set_items.push_back("trajectory.frames=" + std::to_string(options.frames));
+  if (!options.trajectory.empty())
+    common.set_items.push_back("trajectory.kind=" + options.trajectory);
+  if (options.frames > 0)
+    common.set_items.push_back("trajectory.frames=" + std::to_string(options.frames));
   if (options.seed >= 0) common.set_items.push_back("seed=" + std::to_string(options.seed));
-  const config::ConfigTree tree =
-      config::ConfigTree::FromCommandLine(sim::BuiltinScenarioYaml(options.scenario),
-                                          common.config_files, common.set_items);
+  const config::ConfigTree tree = config::ConfigTree::FromCommandLine(
+      sim::BuiltinScenarioYaml(options.scenario), common.config_files, common.set_items);
   sim::Scenario scenario = sim::BuildScenario(sim::LoadScenarioParams(tree));
   const sim::ScenarioParams& params = scenario.params();
   const sim::ScenarioCamera& camera = scenario.render_camera();
@@ -124,8 +125,8 @@ void RenderDataset(const RenderCommandOptions& options, output::OutputFolder& ou
     scenario.SetVehiclePose(T_WB);
     const auto render_start = std::chrono::steady_clock::now();
     sim::CapturedFrame frame = camera.effects.Capture(
-        caster, scenario.scene(), *camera.model,
-        [&](double t) { return camera.T_WC(T_WB_at(t)); }, t_s, i, camera.render);
+        caster, scenario.scene(), *camera.model, [&](double t) { return camera.T_WC(T_WB_at(t)); },
+        t_s, i, camera.render);
     render_time_s +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - render_start).count();
 
@@ -164,10 +165,14 @@ void RenderDataset(const RenderCommandOptions& options, output::OutputFolder& ou
                        {"total_s", wall_s},
                        {"frames_per_s", frame_count / wall_s},
                        {"render_frames_per_s", frame_count / render_time_s}};
-  summary["outputs"] = {{"images", "images"},      {"times", "images/times.txt"},
-                        {"depth", "depth"},        {"masks", "masks"},
-                        {"groundtruth", "groundtruth.txt"}, {"objects", "objects.csv"},
-                        {"calibration", "calib.yaml"},      {"config", "scenario.yaml"},
+  summary["outputs"] = {{"images", "images"},
+                        {"times", "images/times.txt"},
+                        {"depth", "depth"},
+                        {"masks", "masks"},
+                        {"groundtruth", "groundtruth.txt"},
+                        {"objects", "objects.csv"},
+                        {"calibration", "calib.yaml"},
+                        {"config", "scenario.yaml"},
                         {"report", "report.html"}};
 
   report.AddSection("Summary");
@@ -189,7 +194,8 @@ void RenderDataset(const RenderCommandOptions& options, output::OutputFolder& ou
   for (const auto& [index, frame] : kept) {
     const std::string label = "frame " + std::to_string(index);
     report.AddImage(frame.frame.image, label);
-    report.AddImage(sim::DepthPreview(frame.depth_C, 15.0), label + ": depth (bright = near, 0-15 m)");
+    report.AddImage(sim::DepthPreview(frame.depth_C, 15.0),
+                    label + ": depth (bright = near, 0-15 m)");
     report.AddImage(sim::ObjectIdPreview(frame.object_id), label + ": object ids");
   }
   report.AddSection("Objects");
@@ -202,17 +208,20 @@ void RenderDataset(const RenderCommandOptions& options, output::OutputFolder& ou
 void AddRenderCommand(CLI::App& app, int* exit_code) {
   auto options = std::make_shared<RenderCommandOptions>();
   std::string names;
-  for (const std::string& name : sim::BuiltinScenarioNames()) names += (names.empty() ? "" : ", ") + name;
+  for (const std::string& name : sim::BuiltinScenarioNames())
+    names += (names.empty() ? "" : ", ") + name;
   CLI::App* command =
       app.add_subcommand("render", "Render a dataset with ground truth from a scenario");
   command->add_option("scenario", options->scenario, "Built-in scenario: " + names)->required();
-  command->add_option("--trajectory", options->trajectory,
-                      "hover | line | circle | scan | random (default: the scenario's)")
+  command
+      ->add_option("--trajectory", options->trajectory,
+                   "hover | line | circle | scan | random (default: the scenario's)")
       ->check(CLI::IsMember({"hover", "line", "circle", "scan", "random"}));
   command->add_option("--frames", options->frames, "Frame count (default: the scenario's)")
       ->check(CLI::PositiveNumber);
-  command->add_option("--seed", options->seed,
-                      "Randomization seed: textures, placements, noise (default: the scenario's)")
+  command
+      ->add_option("--seed", options->seed,
+                   "Randomization seed: textures, placements, noise (default: the scenario's)")
       ->check(CLI::NonNegativeNumber);
   AddCommonOptions(command, &options->common);
   command->callback([options, exit_code] {

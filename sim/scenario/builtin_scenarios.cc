@@ -139,7 +139,8 @@ const std::string& BuiltinScenarioYaml(const std::string& name) {
   const auto it = Builtins().find(name);
   if (it == Builtins().end()) {
     std::string known;
-    for (const auto& [known_name, yaml] : Builtins()) known += (known.empty() ? "" : ", ") + known_name;
+    for (const auto& [known_name, yaml] : Builtins())
+      known += (known.empty() ? "" : ", ") + known_name;
     throw std::invalid_argument("unknown scenario '" + name + "'; built-in scenarios: " + known);
   }
   return it->second;

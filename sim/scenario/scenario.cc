@@ -85,7 +85,8 @@ class Builder {
     return material;
   }
 
-  Material Textured(const std::string& kind, const Eigen::Vector3d& color = Eigen::Vector3d::Ones()) {
+  Material Textured(const std::string& kind,
+                    const Eigen::Vector3d& color = Eigen::Vector3d::Ones()) {
     TextureParams texture;
     texture.kind = kind;
     texture.color = color;
@@ -120,9 +121,10 @@ class Builder {
     cv::Mat pattern(to_px(gap.panel_m.y()), to_px(gap.panel_m.x()), CV_8UC3, cv::Scalar::all(242));
     const auto fill = [&](const Eigen::Vector2d& size_m, int value) {
       const Eigen::Vector2d corner = (gap.panel_m - size_m) / 2.0;
-      cv::rectangle(pattern, cv::Point(to_px(corner.x()), to_px(corner.y())),
-                    cv::Point(to_px(corner.x() + size_m.x()) - 1, to_px(corner.y() + size_m.y()) - 1),
-                    cv::Scalar::all(value), cv::FILLED);
+      cv::rectangle(
+          pattern, cv::Point(to_px(corner.x()), to_px(corner.y())),
+          cv::Point(to_px(corner.x() + size_m.x()) - 1, to_px(corner.y() + size_m.y()) - 1),
+          cv::Scalar::all(value), cv::FILLED);
     };
     fill(gap.pattern_outer_m, 13);
     fill(gap.pattern_inner_m, 242);
@@ -131,21 +133,23 @@ class Builder {
                                                  Texture::Wrap::kClamp);
     material.color = Rgb::Ones();
     const Eigen::Vector2d h = gap.opening_m / 2.0;
-    Rectangle panel{gap.panel_m, {{{-h.x(), -h.y()}, {h.x(), -h.y()}, {h.x(), h.y()}, {-h.x(), h.y()}}}, {}};
+    Rectangle panel{
+        gap.panel_m, {{{-h.x(), -h.y()}, {h.x(), -h.y()}, {h.x(), h.y()}, {-h.x(), h.y()}}}, {}};
     Add({"gap", panel, material, Jitter(Facing(R_WG, gap.center_W))});
 
     // Textured room around it: x from -3 m, centred in y, floor at z = 0.
     const Eigen::Vector3d room = gap.room_m;
     const double x0 = -3.0, x1 = x0 + room.x(), cx = 0.5 * (x0 + x1);
-    Add({"floor", GroundPlane{}, Textured("noise", {0.8, 0.7, 0.6}), Eigen::Isometry3d::Identity()});
+    Add({"floor", GroundPlane{}, Textured("noise", {0.8, 0.7, 0.6}),
+         Eigen::Isometry3d::Identity()});
     Add({"wall_far", Rectangle{{room.y(), room.z()}, {}, {}}, Textured("newspaper"),
          Facing(FacingPlusX(), {x1, 0.0, room.z() / 2})});
     Add({"wall_near", Rectangle{{room.y(), room.z()}, {}, {}}, Textured("noise"),
          Facing(FacingPlusX(), {x0, 0.0, room.z() / 2})});
     Eigen::Matrix3d R_side;  // x_O = x_W, y_O = -z_W, z_O = y_W
     R_side << 1, 0, 0, 0, 0, 1, 0, -1, 0;
-    Add({"wall_left", Rectangle{{room.x(), room.z()}, {}, {}}, Textured("newspaper", {0.9, 0.9, 0.8}),
-         Facing(R_side, {cx, room.y() / 2, room.z() / 2})});
+    Add({"wall_left", Rectangle{{room.x(), room.z()}, {}, {}},
+         Textured("newspaper", {0.9, 0.9, 0.8}), Facing(R_side, {cx, room.y() / 2, room.z() / 2})});
     Add({"wall_right", Rectangle{{room.x(), room.z()}, {}, {}}, Textured("noise", {0.7, 0.8, 0.9}),
          Facing(R_side, {cx, -room.y() / 2, room.z() / 2})});
     Add({"ceiling", Rectangle{{room.x(), room.y()}, {}, {}}, Textured("none", {0.9, 0.9, 0.9}),
@@ -195,7 +199,8 @@ class Builder {
 
   void BuildLed(Scenario* scenario) {
     const LedSceneParams& led = params_.led;
-    Add({"ground", GroundPlane{}, Textured("noise", {0.5, 0.5, 0.5}), Eigen::Isometry3d::Identity()});
+    Add({"ground", GroundPlane{}, Textured("noise", {0.5, 0.5, 0.5}),
+         Eigen::Isometry3d::Identity()});
     const auto attach = [&](SceneObject object) {
       const Eigen::Isometry3d T_BO = object.T_WO;
       object.T_WO = T_WB_start_ * T_BO;
@@ -211,14 +216,18 @@ class Builder {
     for (size_t i = 0; i < led.leds_B.size(); ++i) {
       Eigen::Isometry3d T_BL = Eigen::Isometry3d::Identity();
       T_BL.translation() = led.leds_B[i];
-      attach({"led" + std::to_string(i), Led{led.led_radius_m, led.led_intensity, Rgb::Ones()}, {},
+      attach({"led" + std::to_string(i),
+              Led{led.led_radius_m, led.led_intensity, Rgb::Ones()},
+              {},
               T_BL});
     }
     for (int k = 0; k < led.false_spots; ++k) {
       const Eigen::Vector3d p(placement_.Uniform(-0.5, 0.5) * led.false_spot_area_m.x(),
                               placement_.Uniform(-0.5, 0.5) * led.false_spot_area_m.y(),
                               led.false_spot_height_m);
-      Add({"false_spot" + std::to_string(k), Led{0.02, 4.0 * led.led_intensity, Rgb::Ones()}, {},
+      Add({"false_spot" + std::to_string(k),
+           Led{0.02, 4.0 * led.led_intensity, Rgb::Ones()},
+           {},
            MakePose(p, Eigen::Vector3d::Zero())});
     }
   }
@@ -243,7 +252,8 @@ class Builder {
 
   void BuildTags() {
     const TagsSceneParams& t = params_.tags;
-    Add({"ground", GroundPlane{}, Textured("noise", {0.5, 0.5, 0.5}), Eigen::Isometry3d::Identity()});
+    Add({"ground", GroundPlane{}, Textured("noise", {0.5, 0.5, 0.5}),
+         Eigen::Isometry3d::Identity()});
     // Ground tags face up: z_O = -z_W (seen by a downward camera along +z_O), x_O = x_W.
     const Eigen::Vector3d face_up_rpy(180, 0, 0);
     const auto tag = [&](int id, const Eigen::Vector3d& p_W, double yaw_deg) {
@@ -257,8 +267,7 @@ class Builder {
     const auto tagged_box = [&](const std::string& name, int id, const Eigen::Vector3d& size) {
       const Eigen::Vector2d xy = FreeSpot(t.area_m, clearance, &taken);
       const double yaw = placement_.Uniform(-180.0, 180.0);
-      const Eigen::Isometry3d T_WO =
-          Jitter(MakePose({xy.x(), xy.y(), size.z() / 2}, {0, 0, yaw}));
+      const Eigen::Isometry3d T_WO = Jitter(MakePose({xy.x(), xy.y(), size.z() / 2}, {0, 0, yaw}));
       Add({name, Box{size}, Textured("none", {0.6, 0.35, 0.2}), T_WO});
       Eigen::Isometry3d T_OT = MakePose({0, 0, size.z() / 2 + 0.001}, face_up_rpy);
       Add(MakeAprilTagObject(t.family, id, t.tag_size_m, T_WO * T_OT));
@@ -347,7 +356,8 @@ class Builder {
     const LightingParams& l = params_.lighting;
     const double sigma = params_.randomize.light_sigma;
     Lighting& lighting = scene_.lighting;
-    lighting.ambient = static_cast<float>(std::max(0.0, l.ambient * (1.0 + sigma * lights_.Normal())));
+    lighting.ambient =
+        static_cast<float>(std::max(0.0, l.ambient * (1.0 + sigma * lights_.Normal())));
     lighting.directional =
         static_cast<float>(std::max(0.0, l.directional * (1.0 + sigma * lights_.Normal())));
     const Eigen::Vector3d d = l.direction_W.normalized();
@@ -372,8 +382,8 @@ ScenarioCamera BuildCamera(const std::string& name, const CameraParams& c, std::
   Eigen::VectorXd intrinsics = c.intrinsics;
   if (intrinsics.size() == 0) {
     const double half_fov = 0.5 * c.fov_deg * kDegToRad;
-    const double f = c.model == "equidistant" ? 0.5 * c.width / half_fov
-                                              : 0.5 * c.width / std::tan(half_fov);
+    const double f =
+        c.model == "equidistant" ? 0.5 * c.width / half_fov : 0.5 * c.width / std::tan(half_fov);
     intrinsics = Eigen::Vector4d(f, f, 0.5 * (c.width - 1), 0.5 * (c.height - 1));
   }
   Eigen::VectorXd distortion = c.distortion;
@@ -381,7 +391,8 @@ ScenarioCamera BuildCamera(const std::string& name, const CameraParams& c, std::
   ScenarioCamera camera;
   camera.name = name;
   try {
-    camera.model = perception::CreateCameraModel(c.model, c.width, c.height, intrinsics, distortion);
+    camera.model =
+        perception::CreateCameraModel(c.model, c.width, c.height, intrinsics, distortion);
     CameraEffectsParams effects;
     effects.gain = c.gain;
     effects.full_well_electrons = c.full_well_electrons;

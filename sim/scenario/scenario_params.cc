@@ -53,7 +53,8 @@ std::vector<Eigen::Vector3d> ReadLedFile(const std::string& path) {
   reader.Read("leds", &leds);
   reader.RejectUnknownKeys();
   if (leds.size() < 4) {
-    throw std::invalid_argument(path + ": 'leds' needs at least 4 positions [x, y, z] in metres "
+    throw std::invalid_argument(path +
+                                ": 'leds' needs at least 4 positions [x, y, z] in metres "
                                 "(P3P needs 3 plus one to disambiguate), got " +
                                 std::to_string(leds.size()));
   }
@@ -146,8 +147,8 @@ void LoadParams(config::ParamReader& reader, CameraParams* params) {
   RequirePositive(reader, "rate_hz", params->rate_hz);
   RequirePositive(reader, "supersampling", params->supersampling);
   if (params->intrinsics.size() == 0 &&
-      (!(params->fov_deg > 0.0) ||
-       (params->model != "equidistant" && !(params->fov_deg < 180.0)) || params->fov_deg > 360.0)) {
+      (!(params->fov_deg > 0.0) || (params->model != "equidistant" && !(params->fov_deg < 180.0)) ||
+       params->fov_deg > 360.0)) {
     ThrowAt(reader, "fov_deg",
             "must be in (0, 180) for pinhole/radtan and (0, 360] for equidistant, got " +
                 std::to_string(params->fov_deg));

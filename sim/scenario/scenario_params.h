@@ -40,22 +40,22 @@ struct TextureParams {
   // none | checker | noise | newspaper | bark | grass
   std::string kind = "none";
   Eigen::Vector3d color = Eigen::Vector3d::Constant(0.7);  // albedo multiplier (RGB)
-  double scale = 1.0;               // physical size factor of the texture on the surface
-  double texel_size_m = 0.01;       // procedural textures: 256 texels * 1 cm = 2.56 m period
-  double square_size_m = 0.2;       // checker
+  double scale = 1.0;          // physical size factor of the texture on the surface
+  double texel_size_m = 0.01;  // procedural textures: 256 texels * 1 cm = 2.56 m period
+  double square_size_m = 0.2;  // checker
 };
 
 struct ObjectParams {
   // rectangle | box | cylinder | sphere | ground | led
   std::string shape = "box";
-  Eigen::Vector3d size_m = Eigen::Vector3d::Ones();  // rectangle: x, y; box: x, y, z
-  double radius_m = 0.15;          // cylinder, sphere, led
-  double height_m = 1.0;           // cylinder
-  double intensity = 400.0;        // led: blob energy at 1 m
+  Eigen::Vector3d size_m = Eigen::Vector3d::Ones();         // rectangle: x, y; box: x, y, z
+  double radius_m = 0.15;                                   // cylinder, sphere, led
+  double height_m = 1.0;                                    // cylinder
+  double intensity = 400.0;                                 // led: blob energy at 1 m
   std::vector<std::vector<Eigen::Vector2d>> polygon_holes;  // rectangle: holes in (x_O, y_O) [m]
   PoseParams pose;
-  bool attach_to_body = false;     // true: pose is T_BO and the object moves with the vehicle
-  bool randomize_pose = false;     // jittered by randomize.position_sigma_m / yaw_sigma_deg
+  bool attach_to_body = false;  // true: pose is T_BO and the object moves with the vehicle
+  bool randomize_pose = false;  // jittered by randomize.position_sigma_m / yaw_sigma_deg
   TextureParams texture;
 };
 
@@ -85,10 +85,10 @@ struct CameraParams {
   bool mount_on_body = true;   // false: fixed in the world, `pose` is T_WC
   PoseParams pose;             // T_BC (body mount) or T_WC (world mount)
   double rate_hz = 30.0;
-  double exposure_s = 0.0;     // > 0 with motion_blur_subframes > 1: motion blur
+  double exposure_s = 0.0;  // > 0 with motion_blur_subframes > 1: motion blur
   int motion_blur_subframes = 1;
   double gain = 1.0;
-  double read_noise_sigma = 0.004;   // [fraction of full scale]
+  double read_noise_sigma = 0.004;    // [fraction of full scale]
   double full_well_electrons = 5000;  // shot noise; 0 = off
   bool color = false;
   bool infrared = false;  // IR mode: dark scene, bright LEDs
@@ -122,12 +122,12 @@ struct GapParams {
   double roll_deg = 0.0;   // about x_W (the paper's roll, 0..45 deg)
   double pitch_deg = 0.0;  // about y_W (0..30 deg)
   double yaw_deg = 0.0;    // about z_W
-  Eigen::Vector2d opening_m = Eigen::Vector2d(0.8, 0.28);       // paper: 80 x 28 cm
+  Eigen::Vector2d opening_m = Eigen::Vector2d(0.8, 0.28);        // paper: 80 x 28 cm
   Eigen::Vector2d pattern_inner_m = Eigen::Vector2d(0.9, 0.38);  // white margin inside the band
   Eigen::Vector2d pattern_outer_m = Eigen::Vector2d(1.3, 0.78);  // outer edge of the black band
   Eigen::Vector2d panel_m = Eigen::Vector2d(1.7, 1.2);           // white panel
-  double texel_size_m = 0.002;  // pattern texture resolution
-  Eigen::Vector3d room_m = Eigen::Vector3d(14.0, 8.0, 4.0);  // textured room (x from -3 m)
+  double texel_size_m = 0.002;                                   // pattern texture resolution
+  Eigen::Vector3d room_m = Eigen::Vector3d(14.0, 8.0, 4.0);      // textured room (x from -3 m)
 };
 
 // GapFlyt (seed 002): textured foreground wall with an arbitrarily shaped opening and a textured
@@ -135,9 +135,9 @@ struct GapParams {
 struct GapFlytParams {
   double foreground_x_m = 2.6;
   double background_x_m = 5.7;
-  std::string shape = "polygon";  // polygon | ellipse | star
+  std::string shape = "polygon";                         // polygon | ellipse | star
   Eigen::Vector2d center_m = Eigen::Vector2d(0.0, 1.5);  // (y_W, z_W) of the opening centre
-  Eigen::Vector2d size_m = Eigen::Vector2d(1.0, 0.8);   // bounding box (width, height)
+  Eigen::Vector2d size_m = Eigen::Vector2d(1.0, 0.8);    // bounding box (width, height)
   // polygon vertices in (x_G right, y_G down) [m] about the centre; empty: a seeded irregular
   // quadrilateral within size_m
   std::vector<Eigen::Vector2d> vertices_m;
@@ -184,7 +184,7 @@ struct ScenarioParams {
   std::uint64_t seed = 0;
   LightingParams lighting;
   RandomizationParams randomize;
-  PoseParams vehicle_start;  // key vehicle.start
+  PoseParams vehicle_start;                                   // key vehicle.start
   std::vector<std::pair<std::string, CameraParams>> cameras;  // in document order
   TrajectoryParams trajectory;
   GapParams gap;
