@@ -15,6 +15,7 @@
 
 #include "apps/command_support.h"
 #include "apps/commands.h"
+#include "apps/pose_streams.h"
 #include "apps/run_report.h"
 #include "output/csv_writer.h"
 #include "output/progress_bar.h"
@@ -46,11 +47,15 @@ void RunFrontEnds(const RunOptions& options, output::OutputFolder& out) {
   const config::ConfigTree tree = LoadConfig(options.common, "");
   const std::vector<std::string> front_end_names =
       perception::SplitFrontEndList(options.front_ends);
+  perception::FrontEndResources resources;
+  if (!options.calibration_path.empty()) {
+    resources.calibration = perception::LoadCameraCalibration(options.calibration_path);
+  }
   perception::FrontEndRegistry registry;
   perception::RegisterBuiltinFrontEnds(registry);
   // Each front end reads the config section named after it; any other section is a typo.
   config::ParamReader root = tree.Reader();
-  perception::FrameGraph graph = registry.BuildGraph(front_end_names, root);
+  perception::FrameGraph graph = registry.BuildGraph(front_end_names, root, resources);
   root.RejectUnknownKeys();
 
   perception::FrameSourceOptions source_options;
@@ -60,10 +65,6 @@ void RunFrontEnds(const RunOptions& options, output::OutputFolder& out) {
   source_options.skip_bad_frames = options.skip_bad_frames;
   std::unique_ptr<perception::FrameSource> source =
       perception::OpenFrameSource(options.source, source_options);
-  std::optional<perception::CameraCalibration> calibration;
-  if (!options.calibration_path.empty()) {
-    calibration = perception::LoadCameraCalibration(options.calibration_path);
-  }
 
   nlohmann::json& summary = out.summary();
   summary["command"] = "run";
@@ -88,6 +89,7 @@ void RunFrontEnds(const RunOptions& options, output::OutputFolder& out) {
   std::unique_ptr<output::CsvWriter> csv;
   std::vector<std::string> metric_names;
   std::unique_ptr<output::VideoWriter> video;
+  PoseStreams pose_streams(out);
   RunRecord record;
   std::optional<perception::FrameSlots> slots;
   while (options.max_frames <= 0 || record.frame_count() < size_t(options.max_frames)) {
@@ -95,8 +97,9 @@ void RunFrontEnds(const RunOptions& options, output::OutputFolder& out) {
     if (!frame) break;
     if (!slots) {
       slots = graph.MakeSlots(*frame);
-      if (calibration) {
-        perception::CheckCalibrationImageSize(*calibration, frame->image.cols, frame->image.rows);
+      if (resources.calibration) {
+        perception::CheckCalibrationImageSize(*resources.calibration, frame->image.cols,
+                                              frame->image.rows);
       }
     }
     executor->Run(*frame, *slots);
@@ -117,6 +120,7 @@ void RunFrontEnds(const RunOptions& options, output::OutputFolder& out) {
       row.push_back(it->second);
     }
     csv->WriteRow(row);
+    pose_streams.Write(frame->t_s, graph.CollectPoses(*slots));
     const cv::Mat overlay = graph.RenderOverlay(*slots);
     if (options.video) {
       if (!video) {
@@ -146,6 +150,7 @@ void RunFrontEnds(const RunOptions& options, output::OutputFolder& out) {
   summary["timing"] = TimingJson(executor->Timing(), executor->FrameTiming());
   summary["metrics"] = record.MetricStatistics(metric_names);
   nlohmann::json outputs = {{"csv", "frames.csv"}, {"report", "report.html"}};
+  summary["poses"] = pose_streams.Close();
   if (video) {
     if (const std::optional<std::string> path = video->Close()) {
       outputs["video"] = std::filesystem::path(*path).filename().string();

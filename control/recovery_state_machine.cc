@@ -74,6 +74,13 @@ void RecoveryStateMachine::Reset() {
   transitions_.clear();
 }
 
+void RecoveryStateMachine::StartWithoutLaunch(double t_s) {
+  Reset();
+  RecoveryInputs in;
+  in.t_s = t_s;
+  Advance(in);
+}
+
 bool RecoveryStateMachine::ExitConditionHolds(const RecoveryInputs& in) const {
   switch (stage_) {
     case RecoveryStage::kWaitingForLaunch:

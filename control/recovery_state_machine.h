@@ -119,7 +119,12 @@ class RecoveryStateMachine {
   // Position and heading locked on entering stage 5 (vision frame).
   const Eigen::Vector3d& locked_position_W() const { return locked_position_W_; }
   double locked_heading_rad() const { return locked_heading_rad_; }
+  // Back to kWaitingForLaunch with no transitions.
   void Reset();
+  // Recovery without a throw (state-estimation failure, B.3 intro): Reset(), then enter the
+  // attitude stage at t_s (recorded as the transition 0 -> 1), so the next Step() levels the
+  // vehicle instead of idling the rotors.
+  void StartWithoutLaunch(double t_s);
 
  private:
   ThrustRatesCommand ComputeCommand(const RecoveryInputs& inputs) const;

@@ -189,6 +189,16 @@ std::map<std::string, double> FrameGraph::CollectMetrics(const FrameSlots& slots
   return metrics;
 }
 
+std::vector<PoseEstimate> FrameGraph::CollectPoses(const FrameSlots& slots) const {
+  std::vector<PoseEstimate> poses;
+  for (std::size_t index : topological_order_) {
+    // Poses receives a const context: it cannot Set, so the const_cast never writes.
+    const NodeContext context(const_cast<FrameSlots&>(slots), declarations_[index]);
+    for (PoseEstimate& pose : nodes_[index]->Poses(context)) poses.push_back(std::move(pose));
+  }
+  return poses;
+}
+
 void FrameGraph::DrawOverlays(const FrameSlots& slots, cv::Mat& bgr) const {
   for (std::size_t index : topological_order_) {
     // DrawOverlay receives a const context: it cannot Set, so the const_cast never writes.

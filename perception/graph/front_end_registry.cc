@@ -38,9 +38,20 @@ const std::string& FrontEndRegistry::Description(const std::string& name) const 
   return Find(name).description;
 }
 
+const CameraCalibration& FrontEndResources::RequireCalibration(
+    const std::string& front_end) const {
+  if (!calibration) {
+    throw std::invalid_argument("front end '" + front_end +
+                                "' needs a camera calibration: pass --calib FILE (OpenCV, ROS "
+                                "camera_info or Kalibr YAML)");
+  }
+  return *calibration;
+}
+
 std::unique_ptr<Node> FrontEndRegistry::Create(const std::string& name,
-                                               config::ParamReader& params) const {
-  std::unique_ptr<Node> node = Find(name).factory(params);
+                                               config::ParamReader& params,
+                                               const FrontEndResources& resources) const {
+  std::unique_ptr<Node> node = Find(name).factory(params, resources);
   if (!node) {
     throw std::invalid_argument("FrontEndRegistry: the factory of '" + name + "' returned no node");
   }
@@ -48,13 +59,15 @@ std::unique_ptr<Node> FrontEndRegistry::Create(const std::string& name,
   return node;
 }
 
-std::unique_ptr<Node> FrontEndRegistry::Create(const std::string& name) const {
+std::unique_ptr<Node> FrontEndRegistry::Create(const std::string& name,
+                                               const FrontEndResources& resources) const {
   config::ParamReader defaults(YAML::Node(), name + " defaults");
-  return Create(name, defaults);
+  return Create(name, defaults, resources);
 }
 
 FrameGraph FrontEndRegistry::BuildGraph(
-    const std::vector<std::string>& front_ends, config::ParamReader& root) const {
+    const std::vector<std::string>& front_ends, config::ParamReader& root,
+    const FrontEndResources& resources) const {
   if (front_ends.empty()) {
     std::string known;
     for (const std::string& name : Names()) known += " " + name;
@@ -67,14 +80,15 @@ FrameGraph FrontEndRegistry::BuildGraph(
       throw std::invalid_argument("front end '" + name + "' is listed twice");
     }
     config::ParamReader params = root.Section(name);
-    nodes.push_back(Create(name, params));
+    nodes.push_back(Create(name, params, resources));
   }
   return FrameGraph(std::move(nodes));
 }
 
-FrameGraph FrontEndRegistry::BuildGraph(const std::vector<std::string>& front_ends) const {
+FrameGraph FrontEndRegistry::BuildGraph(const std::vector<std::string>& front_ends,
+                                        const FrontEndResources& resources) const {
   config::ParamReader defaults(YAML::Node(), "defaults");
-  return BuildGraph(front_ends, defaults);
+  return BuildGraph(front_ends, defaults, resources);
 }
 
 std::vector<std::string> SplitFrontEndList(const std::string& comma_separated) {

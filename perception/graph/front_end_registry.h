@@ -13,18 +13,30 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "perception/graph/frame_graph.h"
 #include "perception/graph/node.h"
 #include "config/param_reader.h"
+#include "perception/camera/calibration_io.h"
 
 namespace aperture::perception {
 
+// What a run offers every front end besides its parameters.
+struct FrontEndResources {
+  // The camera calibration (`aperture run --calib`), when one was given.
+  std::optional<CameraCalibration> calibration;
+
+  // The calibration, or std::invalid_argument telling the user that `front_end` needs --calib.
+  const CameraCalibration& RequireCalibration(const std::string& front_end) const;
+};
+
 // Reads its parameters from `params` (config::ParamReader::Read...); the registry rejects the
 // keys it did not read.
-using FrontEndFactory = std::function<std::unique_ptr<Node>(config::ParamReader& params)>;
+using FrontEndFactory = std::function<std::unique_ptr<Node>(config::ParamReader& params,
+                                                            const FrontEndResources& resources)>;
 
 class FrontEndRegistry {
  public:
@@ -37,19 +49,22 @@ class FrontEndRegistry {
 
   // Throws std::invalid_argument for an unknown name (listing the known ones), passes on the
   // factory's errors (bad parameters) and rejects parameters the factory did not read.
-  std::unique_ptr<Node> Create(const std::string& name, config::ParamReader& params) const;
+  std::unique_ptr<Node> Create(const std::string& name, config::ParamReader& params,
+                               const FrontEndResources& resources = {}) const;
   // With all parameters at their defaults.
-  std::unique_ptr<Node> Create(const std::string& name) const;
+  std::unique_ptr<Node> Create(const std::string& name,
+                               const FrontEndResources& resources = {}) const;
 
   // One node per front end, in the given order; section `name` of `root` configures front end
   // `name` (root.Section(name), so the sections read are marked known in `root`; the caller
   // decides whether other sections are errors with root.RejectUnknownKeys()).
   // Throws std::invalid_argument on an empty list, a repeated or unknown name, bad parameters,
   // or an invalid graph (e.g. a front end that needs another one not listed).
-  FrameGraph BuildGraph(const std::vector<std::string>& front_ends,
-                        config::ParamReader& root) const;
+  FrameGraph BuildGraph(const std::vector<std::string>& front_ends, config::ParamReader& root,
+                        const FrontEndResources& resources = {}) const;
   // With all parameters at their defaults.
-  FrameGraph BuildGraph(const std::vector<std::string>& front_ends) const;
+  FrameGraph BuildGraph(const std::vector<std::string>& front_ends,
+                        const FrontEndResources& resources = {}) const;
 
  private:
   struct Entry {

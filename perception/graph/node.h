@@ -8,10 +8,13 @@
 //  - Run is called once per frame, after every producer of the node's inputs has run. It must Set
 //    each declared output. Different nodes may run concurrently (ParallelExecutor); one node never
 //    runs concurrently with itself, so Run may keep per-node state (trackers, buffers).
-//  - Metrics and DrawOverlay are called after the whole graph ran on a frame, with read-only
-//    access to the node's inputs and outputs.
+//  - Metrics, Poses and DrawOverlay are called after the whole graph ran on a frame, with
+//    read-only access to the node's inputs and outputs.
+#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <map>
 #include <opencv2/core/mat.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,6 +22,17 @@
 #include "perception/graph/slot_spec.h"
 
 namespace aperture::perception {
+
+// One pose estimate of a front end on one frame, written by `aperture run` as a row of the TUM
+// trajectory file `<stream>.csv` (e.g. stream "gap" with T = T_GC, stream "led" with T = T_CT;
+// the node's header says which transform it reports).
+struct PoseEstimate {
+  std::string stream;
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  // 6x6 covariance of [translation [m]; rotation [rad]] when the front end provides one; written
+  // to `<stream>_covariance.csv`.
+  std::optional<Eigen::Matrix<double, 6, 6>> covariance;
+};
 
 class Node {
  public:
@@ -34,6 +48,8 @@ class Node {
   // same keys every frame (NaN for "not available") so the columns stay fixed.
   virtual std::map<std::string, double> Metrics(const NodeContext& /*context*/) const { return {}; }
 
+  // Pose estimates of this frame (none when nothing was found).
+  virtual std::vector<PoseEstimate> Poses(const NodeContext& /*context*/) const { return {}; }
   // Draws this node's results on `bgr` (CV_8UC3, the frame's size) for the overlay video.
   virtual void DrawOverlay(const NodeContext& /*context*/, cv::Mat& /*bgr*/) const {}
 };

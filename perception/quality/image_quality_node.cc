@@ -8,7 +8,8 @@
 
 namespace aperture::perception {
 
-std::unique_ptr<Node> ImageQualityNode::Create(config::ParamReader& params) {
+std::unique_ptr<Node> ImageQualityNode::Create(config::ParamReader& params,
+                                               const FrontEndResources& /*resources*/) {
   ImageQualityParams quality_params;
   params.Read("histogram_bins", &quality_params.histogram_bins);
   params.Read("over_exposed_level", &quality_params.over_exposed_level);

@@ -12,6 +12,7 @@
 
 #include "perception/graph/node.h"
 #include "config/param_reader.h"
+#include "perception/graph/front_end_registry.h"
 #include "perception/quality/image_quality_analyzer.h"
 
 namespace aperture::perception {
@@ -25,7 +26,7 @@ class ImageQualityNode final : public Node {
 
   // Parameters: histogram_bins, over_exposed_level, under_exposed_level (ImageQualityParams);
   // unknown keys or unparsable values throw std::invalid_argument.
-  static std::unique_ptr<Node> Create(config::ParamReader& params);
+  static std::unique_ptr<Node> Create(config::ParamReader& params, const FrontEndResources&);
 
   std::string Name() const override { return kName; }
   std::vector<SlotSpec> Inputs() const override;

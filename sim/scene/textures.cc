@@ -149,13 +149,19 @@ struct TexelSpan {
   float w1;
 };
 
+// floor for |x| < 2^63 without a libm call (baseline x86-64 has no SSE4.1 round instruction).
+inline double FastFloor(double x) {
+  const double t = static_cast<double>(static_cast<long long>(x));
+  return t > x ? t - 1.0 : t;
+}
+
 inline TexelSpan Span(double x, int n, bool repeat) {
-  const double fx = std::floor(x);
+  const double fx = FastFloor(x);
   TexelSpan s;
   s.w1 = static_cast<float>(x - fx);
   if (repeat) {
     // One floating-point wrap instead of two integer modulos per sample.
-    const double wrapped = fx - n * std::floor(fx * (1.0 / n));
+    const double wrapped = fx - n * FastFloor(fx * (1.0 / n));
     s.i0 = std::clamp(static_cast<int>(wrapped), 0, n - 1);
     s.i1 = s.i0 + 1 == n ? 0 : s.i0 + 1;
   } else {
@@ -171,8 +177,8 @@ Rgb Texture::Sample(double u_m, double v_m, double footprint_m) const {
   if (image_.empty()) {
     const double su = (u_m - margin_m_) / texel_size_m_;
     const double sv = (v_m - margin_m_) / texel_size_m_;
-    const double iu = std::floor(su);
-    const double iv = std::floor(sv);
+    const double iu = FastFloor(su);
+    const double iv = FastFloor(sv);
     const bool bounded = squares_x_ > 0 && squares_y_ > 0;
     if (bounded && (iu < 0.0 || iv < 0.0 || iu >= squares_x_ || iv >= squares_y_)) {
       return border_;
@@ -190,11 +196,12 @@ Rgb Texture::Sample(double u_m, double v_m, double footprint_m) const {
   }
   const cv::Mat& image = levels_[level];
   // Texel centres sit at (i + 0.5) * texel.
-  const double x = u_m / texel - 0.5;
-  const double y = v_m / texel - 0.5;
+  const double inv_texel = 1.0 / texel;
+  const double x = u_m * inv_texel - 0.5;
+  const double y = v_m * inv_texel - 0.5;
   if (filter_ == Filter::kNearest) {
-    const TexelSpan sx = Span(std::floor(x + 0.5), image.cols, repeat);
-    const TexelSpan sy = Span(std::floor(y + 0.5), image.rows, repeat);
+    const TexelSpan sx = Span(FastFloor(x + 0.5), image.cols, repeat);
+    const TexelSpan sy = Span(FastFloor(y + 0.5), image.rows, repeat);
     const float* t = image.ptr<float>(sy.i0) + 3 * sx.i0;
     return {t[0], t[1], t[2]};
   }

@@ -443,6 +443,46 @@ TEST(FrameGraphExecutors, ParallelExecutorRethrowsTheFirstNodeErrorAndSkipsDepen
   EXPECT_EQ(dependent_runs, 0);
 }
 
+// Reports the frame time as the x translation of a pose on stream "clock", every other frame.
+class PoseNode final : public Node {
+ public:
+  std::string Name() const override { return "pose_node"; }
+  std::vector<SlotSpec> Inputs() const override { return {MakeSlot<Frame>(kFrameSlot)}; }
+  std::vector<SlotSpec> Outputs() const override { return {MakeSlot<double>("t")}; }
+  void Run(NodeContext& context) override {
+    context.Set("t", context.Get<Frame>(kFrameSlot).t_s);
+  }
+  std::vector<PoseEstimate> Poses(const NodeContext& context) const override {
+    const Frame& frame = context.Get<Frame>(kFrameSlot);
+    if (frame.index % 2 == 1) return {};
+    PoseEstimate pose;
+    pose.stream = "clock";
+    pose.T.translation().x() = context.Get<double>("t");
+    return {pose};
+  }
+};
+
+TEST(FrameGraphExecutors, CollectPosesGathersEachNodesEstimatesOfTheFrame) {
+  std::vector<std::unique_ptr<Node>> nodes;
+  nodes.push_back(std::make_unique<PoseNode>());
+  FrameGraph graph(std::move(nodes));
+  SerialExecutor executor(graph);
+  for (int index = 0; index < 4; ++index) {
+    Frame frame;
+    frame.index = index;
+    frame.t_s = 0.5 * index;
+    const FrameSlots slots = executor.Run(frame);
+    const std::vector<PoseEstimate> poses = graph.CollectPoses(slots);
+    if (index % 2 == 1) {
+      EXPECT_TRUE(poses.empty());
+      continue;
+    }
+    ASSERT_EQ(poses.size(), 1u);
+    EXPECT_EQ(poses[0].stream, "clock");
+    EXPECT_EQ(poses[0].T.translation().x(), frame.t_s);
+  }
+}
+
 TEST(ParallelExecutor, RejectsNegativeConcurrency) {
   FrameGraph graph({});
   EXPECT_THROW(ParallelExecutor(graph, ParallelExecutorParams{-1}), std::invalid_argument);

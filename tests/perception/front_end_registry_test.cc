@@ -52,7 +52,7 @@ std::unique_ptr<Node> CreateWithSet(const FrontEndRegistry& registry, const std:
 FrontEndRegistry MakeRegistry() {
   FrontEndRegistry registry;
   RegisterBuiltinFrontEnds(registry);
-  registry.Register("exposure_alarm", "test node", [](config::ParamReader&) {
+  registry.Register("exposure_alarm", "test node", [](config::ParamReader&, const FrontEndResources&) {
     return std::make_unique<ExposureAlarmNode>();
   });
   return registry;
@@ -80,7 +80,7 @@ TEST(FrontEndRegistry, RejectsDuplicateRegistrationAndRepeatedSelection) {
   FrontEndRegistry registry = MakeRegistry();
   EXPECT_THAT(ErrorOf([&] {
                 registry.Register("image_quality", "again",
-                                  [](config::ParamReader&) { return std::unique_ptr<Node>(); });
+                                  [](config::ParamReader&, const FrontEndResources&) { return std::unique_ptr<Node>(); });
               }),
               HasSubstr("'image_quality'"));
   EXPECT_THAT(ErrorOf([&] {
@@ -132,6 +132,12 @@ TEST(FrontEndRegistry, UnknownOrBadParameterNamesTheKey) {
                 CreateWithSet(registry, "image_quality.histogram_bins=0");
               }),
               HasSubstr("histogram_bins = 0"));
+}
+
+TEST(FrontEndResources, RequireCalibrationTellsTheUserToPassCalib) {
+  const FrontEndResources none;
+  EXPECT_THAT(ErrorOf([&] { none.RequireCalibration("gap"); }),
+              AllOf(HasSubstr("'gap'"), HasSubstr("--calib")));
 }
 
 TEST(SplitFrontEndList, TrimsAndRejectsEmptyEntries) {

@@ -134,7 +134,7 @@ TEST(ImageQualityAnalyzer, RejectsBadInputAndParams) {
 TEST(ImageQualityNode, EmitsTheAnalyzerResultsAsMetricsAndDrawsAnOverlay) {
   std::vector<std::unique_ptr<Node>> nodes;
   config::ParamReader params(YAML::Load("histogram_bins: 8"), "test.yaml");
-  nodes.push_back(ImageQualityNode::Create(params));
+  nodes.push_back(ImageQualityNode::Create(params, FrontEndResources{}));
   FrameGraph graph(std::move(nodes));
   SerialExecutor executor(graph);
   Frame frame;

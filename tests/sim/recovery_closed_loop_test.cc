@@ -1,9 +1,9 @@
 // Closed-loop recovery after a throw (Faessler thesis B.3, B.4.2): the simulated vehicle
 // (sim::QuadrotorDynamics) is held still, then thrown upwards while tumbling, and recovered to a
 // position hold by the full on-board chain of paper B, all from simulated sensors:
-//   ImuSensor -> LaunchDetector (B.29), ImuAttitudeEstimator (B.22-B.26)
-//   RangeSensor + IMU -> HeightFilter (B.27-B.28)
-//   RecoveryStateMachine (B.3.2) -> ThrustRatesCommand
+//   control::RecoveryPipeline: ImuSensor -> LaunchDetector (B.29), ImuAttitudeEstimator
+//   (B.22-B.26); RangeSensor + IMU -> HeightFilter (B.27-B.28); RecoveryStateMachine (B.3.2)
+//   -> ThrustRatesCommand
 //   ProportionalBodyRateController (B.21) -> Mixer (G) -> rotor thrusts -> vehicle.
 // The vision pipeline is emulated: its estimate (ground truth in a shifted frame) becomes
 // available 1 s after the height stage starts, as SVO initializes during the horizontal drift.
@@ -14,12 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "control/height_filter.h"
-#include "control/imu_attitude_estimator.h"
-#include "control/launch_detector.h"
 #include "control/mixer.h"
 #include "control/proportional_body_rate_controller.h"
-#include "control/recovery_state_machine.h"
+#include "control/recovery_pipeline.h"
 #include "sim/sensors/imu_sensor.h"
 #include "sim/sensors/range_sensor.h"
 #include "sim/vehicle/quadrotor_dynamics.h"
@@ -64,20 +61,14 @@ RecoveryRun Throw(const ThrowCase& c) {
   sim::ImuSensor imu(imu_params);
   sim::RangeSensor range(sim::RangeSensorParams{});
 
-  control::LaunchDetector launch(control::LaunchDetectorParams::FromVehicle(vehicle));
-  control::ImuAttitudeEstimator attitude;
-  control::HeightFilter height;
-  control::RecoveryStateMachine recovery(vehicle);
+  control::RecoveryPipeline recovery(vehicle);
   const control::ProportionalBodyRateController rate_controller(vehicle);
   const control::Mixer mixer(vehicle);
 
   const Eigen::Vector3d vision_offset_W(1.0, -2.0, 0.05);  // vision frame != world frame
   const double t_release = 0.4;
   bool released = false;
-  bool height_filter_pending = false;
   bool vision_ready = false;
-  double last_imu_t = 0.0;
-  Eigen::Vector3d omega_hat_B = Eigen::Vector3d::Zero();
   RecoveryRun run;
 
   for (double t = kDt; t < 6.0; t += kDt) {
@@ -92,42 +83,21 @@ RecoveryRun Throw(const ThrowCase& c) {
                                          : Eigen::Vector3d(truth.q_WB.conjugate() *
                                                            Eigen::Vector3d(0, 0, vehicle.gravity_mps2));
     for (const perception::ImuSample& sample : imu.Update(t, f_B, truth.omega_B)) {
-      launch.AddSample(sample.t_s, sample.specific_force_B);
-      attitude.AddImu(sample.t_s, sample.specific_force_B, sample.omega_B);
-      omega_hat_B = attitude.omega_B();
-      if (height.initialized()) {
-        height.Predict(sample.t_s - last_imu_t,
-                       control::HeightFilter::VerticalAcceleration(
-                           attitude.q_WB(), sample.specific_force_B, vehicle.gravity_mps2));
-      }
-      last_imu_t = sample.t_s;
+      recovery.AddImu(sample.t_s, sample.specific_force_B, sample.omega_B);
     }
     if (const auto reading = range.Update(truth); reading && reading->valid) {
-      const std::optional<double> z = control::HeightFilter::HeightFromRange(reading->range_m,
-                                                                              attitude.q_WB());
-      if (z && height_filter_pending) {
-        height.Initialize(*z);
-        height_filter_pending = false;
-      } else if (z && height.initialized()) {
-        height.Update(*z);
-      }
+      recovery.AddRange(reading->range_m);
     }
-
-    control::RecoveryInputs in;
-    in.t_s = t;
-    in.launch_detected = launch.launched();
-    in.q_WB = attitude.q_WB();
-    in.omega_B = omega_hat_B;
-    if (height.initialized()) in.height = height.estimate();
-    vision_ready = vision_ready || (recovery.stage() == RecoveryStage::kHeight &&
-                                    t - recovery.stage_entry_time_s() >= 1.0 - 1e-9);
+    const control::RecoveryStateMachine& machine = recovery.state_machine();
+    vision_ready = vision_ready || (machine.stage() == RecoveryStage::kHeight &&
+                                    t - machine.stage_entry_time_s() >= 1.0 - 1e-9);
     if (vision_ready) {
       control::QuadState vision = truth;
       vision.p_WB += vision_offset_W;
-      in.vision_state = vision;
+      recovery.SetVisionState(vision);
     }
-    const control::RecoveryOutput out = recovery.Step(in);
-    if (out.initialize_height_filter) height_filter_pending = true;
+    const control::RecoveryOutput out = recovery.Step(t);
+    const Eigen::Vector3d omega_hat_B = recovery.attitude().omega_B();
 
     // Low-level loop (B.21) and mixer; the rotors idle before the launch.
     const Eigen::Vector3d torque_B =
@@ -138,11 +108,12 @@ RecoveryRun Throw(const ThrowCase& c) {
                   out.command.collective_thrust_mps2)
             .command);
 
-    if (launch.launched()) {
+    if (recovery.launch_detector().launched()) {
       const Eigen::Vector3d up_true = truth.q_WB.conjugate() * Eigen::Vector3d::UnitZ();
-      const Eigen::Vector3d up_est = attitude.q_WB().conjugate() * Eigen::Vector3d::UnitZ();
+      const Eigen::Vector3d up_est =
+          recovery.attitude().q_WB().conjugate() * Eigen::Vector3d::UnitZ();
       const double e = std::acos(std::clamp(up_true.dot(up_est), -1.0, 1.0));
-      if (recovery.stage() <= RecoveryStage::kAttitude) {
+      if (recovery.state_machine().stage() <= RecoveryStage::kAttitude) {
         run.max_tumble_tilt_error_rad = std::max(run.max_tumble_tilt_error_rad, e);
       }
       run.max_tilt_error_rad = std::max(run.max_tilt_error_rad, e);
@@ -154,12 +125,12 @@ RecoveryRun Throw(const ThrowCase& c) {
     run.min_height_m = std::min(run.min_height_m, truth.p_WB.z());
   }
   const control::QuadState& truth = dynamics.state();
-  run.transitions = recovery.transitions();
+  run.transitions = recovery.state_machine().transitions();
   run.final_tilt_rad = std::acos(std::clamp((truth.q_WB * Eigen::Vector3d::UnitZ()).z(), -1.0, 1.0));
   run.final_speed_mps = truth.v_W.norm();
   run.final_position_error_m =
-      (truth.p_WB + vision_offset_W - recovery.locked_position_W()).norm();
-  run.final_height_error_m = height.estimate().z_m - truth.p_WB.z();
+      (truth.p_WB + vision_offset_W - recovery.state_machine().locked_position_W()).norm();
+  run.final_height_error_m = recovery.height_filter().estimate().z_m - truth.p_WB.z();
   return run;
 }
 
