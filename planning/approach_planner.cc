@@ -51,9 +51,9 @@ Eigen::Vector3d OptimalOpticalAxis(const Eigen::Vector3d& d_W, const Eigen::Vect
                                    double k) {
   const Eigen::Vector3d d_perp = d_W - d_W.dot(z_B_W) * z_B_W;
   const double norm = d_perp.norm();
-  const Eigen::Vector3d u =
-      norm > 1e-12 * std::max(1.0, d_W.norm()) ? Eigen::Vector3d(d_perp / norm)
-                                               : AnyPerpendicular(z_B_W);
+  const Eigen::Vector3d u = norm > 1e-12 * std::max(1.0, d_W.norm())
+                                ? Eigen::Vector3d(d_perp / norm)
+                                : AnyPerpendicular(z_B_W);
   return std::sqrt(std::max(0.0, 1.0 - k * k)) * u + k * z_B_W;  // (8)
 }
 
@@ -97,8 +97,8 @@ void ApproachPlannerParameters::Validate() const {
             start_offset_max_A[i] - start_offset_min_A[i], "must be finite and >= 0");
     Require(start_counts[i] >= 1, "start_counts[i]", start_counts[i], "must be >= 1");
   }
-  Require(std::isfinite(duration_min_s) && duration_min_s > 0.0, "duration_min_s",
-          duration_min_s, "must be finite and > 0");
+  Require(std::isfinite(duration_min_s) && duration_min_s > 0.0, "duration_min_s", duration_min_s,
+          "must be finite and > 0");
   Require(std::isfinite(duration_max_s) && duration_max_s >= duration_min_s, "duration_max_s",
           duration_max_s, "must be finite and >= duration_min_s");
   Require(duration_count >= 1, "duration_count", duration_count, "must be >= 1");
@@ -116,7 +116,8 @@ void ApproachPlannerParameters::Validate() const {
   const double axis_norm = optical_axis_B.norm();
   Require(optical_axis_B.allFinite() && axis_norm > 0.0 &&
               std::abs(optical_axis_B.z()) < 0.999 * axis_norm,
-          "optical_axis_B.z / |optical_axis_B|", axis_norm > 0.0 ? optical_axis_B.z() / axis_norm : 0.0,
+          "optical_axis_B.z / |optical_axis_B|",
+          axis_norm > 0.0 ? optical_axis_B.z() / axis_norm : 0.0,
           "the optical axis must be non-zero and not parallel to z_B");
   limits.Validate();
 }
@@ -151,19 +152,19 @@ Eigen::Vector3d ApproachPlanner::StartPosition(const ApproachTarget& target, int
   const int index[3] = {i, j, l};
   Eigen::Vector3d offset_A;
   for (int axis = 0; axis < 3; ++axis) {
-    offset_A[axis] = counts[axis] == 1 ? lo[axis]
-                                       : lo[axis] + (hi[axis] - lo[axis]) * index[axis] /
-                                                        (counts[axis] - 1);
+    offset_A[axis] = counts[axis] == 1
+                         ? lo[axis]
+                         : lo[axis] + (hi[axis] - lo[axis]) * index[axis] / (counts[axis] - 1);
   }
   return target.p_W + ApproachFrame(target) * offset_A;
 }
 
 double ApproachPlanner::Duration(int n) const {
   const int count = parameters_.duration_count;
-  return count == 1 ? parameters_.duration_min_s
-                    : parameters_.duration_min_s +
-                          (parameters_.duration_max_s - parameters_.duration_min_s) * n /
-                              (count - 1);
+  return count == 1
+             ? parameters_.duration_min_s
+             : parameters_.duration_min_s +
+                   (parameters_.duration_max_s - parameters_.duration_min_s) * n / (count - 1);
 }
 
 void ApproachPlanner::ScorePerception(const MotionPrimitive& primitive,
@@ -172,8 +173,8 @@ void ApproachPlanner::ScorePerception(const MotionPrimitive& primitive,
   // Polynomial coefficients per axis, evaluated by Horner (the primitive's formulas, inlined).
   const Eigen::Vector3d& p0 = primitive.initial_position_W();
   const Eigen::Vector3d& v0 = primitive.initial_velocity_W();
-  const Eigen::Vector3d c0 =
-      primitive.initial_acceleration_W() + Eigen::Vector3d(0.0, 0.0, parameters_.limits.gravity_mps2);
+  const Eigen::Vector3d c0 = primitive.initial_acceleration_W() +
+                             Eigen::Vector3d(0.0, 0.0, parameters_.limits.gravity_mps2);
   const Eigen::Vector3d a2 = 0.5 * primitive.initial_acceleration_W();
   const Eigen::Vector3d& g = primitive.gamma();
   const Eigen::Vector3d b2 = 0.5 * primitive.beta();
@@ -279,13 +280,13 @@ ApproachCandidate ApproachPlanner::Replan(const ApproachTarget& target, const Ei
                                           const Eigen::Vector3d& v_W, const Eigen::Vector3d& a_W,
                                           double remaining_s) const {
   if (!(std::isfinite(remaining_s) && remaining_s > 0.0)) {
-    throw std::invalid_argument("ApproachPlanner::Replan: remaining_s = " +
-                                std::to_string(remaining_s) +
-                                " must be positive; switch to the traverse when it reaches 0");
+    throw std::invalid_argument(
+        "ApproachPlanner::Replan: remaining_s = " + std::to_string(remaining_s) +
+        " must be positive; switch to the traverse when it reaches 0");
   }
   ApproachCandidate candidate;
-  candidate.primitive = MotionPrimitive(p_W, v_W, a_W, target.p_W, target.v_W, target.a_W,
-                                        remaining_s);
+  candidate.primitive =
+      MotionPrimitive(p_W, v_W, a_W, target.p_W, target.v_W, target.a_W, remaining_s);
   candidate.feasibility = CheckInputFeasibility(candidate.primitive, parameters_.limits);
   ScorePerception(candidate.primitive, target.gap_center_W, candidate);
   candidate.above_floor = AboveFloor(candidate.primitive);
