@@ -21,13 +21,6 @@ void AddPendingCommand(CLI::App& app, const std::string& name, const std::string
 
 }  // namespace
 
-void AddRenderCommand(CLI::App& app, int* exit_code) {
-  AddPendingCommand(app, "render", "Render a dataset with ground truth from a scenario",
-                    "It will write PNG frames, times.txt, groundtruth.txt, objects.csv, depth, "
-                    "id masks and calib.yaml that 'aperture run' reads back.",
-                    exit_code);
-}
-
 void AddBenchCommand(CLI::App& app, int* exit_code) {
   AddPendingCommand(app, "bench", "Run perception and control benchmarks against ground truth",
                     "It will run the gap, led and control benchmarks and write summary.json and "

@@ -409,6 +409,44 @@ TEST(PoseImuFilterTest, HistoryIsBoundedAndOldOrFutureMeasurementsAreReported) {
   EXPECT_EQ(r.replayed_steps, 25);  // samples at 0.952 ... 1.000
 }
 
+// Measurement Jacobian and error injection together: a near-exact measurement (tiny covariance)
+// of a sensor on a 0.5 m lever arm, taken from a state 1 cm / 0.05 rad away from the estimate,
+// must move the predicted pose onto the measurement up to the second-order linearization error.
+TEST(PoseImuFilterTest, ExactPoseUpdateMovesPredictionOntoMeasurement) {
+  const CircleTruth circle;
+  const control::QuadState truth = circle.At(2.0).state;
+  PoseImuEstimate initial;
+  initial.state = truth;
+  initial.state.p_WB += Eigen::Vector3d(0.01, -0.005, 0.008);
+  initial.state.q_WB = (truth.q_WB * Eigen::Quaterniond(Eigen::AngleAxisd(
+                                         0.05, Eigen::Vector3d(1, -2, 0.5).normalized())))
+                           .normalized();
+  initial.covariance = Matrix15d::Identity();  // 1 m, 1 rad: the measurement dominates
+  PoseImuFilterParams params;
+  params.mahalanobis_gate = std::numeric_limits<double>::infinity();
+  PoseImuFilter filter(params, initial);
+  PoseMeasurement z = CameraExtrinsics();
+  z.p_BX = Eigen::Vector3d(0.5, -0.2, 0.1);
+  z.t_s = truth.t_s;
+  z.p_WX = truth.p_WB + truth.q_WB * z.p_BX;
+  z.q_WX = truth.q_WB * z.q_BX;
+  z.covariance = Matrix6d::Identity() * 1e-12;
+  const PoseUpdateResult first = filter.Update(z);
+  ASSERT_TRUE(first.applied()) << first;
+  const PoseUpdateResult second = filter.Update(z);  // residual of the corrected state
+  std::printf("exact update: residual %.3g m, %.3g rad -> %.3g m, %.3g rad\n",
+              first.residual.head<3>().norm(), first.residual.tail<3>().norm(),
+              second.residual.head<3>().norm(), second.residual.tail<3>().norm());
+  // The lever arm turns the 0.05 rad error into ~2.7 cm of position residual; a wrong sign of
+  // -R [p_BX]x or of the rotation block would leave residuals of that size. What remains is
+  // second order: |dtheta|^2 |p_BX| / 2 ~ 7e-4 m and |dtheta|^2 / 2 ~ 1.3e-3 rad at most.
+  EXPECT_GT(first.residual.head<3>().norm(), 0.02);
+  EXPECT_LT(second.residual.head<3>().norm(), 2e-3);
+  EXPECT_LT(second.residual.tail<3>().norm(), 2e-3);
+  EXPECT_LT((filter.Estimate().state.p_WB - truth.p_WB).norm(), 2e-3);
+  EXPECT_LT(AttitudeError(filter.Estimate().state.q_WB, truth.q_WB), 2e-3);
+}
+
 TEST(PoseImuFilterTest, OutlierIsGatedAndReported) {
   const CircleTruth circle;
   PoseImuFilterParams params;
