@@ -213,7 +213,11 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
     params.cameras.push_back(sitl_camera);
   }
   params.SetSeed(scenario_params.seed);
+  // Parts of the vehicle are not obstacles: the marker and the objects attached to the body.
   params.collision.ignored_objects.push_back(kVehicleMarker);
+  for (const int id : scenario.AttachedObjectIds()) {
+    params.collision.ignored_objects.push_back(scenario.scene().object(id).name);
+  }
   sim::Material marker_material;
   marker_material.color = sim::Rgb(0.9f, 0.1f, 0.1f);  // red
   Eigen::Isometry3d T_parking = Eigen::Isometry3d::Identity();
