@@ -111,7 +111,8 @@ void ValidateGapDetectorParams(const GapDetectorParams& p) {
   if (!(p.min_side_px > 0.0)) fail("min_side_px", p.min_side_px, "must be > 0");
   if (!(p.area_ratio_tolerance > 1.0)) fail("area_ratio_tolerance", p.area_ratio_tolerance, "must be > 1");
   if (!(p.min_contrast > 0.0)) fail("min_contrast", p.min_contrast, "must be > 0");
-  if (p.edge_search_px < 2) fail("edge_search_px", p.edge_search_px, "must be >= 2");
+  if (p.edge_search_px < 2 || p.edge_search_px > 16)
+    fail("edge_search_px", p.edge_search_px, "must be in [2, 16]");
   if (!(p.edge_sample_step_px > 0.0)) fail("edge_sample_step_px", p.edge_sample_step_px, "must be > 0");
   if (p.max_samples_per_side < 4) fail("max_samples_per_side", p.max_samples_per_side, "must be >= 4");
   if (!(p.corner_exclusion >= 0.0 && p.corner_exclusion < 0.45))
@@ -233,10 +234,10 @@ class Attempt {
         const Vec2 q = px + s * out;
         profile[s + r + 1] = Sample(gray_, q.x(), q.y());
       }
-      // Strongest gradient of the expected polarity, then a parabola through its neighbours.
+      // Strongest gradient of the expected polarity.
       int best = 0;
       double best_g = 0.0;
-      std::array<double, 64> g{};
+      std::array<double, 33> g{};  // edge_search_px <= 16
       for (int s = -r; s <= r; ++s) {
         g[s + r] = polarity * 0.5 * (profile[s + r + 2] - profile[s + r]);
         if (g[s + r] > best_g) {
@@ -245,9 +246,21 @@ class Attempt {
         }
       }
       if (best_g < 0.25 * p_.min_contrast || best == -r || best == r) continue;
-      const double gm = g[best + r - 1], g0 = g[best + r], gp = g[best + r + 1];
-      const double denom = gm - 2.0 * g0 + gp;
-      const double delta = denom < 0.0 ? std::clamp(0.5 * (gm - gp) / denom, -0.5, 0.5) : 0.0;
+      // Sub-pixel: where the profile crosses the mean of the two plateaus next to the edge
+      // (unbiased for any symmetric blur, unlike a parabola through the gradient peak).
+      const auto at = [&](int s) { return profile[std::clamp(s, -r - 1, r + 1) + r + 1]; };
+      const double mid = 0.5 * (at(best - 2) + at(best + 2));
+      double delta = 0.0;
+      bool crossed = false;
+      for (int k = best - 1; k <= best && !crossed; ++k) {
+        const double a = polarity * (at(k) - mid);
+        const double b = polarity * (at(k + 1) - mid);
+        if (a <= 0.0 && b >= 0.0 && b > a) {
+          delta = k - a / (b - a) - best;
+          crossed = true;
+        }
+      }
+      if (!crossed) continue;
       const Vec2 edge_px = px + (best + delta) * out;
       side->bearings_C.push_back(camera_.Unproject(edge_px));
     }
