@@ -15,6 +15,7 @@
 #include "render_test_util.h"
 #include "sim/render/camera_effects.h"
 #include "sim/render/ray_caster.h"
+#include "sim/scene/gap_pattern_object.h"
 #include "sim/scene/scene.h"
 
 namespace aperture::sim {
@@ -25,29 +26,10 @@ using perception::GapDetection;
 using perception::GapDetector;
 using perception::GapDetectorParams;
 
-constexpr double kTexel = 0.01;  // pattern texel [m]; every pattern edge lies on a texel border
-const Eigen::Vector2d kPanelSize(1.8, 1.2);
+const Eigen::Vector2d kPanelSize(1.8, 1.2);  // 0.25 m white margin around the outer band
 
-// White panel with the black band between outer and inner rectangle and the opening cut out.
 SceneObject MakeGapPanel(const GapDetectorParams& p, const Eigen::Isometry3d& T_WG) {
-  const int cols = static_cast<int>(std::lround(kPanelSize.x() / kTexel));
-  const int rows = static_cast<int>(std::lround(kPanelSize.y() / kTexel));
-  cv::Mat texels(rows, cols, CV_8UC3, cv::Scalar::all(242));
-  const auto band = [&](const Eigen::Vector2d& size) {
-    return cv::Rect(static_cast<int>(std::lround((kPanelSize.x() - size.x()) / 2 / kTexel)),
-                    static_cast<int>(std::lround((kPanelSize.y() - size.y()) / 2 / kTexel)),
-                    static_cast<int>(std::lround(size.x() / kTexel)),
-                    static_cast<int>(std::lround(size.y() / kTexel)));
-  };
-  texels(band(p.outer_size_m)).setTo(cv::Scalar::all(13));
-  texels(band(p.inner_size_m)).setTo(cv::Scalar::all(242));
-  const double hx = p.opening_size_m.x() / 2, hy = p.opening_size_m.y() / 2;
-  Rectangle panel{kPanelSize, {{{-hx, -hy}, {hx, -hy}, {hx, hy}, {-hx, hy}}}, {}};
-  Material material;
-  material.texture = std::make_shared<Texture>(texels, kTexel, Texture::Filter::kNearest,
-                                               Texture::Wrap::kClamp);
-  material.color = Rgb::Ones();
-  return SceneObject("gap", panel, material, T_WG);
+  return MakeGapPatternObject(p, kPanelSize, T_WG);
 }
 
 // Procedural textures are costly to generate: build them once for all tests of this file.
