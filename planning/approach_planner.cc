@@ -13,6 +13,7 @@ namespace aperture::planning {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+constexpr double kNoBound = std::numeric_limits<double>::infinity();
 
 double WrapAngle(double angle) { return std::remainder(angle, 2.0 * kPi); }
 
@@ -51,9 +52,9 @@ Eigen::Vector3d OptimalOpticalAxis(const Eigen::Vector3d& d_W, const Eigen::Vect
                                    double k) {
   const Eigen::Vector3d d_perp = d_W - d_W.dot(z_B_W) * z_B_W;
   const double norm = d_perp.norm();
-  const Eigen::Vector3d u =
-      norm > 1e-12 * std::max(1.0, d_W.norm()) ? Eigen::Vector3d(d_perp / norm)
-                                               : AnyPerpendicular(z_B_W);
+  const Eigen::Vector3d u = norm > 1e-12 * std::max(1.0, d_W.norm())
+                                ? Eigen::Vector3d(d_perp / norm)
+                                : AnyPerpendicular(z_B_W);
   return std::sqrt(std::max(0.0, 1.0 - k * k)) * u + k * z_B_W;  // (8)
 }
 
@@ -97,8 +98,8 @@ void ApproachPlannerParameters::Validate() const {
             start_offset_max_A[i] - start_offset_min_A[i], "must be finite and >= 0");
     Require(start_counts[i] >= 1, "start_counts[i]", start_counts[i], "must be >= 1");
   }
-  Require(std::isfinite(duration_min_s) && duration_min_s > 0.0, "duration_min_s",
-          duration_min_s, "must be finite and > 0");
+  Require(std::isfinite(duration_min_s) && duration_min_s > 0.0, "duration_min_s", duration_min_s,
+          "must be finite and > 0");
   Require(std::isfinite(duration_max_s) && duration_max_s >= duration_min_s, "duration_max_s",
           duration_max_s, "must be finite and >= duration_min_s");
   Require(duration_count >= 1, "duration_count", duration_count, "must be >= 1");
@@ -116,7 +117,8 @@ void ApproachPlannerParameters::Validate() const {
   const double axis_norm = optical_axis_B.norm();
   Require(optical_axis_B.allFinite() && axis_norm > 0.0 &&
               std::abs(optical_axis_B.z()) < 0.999 * axis_norm,
-          "optical_axis_B.z / |optical_axis_B|", axis_norm > 0.0 ? optical_axis_B.z() / axis_norm : 0.0,
+          "optical_axis_B.z / |optical_axis_B|",
+          axis_norm > 0.0 ? optical_axis_B.z() / axis_norm : 0.0,
           "the optical axis must be non-zero and not parallel to z_B");
   limits.Validate();
 }
@@ -151,29 +153,29 @@ Eigen::Vector3d ApproachPlanner::StartPosition(const ApproachTarget& target, int
   const int index[3] = {i, j, l};
   Eigen::Vector3d offset_A;
   for (int axis = 0; axis < 3; ++axis) {
-    offset_A[axis] = counts[axis] == 1 ? lo[axis]
-                                       : lo[axis] + (hi[axis] - lo[axis]) * index[axis] /
-                                                        (counts[axis] - 1);
+    offset_A[axis] = counts[axis] == 1
+                         ? lo[axis]
+                         : lo[axis] + (hi[axis] - lo[axis]) * index[axis] / (counts[axis] - 1);
   }
   return target.p_W + ApproachFrame(target) * offset_A;
 }
 
 double ApproachPlanner::Duration(int n) const {
   const int count = parameters_.duration_count;
-  return count == 1 ? parameters_.duration_min_s
-                    : parameters_.duration_min_s +
-                          (parameters_.duration_max_s - parameters_.duration_min_s) * n /
-                              (count - 1);
+  return count == 1
+             ? parameters_.duration_min_s
+             : parameters_.duration_min_s +
+                   (parameters_.duration_max_s - parameters_.duration_min_s) * n / (count - 1);
 }
 
-void ApproachPlanner::ScorePerception(const MotionPrimitive& primitive,
-                                      const Eigen::Vector3d& gap_center_W,
+bool ApproachPlanner::ScorePerception(const MotionPrimitive& primitive,
+                                      const Eigen::Vector3d& gap_center_W, double cost_bound,
                                       ApproachCandidate& candidate) const {
   // Polynomial coefficients per axis, evaluated by Horner (the primitive's formulas, inlined).
   const Eigen::Vector3d& p0 = primitive.initial_position_W();
   const Eigen::Vector3d& v0 = primitive.initial_velocity_W();
-  const Eigen::Vector3d c0 =
-      primitive.initial_acceleration_W() + Eigen::Vector3d(0.0, 0.0, parameters_.limits.gravity_mps2);
+  const Eigen::Vector3d c0 = primitive.initial_acceleration_W() +
+                             Eigen::Vector3d(0.0, 0.0, parameters_.limits.gravity_mps2);
   const Eigen::Vector3d a2 = 0.5 * primitive.initial_acceleration_W();
   const Eigen::Vector3d& g = primitive.gamma();
   const Eigen::Vector3d b2 = 0.5 * primitive.beta();
@@ -183,6 +185,16 @@ void ApproachPlanner::ScorePerception(const MotionPrimitive& primitive,
   const Eigen::Vector3d a120 = primitive.alpha() / 120.0;
   const int n = parameters_.samples_per_candidate;
   const double dt = primitive.duration_s() / (n - 1);
+  candidate.start_distance_m = (gap_center_W - p0).norm();
+  const double distance_cost =
+      candidate.start_distance_m / parameters_.start_distance_normalization_m;
+  // Branch and bound: theta_rms >= sqrt(partial sum / n), so once the partial sum of squares
+  // exceeds this the cost (10) cannot get below cost_bound (infinite bound: never).
+  const double angle_budget =
+      std::max(0.0, cost_bound - distance_cost) * parameters_.view_angle_normalization_rad;
+  const double max_sum_sq = std::isfinite(cost_bound) ? n * angle_budget * angle_budget
+                                                      : std::numeric_limits<double>::infinity();
+  if (!(distance_cost < cost_bound)) return false;
   double sum_sq = 0.0, max_angle = 0.0;
   for (int s = 0; s < n; ++s) {
     const double t = s * dt;
@@ -201,12 +213,13 @@ void ApproachPlanner::ScorePerception(const MotionPrimitive& primitive,
     }
     sum_sq += angle * angle;
     max_angle = std::max(max_angle, angle);
+    if (sum_sq > max_sum_sq) return false;
   }
   candidate.view_angle_rms_rad = std::sqrt(sum_sq / n);
   candidate.gap_in_view = max_angle <= parameters_.max_view_angle_rad;
-  candidate.start_distance_m = (gap_center_W - p0).norm();
-  candidate.cost = candidate.view_angle_rms_rad / parameters_.view_angle_normalization_rad +
-                   candidate.start_distance_m / parameters_.start_distance_normalization_m;  // (10)
+  candidate.cost =
+      candidate.view_angle_rms_rad / parameters_.view_angle_normalization_rad + distance_cost;
+  return candidate.cost < cost_bound;  // (10)
 }
 
 ApproachCandidate ApproachPlanner::EvaluateCandidate(const ApproachTarget& target,
@@ -216,7 +229,7 @@ ApproachCandidate ApproachPlanner::EvaluateCandidate(const ApproachTarget& targe
   const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
   candidate.primitive =
       MotionPrimitive(start_W, zero, zero, target.p_W, target.v_W, target.a_W, duration_s);
-  ScorePerception(candidate.primitive, target.gap_center_W, candidate);
+  ScorePerception(candidate.primitive, target.gap_center_W, kNoBound, candidate);
   candidate.above_floor = AboveFloor(candidate.primitive);
   candidate.feasibility = CheckInputFeasibility(candidate.primitive, parameters_.limits);
   return candidate;
@@ -257,8 +270,10 @@ ApproachPlan ApproachPlanner::Plan(const ApproachTarget& target) const {
           ++plan.candidates;
           candidate.primitive =
               MotionPrimitive(start_W, zero, zero, target.p_W, target.v_W, target.a_W, duration_s);
-          ScorePerception(candidate.primitive, target.gap_center_W, candidate);
-          if (!candidate.gap_in_view || !(candidate.cost < best_cost)) continue;
+          if (!ScorePerception(candidate.primitive, target.gap_center_W, best_cost, candidate) ||
+              !candidate.gap_in_view) {
+            continue;
+          }
           candidate.above_floor = AboveFloor(candidate.primitive);
           if (!candidate.above_floor) continue;
           ++plan.feasibility_tests;
@@ -279,15 +294,15 @@ ApproachCandidate ApproachPlanner::Replan(const ApproachTarget& target, const Ei
                                           const Eigen::Vector3d& v_W, const Eigen::Vector3d& a_W,
                                           double remaining_s) const {
   if (!(std::isfinite(remaining_s) && remaining_s > 0.0)) {
-    throw std::invalid_argument("ApproachPlanner::Replan: remaining_s = " +
-                                std::to_string(remaining_s) +
-                                " must be positive; switch to the traverse when it reaches 0");
+    throw std::invalid_argument(
+        "ApproachPlanner::Replan: remaining_s = " + std::to_string(remaining_s) +
+        " must be positive; switch to the traverse when it reaches 0");
   }
   ApproachCandidate candidate;
-  candidate.primitive = MotionPrimitive(p_W, v_W, a_W, target.p_W, target.v_W, target.a_W,
-                                        remaining_s);
+  candidate.primitive =
+      MotionPrimitive(p_W, v_W, a_W, target.p_W, target.v_W, target.a_W, remaining_s);
   candidate.feasibility = CheckInputFeasibility(candidate.primitive, parameters_.limits);
-  ScorePerception(candidate.primitive, target.gap_center_W, candidate);
+  ScorePerception(candidate.primitive, target.gap_center_W, kNoBound, candidate);
   candidate.above_floor = AboveFloor(candidate.primitive);
   return candidate;
 }

@@ -53,8 +53,9 @@ struct ApproachTarget {
 struct ApproachPlannerParameters {
   // Start positions: a grid of start_counts points per axis over [offset_min, offset_max] in the
   // approach frame A at the traverse start: x_A backwards (horizontal projection of -v_0, or of
-  // p_0 - gap centre when v_0 is vertical, or x_W), z_A up, y_A = z_A x x_A. A count of 1 uses offset_min. Defaults span
-  // 1-4 m behind the traverse start, +-1.5 m sideways and +-1 m in height.
+  // p_0 - gap centre when v_0 is vertical, or x_W), z_A up, y_A = z_A x x_A. A count of 1 uses
+  // offset_min. Defaults span 1-4 m behind the traverse start, +-1.5 m sideways and +-1 m in
+  // height.
   Eigen::Vector3d start_offset_min_A{1.0, -1.5, -1.0};
   Eigen::Vector3d start_offset_max_A{4.0, 1.5, 1.0};
   Eigen::Vector3i start_counts{7, 7, 5};
@@ -84,11 +85,11 @@ struct ApproachPlannerParameters {
 struct ApproachCandidate {
   MotionPrimitive primitive;
   Feasibility feasibility = Feasibility::kIndeterminable;
-  bool gap_in_view = false;           // view angle <= max_view_angle_rad at every sample
-  bool above_floor = true;            // height >= min_height_m over [0, T]
-  double view_angle_rms_rad = 0.0;    // theta_rms
-  double start_distance_m = 0.0;      // d_0
-  double cost = 0.0;                  // (10)
+  bool gap_in_view = false;         // view angle <= max_view_angle_rad at every sample
+  bool above_floor = true;          // height >= min_height_m over [0, T]
+  double view_angle_rms_rad = 0.0;  // theta_rms
+  double start_distance_m = 0.0;    // d_0
+  double cost = 0.0;                // (10)
   bool IsValid() const {
     return feasibility == Feasibility::kFeasible && gap_in_view && above_floor;
   }
@@ -116,8 +117,9 @@ class ApproachPlanner {
   ApproachCandidate EvaluateCandidate(const ApproachTarget& target, const Eigen::Vector3d& start_W,
                                       double duration_s) const;
   // The lowest-cost valid candidate over the grid. Ties keep the first in (duration, x, y, z)
-  // order. Candidates whose perception cost already exceeds the best are not feasibility-tested,
-  // which does not change the result. No heap allocation in the loop. Throws
+  // order. Candidates whose perception cost provably reaches the best so far (d_0 alone, or the
+  // partial sum of theta^2) are abandoned before the rest of their samples and the feasibility
+  // test, which does not change the result. No heap allocation in the loop. Throws
   // std::invalid_argument for a non-finite target.
   ApproachPlan Plan(const ApproachTarget& target) const;
 
@@ -135,15 +137,17 @@ class ApproachPlanner {
                                   const Eigen::Vector3d& gap_center_W, double t_s) const;
 
  private:
-  // theta samples and d_0 into candidate (perception part of (10)).
-  void ScorePerception(const MotionPrimitive& primitive, const Eigen::Vector3d& gap_center_W,
-                       ApproachCandidate& candidate) const;
+  // theta samples and d_0 into candidate (perception part of (10)). Returns false, with the
+  // candidate only partly scored, as soon as its cost provably reaches cost_bound; with an
+  // infinite bound it always scores the whole candidate.
+  bool ScorePerception(const MotionPrimitive& primitive, const Eigen::Vector3d& gap_center_W,
+                       double cost_bound, ApproachCandidate& candidate) const;
   bool AboveFloor(const MotionPrimitive& primitive) const;
   double HeadingAt(const MotionPrimitive& primitive, const Eigen::Vector3d& gap_center_W,
                    double t_s) const;
 
   ApproachPlannerParameters parameters_;
-  double k_ = 0.0;        // <optical axis, z_B> of (7)
+  double k_ = 0.0;  // <optical axis, z_B> of (7)
   double sqrt_1_k2_ = 1.0;
 };
 

@@ -50,10 +50,9 @@ void LoadParams(config::ParamReader& reader, ApproachPlannerParameters* params) 
     std::vector<int> counts;
     reader.Read("start_counts", &counts);
     if (counts.size() != 3) {
-      throw std::invalid_argument(reader.Where("start_counts") + ": key '" +
-                                  reader.FullKey("start_counts") +
-                                  "' expects 3 integers [x, y, z], got " +
-                                  std::to_string(counts.size()));
+      throw std::invalid_argument(
+          reader.Where("start_counts") + ": key '" + reader.FullKey("start_counts") +
+          "' expects 3 integers [x, y, z], got " + std::to_string(counts.size()));
     }
     params->start_counts = Eigen::Vector3i(counts[0], counts[1], counts[2]);
   }

@@ -19,8 +19,9 @@ struct FeasibilityLimits {
   double min_thrust_mps2 = 5.0;   // f_min, mass-normalised [m/s^2]; > 0 keeps the attitude defined
   double max_thrust_mps2 = 30.0;  // f_max [m/s^2]; ~3x hover, the thesis platforms
   double max_body_rate_radps = 10.0;  // omega_max on |omega_xy| [rad/s] (~570 deg/s)
-  // Sections shorter than this are not split further (indeterminable); 0.02 s is the value of
-  // Mueller et al.'s published implementation and bounds the recursion depth to log2(T / 0.02).
+  // Sections are never split below this length (the verdict is then indeterminable); 0.02 s is
+  // the value of Mueller et al.'s published implementation. The recursion depth is at most
+  // log2(T / min) and the work at most ~T / min section checks.
   double min_section_duration_s = 0.02;
   double gravity_mps2 = 9.81;
 
@@ -33,7 +34,7 @@ struct FeasibilityLimits {
 };
 
 enum class Feasibility {
-  kFeasible,             // every input stays within the limits over [0, T]
+  kFeasible,              // every input stays within the limits over [0, T]
   kInfeasibleThrustHigh,  // some point provably needs f > f_max
   kInfeasibleThrustLow,   // some point provably needs f < f_min
   kIndeterminable,        // neither proven within the minimum section length

@@ -2,7 +2,6 @@
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -104,10 +103,10 @@ void TraverseParameters::Validate() const {
   Require(std::isfinite(max_start_distance_m) && max_start_distance_m > min_start_distance_m,
           prefix + "max_start_distance_m", max_start_distance_m,
           "must be finite and > min_start_distance_m");
-  Require(std::isfinite(max_time_to_gap_s) && max_time_to_gap_s > 0.0,
-          prefix + "max_time_to_gap_s", max_time_to_gap_s, "must be finite and > 0");
-  Require(std::isfinite(gravity_mps2) && gravity_mps2 > 0.0, prefix + "gravity_mps2",
-          gravity_mps2, "must be finite and > 0");
+  Require(std::isfinite(max_time_to_gap_s) && max_time_to_gap_s > 0.0, prefix + "max_time_to_gap_s",
+          max_time_to_gap_s, "must be finite and > 0");
+  Require(std::isfinite(gravity_mps2) && gravity_mps2 > 0.0, prefix + "gravity_mps2", gravity_mps2,
+          "must be finite and > 0");
   Require(std::isfinite(relative_tolerance) && relative_tolerance > 0.0,
           prefix + "relative_tolerance", relative_tolerance, "must be finite and > 0");
   Require(max_evaluations > 0, prefix + "max_evaluations", max_evaluations, "must be > 0");
@@ -118,8 +117,8 @@ TraverseTrajectory::TraverseTrajectory(const GapPose& gap, double d_m, double ti
     : gap_(gap), d_m_(d_m), time_to_gap_s_(time_to_gap_s) {
   Require(std::isfinite(d_m) && d_m > 0.0, "TraverseTrajectory: d_m", d_m,
           "must be a positive finite distance");
-  Require(std::isfinite(time_to_gap_s) && time_to_gap_s > 0.0,
-          "TraverseTrajectory: time_to_gap_s", time_to_gap_s, "must be positive and finite");
+  Require(std::isfinite(time_to_gap_s) && time_to_gap_s > 0.0, "TraverseTrajectory: time_to_gap_s",
+          time_to_gap_s, "must be positive and finite");
   Require(std::isfinite(gravity_mps2) && gravity_mps2 > 0.0, "TraverseTrajectory: gravity_mps2",
           gravity_mps2, "must be positive and finite");
   ValidateGap(gap);
@@ -132,8 +131,8 @@ TraverseTrajectory::TraverseTrajectory(const GapPose& gap, double d_m, double ti
   const Eigen::Vector3d g_W(0.0, 0.0, -gravity_mps2);
   plane_gravity_W_ = g_W - g_W.dot(e3_W_) * e3_W_;  // (1)
   const double t_c = time_to_gap_s;
-  l_m_ = 0.5 * std::abs(g1_) * t_c * t_c;  // (4) solved for l (g1 <= 0)
-  p0_W_ = gap.p_WG - l_m_ * e1_W_ - d_m_ * e2_W_;     // (3a)
+  l_m_ = 0.5 * std::abs(g1_) * t_c * t_c;          // (4) solved for l (g1 <= 0)
+  p0_W_ = gap.p_WG - l_m_ * e1_W_ - d_m_ * e2_W_;  // (3a)
   v0_W_ = StartVelocity1(g1_, t_c) * e1_W_ + StartVelocity2(g2_, d_m_, t_c) * e2_W_;  // (3b)
   // End when p_2 = 2 d: g2 t^2 / 2 + v_2 t - 2 d = 0, smallest positive root in the form that
   // is stable for every sign of g2 (and g2 = 0). Without a real root (g2 < 0 and the clearance

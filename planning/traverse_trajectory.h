@@ -32,12 +32,12 @@
 namespace aperture::planning {
 
 struct GapPose {
-  Eigen::Vector3d p_WG = Eigen::Vector3d::Zero();  // gap centre in W [m]
+  Eigen::Vector3d p_WG = Eigen::Vector3d::Zero();      // gap centre in W [m]
   Eigen::Matrix3d R_WG = Eigen::Matrix3d::Identity();  // see the header comment for the axes
 };
 
 struct TraverseParameters {
-  double max_start_speed_mps = 3.0;   // v_0,max of (6); the paper's experiments (Sec. IV-A)
+  double max_start_speed_mps = 3.0;    // v_0,max of (6); the paper's experiments (Sec. IV-A)
   double min_start_distance_m = 0.25;  // d_min of (6); the paper's value (printed "0.25 cm")
   // Upper bounds that keep the search box finite; far above any optimum for these limits.
   double max_start_distance_m = 5.0;
@@ -66,8 +66,8 @@ class TraverseTrajectory {
   double plane_gravity_2() const { return g2_; }
   double d_m() const { return d_m_; }
   double l_m() const { return l_m_; }
-  double time_to_gap_s() const { return time_to_gap_s_; }  // t_c
-  double duration_s() const { return duration_s_; }        // until p_2 = 2 d
+  double time_to_gap_s() const { return time_to_gap_s_; }            // t_c
+  double duration_s() const { return duration_s_; }                  // until p_2 = 2 d
   const Eigen::Vector3d& start_position_W() const { return p0_W_; }  // (3a)
   const Eigen::Vector3d& start_velocity_W() const { return v0_W_; }  // (3b)
   // Mass-normalised collective thrust |<g, e3>| [m/s^2] along thrust_direction_W() (= +-e3).
@@ -98,7 +98,7 @@ struct TraverseOptimizationResult {
   int iterations = 0;  // objective evaluations
   double cost = 0.0;   // t_c [s]
   double solve_time_s = 0.0;
-  double max_constraint_violation = 0.0;  // of the scaled constraints at the returned point
+  double max_constraint_violation = 0.0;         // of the scaled constraints at the returned point
   std::optional<TraverseTrajectory> trajectory;  // set unless kSolverFailure
 };
 

@@ -134,8 +134,8 @@ void SitlRunnerParams::Validate() const {
     if (c.rate_hz > dynamics_rate_hz) {
       throw std::invalid_argument("SitlRunnerParams." + field + "rate_hz exceeds dynamics_rate_hz");
     }
-    if (!c.T_BC.matrix().allFinite()) {
-      throw std::invalid_argument("SitlRunnerParams." + field + "T_BC is not finite");
+    if (!c.T_BC.matrix().allFinite() || (c.T_WC_fixed && !c.T_WC_fixed->matrix().allFinite())) {
+      throw std::invalid_argument("SitlRunnerParams." + field + "T_BC / T_WC_fixed is not finite");
     }
   }
 }
@@ -225,9 +225,12 @@ SitlResult SitlRunner::Run(perception::Autopilot& autopilot, const SitlHooks& ho
       }
       if (hooks.before_render) hooks.before_render(t_s, state);
       const Eigen::Isometry3d T_BC = camera.T_BC;
+      const std::optional<Eigen::Isometry3d>& T_WC_fixed = camera.T_WC_fixed;
       CapturedFrame captured = runtime.effects.Capture(
           ray_caster_, *scene_, *camera.model,
-          [&history, &T_BC](double t) { return history.T_WB(t) * T_BC; },
+          [&history, &T_BC, &T_WC_fixed](double t) {
+            return T_WC_fixed ? *T_WC_fixed : Eigen::Isometry3d(history.T_WB(t) * T_BC);
+          },
           t_s - 0.5 * camera.effects.exposure_s, slot, camera.render);
       captured.frame.camera_id = static_cast<int>(c);
       if (hooks.on_frame) hooks.on_frame(static_cast<int>(c), captured, state);

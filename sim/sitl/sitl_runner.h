@@ -56,6 +56,9 @@ struct SitlCamera {
   std::string name = "camera";
   std::shared_ptr<const perception::CameraModel> model;    // required
   Eigen::Isometry3d T_BC = Eigen::Isometry3d::Identity();  // camera pose in B
+  // Set for a camera fixed in the world (an external observer, e.g. of the LED target): its pose
+  // T_WC; T_BC is then unused.
+  std::optional<Eigen::Isometry3d> T_WC_fixed;
   double rate_hz = 30.0;
   double latency_s = 0.0;         // end of exposure -> delivery [s]
   double drop_probability = 0.0;  // in [0, 1): frames lost (driver / transport)

@@ -171,6 +171,67 @@ TEST(PoseImuFilterTest, NoiseFreePropagationFollowsCircleWithSecondOrderError) {
   EXPECT_NEAR(e250.max_p / e500.max_p, 4.0, 0.6);
 }
 
+// The covariance transition must be the Jacobian of the nominal propagation: with no process
+// noise and P0 = eps^2 I, P(T) = eps^2 Phi Phi^T, and the columns of Phi can be measured by
+// propagating the nominal state perturbed by h e_i (x0 [+] h e_i) and comparing with the
+// unperturbed run (x [-] x_ref) / h.
+TEST(PoseImuFilterTest, CovariancePropagationMatchesNumericJacobian) {
+  const CircleTruth circle;
+  const double t0 = 2.0;  // at full speed: |omega| ~ 85 deg/s, tilted thrust
+  const int steps = 50;   // 0.1 s
+  PoseImuFilterParams params;
+  params.accel_noise_density = params.gyro_noise_density = 0.0;
+  params.accel_bias_random_walk = params.gyro_bias_random_walk = 0.0;
+  SyntheticImu imu(0.0, 0.0, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), 1);
+  std::vector<ImuSample> samples;
+  for (int k = 0; k <= steps; ++k) samples.push_back(imu.Measure(circle.At(t0 + k * kImuDt)));
+
+  const double eps = 1e-3;
+  auto run = [&](const Vector15d& dx) {
+    PoseImuEstimate initial;
+    initial.state = circle.At(t0).state;
+    initial.state.p_WB += dx.segment<3>(ErrorStateIndex::kPosition);
+    initial.state.v_W += dx.segment<3>(ErrorStateIndex::kVelocity);
+    initial.state.q_WB = (initial.state.q_WB *
+                          Eigen::Quaterniond(Eigen::AngleAxisd(
+                              dx.segment<3>(ErrorStateIndex::kAttitude).norm(),
+                              dx.segment<3>(ErrorStateIndex::kAttitude).normalized())))
+                             .normalized();
+    initial.accel_bias_B = dx.segment<3>(ErrorStateIndex::kAccelBias);
+    initial.gyro_bias_B = dx.segment<3>(ErrorStateIndex::kGyroBias);
+    initial.covariance = Matrix15d::Identity() * eps * eps;
+    PoseImuFilter filter(params, initial);
+    for (const ImuSample& sample : samples) filter.Propagate(sample);
+    return filter.Estimate();
+  };
+  const PoseImuEstimate reference = run(Vector15d::Zero());
+  Matrix15d Phi_numeric;
+  const double h = 1e-6;
+  for (int i = 0; i < 15; ++i) {
+    Vector15d dx = Vector15d::Zero();
+    dx(i) = h;
+    const PoseImuEstimate e = run(dx);
+    Vector15d diff;
+    const Eigen::AngleAxisd dtheta(reference.state.q_WB.conjugate() * e.state.q_WB);
+    diff << e.state.p_WB - reference.state.p_WB, e.state.v_W - reference.state.v_W,
+        dtheta.angle() * dtheta.axis(), e.accel_bias_B - reference.accel_bias_B,
+        e.gyro_bias_B - reference.gyro_bias_B;
+    Phi_numeric.col(i) = diff / h;
+  }
+  const Matrix15d expected = Phi_numeric * Phi_numeric.transpose();
+  const Matrix15d actual = reference.covariance / (eps * eps);
+  const double error = (actual - expected).cwiseAbs().maxCoeff();
+  std::printf("covariance vs numeric Jacobian: max |diff| %.3g of max entry %.3g\n", error,
+              expected.cwiseAbs().maxCoeff());
+  // Finite differences with h = 1e-6 on O(1) states carry ~1e-16 / 1e-6 = 1e-10 of round-off
+  // and O(h) = 1e-6 of truncation;
+  // Phi is linearized at the mid-interval rotation and mean inputs, which differs from the exact
+  // derivative of the trapezoid step by O(dt^2 |omega|^2) ~ 1e-5 per step. A sign or block
+  // error (e.g. -R [f]x vs R [f]x) gives differences of O(|f| T) ~ 1.
+  // Measured 1.3e-6 relative.
+  EXPECT_LT(error, 1e-4 * expected.cwiseAbs().maxCoeff());
+}
+
 struct RunResult {
   PoseImuEstimate final_estimate;
   control::QuadState final_truth;
@@ -346,6 +407,44 @@ TEST(PoseImuFilterTest, HistoryIsBoundedAndOldOrFutureMeasurementsAreReported) {
   const PoseUpdateResult r = filter.Update(z);
   EXPECT_TRUE(r.applied()) << r;
   EXPECT_EQ(r.replayed_steps, 25);  // samples at 0.952 ... 1.000
+}
+
+// Measurement Jacobian and error injection together: a near-exact measurement (tiny covariance)
+// of a sensor on a 0.5 m lever arm, taken from a state 1 cm / 0.05 rad away from the estimate,
+// must move the predicted pose onto the measurement up to the second-order linearization error.
+TEST(PoseImuFilterTest, ExactPoseUpdateMovesPredictionOntoMeasurement) {
+  const CircleTruth circle;
+  const control::QuadState truth = circle.At(2.0).state;
+  PoseImuEstimate initial;
+  initial.state = truth;
+  initial.state.p_WB += Eigen::Vector3d(0.01, -0.005, 0.008);
+  initial.state.q_WB = (truth.q_WB * Eigen::Quaterniond(Eigen::AngleAxisd(
+                                         0.05, Eigen::Vector3d(1, -2, 0.5).normalized())))
+                           .normalized();
+  initial.covariance = Matrix15d::Identity();  // 1 m, 1 rad: the measurement dominates
+  PoseImuFilterParams params;
+  params.mahalanobis_gate = std::numeric_limits<double>::infinity();
+  PoseImuFilter filter(params, initial);
+  PoseMeasurement z = CameraExtrinsics();
+  z.p_BX = Eigen::Vector3d(0.5, -0.2, 0.1);
+  z.t_s = truth.t_s;
+  z.p_WX = truth.p_WB + truth.q_WB * z.p_BX;
+  z.q_WX = truth.q_WB * z.q_BX;
+  z.covariance = Matrix6d::Identity() * 1e-12;
+  const PoseUpdateResult first = filter.Update(z);
+  ASSERT_TRUE(first.applied()) << first;
+  const PoseUpdateResult second = filter.Update(z);  // residual of the corrected state
+  std::printf("exact update: residual %.3g m, %.3g rad -> %.3g m, %.3g rad\n",
+              first.residual.head<3>().norm(), first.residual.tail<3>().norm(),
+              second.residual.head<3>().norm(), second.residual.tail<3>().norm());
+  // The lever arm turns the 0.05 rad error into ~2.7 cm of position residual; a wrong sign of
+  // -R [p_BX]x or of the rotation block would leave residuals of that size. What remains is
+  // second order: |dtheta|^2 |p_BX| / 2 ~ 7e-4 m and |dtheta|^2 / 2 ~ 1.3e-3 rad at most.
+  EXPECT_GT(first.residual.head<3>().norm(), 0.02);
+  EXPECT_LT(second.residual.head<3>().norm(), 2e-3);
+  EXPECT_LT(second.residual.tail<3>().norm(), 2e-3);
+  EXPECT_LT((filter.Estimate().state.p_WB - truth.p_WB).norm(), 2e-3);
+  EXPECT_LT(AttitudeError(filter.Estimate().state.q_WB, truth.q_WB), 2e-3);
 }
 
 TEST(PoseImuFilterTest, OutlierIsGatedAndReported) {

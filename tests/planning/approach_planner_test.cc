@@ -86,7 +86,8 @@ GapPose TestGap() {
   gap.p_WG = Eigen::Vector3d(5.0, 0.5, 1.8);
   Eigen::Matrix3d R0;
   R0 << Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitX();
-  gap.R_WG = Eigen::AngleAxisd(30.0 * kPi / 180.0, Eigen::Vector3d::UnitX()).toRotationMatrix() * R0;
+  gap.R_WG =
+      Eigen::AngleAxisd(30.0 * kPi / 180.0, Eigen::Vector3d::UnitX()).toRotationMatrix() * R0;
   return gap;
 }
 
@@ -191,10 +192,11 @@ TEST(ApproachPlanner, SampledHeadingKeepsTheGapCentred) {
   // Heading rate agrees with a wider central difference of the heading (5 ms step: the heading
   // is smooth, the difference of the two estimates is O(h^2 psi''') << 1e-3 rad/s).
   const double t = 0.5 * primitive.duration_s(), h = 5e-3;
-  const double rate = std::remainder(planner.Sample(primitive, target.gap_center_W, t + h).heading_rad -
-                                         planner.Sample(primitive, target.gap_center_W, t - h).heading_rad,
-                                     2.0 * kPi) /
-                      (2.0 * h);
+  const double rate =
+      std::remainder(planner.Sample(primitive, target.gap_center_W, t + h).heading_rad -
+                         planner.Sample(primitive, target.gap_center_W, t - h).heading_rad,
+                     2.0 * kPi) /
+      (2.0 * h);
   EXPECT_NEAR(planner.Sample(primitive, target.gap_center_W, t).heading_rate_radps, rate, 1e-3);
 }
 

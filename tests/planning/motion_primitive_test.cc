@@ -116,12 +116,13 @@ TEST(MotionPrimitive, DerivativesAreConsistent) {
     // Central difference error ~h^2 * |higher derivative| ~ 1e-10 * O(10^3) plus rounding
     // ~1e-16 * |p| / h ~ 1e-11: 1e-5 relative is safe.
     const auto fd = [&](auto f) { return ((f(t + h) - f(t - h)) / (2.0 * h)).eval(); };
-    EXPECT_TRUE(fd([&](double s) { return primitive.Position(s); })
-                    .isApprox(primitive.Velocity(t), 1e-5));
-    EXPECT_TRUE(fd([&](double s) { return primitive.Velocity(s); })
-                    .isApprox(primitive.Acceleration(t), 1e-5));
-    EXPECT_TRUE(fd([&](double s) { return primitive.Acceleration(s); })
-                    .isApprox(primitive.Jerk(t), 1e-5));
+    EXPECT_TRUE(
+        fd([&](double s) { return primitive.Position(s); }).isApprox(primitive.Velocity(t), 1e-5));
+    EXPECT_TRUE(fd([&](double s) {
+                  return primitive.Velocity(s);
+                }).isApprox(primitive.Acceleration(t), 1e-5));
+    EXPECT_TRUE(
+        fd([&](double s) { return primitive.Acceleration(s); }).isApprox(primitive.Jerk(t), 1e-5));
     EXPECT_TRUE(fd([&](double s) { return primitive.Jerk(s); }).isApprox(primitive.Snap(t), 1e-5));
   }
   const control::TrajectoryPoint point = primitive.Sample(0.3);

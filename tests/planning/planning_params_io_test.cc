@@ -51,8 +51,7 @@ TEST(PlanningParamsIo, RejectsBadValuesNamingTheKey) {
   };
   EXPECT_NE(message_of("approach: {durations_count: 3}").find("durations_count"),
             std::string::npos);
-  EXPECT_NE(message_of("approach: {start_counts: [3, 4]}").find("start_counts"),
-            std::string::npos);
+  EXPECT_NE(message_of("approach: {start_counts: [3, 4]}").find("start_counts"), std::string::npos);
   EXPECT_NE(message_of("approach: {limits: {max_thrust_mps2: 1.0}}").find("max_thrust_mps2"),
             std::string::npos);
   EXPECT_NE(message_of("approach: {duration_count: 0}").find("planning.yaml"), std::string::npos);

@@ -85,14 +85,14 @@ TEST(PrimitiveFeasibility, NeverCallsAnInfeasiblePrimitiveFeasible) {
 TEST(PrimitiveFeasibility, KnownVerdicts) {
   const FeasibilityLimits limits;
   const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
-  EXPECT_EQ(CheckInputFeasibility(
-                MotionPrimitive(zero, zero, zero, Eigen::Vector3d(2, 1, 0.5), zero, zero, 3.0),
-                limits),
-            Feasibility::kFeasible);
-  EXPECT_EQ(CheckInputFeasibility(
-                MotionPrimitive(zero, zero, zero, Eigen::Vector3d(3, 0, 0), zero, zero, 0.3),
-                limits),
-            Feasibility::kInfeasibleThrustHigh);
+  EXPECT_EQ(
+      CheckInputFeasibility(
+          MotionPrimitive(zero, zero, zero, Eigen::Vector3d(2, 1, 0.5), zero, zero, 3.0), limits),
+      Feasibility::kFeasible);
+  EXPECT_EQ(
+      CheckInputFeasibility(
+          MotionPrimitive(zero, zero, zero, Eigen::Vector3d(3, 0, 0), zero, zero, 0.3), limits),
+      Feasibility::kInfeasibleThrustHigh);
   // An end acceleration of -1.5 g needs f(T) = 0.5 g = 4.9 < f_min = 5.
   EXPECT_EQ(CheckInputFeasibility(MotionPrimitive(zero, zero, zero, zero, zero,
                                                   Eigen::Vector3d(0, 0, -1.5 * 9.81), 2.0),

@@ -41,8 +41,8 @@ double GridMinimumTimeToGap(const TraverseTrajectory& any, const TraverseParamet
   const int d_steps = 800;
   for (double t = 1e-3; t <= p.max_time_to_gap_s; t += 1e-4) {
     for (int k = 0; k <= d_steps; ++k) {
-      const double d = p.min_start_distance_m +
-                       (p.max_start_distance_m - p.min_start_distance_m) * k / d_steps;
+      const double d =
+          p.min_start_distance_m + (p.max_start_distance_m - p.min_start_distance_m) * k / d_steps;
       const double v1 = -g1 * t, v2 = d / t - 0.5 * g2 * t;
       if (v1 * v1 + v2 * v2 > p.max_start_speed_mps * p.max_start_speed_mps) continue;
       if (g2 < 0.0 && d / t + 0.5 * g2 * t < std::sqrt(2.0 * -g2 * d)) continue;
@@ -74,8 +74,8 @@ TEST_P(TraverseTest, SolutionSatisfiesTheModelAndTheConstraints) {
   EXPECT_NEAR((g_W - traverse.plane_gravity_W()).cross(traverse.e3_W()).norm(), 0.0, 1e-12);
   EXPECT_LE(traverse.plane_gravity_1(), 0.0);
   // (3a) and (4).
-  EXPECT_LT((traverse.start_position_W() - (gap.p_WG - traverse.l_m() * traverse.e1_W() -
-                                            traverse.d_m() * traverse.e2_W()))
+  EXPECT_LT((traverse.start_position_W() -
+             (gap.p_WG - traverse.l_m() * traverse.e1_W() - traverse.d_m() * traverse.e2_W()))
                 .norm(),
             1e-12);
   if (traverse.plane_gravity_1() < -1e-9) {
@@ -124,7 +124,7 @@ TEST_P(TraverseTest, SolutionSatisfiesTheModelAndTheConstraints) {
 INSTANTIATE_TEST_SUITE_P(GapOrientations, TraverseTest,
                          ::testing::Values(GapCase{0.0, 0.0}, GapCase{20.0, 0.0},
                                            GapCase{45.0, 0.0}, GapCase{30.0, 30.0},
-                                           GapCase{45.0, -20.0},   // g_Pi,2 < 0: climbing
+                                           GapCase{45.0, -20.0},  // g_Pi,2 < 0: climbing
                                            GapCase{70.0, -35.0}, GapCase{90.0, 0.0}));
 
 // With v_0,max = 0.5 m/s a 45 deg gap has no feasible (d, t_c): |v_0|^2 >= v_1^2 + v_2^2 with
@@ -133,7 +133,8 @@ INSTANTIATE_TEST_SUITE_P(GapOrientations, TraverseTest,
 TEST(TraverseTrajectory, ReportsAnInfeasibleProblem) {
   TraverseParameters parameters;
   parameters.max_start_speed_mps = 0.5;
-  const TraverseOptimizationResult result = OptimizeTraverseTrajectory(MakeGap(45.0, 0.0), parameters);
+  const TraverseOptimizationResult result =
+      OptimizeTraverseTrajectory(MakeGap(45.0, 0.0), parameters);
   EXPECT_NE(result.status, TraverseOptimizationResult::Status::kSuccess);
   EXPECT_GT(result.max_constraint_violation, 1e-3);
 }

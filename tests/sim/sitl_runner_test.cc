@@ -321,6 +321,36 @@ TEST(SitlRunner, FlyingIntoTheGroundEndsTheRun) {
   EXPECT_LT(result.sim_time_s, 5.0);
 }
 
+// A world-fixed camera sees the same (noise-free) images whatever the vehicle does; a body
+// camera does not.
+TEST(SitlRunner, WorldFixedCameraIgnoresTheVehiclePose) {
+  const Scene scene = TexturedScene();
+  const auto hashes = [&scene](const Eigen::Vector3d& goal, bool fixed) {
+    SitlRunnerParams params = QuietParams(0.3);
+    SitlCamera camera = ForwardCamera(30.0);
+    camera.effects = CameraEffectsParams();  // no noise
+    if (fixed)
+      camera.T_WC_fixed = Eigen::Isometry3d(Eigen::Translation3d(0.0, 0.0, 1.0)) * camera.T_BC;
+    params.cameras.push_back(camera);
+    SitlRunner runner(params, &scene);
+    GroundTruthAutopilot autopilot(params.dynamics.vehicle, HoverAt(goal));
+    std::vector<std::uint64_t> out;
+    SitlHooks hooks;
+    hooks.on_frame = [&out](int, const CapturedFrame& frame, const control::QuadState&) {
+      out.push_back(HashImage(frame.frame.image));
+    };
+    runner.Run(autopilot, hooks);
+    return out;
+  };
+  const Eigen::Vector3d left(0.0, 1.0, 1.5), right(0.0, -1.0, 1.5);
+  EXPECT_EQ(hashes(left, true), hashes(right, true));
+  const std::vector<std::uint64_t> body_left = hashes(left, false);
+  const std::vector<std::uint64_t> body_right = hashes(right, false);
+  ASSERT_EQ(body_left.size(), body_right.size());
+  EXPECT_EQ(body_left.front(), body_right.front());  // same start
+  EXPECT_NE(body_left.back(), body_right.back());    // moved apart by then
+}
+
 TEST(SitlRunner, RejectsInconsistentParameters) {
   SitlRunnerParams params;
   params.dynamics_rate_hz = 400.0;  // below the 1 kHz flight controller
