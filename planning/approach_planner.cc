@@ -13,6 +13,7 @@ namespace aperture::planning {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+constexpr double kNoBound = std::numeric_limits<double>::infinity();
 
 double WrapAngle(double angle) { return std::remainder(angle, 2.0 * kPi); }
 
@@ -167,8 +168,8 @@ double ApproachPlanner::Duration(int n) const {
                    (parameters_.duration_max_s - parameters_.duration_min_s) * n / (count - 1);
 }
 
-void ApproachPlanner::ScorePerception(const MotionPrimitive& primitive,
-                                      const Eigen::Vector3d& gap_center_W,
+bool ApproachPlanner::ScorePerception(const MotionPrimitive& primitive,
+                                      const Eigen::Vector3d& gap_center_W, double cost_bound,
                                       ApproachCandidate& candidate) const {
   // Polynomial coefficients per axis, evaluated by Horner (the primitive's formulas, inlined).
   const Eigen::Vector3d& p0 = primitive.initial_position_W();
@@ -184,6 +185,16 @@ void ApproachPlanner::ScorePerception(const MotionPrimitive& primitive,
   const Eigen::Vector3d a120 = primitive.alpha() / 120.0;
   const int n = parameters_.samples_per_candidate;
   const double dt = primitive.duration_s() / (n - 1);
+  candidate.start_distance_m = (gap_center_W - p0).norm();
+  const double distance_cost =
+      candidate.start_distance_m / parameters_.start_distance_normalization_m;
+  // Branch and bound: theta_rms >= sqrt(partial sum / n), so once the partial sum of squares
+  // exceeds this the cost (10) cannot get below cost_bound (infinite bound: never).
+  const double angle_budget =
+      std::max(0.0, cost_bound - distance_cost) * parameters_.view_angle_normalization_rad;
+  const double max_sum_sq = std::isfinite(cost_bound) ? n * angle_budget * angle_budget
+                                                      : std::numeric_limits<double>::infinity();
+  if (!(distance_cost < cost_bound)) return false;
   double sum_sq = 0.0, max_angle = 0.0;
   for (int s = 0; s < n; ++s) {
     const double t = s * dt;
@@ -202,12 +213,13 @@ void ApproachPlanner::ScorePerception(const MotionPrimitive& primitive,
     }
     sum_sq += angle * angle;
     max_angle = std::max(max_angle, angle);
+    if (sum_sq > max_sum_sq) return false;
   }
   candidate.view_angle_rms_rad = std::sqrt(sum_sq / n);
   candidate.gap_in_view = max_angle <= parameters_.max_view_angle_rad;
-  candidate.start_distance_m = (gap_center_W - p0).norm();
-  candidate.cost = candidate.view_angle_rms_rad / parameters_.view_angle_normalization_rad +
-                   candidate.start_distance_m / parameters_.start_distance_normalization_m;  // (10)
+  candidate.cost =
+      candidate.view_angle_rms_rad / parameters_.view_angle_normalization_rad + distance_cost;
+  return candidate.cost < cost_bound;  // (10)
 }
 
 ApproachCandidate ApproachPlanner::EvaluateCandidate(const ApproachTarget& target,
@@ -217,7 +229,7 @@ ApproachCandidate ApproachPlanner::EvaluateCandidate(const ApproachTarget& targe
   const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
   candidate.primitive =
       MotionPrimitive(start_W, zero, zero, target.p_W, target.v_W, target.a_W, duration_s);
-  ScorePerception(candidate.primitive, target.gap_center_W, candidate);
+  ScorePerception(candidate.primitive, target.gap_center_W, kNoBound, candidate);
   candidate.above_floor = AboveFloor(candidate.primitive);
   candidate.feasibility = CheckInputFeasibility(candidate.primitive, parameters_.limits);
   return candidate;
@@ -258,8 +270,10 @@ ApproachPlan ApproachPlanner::Plan(const ApproachTarget& target) const {
           ++plan.candidates;
           candidate.primitive =
               MotionPrimitive(start_W, zero, zero, target.p_W, target.v_W, target.a_W, duration_s);
-          ScorePerception(candidate.primitive, target.gap_center_W, candidate);
-          if (!candidate.gap_in_view || !(candidate.cost < best_cost)) continue;
+          if (!ScorePerception(candidate.primitive, target.gap_center_W, best_cost, candidate) ||
+              !candidate.gap_in_view) {
+            continue;
+          }
           candidate.above_floor = AboveFloor(candidate.primitive);
           if (!candidate.above_floor) continue;
           ++plan.feasibility_tests;
@@ -288,7 +302,7 @@ ApproachCandidate ApproachPlanner::Replan(const ApproachTarget& target, const Ei
   candidate.primitive =
       MotionPrimitive(p_W, v_W, a_W, target.p_W, target.v_W, target.a_W, remaining_s);
   candidate.feasibility = CheckInputFeasibility(candidate.primitive, parameters_.limits);
-  ScorePerception(candidate.primitive, target.gap_center_W, candidate);
+  ScorePerception(candidate.primitive, target.gap_center_W, kNoBound, candidate);
   candidate.above_floor = AboveFloor(candidate.primitive);
   return candidate;
 }

@@ -117,8 +117,9 @@ class ApproachPlanner {
   ApproachCandidate EvaluateCandidate(const ApproachTarget& target, const Eigen::Vector3d& start_W,
                                       double duration_s) const;
   // The lowest-cost valid candidate over the grid. Ties keep the first in (duration, x, y, z)
-  // order. Candidates whose perception cost already exceeds the best are not feasibility-tested,
-  // which does not change the result. No heap allocation in the loop. Throws
+  // order. Candidates whose perception cost provably reaches the best so far (d_0 alone, or the
+  // partial sum of theta^2) are abandoned before the rest of their samples and the feasibility
+  // test, which does not change the result. No heap allocation in the loop. Throws
   // std::invalid_argument for a non-finite target.
   ApproachPlan Plan(const ApproachTarget& target) const;
 
@@ -136,9 +137,11 @@ class ApproachPlanner {
                                   const Eigen::Vector3d& gap_center_W, double t_s) const;
 
  private:
-  // theta samples and d_0 into candidate (perception part of (10)).
-  void ScorePerception(const MotionPrimitive& primitive, const Eigen::Vector3d& gap_center_W,
-                       ApproachCandidate& candidate) const;
+  // theta samples and d_0 into candidate (perception part of (10)). Returns false, with the
+  // candidate only partly scored, as soon as its cost provably reaches cost_bound; with an
+  // infinite bound it always scores the whole candidate.
+  bool ScorePerception(const MotionPrimitive& primitive, const Eigen::Vector3d& gap_center_W,
+                       double cost_bound, ApproachCandidate& candidate) const;
   bool AboveFloor(const MotionPrimitive& primitive) const;
   double HeadingAt(const MotionPrimitive& primitive, const Eigen::Vector3d& gap_center_W,
                    double t_s) const;
