@@ -147,8 +147,13 @@ TraverseTrajectory::TraverseTrajectory(const GapPose& gap, double d_m, double ti
   const Eigen::Vector3d thrust_W = plane_gravity_W_ - g_W;  // = -<g, e3> e3
   thrust_mps2_ = thrust_W.norm();
   thrust_direction_W_ = thrust_mps2_ > 0.0 ? Eigen::Vector3d(thrust_W / thrust_mps2_) : e3_W_;
-  const Eigen::Vector3d forward =
-      Eigen::Vector2d(e2_W_.x(), e2_W_.y()).norm() > 1e-6 ? e2_W_ : e1_W_;
+  // x_B from the start towards the gap centre (l e1 + d e2, which lies in Pi and so is normal to
+  // the thrust): the perception-aware heading (8) of a forward camera at t = 0, so an approach
+  // planned with it ends on the heading the traverse holds with zero body rates. (F.11): x_B's
+  // horizontal projection is along x_C. Fallback e2, then e1, if that projection vanishes.
+  Eigen::Vector3d forward = gap.p_WG - p0_W_;
+  if (Eigen::Vector2d(forward.x(), forward.y()).norm() < 1e-9 * forward.norm()) forward = e2_W_;
+  if (Eigen::Vector2d(forward.x(), forward.y()).norm() < 1e-6) forward = e1_W_;
   heading_rad_ = std::atan2(forward.y(), forward.x());
 }
 

@@ -73,7 +73,8 @@ class TraverseTrajectory {
   // Mass-normalised collective thrust |<g, e3>| [m/s^2] along thrust_direction_W() (= +-e3).
   double collective_thrust_mps2() const { return thrust_mps2_; }
   const Eigen::Vector3d& thrust_direction_W() const { return thrust_direction_W_; }
-  // Heading of the traverse: x_B along the horizontal projection of e2 (e1 if e2 is vertical).
+  // Heading of the traverse: x_B from the start towards the gap centre (in Pi), which is where a
+  // forward camera looks at the end of a perception-aware approach (approach_planner.h).
   double heading_rad() const { return heading_rad_; }
 
   Eigen::Vector3d Position(double t_s) const;  // (5a)

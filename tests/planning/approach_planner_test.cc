@@ -200,6 +200,26 @@ TEST(ApproachPlanner, SampledHeadingKeepsTheGapCentred) {
   EXPECT_NEAR(planner.Sample(primitive, target.gap_center_W, t).heading_rate_radps, rate, 1e-3);
 }
 
+// The approach hands over to the traverse without a heading jump: its perception-aware heading at
+// T (camera on the gap centre, thrust along the traverse's) equals the traverse's constant heading
+// (1e-9 rad: the same direction computed through two formulas).
+TEST(ApproachPlanner, EndsOnTheTraverseHeading) {
+  const TraverseOptimizationResult traverse = OptimizeTraverseTrajectory(TestGap(), {});
+  ASSERT_TRUE(traverse.trajectory.has_value());
+  const ApproachTarget target = ApproachTarget::FromTraverse(*traverse.trajectory);
+  const ApproachPlanner planner(SmallGrid());
+  const ApproachPlan plan = planner.Plan(target);
+  ASSERT_TRUE(plan.best.has_value());
+  const double T = plan.best->primitive.duration_s();
+  const control::TrajectoryPoint end = planner.Sample(plan.best->primitive, target.gap_center_W, T);
+  EXPECT_NEAR(std::remainder(end.heading_rad - traverse.trajectory->heading_rad(), 2.0 * kPi), 0.0,
+              1e-9);
+  const control::TrajectoryPoint start = traverse.trajectory->Sample(0.0);
+  EXPECT_LT((end.p_W - start.p_W).norm(), 1e-9);
+  EXPECT_LT((end.v_W - start.v_W).norm(), 1e-9);
+  EXPECT_LT((end.a_W - start.a_W).norm(), 1e-9);
+}
+
 // Replanning from a state on the plan with the remaining time reproduces the plan (the tail of a
 // minimum-jerk primitive with fixed end state is the minimum-jerk primitive of the tail problem).
 TEST(ApproachPlanner, ReplanFromThePlannedStateReproducesThePlan) {

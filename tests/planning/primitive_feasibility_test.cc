@@ -9,9 +9,10 @@ namespace aperture::planning {
 namespace {
 
 // Inputs by differential flatness, sampled densely: f = |a + g z|, |omega_xy| = |j_perp| / f with
-// j_perp the jerk normal to the thrust direction (the exact body-rate magnitude for zero yaw rate).
+// j_perp the jerk normal to the thrust direction (the exact body-rate magnitude for zero yaw rate),
+// and the note's bound |j| / f >= |omega_xy|.
 struct SampledInputs {
-  double f_min = 1e300, f_max = 0.0, omega_max = 0.0;
+  double f_min = 1e300, f_max = 0.0, omega_max = 0.0, omega_bound_max = 0.0;
   double jerk_max = 0.0;  // max |j| over the samples, for the sampling-gap bound on f
 };
 
@@ -28,6 +29,7 @@ SampledInputs SampleInputs(const MotionPrimitive& primitive, double gravity, int
     if (f > 0.0) {
       const Eigen::Vector3d z = c / f;
       out.omega_max = std::max(out.omega_max, (j - j.dot(z) * z).norm() / f);
+      out.omega_bound_max = std::max(out.omega_bound_max, j.norm() / f);
     }
   }
   return out;
@@ -63,6 +65,7 @@ TEST(PrimitiveFeasibility, NeverCallsAnInfeasiblePrimitiveFeasible) {
         ASSERT_LE(inputs.f_max, limits.max_thrust_mps2 + 1e-9) << "case " << n;
         ASSERT_GE(inputs.f_min, limits.min_thrust_mps2 - 1e-9) << "case " << n;
         ASSERT_LE(inputs.omega_max, limits.max_body_rate_radps + 1e-9) << "case " << n;
+        ASSERT_LE(inputs.omega_bound_max, limits.max_body_rate_radps + 1e-9) << "case " << n;
         break;
       case Feasibility::kInfeasibleThrustHigh:
         ASSERT_GT(inputs.f_max, limits.max_thrust_mps2 - gap) << "case " << n;

@@ -107,6 +107,13 @@ TEST_P(TraverseTest, SolutionSatisfiesTheModelAndTheConstraints) {
   // Thrust of (1): |<g, e3>| along e3.
   EXPECT_NEAR(traverse.collective_thrust_mps2(), std::abs(g_W.dot(traverse.e3_W())), 1e-12);
 
+  // Heading: x_C = (cos psi, sin psi) along the horizontal projection of the start-to-gap vector.
+  const Eigen::Vector3d to_gap = gap.p_WG - traverse.start_position_W();
+  const Eigen::Vector2d horizontal = Eigen::Vector2d(to_gap.x(), to_gap.y()).normalized();
+  EXPECT_NEAR(horizontal.dot(Eigen::Vector2d(std::cos(traverse.heading_rad()),
+                                             std::sin(traverse.heading_rad()))),
+              1.0, 1e-12);
+
   // Constraints of (6) at the solution (1e-8: SLSQP tolerance on the scaled constraint).
   EXPECT_LE(traverse.start_velocity_W().norm(), parameters.max_start_speed_mps + 1e-8);
   EXPECT_GE(traverse.d_m(), parameters.min_start_distance_m - 1e-12);
