@@ -69,6 +69,8 @@ class Scenario {
   }
   // Moves every object attached to the vehicle body (T_WO = T_WB * T_BO).
   void SetVehiclePose(const Eigen::Isometry3d& T_WB);
+  // Names of the body-attached objects (not obstacles for the vehicle carrying them).
+  std::vector<std::string> AttachedObjectNames() const;
 
  private:
   friend Scenario BuildScenario(const ScenarioParams& params);
