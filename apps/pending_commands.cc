@@ -28,13 +28,6 @@ void AddSimCommand(CLI::App& app, int* exit_code) {
                     exit_code);
 }
 
-void AddRenderCommand(CLI::App& app, int* exit_code) {
-  AddPendingCommand(app, "render", "Render a dataset with ground truth from a scenario",
-                    "It will write PNG frames, times.txt, groundtruth.txt, objects.csv, depth, "
-                    "id masks and calib.yaml that 'aperture run' reads back.",
-                    exit_code);
-}
-
 void AddBenchCommand(CLI::App& app, int* exit_code) {
   AddPendingCommand(app, "bench", "Run perception and control benchmarks against ground truth",
                     "It will run the gap, led and control benchmarks and write summary.json and "

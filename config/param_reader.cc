@@ -161,6 +161,13 @@ bool ParamReader::Has(const std::string& key) const {
   return node_.IsMap() && static_cast<bool>(static_cast<const YAML::Node&>(node_)[key]);
 }
 
+std::vector<std::string> ParamReader::Keys() const {
+  std::vector<std::string> keys;
+  if (!node_.IsMap()) return keys;
+  for (auto it = node_.begin(); it != node_.end(); ++it) keys.push_back(it->first.Scalar());
+  return keys;
+}
+
 YAML::Node ParamReader::Lookup(const std::string& key) {
   known_keys_.insert(key);
   if (!node_.IsMap()) return YAML::Node(YAML::NodeType::Undefined);

@@ -70,6 +70,10 @@ class ParamReader {
   // True when `key` is present in the map (does not mark it as known).
   bool Has(const std::string& key) const;
 
+  // Keys present in the map, in document order (empty for an absent section). For maps keyed by
+  // user-chosen names (e.g. scenario objects); does not mark them as known.
+  std::vector<std::string> Keys() const;
+
   // Throws std::invalid_argument for the first key present in the map that no Read*/Section call
   // asked for, naming its location and listing the known keys.
   void RejectUnknownKeys() const;

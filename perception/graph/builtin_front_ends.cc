@@ -1,11 +1,15 @@
 #include "perception/graph/builtin_front_ends.h"
 
+#include "perception/gap/gap_node.h"
 #include "perception/led/led_tracker_node.h"
 #include "perception/quality/image_quality_node.h"
 
 namespace aperture::perception {
 
 void RegisterBuiltinFrontEnds(FrontEndRegistry& registry) {
+  registry.Register(GapNode::kName,
+                    "patterned gap detector (seed 000): pose T_GC with covariance; needs --calib",
+                    &GapNode::Create);
   registry.Register(ImageQualityNode::kName,
                     "exposure histogram, mean intensity, over/under exposure, Laplacian sharpness",
                     &ImageQualityNode::Create);

@@ -34,11 +34,19 @@ TEST(Cli, MissingSubcommandExitsWithTwo) {
 }
 
 TEST(Cli, CommandsNotAvailableYetFailAndSaySo) {
-  for (const char* name : {"sim", "render", "bench"}) {
+  for (const char* name : {"sim", "bench"}) {
     const CommandResult result = RunAperture(name);
     EXPECT_NE(result.exit_code, 0) << name;
     EXPECT_NE(result.output.find("not available yet"), std::string::npos) << result.output;
   }
+}
+
+TEST(Cli, RenderNamesTheBuiltinScenariosForAnUnknownOne) {
+  TempFolder temp("render-unknown");
+  const CommandResult result = RunAperture("render nope --out " + temp.path() + "/out");
+  EXPECT_NE(result.exit_code, 0);
+  EXPECT_NE(result.output.find("unknown scenario 'nope'"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("gapflyt"), std::string::npos) << result.output;
 }
 
 }  // namespace

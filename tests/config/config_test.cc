@@ -299,5 +299,11 @@ TEST_F(ConfigFileTest, StandaloneReaderNamesItsSource) {
               AllOf(HasSubstr("inline.yaml:2:1"), HasSubstr("'extra'")));
 }
 
+TEST_F(ConfigFileTest, KeysListsUserNamedEntriesInDocumentOrder) {
+  ParamReader reader(YAML::Load("objects: {zeta: 1, alpha: 2, mid: 3}\n"), "inline.yaml");
+  EXPECT_EQ(reader.Section("objects").Keys(), (std::vector<std::string>{"zeta", "alpha", "mid"}));
+  EXPECT_TRUE(reader.Section("absent").Keys().empty());
+}
+
 }  // namespace
 }  // namespace aperture::config

@@ -71,9 +71,9 @@ TEST(FrontEndRegistry, UnknownNameListsKnownNames) {
       ErrorOf([&] { registry.Create("image_qualty"); }),
       AllOf(HasSubstr("'image_qualty'"), HasSubstr("image_quality"), HasSubstr("exposure_alarm")));
   EXPECT_THAT(ErrorOf([&] {
-                registry.BuildGraph({"image_quality", "gap"});
+                registry.BuildGraph({"image_quality", "no_such_front_end"});
               }),
-              AllOf(HasSubstr("'gap'"), HasSubstr("image_quality")));
+              AllOf(HasSubstr("'no_such_front_end'"), HasSubstr("image_quality")));
 }
 
 TEST(FrontEndRegistry, RejectsDuplicateRegistrationAndRepeatedSelection) {

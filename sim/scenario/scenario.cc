@@ -1,0 +1,464 @@
+#include "sim/scenario/scenario.h"
+
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+#include <optional>
+#include <stdexcept>
+
+#include "perception/camera/camera_factory.h"
+#include "sim/scene/apriltag_object.h"
+#include "sim/scene/counter_hash.h"
+
+namespace aperture::sim {
+namespace {
+
+constexpr double kDegToRad = M_PI / 180.0;
+
+// Independent random streams (one per purpose) so adding e.g. a tree does not change textures.
+enum Stream : std::uint64_t {
+  kTextureStream = 1,
+  kPlacementStream,
+  kJitterStream,
+  kLightStream,
+  kNoiseStream,
+  kShapeStream
+};
+
+class SeededRandom {
+ public:
+  SeededRandom(std::uint64_t seed, Stream stream) : seed_(seed), stream_(stream) {}
+  double Uniform(double lo = 0.0, double hi = 1.0) {
+    return lo + (hi - lo) * UniformFromHash(HashCounters(seed_, stream_, counter_++));
+  }
+  double Normal() { return NormalFromHash(HashCounters(seed_, stream_, counter_++)); }
+  std::uint64_t Bits() { return HashCounters(seed_, stream_, counter_++); }
+
+ private:
+  std::uint64_t seed_;
+  std::uint64_t stream_;
+  std::uint64_t counter_ = 0;
+};
+
+Eigen::Isometry3d MakePose(const Eigen::Vector3d& p_m, const Eigen::Vector3d& rpy_deg) {
+  return PoseParams{p_m, rpy_deg}.ToIsometry();
+}
+
+// Rectangle standing in a plane x_W = const, facing a viewer looking along +x_W: z_O = x_W,
+// x_O = -y_W, y_O = -z_W (texture unmirrored from that side).
+Eigen::Matrix3d FacingPlusX() {
+  Eigen::Matrix3d R;
+  R << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  return R;
+}
+
+Eigen::Isometry3d Facing(const Eigen::Matrix3d& R_WO, const Eigen::Vector3d& p_W) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = R_WO;
+  T.translation() = p_W;
+  return T;
+}
+
+class Builder {
+ public:
+  Builder(const ScenarioParams& params, Scenario* scenario)
+      : params_(params), scene_(scenario->scene()) {}
+
+  std::shared_ptr<const Texture> MakeTexture(const TextureParams& texture) {
+    ProceduralTextureParams procedural;
+    procedural.texel_size_m = texture.texel_size_m;
+    procedural.seed = textures_.Bits();
+    if (texture.kind == "none") return nullptr;
+    if (texture.kind == "checker") {
+      return std::make_shared<Texture>(Texture::Checkerboard(texture.square_size_m));
+    }
+    if (texture.kind == "noise") return MakeValueNoiseTexture(procedural);
+    if (texture.kind == "newspaper") return MakeNewspaperTexture(procedural);
+    if (texture.kind == "bark") return MakeBarkTexture(procedural);
+    return MakeGrassTexture(procedural);
+  }
+
+  Material MakeMaterial(const TextureParams& texture) {
+    Material material;
+    material.texture = MakeTexture(texture);
+    material.color = texture.color.cast<float>();
+    material.texture_scale = texture.scale;
+    return material;
+  }
+
+  Material Textured(const std::string& kind,
+                    const Eigen::Vector3d& color = Eigen::Vector3d::Ones()) {
+    TextureParams texture;
+    texture.kind = kind;
+    texture.color = color;
+    return MakeMaterial(texture);
+  }
+
+  // Seeded pose perturbation of a movable object (randomize.*); identity when all sigmas are 0.
+  Eigen::Isometry3d Jitter(const Eigen::Isometry3d& T_WO) {
+    const RandomizationParams& r = params_.randomize;
+    Eigen::Isometry3d T = T_WO;
+    const Eigen::Vector3d dp(jitter_.Normal(), jitter_.Normal(), jitter_.Normal());
+    const double dyaw = jitter_.Normal() * r.yaw_sigma_deg * kDegToRad;
+    T.translation() += dp * r.position_sigma_m;
+    T.linear() = Eigen::AngleAxisd(dyaw, Eigen::Vector3d::UnitZ()).toRotationMatrix() * T.linear();
+    return T;
+  }
+
+  int Add(SceneObject object) { return scene_.AddObject(std::move(object)); }
+
+  void BuildGap() {
+    const GapParams& gap = params_.gap;
+    const Eigen::Matrix3d R_WG =
+        (Eigen::AngleAxisd(gap.yaw_deg * kDegToRad, Eigen::Vector3d::UnitZ()) *
+         Eigen::AngleAxisd(gap.pitch_deg * kDegToRad, Eigen::Vector3d::UnitY()) *
+         Eigen::AngleAxisd(gap.roll_deg * kDegToRad, Eigen::Vector3d::UnitX()))
+            .toRotationMatrix() *
+        FacingPlusX();
+    // Pattern texture over the panel: texel (0, 0) at the panel's top-left corner (u = x_G +
+    // panel.x / 2, v = y_G + panel.y / 2). White 0.95, black 0.05 like printed paper.
+    const double texel = gap.texel_size_m;
+    const auto to_px = [texel](double uv_m) { return static_cast<int>(std::lround(uv_m / texel)); };
+    cv::Mat pattern(to_px(gap.panel_m.y()), to_px(gap.panel_m.x()), CV_8UC3, cv::Scalar::all(242));
+    const auto fill = [&](const Eigen::Vector2d& size_m, int value) {
+      const Eigen::Vector2d corner = (gap.panel_m - size_m) / 2.0;
+      cv::rectangle(
+          pattern, cv::Point(to_px(corner.x()), to_px(corner.y())),
+          cv::Point(to_px(corner.x() + size_m.x()) - 1, to_px(corner.y() + size_m.y()) - 1),
+          cv::Scalar::all(value), cv::FILLED);
+    };
+    fill(gap.pattern_outer_m, 13);
+    fill(gap.pattern_inner_m, 242);
+    Material material;
+    material.texture = std::make_shared<Texture>(pattern, texel, Texture::Filter::kBilinear,
+                                                 Texture::Wrap::kClamp);
+    material.color = Rgb::Ones();
+    const Eigen::Vector2d h = gap.opening_m / 2.0;
+    Rectangle panel{
+        gap.panel_m, {{{-h.x(), -h.y()}, {h.x(), -h.y()}, {h.x(), h.y()}, {-h.x(), h.y()}}}, {}};
+    Add({"gap", panel, material, Jitter(Facing(R_WG, gap.center_W))});
+
+    // Textured room around it: x from -3 m, centred in y, floor at z = 0.
+    const Eigen::Vector3d room = gap.room_m;
+    const double x0 = -3.0, x1 = x0 + room.x(), cx = 0.5 * (x0 + x1);
+    Add({"floor", GroundPlane{}, Textured("noise", {0.8, 0.7, 0.6}),
+         Eigen::Isometry3d::Identity()});
+    Add({"wall_far", Rectangle{{room.y(), room.z()}, {}, {}}, Textured("newspaper"),
+         Facing(FacingPlusX(), {x1, 0.0, room.z() / 2})});
+    Add({"wall_near", Rectangle{{room.y(), room.z()}, {}, {}}, Textured("noise"),
+         Facing(FacingPlusX(), {x0, 0.0, room.z() / 2})});
+    Eigen::Matrix3d R_side;  // x_O = x_W, y_O = -z_W, z_O = y_W
+    R_side << 1, 0, 0, 0, 0, 1, 0, -1, 0;
+    Add({"wall_left", Rectangle{{room.x(), room.z()}, {}, {}},
+         Textured("newspaper", {0.9, 0.9, 0.8}), Facing(R_side, {cx, room.y() / 2, room.z() / 2})});
+    Add({"wall_right", Rectangle{{room.x(), room.z()}, {}, {}}, Textured("noise", {0.7, 0.8, 0.9}),
+         Facing(R_side, {cx, -room.y() / 2, room.z() / 2})});
+    Add({"ceiling", Rectangle{{room.x(), room.y()}, {}, {}}, Textured("none", {0.9, 0.9, 0.9}),
+         MakePose({cx, 0.0, room.z()}, {180, 0, 0})});
+  }
+
+  std::vector<Eigen::Vector2d> GapFlytPolygon() {
+    const GapFlytParams& g = params_.gapflyt;
+    if (!g.vertices_m.empty()) return g.vertices_m;
+    std::vector<Eigen::Vector2d> vertices;
+    const Eigen::Vector2d half = g.size_m / 2.0;
+    if (g.shape == "star") {
+      for (int i = 0; i < 2 * g.star_points; ++i) {
+        const double angle = -M_PI / 2 + M_PI * i / g.star_points;
+        const double r = i % 2 == 0 ? 1.0 : g.star_inner_ratio;
+        vertices.emplace_back(r * half.x() * std::cos(angle), r * half.y() * std::sin(angle));
+      }
+      return vertices;
+    }
+    // Seeded irregular quadrilateral: corners near 45 + 90 k deg, radii 75..100 % of the box.
+    for (int k = 0; k < 4; ++k) {
+      const double angle = (45.0 + 90.0 * k + shapes_.Uniform(-15.0, 15.0)) * kDegToRad;
+      const double r = shapes_.Uniform(0.75, 1.0);
+      const Eigen::Vector2d unit(std::cos(angle), std::sin(angle));
+      // Scale to the box: the corner direction's larger component touches the boundary at r = 1.
+      const double reach = 1.0 / std::max(std::abs(unit.x()), std::abs(unit.y()));
+      vertices.emplace_back(r * reach * unit.x() * half.x(), r * reach * unit.y() * half.y());
+    }
+    return vertices;
+  }
+
+  void BuildGapFlyt() {
+    const GapFlytParams& g = params_.gapflyt;
+    Rectangle foreground{g.foreground_wall_m, {}, {}};
+    if (g.shape == "ellipse") {
+      foreground.ellipse_holes.push_back({Eigen::Vector2d::Zero(), g.size_m / 2.0, 0.0});
+    } else {
+      foreground.polygon_holes.push_back(GapFlytPolygon());
+    }
+    // The wall's origin is the opening centre ("gap" pose = opening pose).
+    Add({"gap", foreground, Textured("newspaper"),
+         Jitter(Facing(FacingPlusX(), {g.foreground_x_m, g.center_m.x(), g.center_m.y()}))});
+    Add({"background", Rectangle{g.background_wall_m, {}, {}}, Textured("noise", {0.9, 0.8, 0.7}),
+         Facing(FacingPlusX(), {g.background_x_m, 0.0, g.background_wall_m.y() / 2})});
+    Add({"ground", GroundPlane{}, Textured("grass"), Eigen::Isometry3d::Identity()});
+  }
+
+  void BuildLed(Scenario* scenario) {
+    const LedSceneParams& led = params_.led;
+    Add({"ground", GroundPlane{}, Textured("noise", {0.5, 0.5, 0.5}),
+         Eigen::Isometry3d::Identity()});
+    const auto attach = [&](SceneObject object) {
+      const Eigen::Isometry3d T_BO = object.T_WO;
+      object.T_WO = T_WB_start_ * T_BO;
+      scenario->AttachToBody(Add(std::move(object)), T_BO);
+    };
+    // Quadrotor body (T_WO = T_WB) with two crossed arms; LEDs hang below the arms.
+    attach({"led_target", Box{{0.14, 0.14, 0.05}}, Textured("none", {0.2, 0.2, 0.2}),
+            Eigen::Isometry3d::Identity()});
+    attach({"arm1", Box{{0.46, 0.02, 0.01}}, Textured("none", {0.3, 0.3, 0.3}),
+            MakePose({0, 0, 0}, {0, 0, 45})});
+    attach({"arm2", Box{{0.46, 0.02, 0.01}}, Textured("none", {0.3, 0.3, 0.3}),
+            MakePose({0, 0, 0}, {0, 0, -45})});
+    for (size_t i = 0; i < led.leds_B.size(); ++i) {
+      Eigen::Isometry3d T_BL = Eigen::Isometry3d::Identity();
+      T_BL.translation() = led.leds_B[i];
+      attach({"led" + std::to_string(i),
+              Led{led.led_radius_m, led.led_intensity, Rgb::Ones()},
+              {},
+              T_BL});
+    }
+    for (int k = 0; k < led.false_spots; ++k) {
+      const Eigen::Vector3d p(placement_.Uniform(-0.5, 0.5) * led.false_spot_area_m.x(),
+                              placement_.Uniform(-0.5, 0.5) * led.false_spot_area_m.y(),
+                              led.false_spot_height_m);
+      Add({"false_spot" + std::to_string(k),
+           Led{0.02, 4.0 * led.led_intensity, Rgb::Ones()},
+           {},
+           MakePose(p, Eigen::Vector3d::Zero())});
+    }
+  }
+
+  // A free spot in the tag area at least `clearance` from every taken spot.
+  Eigen::Vector2d FreeSpot(const Eigen::Vector2d& area, double clearance,
+                           std::vector<Eigen::Vector2d>* taken) {
+    for (int attempt = 0; attempt < 1000; ++attempt) {
+      const Eigen::Vector2d p(placement_.Uniform(0.3, area.x() - 0.3),
+                              placement_.Uniform(0.3, area.y() - 0.3));
+      bool free = true;
+      for (const Eigen::Vector2d& q : *taken) free = free && (p - q).norm() >= clearance;
+      if (free) {
+        taken->push_back(p);
+        return p;
+      }
+    }
+    throw std::invalid_argument("tags: no free spot left for " + std::to_string(taken->size()) +
+                                " objects in area_m [" + std::to_string(area.x()) + ", " +
+                                std::to_string(area.y()) + "]; reduce tags.obstacles");
+  }
+
+  void BuildTags() {
+    const TagsSceneParams& t = params_.tags;
+    Add({"ground", GroundPlane{}, Textured("noise", {0.5, 0.5, 0.5}),
+         Eigen::Isometry3d::Identity()});
+    // Ground tags face up: z_O = -z_W (seen by a downward camera along +z_O), x_O = x_W.
+    const Eigen::Vector3d face_up_rpy(180, 0, 0);
+    const auto tag = [&](int id, const Eigen::Vector3d& p_W, double yaw_deg) {
+      Add(MakeAprilTagObject(t.family, id, t.tag_size_m,
+                             MakePose(p_W, face_up_rpy + Eigen::Vector3d(0, 0, yaw_deg))));
+    };
+    tag(0, {0.0, 0.0, 0.001}, 0.0);  // the map origin
+    tag(1, {t.goal_xy_m.x(), t.goal_xy_m.y(), 0.001}, 0.0);
+    std::vector<Eigen::Vector2d> taken{Eigen::Vector2d::Zero(), t.goal_xy_m};
+    const double clearance = 0.9;  // > an obstacle diagonal: boxes never overlap
+    const auto tagged_box = [&](const std::string& name, int id, const Eigen::Vector3d& size) {
+      const Eigen::Vector2d xy = FreeSpot(t.area_m, clearance, &taken);
+      const double yaw = placement_.Uniform(-180.0, 180.0);
+      const Eigen::Isometry3d T_WO = Jitter(MakePose({xy.x(), xy.y(), size.z() / 2}, {0, 0, yaw}));
+      Add({name, Box{size}, Textured("none", {0.6, 0.35, 0.2}), T_WO});
+      Eigen::Isometry3d T_OT = MakePose({0, 0, size.z() / 2 + 0.001}, face_up_rpy);
+      Add(MakeAprilTagObject(t.family, id, t.tag_size_m, T_WO * T_OT));
+    };
+    tagged_box("robot", 2, t.robot_size_m);
+    for (int k = 0; k < t.obstacles; ++k) {
+      tagged_box("obstacle" + std::to_string(k), 3 + k, t.obstacle_size_m);
+    }
+  }
+
+  void BuildForest() {
+    const ForestParams& f = params_.forest;
+    Add({"ground", GroundPlane{}, Textured("grass"), Eigen::Isometry3d::Identity()});
+    std::vector<std::shared_ptr<const Texture>> barks;
+    for (int i = 0; i < 3; ++i) barks.push_back(MakeTexture({"bark", {1, 1, 1}, 1.0, 0.005, 0.2}));
+    std::vector<Eigen::Vector2d> trunks;
+    const auto place = [&](double keep_out) -> std::optional<Eigen::Vector2d> {
+      for (int attempt = 0; attempt < 200; ++attempt) {
+        const Eigen::Vector2d p(2.0 + placement_.Uniform(0.0, f.area_m.x()),
+                                placement_.Uniform(-0.5, 0.5) * f.area_m.y());
+        if (std::abs(p.y()) < keep_out) continue;  // keep the flight corridor y = 0 free
+        bool free = true;
+        for (const Eigen::Vector2d& q : trunks) free = free && (p - q).norm() >= f.min_spacing_m;
+        if (free) {
+          trunks.push_back(p);
+          return p;
+        }
+      }
+      return std::nullopt;  // area full: fewer objects rather than overlapping ones
+    };
+    for (int k = 0; k < f.trees; ++k) {
+      const auto p = place(f.min_spacing_m);
+      if (!p) break;
+      Material bark;
+      bark.texture = barks[static_cast<size_t>(k) % barks.size()];
+      bark.color = Rgb::Ones();
+      bark.texture_offset_m = Eigen::Vector2d(placement_.Uniform(0, 2), placement_.Uniform(0, 2));
+      const Cylinder trunk{placement_.Uniform(f.radius_range_m.x(), f.radius_range_m.y()),
+                           placement_.Uniform(f.height_range_m.x(), f.height_range_m.y())};
+      Add({"tree" + std::to_string(k), trunk, bark,
+           Jitter(MakePose({p->x(), p->y(), 0.0}, Eigen::Vector3d::Zero()))});
+    }
+    for (int k = 0; k < f.boxes; ++k) {
+      const auto p = place(f.min_spacing_m);
+      if (!p) break;
+      const double size = placement_.Uniform(0.4, 1.2);
+      Add({"box" + std::to_string(k), Box{Eigen::Vector3d::Constant(size)},
+           Textured("noise", {0.7, 0.6, 0.5}),
+           Jitter(MakePose({p->x(), p->y(), size / 2}, {0, 0, placement_.Uniform(0, 90)}))});
+    }
+  }
+
+  void BuildObjects(Scenario* scenario) {
+    for (const auto& [name, o] : params_.objects) {
+      Primitive primitive;
+      if (o.shape == "rectangle") {
+        primitive = Rectangle{o.size_m.head<2>(), o.polygon_holes, {}};
+      } else if (o.shape == "box") {
+        primitive = Box{o.size_m};
+      } else if (o.shape == "cylinder") {
+        primitive = Cylinder{o.radius_m, o.height_m};
+      } else if (o.shape == "sphere") {
+        primitive = Sphere{o.radius_m};
+      } else if (o.shape == "ground") {
+        primitive = GroundPlane{};
+      } else {
+        primitive = Led{o.radius_m, o.intensity, Rgb::Ones()};
+      }
+      const Eigen::Isometry3d T = o.pose.ToIsometry();
+      SceneObject object{name, primitive, MakeMaterial(o.texture), T};
+      try {
+        if (o.attach_to_body) {
+          object.T_WO = T_WB_start_ * T;
+          scenario->AttachToBody(Add(std::move(object)), T);
+        } else {
+          if (o.randomize_pose) object.T_WO = Jitter(T);
+          Add(std::move(object));
+        }
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument("objects." + name + ": " + e.what());
+      }
+    }
+  }
+
+  void SetLighting() {
+    const LightingParams& l = params_.lighting;
+    const double sigma = params_.randomize.light_sigma;
+    Lighting& lighting = scene_.lighting;
+    lighting.ambient =
+        static_cast<float>(std::max(0.0, l.ambient * (1.0 + sigma * lights_.Normal())));
+    lighting.directional =
+        static_cast<float>(std::max(0.0, l.directional * (1.0 + sigma * lights_.Normal())));
+    const Eigen::Vector3d d = l.direction_W.normalized();
+    const Eigen::Vector3d jitter(lights_.Normal(), lights_.Normal(), lights_.Normal());
+    lighting.direction_W = (d + sigma * jitter).normalized();
+  }
+
+  Eigen::Isometry3d T_WB_start_ = Eigen::Isometry3d::Identity();
+
+ private:
+  const ScenarioParams& params_;
+  Scene& scene_;
+  SeededRandom textures_{params_.seed, kTextureStream};
+  SeededRandom placement_{params_.seed, kPlacementStream};
+  SeededRandom jitter_{params_.seed, kJitterStream};
+  SeededRandom lights_{params_.seed, kLightStream};
+  SeededRandom shapes_{params_.seed, kShapeStream};
+};
+
+ScenarioCamera BuildCamera(const std::string& name, const CameraParams& c, std::uint64_t seed,
+                           std::uint64_t index) {
+  Eigen::VectorXd intrinsics = c.intrinsics;
+  if (intrinsics.size() == 0) {
+    const double half_fov = 0.5 * c.fov_deg * kDegToRad;
+    const double f =
+        c.model == "equidistant" ? 0.5 * c.width / half_fov : 0.5 * c.width / std::tan(half_fov);
+    intrinsics = Eigen::Vector4d(f, f, 0.5 * (c.width - 1), 0.5 * (c.height - 1));
+  }
+  Eigen::VectorXd distortion = c.distortion;
+  if (distortion.size() == 0 && c.model != "pinhole") distortion = Eigen::VectorXd::Zero(4);
+  ScenarioCamera camera;
+  camera.name = name;
+  try {
+    camera.model =
+        perception::CreateCameraModel(c.model, c.width, c.height, intrinsics, distortion);
+    CameraEffectsParams effects;
+    effects.gain = c.gain;
+    effects.full_well_electrons = c.full_well_electrons;
+    effects.read_noise_sigma = c.read_noise_sigma;
+    effects.seed = HashCounters(seed, kNoiseStream, index);
+    effects.exposure_s = c.exposure_s;
+    effects.motion_blur_subframes = c.motion_blur_subframes;
+    effects.infrared = c.infrared;
+    camera.effects = CameraEffects(effects);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("cameras." + name + ": " + e.what());
+  }
+  camera.mount_on_body = c.mount_on_body;
+  camera.T_mount = c.pose.ToIsometry();
+  camera.rate_hz = c.rate_hz;
+  camera.render.color = c.color;
+  camera.render.supersampling = c.supersampling;
+  return camera;
+}
+
+}  // namespace
+
+const ScenarioCamera& Scenario::camera(const std::string& name) const {
+  std::string known;
+  for (const ScenarioCamera& camera : cameras_) {
+    if (camera.name == name) return camera;
+    known += (known.empty() ? "" : ", ") + camera.name;
+  }
+  throw std::invalid_argument("scenario '" + kind() + "' has no camera '" + name +
+                              "'; cameras: " + known);
+}
+
+const ScenarioCamera& Scenario::render_camera() const {
+  return params_.trajectory.camera.empty() ? cameras_.front() : camera(params_.trajectory.camera);
+}
+
+void Scenario::AttachToBody(int object_id, const Eigen::Isometry3d& T_BO) {
+  scene_.object(object_id);  // throws for an unknown id
+  attached_.push_back({object_id, T_BO});
+}
+
+void Scenario::SetVehiclePose(const Eigen::Isometry3d& T_WB) {
+  for (const Attached& a : attached_) scene_.SetPose(a.object_id, T_WB * a.T_BO);
+}
+
+Scenario BuildScenario(const ScenarioParams& params) {
+  Scenario scenario;
+  scenario.params_ = params;
+  scenario.T_WB_start_ = params.vehicle_start.ToIsometry();
+  Builder builder(scenario.params_, &scenario);
+  builder.T_WB_start_ = scenario.T_WB_start_;
+  builder.SetLighting();
+  if (params.scenario == "gap") builder.BuildGap();
+  if (params.scenario == "gapflyt") builder.BuildGapFlyt();
+  if (params.scenario == "led") builder.BuildLed(&scenario);
+  if (params.scenario == "tags") builder.BuildTags();
+  if (params.scenario == "forest") builder.BuildForest();
+  builder.BuildObjects(&scenario);
+  if (params.cameras.empty()) {
+    throw std::invalid_argument("scenario '" + params.scenario + "' has no cameras");
+  }
+  for (size_t i = 0; i < params.cameras.size(); ++i) {
+    scenario.cameras_.push_back(
+        BuildCamera(params.cameras[i].first, params.cameras[i].second, params.seed, i));
+  }
+  return scenario;
+}
+
+}  // namespace aperture::sim

@@ -1,0 +1,310 @@
+#include "sim/scenario/scenario_params.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace aperture::sim {
+namespace {
+
+// String choices through ReadEnum so a typo lists the allowed names with its location.
+void ReadChoice(config::ParamReader& reader, const std::string& key, std::string* value,
+                const std::vector<std::string>& allowed) {
+  std::vector<std::pair<std::string, std::string>> pairs;
+  for (const std::string& name : allowed) pairs.emplace_back(name, name);
+  reader.ReadEnum(key, value, pairs);
+}
+
+[[noreturn]] void ThrowAt(const config::ParamReader& reader, const std::string& key,
+                          const std::string& what) {
+  throw std::invalid_argument(reader.Where(key) + ": '" + reader.FullKey(key) + "' " + what);
+}
+
+void RequirePositive(const config::ParamReader& reader, const std::string& key, double value) {
+  if (!(value > 0.0) || !std::isfinite(value)) {
+    ThrowAt(reader, key, "must be a positive finite number, got " + std::to_string(value));
+  }
+}
+
+void RequirePositive(const config::ParamReader& reader, const std::string& key,
+                     const Eigen::VectorXd& values) {
+  for (Eigen::Index i = 0; i < values.size(); ++i) RequirePositive(reader, key, values[i]);
+}
+
+std::vector<Eigen::Vector3d> ReadLedFile(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) {
+    throw std::runtime_error("cannot read LED configuration '" + path +
+                             "' (led.config); expected a YAML file with leds: [[x, y, z], ...]");
+  }
+  std::stringstream text;
+  text << in.rdbuf();
+  YAML::Node node;
+  try {
+    node = YAML::Load(text.str());
+  } catch (const YAML::Exception& e) {
+    throw std::invalid_argument(path + ": YAML syntax error: " + e.what());
+  }
+  config::ParamReader reader(node, path);
+  std::vector<Eigen::Vector3d> leds;
+  reader.Read("leds", &leds);
+  reader.RejectUnknownKeys();
+  if (leds.size() < 4) {
+    throw std::invalid_argument(path +
+                                ": 'leds' needs at least 4 positions [x, y, z] in metres "
+                                "(P3P needs 3 plus one to disambiguate), got " +
+                                std::to_string(leds.size()));
+  }
+  return leds;
+}
+
+}  // namespace
+
+Eigen::Isometry3d PoseParams::ToIsometry() const {
+  const Eigen::Vector3d rpy = rpy_deg * (M_PI / 180.0);
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = (Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()) *
+                Eigen::AngleAxisd(rpy.y(), Eigen::Vector3d::UnitY()) *
+                Eigen::AngleAxisd(rpy.x(), Eigen::Vector3d::UnitX()))
+                   .toRotationMatrix();
+  T.translation() = p_m;
+  return T;
+}
+
+void LoadParams(config::ParamReader& reader, PoseParams* params) {
+  reader.Read("p_m", &params->p_m);
+  reader.Read("rpy_deg", &params->rpy_deg);
+}
+
+void LoadParams(config::ParamReader& reader, TextureParams* params) {
+  ReadChoice(reader, "kind", &params->kind,
+             {"none", "checker", "noise", "newspaper", "bark", "grass"});
+  reader.Read("color", &params->color);
+  reader.Read("scale", &params->scale);
+  reader.Read("texel_size_m", &params->texel_size_m);
+  reader.Read("square_size_m", &params->square_size_m);
+  RequirePositive(reader, "scale", params->scale);
+  RequirePositive(reader, "texel_size_m", params->texel_size_m);
+  RequirePositive(reader, "square_size_m", params->square_size_m);
+}
+
+void LoadParams(config::ParamReader& reader, ObjectParams* params) {
+  ReadChoice(reader, "shape", &params->shape,
+             {"rectangle", "box", "cylinder", "sphere", "ground", "led"});
+  reader.Read("size_m", &params->size_m);
+  reader.Read("radius_m", &params->radius_m);
+  reader.Read("height_m", &params->height_m);
+  reader.Read("intensity", &params->intensity);
+  reader.Read("polygon_holes", &params->polygon_holes);
+  reader.ReadSection("pose", &params->pose);
+  reader.Read("attach_to_body", &params->attach_to_body);
+  reader.Read("randomize_pose", &params->randomize_pose);
+  reader.ReadSection("texture", &params->texture);
+}
+
+void LoadParams(config::ParamReader& reader, LightingParams* params) {
+  reader.Read("ambient", &params->ambient);
+  reader.Read("directional", &params->directional);
+  reader.Read("direction_W", &params->direction_W);
+  if (params->ambient < 0.0 || params->directional < 0.0) {
+    ThrowAt(reader, "ambient", "and 'directional' must be >= 0");
+  }
+  if (!(params->direction_W.norm() > 0.0)) ThrowAt(reader, "direction_W", "must be non-zero");
+}
+
+void LoadParams(config::ParamReader& reader, RandomizationParams* params) {
+  reader.Read("position_sigma_m", &params->position_sigma_m);
+  reader.Read("yaw_sigma_deg", &params->yaw_sigma_deg);
+  reader.Read("light_sigma", &params->light_sigma);
+  if (params->position_sigma_m < 0.0 || params->yaw_sigma_deg < 0.0 || params->light_sigma < 0.0) {
+    ThrowAt(reader, "position_sigma_m", "and the other sigmas must be >= 0");
+  }
+}
+
+void LoadParams(config::ParamReader& reader, CameraParams* params) {
+  ReadChoice(reader, "model", &params->model, {"pinhole", "radtan", "equidistant"});
+  reader.Read("width", &params->width);
+  reader.Read("height", &params->height);
+  reader.Read("fov_deg", &params->fov_deg);
+  reader.Read("intrinsics", &params->intrinsics);
+  reader.Read("distortion", &params->distortion);
+  reader.Read("mount_on_body", &params->mount_on_body);
+  reader.ReadSection("pose", &params->pose);
+  reader.Read("rate_hz", &params->rate_hz);
+  reader.Read("exposure_s", &params->exposure_s);
+  reader.Read("motion_blur_subframes", &params->motion_blur_subframes);
+  reader.Read("gain", &params->gain);
+  reader.Read("read_noise_sigma", &params->read_noise_sigma);
+  reader.Read("full_well_electrons", &params->full_well_electrons);
+  reader.Read("color", &params->color);
+  reader.Read("infrared", &params->infrared);
+  reader.Read("supersampling", &params->supersampling);
+  RequirePositive(reader, "width", params->width);
+  RequirePositive(reader, "height", params->height);
+  RequirePositive(reader, "rate_hz", params->rate_hz);
+  RequirePositive(reader, "supersampling", params->supersampling);
+  if (params->intrinsics.size() == 0 &&
+      (!(params->fov_deg > 0.0) || (params->model != "equidistant" && !(params->fov_deg < 180.0)) ||
+       params->fov_deg > 360.0)) {
+    ThrowAt(reader, "fov_deg",
+            "must be in (0, 180) for pinhole/radtan and (0, 360] for equidistant, got " +
+                std::to_string(params->fov_deg));
+  }
+}
+
+void LoadParams(config::ParamReader& reader, TrajectoryParams* params) {
+  ReadChoice(reader, "kind", &params->kind, {"hover", "line", "circle", "scan", "random"});
+  reader.Read("camera", &params->camera);
+  reader.Read("frames", &params->frames);
+  reader.Read("end_p_m", &params->end_p_m);
+  reader.Read("center_p_m", &params->center_p_m);
+  reader.Read("arc_deg", &params->arc_deg);
+  reader.Read("amplitude_m", &params->amplitude_m);
+  reader.Read("cycles", &params->cycles);
+  reader.Read("angle_amplitude_deg", &params->angle_amplitude_deg);
+  RequirePositive(reader, "frames", params->frames);
+}
+
+void LoadParams(config::ParamReader& reader, GapParams* params) {
+  reader.Read("center_W", &params->center_W);
+  reader.Read("roll_deg", &params->roll_deg);
+  reader.Read("pitch_deg", &params->pitch_deg);
+  reader.Read("yaw_deg", &params->yaw_deg);
+  reader.Read("opening_m", &params->opening_m);
+  reader.Read("pattern_inner_m", &params->pattern_inner_m);
+  reader.Read("pattern_outer_m", &params->pattern_outer_m);
+  reader.Read("panel_m", &params->panel_m);
+  reader.Read("texel_size_m", &params->texel_size_m);
+  reader.Read("room_m", &params->room_m);
+  RequirePositive(reader, "opening_m", params->opening_m);
+  RequirePositive(reader, "texel_size_m", params->texel_size_m);
+  RequirePositive(reader, "room_m", params->room_m);
+  const bool nested = (params->pattern_inner_m.array() > params->opening_m.array()).all() &&
+                      (params->pattern_outer_m.array() > params->pattern_inner_m.array()).all() &&
+                      (params->panel_m.array() > params->pattern_outer_m.array()).all();
+  if (!nested) {
+    ThrowAt(reader, "pattern_outer_m",
+            ": the gap needs opening_m < pattern_inner_m < pattern_outer_m < panel_m in both "
+            "dimensions");
+  }
+}
+
+void LoadParams(config::ParamReader& reader, GapFlytParams* params) {
+  reader.Read("foreground_x_m", &params->foreground_x_m);
+  reader.Read("background_x_m", &params->background_x_m);
+  ReadChoice(reader, "shape", &params->shape, {"polygon", "ellipse", "star"});
+  reader.Read("center_m", &params->center_m);
+  reader.Read("size_m", &params->size_m);
+  reader.Read("vertices_m", &params->vertices_m);
+  reader.Read("star_points", &params->star_points);
+  reader.Read("star_inner_ratio", &params->star_inner_ratio);
+  reader.Read("foreground_wall_m", &params->foreground_wall_m);
+  reader.Read("background_wall_m", &params->background_wall_m);
+  RequirePositive(reader, "size_m", params->size_m);
+  if (!(params->background_x_m > params->foreground_x_m)) {
+    ThrowAt(reader, "background_x_m", "must be larger than foreground_x_m");
+  }
+  if (params->star_points < 3 || !(params->star_inner_ratio > 0.0) ||
+      !(params->star_inner_ratio < 1.0)) {
+    ThrowAt(reader, "star_points", "must be >= 3 with star_inner_ratio in (0, 1)");
+  }
+  if (!params->vertices_m.empty() && params->vertices_m.size() < 3) {
+    ThrowAt(reader, "vertices_m", "needs at least 3 vertices (or none for the default)");
+  }
+}
+
+void LoadParams(config::ParamReader& reader, LedSceneParams* params) {
+  reader.Read("config", &params->config);
+  reader.Read("leds", &params->leds_B);
+  reader.Read("led_radius_m", &params->led_radius_m);
+  reader.Read("led_intensity", &params->led_intensity);
+  reader.Read("false_spots", &params->false_spots);
+  reader.Read("false_spot_area_m", &params->false_spot_area_m);
+  reader.Read("false_spot_height_m", &params->false_spot_height_m);
+  if (!params->config.empty()) params->leds_B = ReadLedFile(params->config);
+  if (params->leds_B.size() < 4) {
+    ThrowAt(reader, "leds", "needs at least 4 LED positions [x, y, z] [m]");
+  }
+  RequirePositive(reader, "led_radius_m", params->led_radius_m);
+  RequirePositive(reader, "led_intensity", params->led_intensity);
+  if (params->false_spots < 0) ThrowAt(reader, "false_spots", "must be >= 0");
+}
+
+void LoadParams(config::ParamReader& reader, TagsSceneParams* params) {
+  reader.Read("area_m", &params->area_m);
+  reader.Read("family", &params->family);
+  reader.Read("tag_size_m", &params->tag_size_m);
+  reader.Read("obstacles", &params->obstacles);
+  reader.Read("obstacle_size_m", &params->obstacle_size_m);
+  reader.Read("robot_size_m", &params->robot_size_m);
+  reader.Read("goal_xy_m", &params->goal_xy_m);
+  RequirePositive(reader, "area_m", params->area_m);
+  RequirePositive(reader, "tag_size_m", params->tag_size_m);
+  if (params->obstacles < 0) ThrowAt(reader, "obstacles", "must be >= 0");
+}
+
+void LoadParams(config::ParamReader& reader, ForestParams* params) {
+  reader.Read("trees", &params->trees);
+  reader.Read("boxes", &params->boxes);
+  reader.Read("area_m", &params->area_m);
+  reader.Read("min_spacing_m", &params->min_spacing_m);
+  reader.Read("radius_range_m", &params->radius_range_m);
+  reader.Read("height_range_m", &params->height_range_m);
+  RequirePositive(reader, "area_m", params->area_m);
+  RequirePositive(reader, "radius_range_m", params->radius_range_m);
+  RequirePositive(reader, "height_range_m", params->height_range_m);
+  if (params->trees < 0 || params->boxes < 0) ThrowAt(reader, "trees", "and boxes must be >= 0");
+}
+
+void LoadParams(config::ParamReader& reader, ScenarioParams* params) {
+  ReadChoice(reader, "scenario", &params->scenario,
+             {"gap", "gapflyt", "led", "tags", "forest", "empty"});
+  reader.Read("seed", &params->seed);
+  reader.ReadSection("lighting", &params->lighting);
+  reader.ReadSection("randomize", &params->randomize);
+  {
+    config::ParamReader vehicle = reader.Section("vehicle");
+    vehicle.ReadSection("start", &params->vehicle_start);
+    vehicle.RejectUnknownKeys();
+  }
+  {
+    config::ParamReader cameras = reader.Section("cameras");
+    params->cameras.clear();
+    for (const std::string& name : cameras.Keys()) {
+      CameraParams camera;
+      cameras.ReadSection(name, &camera);
+      params->cameras.emplace_back(name, camera);
+    }
+    if (params->cameras.empty()) ThrowAt(reader, "cameras", "needs at least one camera");
+  }
+  reader.ReadSection("trajectory", &params->trajectory);
+  // Only the kind's own section: a section of another kind is a mistake worth reporting.
+  if (params->scenario == "gap") reader.ReadSection("gap", &params->gap);
+  if (params->scenario == "gapflyt") reader.ReadSection("gapflyt", &params->gapflyt);
+  if (params->scenario == "led") reader.ReadSection("led", &params->led);
+  if (params->scenario == "tags") reader.ReadSection("tags", &params->tags);
+  if (params->scenario == "forest") reader.ReadSection("forest", &params->forest);
+  {
+    config::ParamReader objects = reader.Section("objects");
+    params->objects.clear();
+    for (const std::string& name : objects.Keys()) {
+      ObjectParams object;
+      objects.ReadSection(name, &object);
+      params->objects.emplace_back(name, object);
+    }
+  }
+  const auto& trajectory_camera = params->trajectory.camera;
+  if (!trajectory_camera.empty()) {
+    bool found = false;
+    for (const auto& [name, camera] : params->cameras) found = found || name == trajectory_camera;
+    if (!found) {
+      ThrowAt(reader.Section("trajectory"), "camera",
+              "names camera '" + trajectory_camera + "', which is not in 'cameras'");
+    }
+  }
+}
+
+}  // namespace aperture::sim

@@ -1,0 +1,120 @@
+#include "sim/sitl/collision_checker.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace aperture::sim {
+namespace {
+
+void RequirePositive(double value, const char* field) {
+  if (!std::isfinite(value) || value <= 0.0) {
+    throw std::invalid_argument(std::string("CollisionParams.") + field + " = " +
+                                std::to_string(value) + " must be positive and finite");
+  }
+}
+
+}  // namespace
+
+void CollisionParams::Validate() const {
+  RequirePositive(body_radius_m, "body_radius_m");
+  RequirePositive(propeller_radius_m, "propeller_radius_m");
+  if (!std::isfinite(ground_height_m)) {
+    throw std::invalid_argument("CollisionParams.ground_height_m must be finite");
+  }
+  if (sphere_rays < 6) {
+    throw std::invalid_argument("CollisionParams.sphere_rays = " + std::to_string(sphere_rays) +
+                                " must be >= 6 (64 recommended)");
+  }
+  if (disk_rays < 6) {
+    throw std::invalid_argument("CollisionParams.disk_rays = " + std::to_string(disk_rays) +
+                                " must be >= 6 (12 recommended)");
+  }
+}
+
+CollisionChecker::CollisionChecker(const control::VehicleParameters& vehicle,
+                                   const CollisionParams& params)
+    : params_(params) {
+  params_.Validate();
+  for (int i = 0; i < 4; ++i) rotor_positions_B_.push_back(vehicle.RotorPosition_B(i));
+  // Fibonacci sphere: near-uniform directions, the golden-angle spiral in z.
+  const double golden_angle = M_PI * (3.0 - std::sqrt(5.0));
+  for (int i = 0; i < params_.sphere_rays; ++i) {
+    const double z = 1.0 - 2.0 * (i + 0.5) / params_.sphere_rays;
+    const double r = std::sqrt(1.0 - z * z);
+    const double phi = golden_angle * i;
+    sphere_directions_.emplace_back(r * std::cos(phi), r * std::sin(phi), z);
+  }
+  for (int i = 0; i < params_.disk_rays; ++i) {
+    const double phi = 2.0 * M_PI * i / params_.disk_rays;
+    disk_directions_B_.emplace_back(std::cos(phi), std::sin(phi), 0.0);
+  }
+}
+
+std::optional<Collision> CollisionChecker::Check(const Scene* scene,
+                                                 const control::QuadState& state,
+                                                 const Eigen::Vector3d& previous_p_WB) const {
+  const Eigen::Matrix3d R_WB = state.q_WB.toRotationMatrix();
+  const Eigen::Vector3d& p = state.p_WB;
+  if (params_.ground_enabled) {
+    const double h = params_.ground_height_m;
+    if (p.z() - params_.body_radius_m <= h) {
+      return Collision{"ground", "body", Eigen::Vector3d(p.x(), p.y(), h)};
+    }
+    // Lowest point of a disk with unit normal n: c - R (z_W - n_z n) / |z_W - n_z n|.
+    const Eigen::Vector3d n_W = R_WB.col(2);
+    Eigen::Vector3d down_in_plane = -(Eigen::Vector3d::UnitZ() - n_W.z() * n_W);
+    const double in_plane_norm = down_in_plane.norm();
+    if (in_plane_norm > 1e-12) down_in_plane /= in_plane_norm;
+    for (int i = 0; i < 4; ++i) {
+      const Eigen::Vector3d lowest_W =
+          p + R_WB * rotor_positions_B_[i] + params_.propeller_radius_m * down_in_plane;
+      if (lowest_W.z() <= h) {
+        return Collision{"ground", "propeller " + std::to_string(i + 1),
+                         Eigen::Vector3d(lowest_W.x(), lowest_W.y(), h)};
+      }
+    }
+  }
+  if (scene == nullptr || scene->objects().empty()) return std::nullopt;
+
+  const auto IsIgnored = [this](const std::string& name) {
+    return std::find(params_.ignored_objects.begin(), params_.ignored_objects.end(), name) !=
+           params_.ignored_objects.end();
+  };
+  std::optional<Collision> nearest;
+  double nearest_fraction = std::numeric_limits<double>::infinity();
+  // Keeps the hit reached after the smallest fraction of its ray's length.
+  const auto cast = [&](const Eigen::Vector3d& o_W, const Eigen::Vector3d& d_W, double length_m,
+                        const std::string& part) {
+    double t_start_m = 0.0;
+    std::optional<Hit> hit = scene->Intersect(o_W, d_W, t_start_m, length_m);
+    while (hit && IsIgnored(scene->object(hit->object_id).name)) {
+      t_start_m = hit->t_m;  // Intersect's interval is open: the next surface along the ray
+      hit = scene->Intersect(o_W, d_W, t_start_m, length_m);
+    }
+    if (!hit) return;
+    const double fraction = hit->t_m / length_m;
+    if (fraction < nearest_fraction) {
+      nearest_fraction = fraction;
+      nearest = Collision{scene->object(hit->object_id).name, part, hit->p_W};
+    }
+  };
+  const Eigen::Vector3d sweep_W = p - previous_p_WB;
+  if (sweep_W.norm() > 1e-9) cast(previous_p_WB, sweep_W.normalized(), sweep_W.norm(), "sweep");
+  if (nearest) return nearest;
+  for (const Eigen::Vector3d& d : sphere_directions_) cast(p, d, params_.body_radius_m, "body");
+  for (int i = 0; i < 4; ++i) {
+    const Eigen::Vector3d arm_W = R_WB * rotor_positions_B_[i];
+    const std::string index = std::to_string(i + 1);
+    cast(p, arm_W.normalized(), arm_W.norm(), "arm " + index);
+    const std::string propeller = "propeller " + index;
+    for (const Eigen::Vector3d& d_B : disk_directions_B_) {
+      cast(p + arm_W, R_WB * d_B, params_.propeller_radius_m, propeller);
+    }
+  }
+  return nearest;
+}
+
+}  // namespace aperture::sim

@@ -1,0 +1,165 @@
+#pragma once
+// Lockstep software-in-the-loop runner: one simulator clock drives the vehicle, its sensors, the
+// simulated flight controller and any perception::Autopilot (perception/autopilot.h), so a run is
+// a deterministic function of its parameters and seeds, however slow the rendering.
+//
+// Per dynamics step k (t = k / dynamics_rate_hz), in this order:
+//   1. sensors sample the state at t: IMU (sim/sensors/imu_sensor.h: its own rate, noise,
+//      latency), range sensor, cameras due at their rate. A camera frame's exposure ends at t
+//      (mid-exposure stamp t - exposure_s / 2, motion blur over the exposure from the recorded
+//      pose history); it is dropped with probability drop_probability (seeded, not rendered) or
+//      rendered (sim/render: the camera's model at T_WB * T_BC, camera_effects noise) and
+//      delivered at t + latency_s. Range readings are delivered latency_s after t.
+//   2. everything delivered by t goes to the autopilot (IMU also to the flight controller's gyro);
+//   3. at the control rate: ground truth (only if the autopilot UsesGroundTruth()), then
+//      Autopilot::Step(t); the command reaches the flight controller command_latency_s later;
+//   4. at the flight-controller rate: SimulatedFlightController -> rotor thrust commands;
+//   5. the vehicle advances by one step under the disturbances (sim/vehicle/disturbances.h);
+//   6. collision check (sim/sitl/collision_checker.h).
+// The run ends at duration_s, when a command has done == true, or on the first collision.
+//
+// Usage:
+//   SitlRunnerParams params;              // 1 kHz dynamics + flight controller, 500 Hz IMU
+//   params.initial_state.p_WB = {0, 0, 1.5};
+//   params.cameras.push_back(camera);     // SitlCamera{name, model, T_BC, rate_hz, ...}
+//   params.SetSeed(7);                    // every noise and drop stream from one seed
+//   SitlRunner runner(params, &scene);
+//   GroundTruthAutopilot autopilot(...);  // or any perception::Autopilot
+//   SitlResult result = runner.Run(autopilot);
+//   result.outcome, result.collision, result.trajectory, result.real_time_factor ...
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "control/quad_state.h"
+#include "perception/autopilot.h"
+#include "perception/camera/camera_model.h"
+#include "perception/sensor_data.h"
+#include "sim/render/camera_effects.h"
+#include "sim/render/ray_caster.h"
+#include "sim/scene/scene.h"
+#include "sim/sensors/imu_sensor.h"
+#include "sim/sensors/range_sensor.h"
+#include "sim/sitl/collision_checker.h"
+#include "sim/sitl/simulated_flight_controller.h"
+#include "sim/vehicle/disturbances.h"
+#include "sim/vehicle/quadrotor_dynamics.h"
+
+namespace aperture::sim {
+
+// One onboard camera. Its index in SitlRunnerParams::cameras is the Frame::camera_id.
+struct SitlCamera {
+  std::string name = "camera";
+  std::shared_ptr<const perception::CameraModel> model;    // required
+  Eigen::Isometry3d T_BC = Eigen::Isometry3d::Identity();  // camera pose in B
+  // Set for a camera fixed in the world (an external observer, e.g. of the LED target): its pose
+  // T_WC; T_BC is then unused.
+  std::optional<Eigen::Isometry3d> T_WC_fixed;
+  double rate_hz = 30.0;
+  double latency_s = 0.0;         // end of exposure -> delivery [s]
+  double drop_probability = 0.0;  // in [0, 1): frames lost (driver / transport)
+  CameraEffectsParams effects;    // noise, gain, exposure + motion blur, infrared
+  RenderOptions render;           // gray by default; ground_truth off saves time
+};
+
+struct SitlRunnerParams {
+  double duration_s = 10.0;
+  double dynamics_rate_hz = 1000.0;  // >= flight controller and IMU rates
+  double control_rate_hz = 100.0;    // Autopilot::Step rate
+  double command_latency_s = 0.0;    // autopilot -> flight controller [s]
+  QuadrotorDynamicsParams dynamics;  // its vehicle is also the flight controller's model
+  // true: the run starts with every rotor settled at hover thrust (airborne start).
+  bool start_hovering = true;
+  control::QuadState initial_state;  // t_s is ignored: the clock starts at 0
+  DisturbanceParams disturbances;
+  SimulatedFlightControllerParams flight_controller;
+  ImuSensorParams imu;
+  bool range_enabled = true;
+  RangeSensorParams range;
+  double range_latency_s = 0.0;
+  std::vector<SitlCamera> cameras;
+  CollisionParams collision;
+  std::uint64_t drop_seed = 3;  // frame-drop stream
+  // Records every n-th dynamics step in SitlResult::trajectory (1 = all).
+  int trajectory_decimation = 1;
+  // Sets every random stream from one seed: IMU, range, camera noise (per camera) and drops.
+  void SetSeed(std::uint64_t seed);
+  // Throws std::invalid_argument naming the field for non-positive rates or durations, a
+  // dynamics rate below the flight controller / IMU rate, negative latencies, a drop probability
+  // outside [0, 1), a camera without model, and (via the components) invalid sub-parameters.
+  void Validate() const;
+};
+
+struct SitlCommandRecord {
+  double t_s = 0.0;
+  perception::AutopilotCommand command;                       // as returned by Autopilot::Step
+  Eigen::Vector4d rotor_thrusts_N = Eigen::Vector4d::Zero();  // flight-controller output at t_s
+};
+
+struct SitlCameraStats {
+  std::string name;
+  int frames_due = 0;
+  int frames_dropped = 0;
+  int frames_delivered = 0;
+};
+
+struct SitlTiming {
+  double wall_time_s = 0.0;
+  double dynamics_s = 0.0;   // vehicle, disturbances, sensors, flight controller
+  double render_s = 0.0;     // ray casting + camera effects
+  double autopilot_s = 0.0;  // every Autopilot call
+  double collision_s = 0.0;
+};
+
+struct SitlResult {
+  enum class Outcome { kDurationReached, kAutopilotDone, kCollision };
+  Outcome outcome = Outcome::kDurationReached;
+  std::string reason;  // human-readable, e.g. "collision: body with 'wall'"
+  std::optional<Collision> collision;
+  double sim_time_s = 0.0;        // simulated time at the end of the run
+  double real_time_factor = 0.0;  // sim_time_s / timing.wall_time_s
+  SitlTiming timing;
+  std::string autopilot_name;
+  std::string autopilot_status;                 // Autopilot::status() at the end
+  std::vector<control::QuadState> trajectory;   // ground truth, t = 0 first
+  std::vector<SitlCommandRecord> commands;      // one per control step
+  std::vector<perception::ImuSample> imu;       // as delivered
+  std::vector<perception::RangeReading> range;  // as delivered
+  std::vector<SitlCameraStats> cameras;
+};
+const char* ToString(
+    SitlResult::Outcome outcome);  // "duration_reached", "autopilot_done", "collision"
+
+// Optional callbacks into a run.
+struct SitlHooks {
+  // Called before every camera frame is rendered, with the time at the end of exposure and the
+  // vehicle state then: the owner of the (mutable) scene moves objects here (scripted targets,
+  // objects attached to the body). Called once per frame, so motion blur sees them static.
+  std::function<void(double t_s, const control::QuadState& state)> before_render;
+  // Every rendered frame (before its delivery latency): camera index, the capture with its
+  // ground truth, the vehicle state at the end of exposure. For videos and reports.
+  std::function<void(int camera_index, const CapturedFrame& frame, const control::QuadState&)>
+      on_frame;
+};
+
+class SitlRunner {
+ public:
+  // `scene` (may be null: no cameras allowed then, ground-only collisions) must outlive the
+  // runner. Throws std::invalid_argument for invalid params.
+  SitlRunner(const SitlRunnerParams& params, const Scene* scene);
+  ~SitlRunner();
+  // Runs one flight from params.initial_state; each call starts afresh (same seeds -> same run).
+  SitlResult Run(perception::Autopilot& autopilot, const SitlHooks& hooks = {});
+  const SitlRunnerParams& params() const { return params_; }
+
+ private:
+  SitlRunnerParams params_;
+  const Scene* scene_;
+  RayCaster ray_caster_;
+};
+
+}  // namespace aperture::sim

@@ -1,0 +1,105 @@
+#include "sim/sitl/collision_checker.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace aperture::sim {
+namespace {
+
+control::QuadState StateAt(const Eigen::Vector3d& p_W, double roll_rad = 0.0) {
+  control::QuadState state;
+  state.p_WB = p_W;
+  state.q_WB = Eigen::Quaterniond(Eigen::AngleAxisd(roll_rad, Eigen::Vector3d::UnitX()));
+  return state;
+}
+
+class CollisionCheckerTest : public ::testing::Test {
+ protected:
+  control::VehicleParameters vehicle_;  // arm 0.178 m: rotors at +-0.1259 m in x and y
+  CollisionParams params_;              // body 0.08 m, propellers 0.0635 m
+};
+
+TEST_F(CollisionCheckerTest, LevelVehicleHitsGroundWithItsBodySphere) {
+  const CollisionChecker checker(vehicle_, params_);
+  const Eigen::Vector3d p(1.0, 2.0, 0.081);
+  EXPECT_FALSE(checker.Check(nullptr, StateAt(p), p).has_value());
+  const Eigen::Vector3d low(1.0, 2.0, 0.079);
+  const std::optional<Collision> hit = checker.Check(nullptr, StateAt(low), low);
+  ASSERT_TRUE(hit.has_value());
+  EXPECT_EQ(hit->object_name, "ground");
+  EXPECT_EQ(hit->part, "body");
+  EXPECT_TRUE(hit->contact_p_W.isApprox(Eigen::Vector3d(1.0, 2.0, 0.0)));
+}
+
+TEST_F(CollisionCheckerTest, TiltedVehicleHitsGroundWithAPropellerFirst) {
+  const CollisionChecker checker(vehicle_, params_);
+  const double roll = 30.0 * M_PI / 180.0;
+  // Lowest disk point: rotor centre sin(roll) * l / sqrt(2) below B, disk rim sin(roll) * R more.
+  const double drop_m =
+      std::sin(roll) * (vehicle_.arm_length_m / std::sqrt(2.0) + params_.propeller_radius_m);
+  ASSERT_GT(drop_m, params_.body_radius_m);  // so the propeller, not the body, is lowest
+  const Eigen::Vector3d clear(0.0, 0.0, drop_m + 1e-4);
+  EXPECT_FALSE(checker.Check(nullptr, StateAt(clear, roll), clear).has_value());
+  const Eigen::Vector3d low(0.0, 0.0, drop_m - 1e-4);
+  const std::optional<Collision> hit = checker.Check(nullptr, StateAt(low, roll), low);
+  ASSERT_TRUE(hit.has_value());
+  EXPECT_EQ(hit->part.rfind("propeller", 0), 0u) << hit->part;
+  EXPECT_DOUBLE_EQ(hit->contact_p_W.z(), 0.0);
+  // Rolling by +30 deg about x lowers the -y_B side: the contact is the rim point of a -y_B rotor.
+  EXPECT_NEAR(
+      hit->contact_p_W.y(),
+      -std::cos(roll) * (vehicle_.arm_length_m / std::sqrt(2.0) + params_.propeller_radius_m),
+      1e-9);
+}
+
+TEST_F(CollisionCheckerTest, DetectsAWallWithinTheBodyRadiusOnly) {
+  Scene scene;
+  Eigen::Isometry3d T_WO = Eigen::Isometry3d::Identity();
+  T_WO.translation() = Eigen::Vector3d(0.0, 0.0, 5.0);
+  // A ceiling plate above the vehicle: only the body sphere can reach it (the rotor plane is
+  // level), so the detection distance is the body radius.
+  scene.AddObject({"ceiling", Box{Eigen::Vector3d(2.0, 2.0, 0.1)}, Material{}, T_WO});
+  params_.ground_enabled = false;
+  const CollisionChecker checker(vehicle_, params_);
+  const Eigen::Vector3d far(0.0, 0.0, 4.95 - params_.body_radius_m - 0.005);
+  EXPECT_FALSE(checker.Check(&scene, StateAt(far), far).has_value());
+  // Fibonacci rays: the best one is within ~15 deg of the normal for 64 rays, so a surface
+  // at 0.9 radius is always seen.
+  const Eigen::Vector3d near(0.0, 0.0, 4.95 - 0.9 * params_.body_radius_m);
+  const std::optional<Collision> hit = checker.Check(&scene, StateAt(near), near);
+  ASSERT_TRUE(hit.has_value());
+  EXPECT_EQ(hit->object_name, "ceiling");
+  EXPECT_EQ(hit->part, "body");
+  EXPECT_NEAR(hit->contact_p_W.z(), 4.95, 1e-9);
+  // An ignored object is transparent to the check.
+  params_.ignored_objects = {"ceiling"};
+  const CollisionChecker ignoring(vehicle_, params_);
+  EXPECT_FALSE(ignoring.Check(&scene, StateAt(near), near).has_value());
+}
+
+TEST_F(CollisionCheckerTest, SweepCatchesTunnellingThroughAThinPlate) {
+  Scene scene;
+  Eigen::Isometry3d T_WO = Eigen::Isometry3d::Identity();
+  T_WO.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  T_WO.translation() = Eigen::Vector3d(1.0, 0.0, 2.0);
+  Rectangle plate;
+  plate.size_m = Eigen::Vector2d(2.0, 2.0);
+  scene.AddObject({"plate", plate, Material{}, T_WO});  // the plane x_W = 1
+  const CollisionChecker checker(vehicle_, params_);
+  // Both positions 0.5 m from the plate, on opposite sides: only the swept segment crosses it.
+  const Eigen::Vector3d before(0.5, 0.0, 2.0), after(1.5, 0.0, 2.0);
+  EXPECT_FALSE(checker.Check(&scene, StateAt(after), after).has_value());
+  const std::optional<Collision> hit = checker.Check(&scene, StateAt(after), before);
+  ASSERT_TRUE(hit.has_value());
+  EXPECT_EQ(hit->part, "sweep");
+  EXPECT_NEAR(hit->contact_p_W.x(), 1.0, 1e-9);
+}
+
+TEST_F(CollisionCheckerTest, RejectsNonPositiveRadius) {
+  params_.body_radius_m = 0.0;
+  EXPECT_THROW(CollisionChecker(vehicle_, params_), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace aperture::sim

@@ -1,0 +1,299 @@
+// Scenarios: every built-in loads and renders a non-degenerate view, the gap pattern appears where
+// its known geometry projects, strict loading names file:line and key, seeds are reproducible,
+// kinematic trajectories and body-attached objects follow their definitions, and the 16-bit
+// ground-truth encodings round as documented.
+#include "sim/scenario/scenario.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <opencv2/core.hpp>
+#include <set>
+
+#include "sim/render/ray_caster.h"
+#include "sim/scenario/ground_truth_images.h"
+#include "sim/scenario/kinematic_trajectory.h"
+
+namespace aperture::sim {
+namespace {
+
+using ::testing::AllOf;
+using ::testing::HasSubstr;
+
+// A file in the temp folder, removed at the end of the test.
+class TempFile {
+ public:
+  TempFile(const std::string& name, const std::string& text)
+      : path_((std::filesystem::temp_directory_path() /
+               (name + "_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+                "_" + std::to_string(reinterpret_cast<std::uintptr_t>(this)) + ".yaml"))
+                  .string()) {
+    std::ofstream(path_) << text;
+  }
+  ~TempFile() { std::filesystem::remove(path_); }
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+ScenarioParams Load(const std::string& name, const std::vector<std::string>& sets = {},
+                    const std::vector<std::string>& files = {}) {
+  return LoadScenarioParams(ScenarioConfig(name, files, sets));
+}
+
+// One frame's radiance and ground truth from the render camera at T_WB (no sensor noise), with
+// supersampling 1 to keep the tests fast.
+RenderOutput RenderAt(Scenario& scenario, const Eigen::Isometry3d& T_WB) {
+  scenario.SetVehiclePose(T_WB);
+  const ScenarioCamera& camera = scenario.render_camera();
+  RenderOptions options = camera.render;
+  options.supersampling = 1;
+  if (camera.effects.params().infrared) {
+    options.reflectance_scale = camera.effects.params().infrared_reflectance_scale;
+  }
+  RayCaster caster;
+  return caster.Render(scenario.scene(), *camera.model, camera.T_WC(T_WB), options);
+}
+
+std::set<std::string> VisibleNames(const Scenario& scenario, const cv::Mat& object_id) {
+  std::set<std::string> names;
+  for (int y = 0; y < object_id.rows; ++y) {
+    for (int x = 0; x < object_id.cols; ++x) {
+      const int id = object_id.at<int>(y, x);
+      if (id > 0) names.insert(scenario.scene().object(id).name);
+    }
+  }
+  return names;
+}
+
+bool AnyStartsWith(const std::set<std::string>& names, const std::string& prefix) {
+  for (const std::string& name : names) {
+    if (name.rfind(prefix, 0) == 0) return true;
+  }
+  return false;
+}
+
+class BuiltinScenarioTest : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(BuiltinScenarioTest, LoadsAndRendersItsKeyObjects) {
+  Scenario scenario = BuildScenario(Load(GetParam()));
+  EXPECT_EQ(scenario.kind(), GetParam());
+  const RenderOutput out = RenderAt(scenario, scenario.T_WB_start());
+  cv::Scalar mean, stddev;
+  cv::meanStdDev(out.radiance, mean, stddev);
+  const std::set<std::string> visible = VisibleNames(scenario, out.object_id);
+  // The object each scenario exists for is in view from the start pose.
+  const std::map<std::string, std::string> key_prefix{
+      {"gap", "gap"}, {"gapflyt", "gap"}, {"led", "led"}, {"tags", "tag"}, {"forest", "tree"}};
+  EXPECT_TRUE(AnyStartsWith(visible, key_prefix.at(GetParam())))
+      << GetParam() << ": key object not visible";
+  if (GetParam() == "led") {
+    // Infrared: a dark scene whose brightest pixels are the LEDs (>> the 3 % reflectance floor).
+    double max_value = 0.0;
+    cv::minMaxLoc(out.radiance, nullptr, &max_value);
+    EXPECT_GT(max_value, 0.5);
+    EXPECT_LT(mean[0], 0.05);
+    EXPECT_TRUE(visible.count("led0") && visible.count("led1") && visible.count("led2") &&
+                visible.count("led3"));
+  } else {
+    // Textured worlds: several objects and real contrast (a blank or single-colour frame has
+    // stddev ~0; textures alone give > 0.05 of full scale).
+    EXPECT_GE(visible.size(), 2u);
+    EXPECT_GT(stddev[0], 0.05);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(AllBuiltins, BuiltinScenarioTest,
+                         ::testing::Values("gap", "gapflyt", "led", "tags", "forest"));
+
+// The black band of the gap pattern is dark and the panel and the white margin bright exactly
+// where the known pattern geometry (gap.* parameters, T_WG from the scene) projects, for a level
+// and a rolled gap.
+class GapPatternTest : public ::testing::TestWithParam<double> {};
+
+TEST_P(GapPatternTest, PatternAppearsWhereItProjects) {
+  Scenario scenario = BuildScenario(Load("gap", {"gap.roll_deg=" + std::to_string(GetParam())}));
+  const GapParams& gap = scenario.params().gap;
+  Eigen::Isometry3d T_WB = scenario.T_WB_start();
+  T_WB.translation().x() = gap.center_W.x() - 2.0;  // 2 m in front of the gap
+  const RenderOutput out = RenderAt(scenario, T_WB);
+  const ScenarioCamera& camera = scenario.render_camera();
+  const Eigen::Isometry3d T_CG = camera.T_WC(T_WB).inverse() * scenario.scene().object("gap").T_WO;
+  const int gap_id = scenario.scene().FindId("gap");
+  // Probe points mid-way between the rectangle edges, along each corner's diagonal.
+  const Eigen::Vector2d band = 0.25 * (gap.pattern_outer_m + gap.pattern_inner_m);
+  const Eigen::Vector2d panel = 0.25 * (gap.panel_m + gap.pattern_outer_m);
+  const Eigen::Vector2d margin = 0.25 * (gap.pattern_inner_m + gap.opening_m);
+  for (const Eigen::Vector2d& sign : {Eigen::Vector2d(1, 1), Eigen::Vector2d(-1, 1),
+                                      Eigen::Vector2d(1, -1), Eigen::Vector2d(-1, -1)}) {
+    const auto sample = [&](const Eigen::Vector2d& xy_G, int* id) {
+      Eigen::Vector2d px;
+      EXPECT_TRUE(camera.model->Project(T_CG * Eigen::Vector3d(xy_G.x(), xy_G.y(), 0.0), &px));
+      EXPECT_TRUE(camera.model->IsInImage(px, 2.0));
+      const cv::Point p(static_cast<int>(std::lround(px.x())),
+                        static_cast<int>(std::lround(px.y())));
+      *id = out.object_id.at<int>(p);
+      return out.radiance.at<float>(p);
+    };
+    int band_id = 0, panel_id = 0, margin_id = 0;
+    const float black = sample(band.cwiseProduct(sign), &band_id);
+    const float white_panel = sample(panel.cwiseProduct(sign), &panel_id);
+    const float white_margin = sample(margin.cwiseProduct(sign), &margin_id);
+    // Albedo 0.05 vs 0.95 under >= the 0.45 ambient: black < 0.1, white > 0.4.
+    EXPECT_LT(black, 0.1f);
+    EXPECT_GT(white_panel, 0.4f);
+    EXPECT_GT(white_margin, 0.4f);
+    EXPECT_EQ(band_id, gap_id);
+    EXPECT_EQ(panel_id, gap_id);
+    EXPECT_EQ(margin_id, gap_id);
+  }
+  // Through the opening's centre: the room behind, not the panel.
+  Eigen::Vector2d centre_px;
+  ASSERT_TRUE(camera.model->Project(T_CG * Eigen::Vector3d::Zero(), &centre_px));
+  EXPECT_NE(
+      out.object_id.at<int>(cv::Point(std::lround(centre_px.x()), std::lround(centre_px.y()))),
+      gap_id);
+}
+
+INSTANTIATE_TEST_SUITE_P(Rolls, GapPatternTest, ::testing::Values(0.0, 30.0));
+
+TEST(ScenarioLoadTest, UnknownKeyNamesFileLineAndKey) {
+  const TempFile file("scenario_typo", "seed: 3\ngap:\n  rol_deg: 30\n");
+  try {
+    Load("gap", {}, {file.path()});
+    FAIL() << "unknown key accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_THAT(e.what(), AllOf(HasSubstr(file.path() + ":3:3"), HasSubstr("gap.rol_deg"),
+                                HasSubstr("roll_deg")));
+  }
+}
+
+TEST(ScenarioLoadTest, SectionOfAnotherKindIsRejected) {
+  EXPECT_THROW(Load("gap", {"forest.trees=3"}), std::invalid_argument);
+}
+
+TEST(ScenarioLoadTest, BadValuesNameTheKey) {
+  EXPECT_THAT(
+      [] {
+        try {
+          Load("gap", {"cameras.front.model=fisheye"});
+        } catch (const std::invalid_argument& e) {
+          return std::string(e.what());
+        }
+        return std::string();
+      }(),
+      AllOf(HasSubstr("cameras.front.model"), HasSubstr("equidistant")));
+  EXPECT_THROW(Load("gap", {"gap.pattern_inner_m=[0.7, 0.2]"}), std::invalid_argument);
+  EXPECT_THROW(Load("nope"), std::invalid_argument);
+}
+
+TEST(ScenarioLoadTest, LedConfigFileSetsTheLeds) {
+  const TempFile file("leds",
+                      "leds: [[0.2, 0, 0], [0, 0.2, 0], [-0.2, 0, 0], [0, -0.2, 0], "
+                      "[0.1, 0.1, -0.05]]\n");
+  Scenario scenario = BuildScenario(Load("led", {"led.config=" + file.path()}));
+  ASSERT_EQ(scenario.params().led.leds_B.size(), 5u);
+  EXPECT_GE(scenario.scene().FindId("led4"), 1);
+  // Attached objects follow the vehicle: led4 sits at T_WB * p_B.
+  Eigen::Isometry3d T_WB = Eigen::Isometry3d::Identity();
+  T_WB.linear() = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  T_WB.translation() = Eigen::Vector3d(0.3, -0.2, 2.4);
+  scenario.SetVehiclePose(T_WB);
+  EXPECT_TRUE(scenario.scene().object("led4").T_WO.translation().isApprox(
+      T_WB * Eigen::Vector3d(0.1, 0.1, -0.05), 1e-12));
+  EXPECT_TRUE(scenario.scene().object("led_target").T_WO.isApprox(T_WB, 1e-12));
+}
+
+// Image hash of a captured (noisy) frame at a small resolution.
+std::size_t FrameHash(const std::string& name, int seed) {
+  ScenarioParams params = Load(name, {"seed=" + std::to_string(seed)});
+  params.cameras.front().second.width = 188;
+  params.cameras.front().second.height = 120;
+  params.cameras.front().second.supersampling = 1;
+  Scenario scenario = BuildScenario(params);
+  const ScenarioCamera& camera = scenario.render_camera();
+  RayCaster caster;
+  const CapturedFrame frame = camera.effects.Capture(
+      caster, scenario.scene(), *camera.model,
+      [&](double) { return camera.T_WC(scenario.T_WB_start()); }, 0.0, 0, camera.render);
+  const cv::Mat& image = frame.frame.image;
+  return std::hash<std::string>{}(
+      std::string(reinterpret_cast<const char*>(image.data), image.total() * image.elemSize()));
+}
+
+TEST(ScenarioSeedTest, SameSeedSameImageOtherSeedOtherImage) {
+  for (const std::string name : {"gap", "forest"}) {
+    EXPECT_EQ(FrameHash(name, 7), FrameHash(name, 7)) << name;
+    EXPECT_NE(FrameHash(name, 7), FrameHash(name, 8)) << name;
+  }
+}
+
+TEST(ScenarioSeedTest, RandomizationMovesObjectsReproducibly) {
+  const std::vector<std::string> sets{"randomize.position_sigma_m=0.2", "seed=5"};
+  const Scenario a = BuildScenario(Load("gap", sets));
+  const Scenario b = BuildScenario(Load("gap", sets));
+  const Scenario nominal = BuildScenario(Load("gap"));
+  const Eigen::Vector3d p_a = a.scene().object("gap").T_WO.translation();
+  EXPECT_EQ(p_a, b.scene().object("gap").T_WO.translation());
+  EXPECT_GT((p_a - nominal.scene().object("gap").T_WO.translation()).norm(), 1e-6);
+}
+
+TEST(KinematicTrajectoryTest, KindsFollowTheirDefinition) {
+  TrajectoryParams params;
+  Eigen::Isometry3d T_start = Eigen::Isometry3d::Identity();
+  T_start.linear() = Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T_start.translation() = Eigen::Vector3d(1, 2, 1.5);
+  params.end_p_m = Eigen::Vector3d(5, 2, 1.0);
+  for (const std::string kind : {"hover", "line", "circle", "scan", "random"}) {
+    params.kind = kind;
+    const KinematicTrajectory trajectory(params, T_start, 3);
+    EXPECT_TRUE(trajectory.T_WB(0.0).isApprox(T_start, 1e-12)) << kind << " starts at the start";
+  }
+  params.kind = "line";
+  EXPECT_TRUE(
+      KinematicTrajectory(params, T_start, 3).T_WB(1.0).translation().isApprox(params.end_p_m));
+  EXPECT_TRUE(KinematicTrajectory(params, T_start, 3)
+                  .T_WB(0.5)
+                  .translation()
+                  .isApprox(Eigen::Vector3d(3, 2, 1.25)));
+  params.kind = "scan";  // a quarter period out: one amplitude along body y
+  params.amplitude_m = 0.3;
+  const Eigen::Vector3d lateral =
+      KinematicTrajectory(params, T_start, 3).T_WB(0.25).translation() -
+      (T_start.translation() + 0.25 * (params.end_p_m - T_start.translation()));
+  EXPECT_TRUE(lateral.isApprox(0.3 * T_start.linear().col(1), 1e-12));
+  params.kind = "circle";
+  params.center_p_m = Eigen::Vector3d(0, 0, 0);
+  params.arc_deg = 90.0;
+  const Eigen::Isometry3d end = KinematicTrajectory(params, T_start, 3).T_WB(1.0);
+  EXPECT_NEAR(end.translation().head<2>().norm(), T_start.translation().head<2>().norm(), 1e-12);
+  EXPECT_NEAR(end.translation().head<2>().dot(T_start.translation().head<2>()), 0.0, 1e-12);
+  EXPECT_NEAR(end.translation().z(), 1.5, 1e-12);
+}
+
+TEST(GroundTruthImagesTest, DepthInMillimetresAndIds) {
+  cv::Mat depth(1, 5, CV_32FC1);
+  depth.at<float>(0) = 1.2344f;
+  depth.at<float>(1) = 1.2346f;
+  depth.at<float>(2) = std::numeric_limits<float>::infinity();
+  depth.at<float>(3) = 70.0f;
+  depth.at<float>(4) = std::numeric_limits<float>::quiet_NaN();
+  const cv::Mat mm = DepthToMillimetres16U(depth);
+  EXPECT_EQ(mm.at<std::uint16_t>(0), 1234);
+  EXPECT_EQ(mm.at<std::uint16_t>(1), 1235);
+  EXPECT_EQ(mm.at<std::uint16_t>(2), 0);
+  EXPECT_EQ(mm.at<std::uint16_t>(3), 65535);
+  EXPECT_EQ(mm.at<std::uint16_t>(4), 0);
+  cv::Mat ids = (cv::Mat_<int>(1, 3) << 0, 7, 70000);
+  const cv::Mat ids16 = ObjectIdsTo16U(ids);
+  EXPECT_EQ(ids16.at<std::uint16_t>(1), 7);
+  EXPECT_EQ(ids16.at<std::uint16_t>(2), 65535);
+  EXPECT_THROW(DepthToMillimetres16U(ids), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace aperture::sim

@@ -1,0 +1,368 @@
+// Closed-loop SITL: the ground-truth autopilot through the simulated flight controller (LQR +
+// mixer) on the simulated vehicle, with sensors, cameras, latencies, drops and collisions.
+#include "sim/sitl/sitl_runner.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "perception/camera/pinhole_camera.h"
+#include "sim/scene/textures.h"
+#include "sim/sitl/ground_truth_autopilot.h"
+
+namespace aperture::sim {
+namespace {
+
+// Noise-free sensors: the IMU exact, no biases.
+SitlRunnerParams QuietParams(double duration_s) {
+  SitlRunnerParams params;
+  params.duration_s = duration_s;
+  params.initial_state.p_WB = Eigen::Vector3d(0.0, 0.0, 1.5);
+  params.imu.accel_noise_density = 0.0;
+  params.imu.gyro_noise_density = 0.0;
+  params.imu.accel_bias_random_walk = 0.0;
+  params.imu.gyro_bias_random_walk = 0.0;
+  return params;
+}
+
+GroundTruthAutopilotParams HoverAt(const Eigen::Vector3d& p_W) {
+  GroundTruthAutopilotParams params;
+  params.waypoints.push_back(Waypoint{p_W, 0.0, 0.0});
+  return params;
+}
+
+double MaxDeviation(const SitlResult& result, const Eigen::Vector3d& p_W) {
+  double max_m = 0.0;
+  for (const control::QuadState& s : result.trajectory)
+    max_m = std::max(max_m, (s.p_WB - p_W).norm());
+  return max_m;
+}
+
+// 160 x 120 pinhole, ~90 deg horizontal field of view, looking forward along x_B.
+SitlCamera ForwardCamera(double rate_hz) {
+  SitlCamera camera;
+  camera.name = "front";
+  camera.model = std::make_shared<perception::PinholeCamera>(
+      160, 120, perception::PinholeIntrinsics{80.0, 80.0, 79.5, 59.5});
+  camera.rate_hz = rate_hz;
+  // C (x right, y down, z forward) in B (x forward, y left, z up).
+  camera.T_BC.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  camera.effects.full_well_electrons = 2000.0;
+  camera.effects.read_noise_sigma = 0.01;
+  camera.render.ground_truth = false;
+  return camera;
+}
+
+Scene TexturedScene() {
+  Scene scene;
+  ProceduralTextureParams texture;
+  scene.AddObject({"ground", GroundPlane{}, Material{MakeValueNoiseTexture(texture)}});
+  Eigen::Isometry3d T_WO = Eigen::Isometry3d::Identity();
+  T_WO.translation() = Eigen::Vector3d(4.0, 0.0, 1.0);
+  scene.AddObject(
+      {"box", Box{Eigen::Vector3d(0.5, 2.0, 2.0)}, Material{MakeValueNoiseTexture(texture)}, T_WO});
+  return scene;
+}
+
+std::uint64_t HashImage(const cv::Mat& image) {
+  std::uint64_t hash = 1469598103934665603ull;  // FNV-1a
+  for (int r = 0; r < image.rows; ++r) {
+    const unsigned char* row = image.ptr<unsigned char>(r);
+    for (size_t i = 0; i < image.cols * image.elemSize(); ++i) {
+      hash = (hash ^ row[i]) * 1099511628211ull;
+    }
+  }
+  return hash;
+}
+
+TEST(SitlRunner, HoverWithoutNoiseStaysWithinAMillimetre) {
+  const SitlRunnerParams params = QuietParams(10.0);
+  SitlRunner runner(params, nullptr);
+  GroundTruthAutopilot autopilot(params.dynamics.vehicle, HoverAt(params.initial_state.p_WB));
+  const SitlResult result = runner.Run(autopilot);
+  EXPECT_EQ(result.outcome, SitlResult::Outcome::kDurationReached) << result.reason;
+  EXPECT_NEAR(result.sim_time_s, 10.0, 1e-6);
+  // Starting exactly in hover with exact sensors, only the discrete-time loops (1 kHz flight
+  // controller, 100 Hz autopilot) and rotor lag act: any drift is a modelling mismatch, which at
+  // the gains of Table A.2 would show well above 1 mm.
+  EXPECT_LT(MaxDeviation(result, params.initial_state.p_WB), 1e-3);
+  EXPECT_EQ(result.commands.size(), 1001u);  // 100 Hz over [0, 10] s inclusive
+  EXPECT_GT(result.real_time_factor, 0.0);
+}
+
+TEST(SitlRunner, HoverWithImuNoiseAndBiasesStaysWithinFewCentimetres) {
+  SitlRunnerParams params;  // MPU-6000-class noise and bias random walk (imu_sensor.h)
+  params.duration_s = 10.0;
+  params.initial_state.p_WB = Eigen::Vector3d(0.0, 0.0, 1.5);
+  // A 0.5 deg/s gyro bias: the LQR rate loop tracks the biased gyro, so the vehicle rotates at
+  // the bias until the ground-truth attitude loop cancels it, a small steady tilt.
+  params.imu.gyro_bias_initial_B = Eigen::Vector3d(0.0087, -0.0087, 0.005);
+  params.imu.accel_bias_initial_B = Eigen::Vector3d(0.05, -0.05, 0.1);
+  params.SetSeed(11);
+  SitlRunner runner(params, nullptr);
+  GroundTruthAutopilot autopilot(params.dynamics.vehicle, HoverAt(params.initial_state.p_WB));
+  const SitlResult result = runner.Run(autopilot);
+  ASSERT_EQ(result.outcome, SitlResult::Outcome::kDurationReached) << result.reason;
+  const double deviation_m = MaxDeviation(result, params.initial_state.p_WB);
+  // "A few cm": tilt from a 0.5 deg/s bias against p_rp = 16.6 /s is ~0.03 deg, i.e. ~5 mm/s^2
+  // of horizontal acceleration rejected by p_xy = 5 /s^2: ~1 mm; 3 cm leaves room for noise.
+  EXPECT_LT(deviation_m, 0.03);
+  // The noise must have reached the loop: deviation above the noise-free hover's.
+  EXPECT_GT(deviation_m, 1e-5);
+  EXPECT_EQ(result.imu.size(), 5000u);  // 500 Hz, delivered with 2 ms latency over 10 s
+}
+
+TEST(SitlRunner, WaypointStepConvergesAndReportsDone) {
+  SitlRunnerParams params = QuietParams(8.0);
+  GroundTruthAutopilotParams autopilot_params;
+  const Eigen::Vector3d goal(1.0, -0.5, 2.0);
+  autopilot_params.waypoints.push_back(Waypoint{goal, 0.3, 1.0});
+  autopilot_params.arrival_radius_m = 0.02;
+  autopilot_params.finish_when_done = true;
+  SitlRunner runner(params, nullptr);
+  GroundTruthAutopilot autopilot(params.dynamics.vehicle, autopilot_params);
+  const SitlResult result = runner.Run(autopilot);
+  ASSERT_EQ(result.outcome, SitlResult::Outcome::kAutopilotDone) << result.reason;
+  // Done requires 1 s within 2 cm; with p = 5, d = 4 (damping ratio 0.9, settling ~2 s) this
+  // takes ~3-4 s.
+  EXPECT_LT(result.sim_time_s, 6.0);
+  EXPECT_GT(result.sim_time_s, 1.0);
+  const control::QuadState& last = result.trajectory.back();
+  EXPECT_LT((last.p_WB - goal).norm(), 0.02);
+  EXPECT_LT(last.v_W.norm(), 0.05);
+  // Heading reached too: yaw of x_B.
+  const Eigen::Vector3d x_B = last.q_WB * Eigen::Vector3d::UnitX();
+  EXPECT_NEAR(std::atan2(x_B.y(), x_B.x()), 0.3, 0.02);
+}
+
+struct CameraRunOutput {
+  SitlResult result;
+  std::vector<std::uint64_t> hashes;
+};
+
+CameraRunOutput RunWithCamera(std::uint64_t seed, const Scene& scene) {
+  SitlRunnerParams params;  // noisy IMU
+  params.duration_s = 1.0;
+  params.initial_state.p_WB = Eigen::Vector3d(0.0, 0.0, 1.0);
+  SitlCamera camera = ForwardCamera(30.0);
+  camera.drop_probability = 0.2;
+  camera.effects.exposure_s = 0.004;
+  camera.effects.motion_blur_subframes = 2;
+  params.cameras.push_back(camera);
+  params.SetSeed(seed);
+  SitlRunner runner(params, &scene);
+  GroundTruthAutopilotParams autopilot_params;
+  autopilot_params.waypoints.push_back(Waypoint{Eigen::Vector3d(0.5, 0.2, 1.2), 0.0, 0.0});
+  GroundTruthAutopilot autopilot(params.dynamics.vehicle, autopilot_params);
+  CameraRunOutput out;
+  SitlHooks hooks;
+  hooks.on_frame = [&out](int, const CapturedFrame& frame, const control::QuadState&) {
+    out.hashes.push_back(HashImage(frame.frame.image));
+  };
+  out.result = runner.Run(autopilot, hooks);
+  return out;
+}
+
+TEST(SitlRunner, SameSeedGivesIdenticalTrajectoryAndImages) {
+  const Scene scene = TexturedScene();
+  const CameraRunOutput a = RunWithCamera(5, scene);
+  const CameraRunOutput b = RunWithCamera(5, scene);
+  const CameraRunOutput c = RunWithCamera(6, scene);
+  ASSERT_EQ(a.result.trajectory.size(), b.result.trajectory.size());
+  for (size_t i = 0; i < a.result.trajectory.size(); ++i) {
+    ASSERT_EQ(a.result.trajectory[i].p_WB, b.result.trajectory[i].p_WB) << "step " << i;
+    ASSERT_EQ(a.result.trajectory[i].q_WB.coeffs(), b.result.trajectory[i].q_WB.coeffs());
+  }
+  ASSERT_FALSE(a.hashes.empty());
+  EXPECT_EQ(a.hashes, b.hashes);
+  // Another seed changes drops and pixel noise, so the image sequences differ.
+  EXPECT_NE(a.hashes, c.hashes);
+  // And the trajectory: different IMU noise on the flight controller's gyro.
+  EXPECT_NE(a.result.trajectory.back().p_WB, c.result.trajectory.back().p_WB);
+}
+
+// Records what the autopilot receives and when (the time of the next Step after delivery).
+class RecordingAutopilot : public GroundTruthAutopilot {
+ public:
+  using GroundTruthAutopilot::GroundTruthAutopilot;
+  struct Arrival {
+    double t_measured_s;
+    double t_step_s;
+    int index;
+  };
+  void OnFrame(const perception::Frame& frame) override {
+    pending_frames_.push_back({frame.t_s, 0.0, frame.index});
+  }
+  void OnRange(const perception::RangeReading& reading) override {
+    pending_ranges_.push_back({reading.t_s, 0.0, 0});
+  }
+  void OnImu(const perception::ImuSample& sample) override {
+    pending_imu_.push_back({sample.t_s, 0.0, 0});
+  }
+  perception::AutopilotCommand Step(double t_s) override {
+    Flush(t_s, &pending_frames_, &frames);
+    Flush(t_s, &pending_ranges_, &ranges);
+    Flush(t_s, &pending_imu_, &imu);
+    return GroundTruthAutopilot::Step(t_s);
+  }
+  std::vector<Arrival> frames, ranges, imu;
+
+ private:
+  static void Flush(double t_s, std::vector<Arrival>* pending, std::vector<Arrival>* done) {
+    for (Arrival a : *pending) {
+      a.t_step_s = t_s;
+      done->push_back(a);
+    }
+    pending->clear();
+  }
+  std::vector<Arrival> pending_frames_, pending_ranges_, pending_imu_;
+};
+
+TEST(SitlRunner, FramesAreDroppedAtTheConfiguredRate) {
+  const Scene scene = TexturedScene();
+  SitlRunnerParams params = QuietParams(10.0);
+  SitlCamera camera = ForwardCamera(30.0);
+  camera.model = std::make_shared<perception::PinholeCamera>(
+      40, 30, perception::PinholeIntrinsics{20.0, 20.0, 19.5, 14.5});  // drops, not pixels
+  camera.drop_probability = 0.3;
+  params.cameras.push_back(camera);
+  params.SetSeed(3);
+  SitlRunner runner(params, &scene);
+  RecordingAutopilot autopilot(params.dynamics.vehicle, HoverAt(params.initial_state.p_WB));
+  int renders = 0;
+  SitlHooks hooks;
+  hooks.before_render = [&renders](double, const control::QuadState&) { ++renders; };
+  const SitlResult result = runner.Run(autopilot, hooks);
+  ASSERT_EQ(result.cameras.size(), 1u);
+  const SitlCameraStats& stats = result.cameras[0];
+  EXPECT_EQ(stats.frames_due, 301);  // 30 Hz over [0, 10] s inclusive
+  EXPECT_EQ(stats.frames_due, stats.frames_dropped + stats.frames_delivered);
+  // Binomial(301, 0.3): mean 90.3, sigma 7.95; 4 sigma keeps the seeded test far from the edge.
+  EXPECT_NEAR(stats.frames_dropped, 0.3 * 301, 4.0 * 7.95);
+  EXPECT_EQ(static_cast<int>(autopilot.frames.size()), stats.frames_delivered);
+  EXPECT_EQ(renders, stats.frames_delivered);  // dropped frames are not rendered
+  // Frame indices keep counting through drops: the gaps add up to the dropped count.
+  int gaps = 0;
+  for (size_t i = 1; i < autopilot.frames.size(); ++i) {
+    gaps += autopilot.frames[i].index - autopilot.frames[i - 1].index - 1;
+  }
+  gaps += autopilot.frames.front().index + (stats.frames_due - 1 - autopilot.frames.back().index);
+  EXPECT_EQ(gaps, stats.frames_dropped);
+}
+
+TEST(SitlRunner, LatencyDelaysDeliveryByTheConfiguredAmount) {
+  const Scene scene = TexturedScene();
+  SitlRunnerParams params = QuietParams(1.0);
+  params.control_rate_hz = 1000.0;  // Step every dynamics step: arrival known to 1 ms
+  params.range_latency_s = 0.02;
+  params.imu.latency_s = 0.004;
+  SitlCamera camera = ForwardCamera(30.0);
+  camera.model = std::make_shared<perception::PinholeCamera>(
+      40, 30, perception::PinholeIntrinsics{20.0, 20.0, 19.5, 14.5});
+  camera.latency_s = 0.05;
+  params.cameras.push_back(camera);
+  SitlRunner runner(params, &scene);
+  RecordingAutopilot autopilot(params.dynamics.vehicle, HoverAt(params.initial_state.p_WB));
+  runner.Run(autopilot);
+  const auto check = [](const std::vector<RecordingAutopilot::Arrival>& arrivals, double latency_s,
+                        const char* what) {
+    ASSERT_FALSE(arrivals.empty()) << what;
+    for (const RecordingAutopilot::Arrival& a : arrivals) {
+      // Delivered in the step at t_measured + latency, seen by the Step of that same step.
+      EXPECT_NEAR(a.t_step_s - a.t_measured_s, latency_s, 1e-6) << what << " at " << a.t_measured_s;
+    }
+  };
+  check(autopilot.frames, 0.05, "frames");  // exposure 0: stamp = end of exposure
+  check(autopilot.ranges, 0.02, "range");
+  check(autopilot.imu, 0.004, "imu");
+  EXPECT_GT(autopilot.frames.size(), 25u);  // 30 Hz over 1 s minus those still in flight
+}
+
+TEST(SitlRunner, FlyingIntoAWallEndsWithContactOnTheWall) {
+  Scene scene;
+  Eigen::Isometry3d T_WO = Eigen::Isometry3d::Identity();
+  T_WO.translation() = Eigen::Vector3d(2.0, 0.0, 1.5);
+  scene.AddObject({"wall", Box{Eigen::Vector3d(0.1, 4.0, 3.0)}, Material{}, T_WO});
+  SitlRunnerParams params = QuietParams(10.0);
+  SitlRunner runner(params, &scene);
+  // Waypoint behind the wall: the autopilot flies straight into its face at x = 1.95.
+  RecordingAutopilot autopilot(params.dynamics.vehicle, HoverAt(Eigen::Vector3d(4.0, 0.0, 1.5)));
+  const SitlResult result = runner.Run(autopilot);
+  ASSERT_EQ(result.outcome, SitlResult::Outcome::kCollision) << result.reason;
+  ASSERT_TRUE(result.collision.has_value());
+  EXPECT_EQ(result.collision->object_name, "wall");
+  // Contact on the face: rays stop on the surface (x = 1.95), within its extent.
+  EXPECT_NEAR(result.collision->contact_p_W.x(), 1.95, 1e-6);
+  EXPECT_LT(std::abs(result.collision->contact_p_W.y()), 2.0);
+  // At ~1-2 m/s the vehicle moves ~2 mm per step: it is stopped within one step of the
+  // first touch, so the nearest part (a propeller tip or the body) just reaches the face.
+  const double reach_m = 0.178 + params.collision.propeller_radius_m;  // arm + propeller
+  EXPECT_GT(result.trajectory.back().p_WB.x(), 1.95 - reach_m - 0.01);
+  EXPECT_LT(result.trajectory.back().p_WB.x(), 1.95 - params.collision.body_radius_m * 0.9);
+  EXPECT_NE(result.reason.find("wall"), std::string::npos);
+}
+
+TEST(SitlRunner, FlyingIntoTheGroundEndsTheRun) {
+  SitlRunnerParams params = QuietParams(10.0);
+  params.initial_state.p_WB = Eigen::Vector3d(0.5, 0.0, 1.0);
+  SitlRunner runner(params, nullptr);
+  RecordingAutopilot autopilot(params.dynamics.vehicle, HoverAt(Eigen::Vector3d(0.5, 0.0, -1.0)));
+  const SitlResult result = runner.Run(autopilot);
+  ASSERT_EQ(result.outcome, SitlResult::Outcome::kCollision) << result.reason;
+  EXPECT_EQ(result.collision->object_name, "ground");
+  EXPECT_DOUBLE_EQ(result.collision->contact_p_W.z(), 0.0);
+  EXPECT_NEAR(result.collision->contact_p_W.x(), 0.5, 0.05);  // straight down
+  // The body sphere touches first in level descent: its centre is one radius up.
+  EXPECT_EQ(result.collision->part, "body");
+  EXPECT_NEAR(result.trajectory.back().p_WB.z(), params.collision.body_radius_m, 0.01);
+  EXPECT_LT(result.sim_time_s, 5.0);
+}
+
+// A world-fixed camera sees the same (noise-free) images whatever the vehicle does; a body
+// camera does not.
+TEST(SitlRunner, WorldFixedCameraIgnoresTheVehiclePose) {
+  const Scene scene = TexturedScene();
+  const auto hashes = [&scene](const Eigen::Vector3d& goal, bool fixed) {
+    SitlRunnerParams params = QuietParams(0.3);
+    SitlCamera camera = ForwardCamera(30.0);
+    camera.effects = CameraEffectsParams();  // no noise
+    if (fixed)
+      camera.T_WC_fixed = Eigen::Isometry3d(Eigen::Translation3d(0.0, 0.0, 1.0)) * camera.T_BC;
+    params.cameras.push_back(camera);
+    SitlRunner runner(params, &scene);
+    GroundTruthAutopilot autopilot(params.dynamics.vehicle, HoverAt(goal));
+    std::vector<std::uint64_t> out;
+    SitlHooks hooks;
+    hooks.on_frame = [&out](int, const CapturedFrame& frame, const control::QuadState&) {
+      out.push_back(HashImage(frame.frame.image));
+    };
+    runner.Run(autopilot, hooks);
+    return out;
+  };
+  const Eigen::Vector3d left(0.0, 1.0, 1.5), right(0.0, -1.0, 1.5);
+  EXPECT_EQ(hashes(left, true), hashes(right, true));
+  const std::vector<std::uint64_t> body_left = hashes(left, false);
+  const std::vector<std::uint64_t> body_right = hashes(right, false);
+  ASSERT_EQ(body_left.size(), body_right.size());
+  EXPECT_EQ(body_left.front(), body_right.front());  // same start
+  EXPECT_NE(body_left.back(), body_right.back());    // moved apart by then
+}
+
+TEST(SitlRunner, RejectsInconsistentParameters) {
+  SitlRunnerParams params;
+  params.dynamics_rate_hz = 400.0;  // below the 1 kHz flight controller
+  EXPECT_THROW(SitlRunner(params, nullptr), std::invalid_argument);
+  params = SitlRunnerParams();
+  params.cameras.push_back(ForwardCamera(30.0));
+  params.cameras.back().drop_probability = 1.0;
+  const Scene scene = TexturedScene();
+  EXPECT_THROW(SitlRunner(params, &scene), std::invalid_argument);
+  params.cameras.back().drop_probability = 0.0;
+  EXPECT_THROW(SitlRunner(params, nullptr), std::invalid_argument);  // cameras need a scene
+}
+
+}  // namespace
+}  // namespace aperture::sim
