@@ -1,12 +1,11 @@
 #include "perception/estimation/pose_imu_filter.h"
 
+#include <Eigen/Cholesky>
 #include <cmath>
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
 #include <string>
-
-#include <Eigen/Cholesky>
 
 namespace aperture::perception {
 namespace {
@@ -93,18 +92,22 @@ void PoseImuFilterParams::Validate() const {
   RequirePositive(initial_gyro_bias_sigma_radps, "initial_gyro_bias_sigma_radps");
   RequirePositive(history_duration_s, "history_duration_s");
   if (!(mahalanobis_gate > 0.0)) {  // +inf allowed (no gating)
-    throw std::invalid_argument("PoseImuFilterParams.mahalanobis_gate = " +
-                                std::to_string(mahalanobis_gate) +
-                                " must be > 0 (+infinity disables gating)");
+    throw std::invalid_argument(
+        "PoseImuFilterParams.mahalanobis_gate = " + std::to_string(mahalanobis_gate) +
+        " must be > 0 (+infinity disables gating)");
   }
 }
 
 const char* ToString(PoseUpdateStatus status) {
   switch (status) {
-    case PoseUpdateStatus::kApplied: return "applied";
-    case PoseUpdateStatus::kRejectedOutlier: return "rejected_outlier";
-    case PoseUpdateStatus::kTooOld: return "too_old";
-    case PoseUpdateStatus::kAheadOfImu: return "ahead_of_imu";
+    case PoseUpdateStatus::kApplied:
+      return "applied";
+    case PoseUpdateStatus::kRejectedOutlier:
+      return "rejected_outlier";
+    case PoseUpdateStatus::kTooOld:
+      return "too_old";
+    case PoseUpdateStatus::kAheadOfImu:
+      return "ahead_of_imu";
   }
   return "unknown";
 }
@@ -118,8 +121,7 @@ std::ostream& operator<<(std::ostream& os, const PoseUpdateResult& result) {
 
 namespace {
 
-PoseImuEstimate DefaultInitial(const PoseImuFilterParams& params,
-                               const control::QuadState& state) {
+PoseImuEstimate DefaultInitial(const PoseImuFilterParams& params, const control::QuadState& state) {
   params.Validate();
   PoseImuEstimate initial;
   initial.state = state;
@@ -150,14 +152,14 @@ PoseImuFilter::PoseImuFilter(const PoseImuFilterParams& params, const PoseImuEst
   RequireCovariance(initial.covariance, "initial covariance");
 
   Vector15d q = Vector15d::Zero();
-  q.segment<3>(Index::kVelocity).setConstant(params_.accel_noise_density *
-                                             params_.accel_noise_density);
-  q.segment<3>(Index::kAttitude).setConstant(params_.gyro_noise_density *
-                                             params_.gyro_noise_density);
-  q.segment<3>(Index::kAccelBias).setConstant(params_.accel_bias_random_walk *
-                                              params_.accel_bias_random_walk);
-  q.segment<3>(Index::kGyroBias).setConstant(params_.gyro_bias_random_walk *
-                                             params_.gyro_bias_random_walk);
+  q.segment<3>(Index::kVelocity)
+      .setConstant(params_.accel_noise_density * params_.accel_noise_density);
+  q.segment<3>(Index::kAttitude)
+      .setConstant(params_.gyro_noise_density * params_.gyro_noise_density);
+  q.segment<3>(Index::kAccelBias)
+      .setConstant(params_.accel_bias_random_walk * params_.accel_bias_random_walk);
+  q.segment<3>(Index::kGyroBias)
+      .setConstant(params_.gyro_bias_random_walk * params_.gyro_bias_random_walk);
   // G Q_c G^T: the noise enters dv as -R_WB n_a, whose covariance R sigma^2 I R^T = sigma^2 I
   // for an isotropic density, and dtheta as -n_g; so it is diagonal and constant.
   Q_c_ = q.asDiagonal();
@@ -199,8 +201,7 @@ void PoseImuFilter::PropagateBetween(const Entry& from, const Entry& to, Nominal
   x->q_WB = q_end;
 
   // Error-state dynamics A (linearized at the mid-interval rotation and mean inputs).
-  const Eigen::Matrix3d R_mid =
-      (R_begin * ExpQuaternion(0.5 * dt * omega_mean).toRotationMatrix());
+  const Eigen::Matrix3d R_mid = (R_begin * ExpQuaternion(0.5 * dt * omega_mean).toRotationMatrix());
   Matrix15d A = Matrix15d::Zero();
   A.block<3, 3>(Index::kPosition, Index::kVelocity).setIdentity();
   A.block<3, 3>(Index::kVelocity, Index::kAttitude) = -R_mid * Skew(f_mean);
@@ -365,8 +366,8 @@ PoseImuEstimate PoseImuFilter::Estimate() const {
   estimate.state.p_WB = last.x.p_WB;
   estimate.state.v_W = last.x.v_W;
   estimate.state.q_WB = last.x.q_WB;
-  estimate.state.omega_B = last.has_imu ? Eigen::Vector3d(last.imu.omega_B - last.x.b_g)
-                                        : Eigen::Vector3d::Zero();
+  estimate.state.omega_B =
+      last.has_imu ? Eigen::Vector3d(last.imu.omega_B - last.x.b_g) : Eigen::Vector3d::Zero();
   estimate.accel_bias_B = last.x.b_a;
   estimate.gyro_bias_B = last.x.b_g;
   estimate.covariance = last.P;

@@ -44,11 +44,10 @@
 //
 // Failures: non-finite inputs, non-increasing IMU stamps, non-positive-definite covariances and
 // invalid parameters throw std::invalid_argument naming the input.
-#include <deque>
-#include <iosfwd>
-
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <deque>
+#include <iosfwd>
 
 #include "control/quad_state.h"
 #include "perception/sensor_data.h"
@@ -97,12 +96,12 @@ struct PoseImuFilterParams {
 
 // A measured pose of sensor frame X in W; see the header comment for the noise convention.
 struct PoseMeasurement {
-  double t_s = 0.0;  // time the pose refers to, on the IMU clock [s]
-  Eigen::Vector3d p_WX = Eigen::Vector3d::Zero();                 // [m]
-  Eigen::Quaterniond q_WX = Eigen::Quaterniond::Identity();       // rotation X -> W
-  Matrix6d covariance = Matrix6d::Identity();                     // over [n_p (W) m; n_theta (X) rad]
-  Eigen::Vector3d p_BX = Eigen::Vector3d::Zero();                 // extrinsics: origin of X in B [m]
-  Eigen::Quaterniond q_BX = Eigen::Quaterniond::Identity();       // rotation X -> B
+  double t_s = 0.0;                                // time the pose refers to, on the IMU clock [s]
+  Eigen::Vector3d p_WX = Eigen::Vector3d::Zero();  // [m]
+  Eigen::Quaterniond q_WX = Eigen::Quaterniond::Identity();  // rotation X -> W
+  Matrix6d covariance = Matrix6d::Identity();                // over [n_p (W) m; n_theta (X) rad]
+  Eigen::Vector3d p_BX = Eigen::Vector3d::Zero();            // extrinsics: origin of X in B [m]
+  Eigen::Quaterniond q_BX = Eigen::Quaterniond::Identity();  // rotation X -> B
 };
 
 enum class PoseUpdateStatus {
@@ -115,10 +114,10 @@ const char* ToString(PoseUpdateStatus status);
 
 struct PoseUpdateResult {
   PoseUpdateStatus status = PoseUpdateStatus::kApplied;
-  double mahalanobis_sq = 0.0;  // r^T S^-1 r (0 for kTooOld / kAheadOfImu)
-  double gate = 0.0;            // threshold it was compared with
+  double mahalanobis_sq = 0.0;           // r^T S^-1 r (0 for kTooOld / kAheadOfImu)
+  double gate = 0.0;                     // threshold it was compared with
   Vector6d residual = Vector6d::Zero();  // [m; rad] before the update
-  int replayed_steps = 0;       // history entries re-propagated after t_m
+  int replayed_steps = 0;                // history entries re-propagated after t_m
   bool applied() const { return status == PoseUpdateStatus::kApplied; }
 };
 std::ostream& operator<<(std::ostream& os, const PoseUpdateResult& result);
@@ -179,7 +178,7 @@ class PoseImuFilter {
   void TrimHistory();
 
   PoseImuFilterParams params_;
-  Matrix15d Q_c_;  // continuous noise G Q_c G^T in error-state coordinates
+  Matrix15d Q_c_;              // continuous noise G Q_c G^T in error-state coordinates
   std::deque<Entry> history_;  // sorted by t_s; front() is the oldest kept posterior
 };
 

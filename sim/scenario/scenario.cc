@@ -438,6 +438,12 @@ void Scenario::SetVehiclePose(const Eigen::Isometry3d& T_WB) {
   for (const Attached& a : attached_) scene_.SetPose(a.object_id, T_WB * a.T_BO);
 }
 
+std::vector<std::string> Scenario::AttachedObjectNames() const {
+  std::vector<std::string> names;
+  for (const Attached& a : attached_) names.push_back(scene_.object(a.object_id).name);
+  return names;
+}
+
 Scenario BuildScenario(const ScenarioParams& params) {
   Scenario scenario;
   scenario.params_ = params;

@@ -63,6 +63,8 @@ class Scenario {
   void AttachToBody(int object_id, const Eigen::Isometry3d& T_BO);
   // Moves every object attached to the vehicle body (T_WO = T_WB * T_BO).
   void SetVehiclePose(const Eigen::Isometry3d& T_WB);
+  // Names of the body-attached objects (not obstacles for the vehicle carrying them).
+  std::vector<std::string> AttachedObjectNames() const;
 
  private:
   friend Scenario BuildScenario(const ScenarioParams& params);

@@ -1,9 +1,9 @@
 // Cost of the pose + IMU ESKF (report only): one IMU propagation step (nominal + 15x15
 // covariance), one pose update at the current time, and one pose update 50 ms late (update plus
 // re-propagation of 25 IMU samples at 500 Hz).
-#include <cmath>
-
 #include <benchmark/benchmark.h>
+
+#include <cmath>
 
 #include "perception/estimation/pose_imu_filter.h"
 

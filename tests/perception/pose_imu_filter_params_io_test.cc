@@ -1,11 +1,11 @@
 #include "perception/estimation/pose_imu_filter_params_io.h"
 
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
 #include <cmath>
 #include <stdexcept>
 #include <string>
-
-#include <gtest/gtest.h>
-#include <yaml-cpp/yaml.h>
 
 namespace aperture::perception {
 namespace {

@@ -3,14 +3,14 @@
 // synthetic noise and constant biases.
 #include "perception/estimation/pose_imu_filter.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <limits>
 #include <random>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "control/flatness.h"
 #include "control/reference_trajectories.h"
@@ -155,9 +155,10 @@ PropagationError PropagateNoiseFree(double rate_hz) {
 TEST(PoseImuFilterTest, NoiseFreePropagationFollowsCircleWithSecondOrderError) {
   const PropagationError e500 = PropagateNoiseFree(500.0);
   const PropagationError e250 = PropagateNoiseFree(250.0);
-  std::printf("noise-free propagation over 5 s at 500 Hz: max |dp| %.3g m, |dv| %.3g m/s, "
-              "dtheta %.3g rad; at 250 Hz: %.3g m, %.3g m/s, %.3g rad\n",
-              e500.max_p, e500.max_v, e500.max_theta, e250.max_p, e250.max_v, e250.max_theta);
+  std::printf(
+      "noise-free propagation over 5 s at 500 Hz: max |dp| %.3g m, |dv| %.3g m/s, "
+      "dtheta %.3g rad; at 250 Hz: %.3g m, %.3g m/s, %.3g rad\n",
+      e500.max_p, e500.max_v, e500.max_theta, e250.max_p, e250.max_v, e250.max_theta);
   // The trapezoid rule on linearly interpolated inputs has a local error dt^3/12 |omega''| with
   // |omega''| ~ |omega| (v/r)^2 ~ 7 rad/s^3 on this circle: ~5e-9 rad per 2 ms step, ~1e-5 rad
   // after 2500 steps, which tilts the gravity compensation and drifts v and p (~1e-3 m/s, ~1e-3 m
@@ -192,11 +193,11 @@ TEST(PoseImuFilterTest, CovariancePropagationMatchesNumericJacobian) {
     initial.state = circle.At(t0).state;
     initial.state.p_WB += dx.segment<3>(ErrorStateIndex::kPosition);
     initial.state.v_W += dx.segment<3>(ErrorStateIndex::kVelocity);
-    initial.state.q_WB = (initial.state.q_WB *
-                          Eigen::Quaterniond(Eigen::AngleAxisd(
-                              dx.segment<3>(ErrorStateIndex::kAttitude).norm(),
-                              dx.segment<3>(ErrorStateIndex::kAttitude).normalized())))
-                             .normalized();
+    initial.state.q_WB =
+        (initial.state.q_WB * Eigen::Quaterniond(Eigen::AngleAxisd(
+                                  dx.segment<3>(ErrorStateIndex::kAttitude).norm(),
+                                  dx.segment<3>(ErrorStateIndex::kAttitude).normalized())))
+            .normalized();
     initial.accel_bias_B = dx.segment<3>(ErrorStateIndex::kAccelBias);
     initial.gyro_bias_B = dx.segment<3>(ErrorStateIndex::kGyroBias);
     initial.covariance = Matrix15d::Identity() * eps * eps;
@@ -247,7 +248,8 @@ RunResult RunCircle(double duration_s, const Eigen::Vector3d& b_a, const Eigen::
   control::QuadState initial = circle.At(0.0).state;
   initial.p_WB += Eigen::Vector3d(0.4, -0.3, 0.2);
   initial.v_W += Eigen::Vector3d(-0.3, 0.2, 0.1);
-  initial.q_WB = initial.q_WB * Eigen::Quaterniond(Eigen::AngleAxisd(0.15, Eigen::Vector3d(1, 1, 0).normalized()));
+  initial.q_WB = initial.q_WB *
+                 Eigen::Quaterniond(Eigen::AngleAxisd(0.15, Eigen::Vector3d(1, 1, 0).normalized()));
   PoseImuFilter filter(params, initial);  // biases start at 0
   const PoseMeasurement extrinsics = CameraExtrinsics();
   RunResult result;
@@ -276,11 +278,12 @@ TEST(PoseImuFilterTest, ConvergesFromWrongInitialStateAndEstimatesBiases) {
   const double dp = (e.state.p_WB - run.final_truth.p_WB).norm();
   const double dv = (e.state.v_W - run.final_truth.v_W).norm();
   const double dtheta = AttitudeError(e.state.q_WB, run.final_truth.q_WB);
-  std::printf("after 20 s: |dp| %.4f m, |dv| %.4f m/s, dtheta %.5f rad, |db_a| %.4f m/s^2, "
-              "|db_g| %.5f rad/s; sigma_ba %.4f, sigma_bg %.5f; rejected %d\n",
-              dp, dv, dtheta, (e.accel_bias_B - b_a).norm(), (e.gyro_bias_B - b_g).norm(),
-              sigma.segment<3>(ErrorStateIndex::kAccelBias).maxCoeff(),
-              sigma.segment<3>(ErrorStateIndex::kGyroBias).maxCoeff(), run.rejected);
+  std::printf(
+      "after 20 s: |dp| %.4f m, |dv| %.4f m/s, dtheta %.5f rad, |db_a| %.4f m/s^2, "
+      "|db_g| %.5f rad/s; sigma_ba %.4f, sigma_bg %.5f; rejected %d\n",
+      dp, dv, dtheta, (e.accel_bias_B - b_a).norm(), (e.gyro_bias_B - b_g).norm(),
+      sigma.segment<3>(ErrorStateIndex::kAccelBias).maxCoeff(),
+      sigma.segment<3>(ErrorStateIndex::kGyroBias).maxCoeff(), run.rejected);
   // Initial errors were 0.54 m, 0.37 m/s, 0.15 rad and 0.16 m/s^2, 0.011 rad/s of bias. With
   // 2 cm / 0.01 rad poses at 30 Hz the steady state is at the cm / mrad level; 4 sigma bounds of
   // a 3-dof error (|e| < 4 max sigma sqrt(3)) plus an absolute check that it did converge.
@@ -332,7 +335,8 @@ DelayComparison CompareDelayed(int delay_samples, bool stamps_on_imu_grid) {
     delayed.Propagate(sample);
     naive.Propagate(sample);
     // Poses every 16 samples (31.25 Hz) on the grid, or at 30 Hz between samples.
-    const double t_pose = stamps_on_imu_grid ? next_pose_index * 16 * kImuDt : next_pose_index / 30.0;
+    const double t_pose =
+        stamps_on_imu_grid ? next_pose_index * 16 * kImuDt : next_pose_index / 30.0;
     // Poses only during the first 3.5 s, so that the delayed filter catches up afterwards.
     if (t_pose <= sample.t_s && t_pose < 3.5) {
       const PoseMeasurement z = MeasurePose(circle.At(t_pose).state, extrinsics, 0.02, 0.01, &imu);
@@ -370,9 +374,10 @@ class PoseImuFilterDelayTest : public ::testing::TestWithParam<bool> {};
 TEST_P(PoseImuFilterDelayTest, DelayedMeasurementsGiveTheOnTimeEstimate) {
   const int kDelaySamples = 25;  // 50 ms at 500 Hz
   const DelayComparison c = CompareDelayed(kDelaySamples, GetParam());
-  std::printf("50 ms latency vs on time: max |dp| %.3g m, |dv| %.3g m/s, dtheta %.3g rad, "
-              "|dP| %.3g; naive (applied at arrival) |p err| %.3g m\n",
-              c.max_dp, c.max_dv, c.max_dtheta, c.max_dP, c.naive_dp);
+  std::printf(
+      "50 ms latency vs on time: max |dp| %.3g m, |dv| %.3g m/s, dtheta %.3g rad, "
+      "|dP| %.3g; naive (applied at arrival) |p err| %.3g m\n",
+      c.max_dp, c.max_dv, c.max_dtheta, c.max_dP, c.naive_dp);
   // Both filters run the same arithmetic on the same inputs (the re-propagation replays the
   // stored samples, interpolated identically at the pose stamp); differences are round-off.
   EXPECT_LT(c.max_dp, 1e-9);

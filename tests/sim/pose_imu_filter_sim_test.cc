@@ -4,12 +4,12 @@
 // bias random walks) measures it, and 30 Hz camera poses with their covariance arrive 30 ms late.
 // Monte-Carlo runs over IMU / pose noise, IMU biases and initial errors drawn from the filter's
 // prior check that the filter is consistent (NEES) and converges.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdio>
 #include <random>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "control/low_level_controller.h"
 #include "control/mixer.h"
@@ -49,7 +49,8 @@ std::vector<TruthStep> FlyCircle() {
   start.p_WB = circle.Evaluate(0.0).p_W;
   sim::QuadrotorDynamics quad(sim_params, start);
   const control::VehicleParameters& vehicle = sim_params.vehicle;
-  const Eigen::Vector4d hover = Eigen::Vector4d::Constant(0.25 * vehicle.mass_kg * vehicle.gravity_mps2);
+  const Eigen::Vector4d hover =
+      Eigen::Vector4d::Constant(0.25 * vehicle.mass_kg * vehicle.gravity_mps2);
   quad.SetMotorCommands(control::MotorCommandsFromRotorThrusts(vehicle, hover));
   quad.SettleRotors();
   const control::PositionController position(vehicle);
@@ -112,7 +113,8 @@ RunRecord RunFilter(const std::vector<TruthStep>& truth, std::uint64_t seed, int
   control::QuadState initial = truth[0].state;
   initial.p_WB += Gaussian(&rng, params.initial_position_sigma_m);
   initial.v_W += Gaussian(&rng, params.initial_velocity_sigma_mps);
-  initial.q_WB = (initial.q_WB * Exp(Gaussian(&rng, params.initial_attitude_sigma_rad))).normalized();
+  initial.q_WB =
+      (initial.q_WB * Exp(Gaussian(&rng, params.initial_attitude_sigma_rad))).normalized();
   perception::PoseImuFilter filter(params, initial);
 
   // Camera 10 cm ahead of B looking forward (OpenCV axes).
@@ -157,7 +159,8 @@ RunRecord RunFilter(const std::vector<TruthStep>& truth, std::uint64_t seed, int
     if (k % eval_every_steps == 0 || k + 1 == truth.size()) {
       const perception::PoseImuEstimate e = filter.Estimate();
       // The estimate is at the latest IMU sample, which may be a step before `now`.
-      const control::QuadState& at = truth[static_cast<std::size_t>(std::lround(e.state.t_s / kSimDt))].state;
+      const control::QuadState& at =
+          truth[static_cast<std::size_t>(std::lround(e.state.t_s / kSimDt))].state;
       EXPECT_NEAR(at.t_s, e.state.t_s, 1e-9);
       Vector15d error;
       error << at.p_WB - e.state.p_WB, at.v_W - e.state.v_W,
@@ -175,7 +178,7 @@ RunRecord RunFilter(const std::vector<TruthStep>& truth, std::uint64_t seed, int
 }
 
 struct NeesSummary {
-  double mean = 0;              // over time of the Monte-Carlo average
+  double mean = 0;  // over time of the Monte-Carlo average
   double fraction_in_bounds = 0;
   double lower = 0, upper = 0;  // 95 % two-sided bounds of the Monte-Carlo average
 };
@@ -214,7 +217,8 @@ TEST(PoseImuFilterSim, MonteCarloNeesIsConsistentAndBiasesConverge) {
   const int kRuns = 20;
   const int kEvalEverySteps = 100;  // NEES every 0.1 s
   std::vector<RunRecord> runs;
-  for (int run = 0; run < kRuns; ++run) runs.push_back(RunFilter(truth, 100 + run, kEvalEverySteps));
+  for (int run = 0; run < kRuns; ++run)
+    runs.push_back(RunFilter(truth, 100 + run, kEvalEverySteps));
 
   // Skip the first 2 s: the prior was drawn from P0, but the first updates of a 0.1 rad
   // attitude error are linearized far from the truth.
@@ -222,11 +226,11 @@ TEST(PoseImuFilterSim, MonteCarloNeesIsConsistentAndBiasesConverge) {
   const NeesSummary full = Nees(runs, 0, 15, skip);
   const NeesSummary pose_velocity = Nees(runs, 0, 9, skip);
   const NeesSummary pose = Nees(runs, 0, 3, skip);
-  std::printf("NEES (average over %d runs, t >= 2 s): 15-dof mean %.2f, %.0f %% in [%.2f, %.2f]; "
-              "9-dof (p, v, theta) mean %.2f, %.0f %% in [%.2f, %.2f]; 3-dof (p) mean %.2f\n",
-              kRuns, full.mean, 100 * full.fraction_in_bounds, full.lower, full.upper,
-              pose_velocity.mean, 100 * pose_velocity.fraction_in_bounds, pose_velocity.lower,
-              pose_velocity.upper, pose.mean);
+  std::printf(
+      "NEES (average over %d runs, t >= 2 s): 15-dof mean %.2f, %.0f %% in [%.2f, %.2f]; "
+      "9-dof (p, v, theta) mean %.2f, %.0f %% in [%.2f, %.2f]; 3-dof (p) mean %.2f\n",
+      kRuns, full.mean, 100 * full.fraction_in_bounds, full.lower, full.upper, pose_velocity.mean,
+      100 * pose_velocity.fraction_in_bounds, pose_velocity.lower, pose_velocity.upper, pose.mean);
   // A consistent filter has its Monte-Carlo average NEES inside the 95 % bounds at ~95 % of the
   // times; neighbouring times are correlated, so allow down to 80 %. An overconfident filter
   // (e.g. noise densities 3x too small) sits at many times the dof, an overly cautious one far
@@ -249,16 +253,17 @@ TEST(PoseImuFilterSim, MonteCarloNeesIsConsistentAndBiasesConverge) {
   }
   rms_accel_bias_error = std::sqrt(rms_accel_bias_error);
   rms_gyro_bias_error = std::sqrt(rms_gyro_bias_error);
-  std::printf("after %.0f s: rms |db_a| %.4f m/s^2, rms |db_g| %.5f rad/s, max |dp| %.4f m; "
-              "%d of %d poses gated\n",
-              kFlightS, rms_accel_bias_error, rms_gyro_bias_error, max_position_error, rejected,
-              kRuns * static_cast<int>(kFlightS * kPoseRateHz));
+  std::printf(
+      "after %.0f s: rms |db_a| %.4f m/s^2, rms |db_g| %.5f rad/s, max |dp| %.4f m; "
+      "%d of %d poses gated\n",
+      kFlightS, rms_accel_bias_error, rms_gyro_bias_error, max_position_error, rejected,
+      kRuns * static_cast<int>(kFlightS * kPoseRateHz));
   // Prior rms norms: 0.1 sqrt(3) = 0.17 m/s^2 and 0.017 rad/s; after 8 s of an excited flight the
   // accelerometer bias is known to a few cm/s^2 and the gyro bias to ~1e-3 rad/s.
   EXPECT_LT(rms_accel_bias_error, 0.3 * 0.1 * std::sqrt(3.0));
   EXPECT_LT(rms_gyro_bias_error, 0.3 * 0.01 * std::sqrt(3.0));
   EXPECT_LT(max_position_error, 0.05);  // 2.5 sigma of a single pose, after fusion far less
-  EXPECT_LE(rejected, 5);  // 99.9 % gate on 4800 consistent poses: ~5 expected at most
+  EXPECT_LE(rejected, 5);               // 99.9 % gate on 4800 consistent poses: ~5 expected at most
 }
 
 // Closes the loop on the estimate: the position controller and the body-rate loop see only the
@@ -311,8 +316,7 @@ ClosedLoopResult FlyCircleOn(bool use_estimate) {
     const control::QuadState control_state = use_estimate ? filter.Estimate().state : quad.state();
     const control::ThrustRatesCommand command =
         position.Compute(control_state, circle.Evaluate(quad.state().t_s)).command;
-    quad.SetMotorCommands(
-        low_level.Step(command, control_state.omega_B, kSimDt).motor_commands);
+    quad.SetMotorCommands(low_level.Step(command, control_state.omega_B, kSimDt).motor_commands);
     quad.Step(kSimDt);
     const control::QuadState& now = quad.state();
     for (const perception::ImuSample& sample :
@@ -353,10 +357,11 @@ ClosedLoopResult FlyCircleOn(bool use_estimate) {
 TEST(PoseImuFilterSim, FlyingOnTheEstimateTracksTheCircle) {
   const ClosedLoopResult on_truth = FlyCircleOn(false);
   const ClosedLoopResult on_estimate = FlyCircleOn(true);
-  std::printf("circle at 4 m/s, rms tracking error after 2 s: on truth %.3f m, on the estimate "
-              "%.3f m (estimate error rms %.3f m, max %.3f m)\n",
-              on_truth.rms_tracking_error_m, on_estimate.rms_tracking_error_m,
-              on_estimate.rms_estimate_error_m, on_estimate.max_estimate_error_m);
+  std::printf(
+      "circle at 4 m/s, rms tracking error after 2 s: on truth %.3f m, on the estimate "
+      "%.3f m (estimate error rms %.3f m, max %.3f m)\n",
+      on_truth.rms_tracking_error_m, on_estimate.rms_tracking_error_m,
+      on_estimate.rms_estimate_error_m, on_estimate.max_estimate_error_m);
   // 2 cm poses at 30 Hz fused with the IMU give a steady-state position error of ~6 mm per axis
   // (measured 1.0 cm 3-dof rms); the vehicle follows its estimate, so its tracking error is that
   // error, amplified by the loop's reaction to the 30 Hz corrections (measured 2.7 cm), plus the
