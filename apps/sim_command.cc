@@ -27,6 +27,7 @@
 #include "output/video_writer.h"
 #include "perception/camera/pinhole_camera.h"
 #include "sim/scenario/scenario.h"
+#include "sim/scenario/scenario_sitl.h"
 #include "sim/sitl/ground_truth_autopilot.h"
 #include "sim/sitl/sitl_runner.h"
 
@@ -194,30 +195,11 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
   sim::SitlRunnerParams params;
   params.duration_s = options.duration_s;
   params.trajectory_decimation = 5;  // 200 Hz ground truth in the outputs
+  sim::ConfigureSitlFromScenario(scenario, &params);
+  for (sim::SitlCamera& camera : params.cameras) camera.render.ground_truth = false;
   const Eigen::Isometry3d T_WB_start = scenario.T_WB_start();
-  params.initial_state.p_WB = T_WB_start.translation();
-  params.initial_state.q_WB = Eigen::Quaterniond(T_WB_start.linear()).normalized();
-  for (const sim::ScenarioCamera& camera : scenario.cameras()) {
-    sim::SitlCamera sitl_camera;
-    sitl_camera.name = camera.name;
-    sitl_camera.model = camera.model;
-    if (camera.mount_on_body) {
-      sitl_camera.T_BC = camera.T_mount;
-    } else {
-      sitl_camera.T_WC_fixed = camera.T_mount;
-    }
-    sitl_camera.rate_hz = camera.rate_hz;
-    sitl_camera.effects = camera.effects.params();
-    sitl_camera.render = camera.render;
-    sitl_camera.render.ground_truth = false;
-    params.cameras.push_back(sitl_camera);
-  }
   params.SetSeed(scenario_params.seed);
-  // Parts of the vehicle are not obstacles: the marker and the objects attached to the body.
   params.collision.ignored_objects.push_back(kVehicleMarker);
-  for (const int id : scenario.AttachedObjectIds()) {
-    params.collision.ignored_objects.push_back(scenario.scene().object(id).name);
-  }
   sim::Material marker_material;
   marker_material.color = sim::Rgb(0.9f, 0.1f, 0.1f);  // red
   Eigen::Isometry3d T_parking = Eigen::Isometry3d::Identity();
@@ -257,10 +239,7 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
       params.cameras.empty() ? 0 : static_cast<int>(options.duration_s * params.cameras[0].rate_hz);
   output::ProgressBar progress("frames", static_cast<std::size_t>(frames_expected));
   int frames_seen = 0;
-  sim::SitlHooks hooks;
-  hooks.before_render = [&scenario](double, const control::QuadState& state) {
-    scenario.SetVehiclePose(PoseOf(state));
-  };
+  sim::SitlHooks hooks = sim::MakeScenarioHooks(&scenario);
   hooks.on_frame = [&](int camera_index, const sim::CapturedFrame& captured,
                        const control::QuadState& state) {
     if (camera_index != primary) return;

@@ -61,12 +61,6 @@ class Scenario {
 
   // Makes the object move with the vehicle body: SetVehiclePose sets its T_WO = T_WB * T_BO.
   void AttachToBody(int object_id, const Eigen::Isometry3d& T_BO);
-  // Ids of the objects attached to the body (parts of the vehicle, not obstacles for SITL).
-  std::vector<int> AttachedObjectIds() const {
-    std::vector<int> ids;
-    for (const Attached& a : attached_) ids.push_back(a.object_id);
-    return ids;
-  }
   // Moves every object attached to the vehicle body (T_WO = T_WB * T_BO).
   void SetVehiclePose(const Eigen::Isometry3d& T_WB);
   // Names of the body-attached objects (not obstacles for the vehicle carrying them).
