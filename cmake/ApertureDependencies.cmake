@@ -15,3 +15,12 @@ set(APERTURE_OPENCV_CORE opencv_core opencv_imgproc opencv_imgcodecs)
 set(APERTURE_OPENCV_ALL opencv_core opencv_imgproc opencv_imgcodecs opencv_videoio opencv_calib3d
     opencv_features2d opencv_video)
 # yaml-cpp 0.7 on Debian exports the plain target name `yaml-cpp`.
+
+# libopengv-dev ships no CMake config: wrap the library in an imported target.
+find_path(OPENGV_INCLUDE_DIR opengv/absolute_pose/methods.hpp REQUIRED)
+find_library(OPENGV_LIBRARY opengv REQUIRED)
+if(NOT TARGET opengv::opengv)
+  add_library(opengv::opengv UNKNOWN IMPORTED)
+  set_target_properties(opengv::opengv PROPERTIES IMPORTED_LOCATION "${OPENGV_LIBRARY}"
+                        INTERFACE_INCLUDE_DIRECTORIES "${OPENGV_INCLUDE_DIR}")
+endif()

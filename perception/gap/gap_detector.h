@@ -34,11 +34,11 @@
 namespace aperture::perception {
 
 struct GapDetectorParams {
-  // Pattern geometry [m] (see the header comment); the seed's gap is 0.8 x 0.28 m. The band
-  // widths (0.1 m white, 0.15 m black) keep both pattern edges >= 4 px apart on a 180 deg
-  // fisheye at 5 m.
+  // Pattern geometry [m] (see the header comment); the seed's gap is 0.8 x 0.28 m. The defaults
+  // are the `gap` scenario's pattern (sim/scenario/scenario_params.h GapParams): 5 cm white band,
+  // 20 cm black band; the white band is >= 2 px wide on a 180 deg fisheye at 5 m.
   Eigen::Vector2d opening_size_m = Eigen::Vector2d(0.8, 0.28);
-  Eigen::Vector2d inner_size_m = Eigen::Vector2d(1.0, 0.48);
+  Eigen::Vector2d inner_size_m = Eigen::Vector2d(0.9, 0.38);
   Eigen::Vector2d outer_size_m = Eigen::Vector2d(1.3, 0.78);
 
   double canny_low = 40.0;   // Canny hysteresis thresholds on the 8-bit image

@@ -1,6 +1,7 @@
 #include "perception/graph/builtin_front_ends.h"
 
 #include "perception/gap/gap_node.h"
+#include "perception/led/led_tracker_node.h"
 #include "perception/quality/image_quality_node.h"
 
 namespace aperture::perception {
@@ -12,6 +13,9 @@ void RegisterBuiltinFrontEnds(FrontEndRegistry& registry) {
   registry.Register(ImageQualityNode::kName,
                     "exposure histogram, mean intensity, over/under exposure, Laplacian sharpness",
                     &ImageQualityNode::Create);
+  registry.Register(LedTrackerNode::kName,
+                    "infrared-LED target pose T_CT with covariance (needs --calib; led.config)",
+                    &LedTrackerNode::Create);
 }
 
 }  // namespace aperture::perception

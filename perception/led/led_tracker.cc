@@ -1,0 +1,166 @@
+#include "perception/led/led_tracker.h"
+
+#include <algorithm>
+#include <map>
+#include <stdexcept>
+
+#include "perception/led/se3_twist.h"
+
+namespace aperture::perception {
+
+std::string LedTrackStatusName(LedTrackStatus status) {
+  switch (status) {
+    case LedTrackStatus::kTracked: return "tracked";
+    case LedTrackStatus::kReinitialized: return "reinitialized";
+    case LedTrackStatus::kNoDetections: return "no_detections";
+    case LedTrackStatus::kNoCorrespondences: return "no_correspondences";
+    case LedTrackStatus::kAmbiguous: return "ambiguous";
+    case LedTrackStatus::kInconsistent: return "inconsistent";
+  }
+  return "unknown";
+}
+
+LedTracker::LedTracker(LedConfiguration configuration, std::shared_ptr<const CameraModel> camera,
+                       const LedTrackerParams& params)
+    : configuration_(std::move(configuration)),
+      camera_(std::move(camera)),
+      params_(params),
+      detector_(params.detector),
+      search_(configuration_.p_T(), params.correspondence) {
+  if (!camera_) throw std::invalid_argument("LedTracker: no camera model given");
+}
+
+std::optional<Eigen::Isometry3d> LedTracker::Predict(double t_s) const {
+  if (history_.empty()) return std::nullopt;
+  const TimedPose& last = history_.back();
+  if (history_.size() == 1) return last.T_CT;  // (C.7): Delta T = 0 for n_P = 1
+  const TimedPose& previous = history_.front();
+  const double dt_previous = last.t_s - previous.t_s;
+  const double delta = dt_previous > 0.0 ? (t_s - last.t_s) / dt_previous : 0.0;  // (C.7)
+  const Vector6d xi_last = LogSe3(last.T_CT);
+  return ExpSe3(xi_last + delta * (xi_last - LogSe3(previous.T_CT)));  // (C.6)
+}
+
+std::vector<LedCorrespondence> LedTracker::MatchPrediction(
+    const Eigen::Isometry3d& T_CT_predicted, const std::vector<LedDetection>& detections) const {
+  std::vector<LedCorrespondence> matches;
+  const double gate_sq = params_.prediction_match_px * params_.prediction_match_px;
+  for (int led = 0; led < configuration_.size(); ++led) {
+    Eigen::Vector2d px;
+    if (!camera_->Project(T_CT_predicted * configuration_.p_T()[led], &px)) continue;
+    int nearest = -1;
+    double nearest_sq = gate_sq;
+    for (int d = 0; d < static_cast<int>(detections.size()); ++d) {
+      const double distance_sq = (detections[d].px - px).squaredNorm();
+      if (distance_sq < nearest_sq) {
+        nearest_sq = distance_sq;
+        nearest = d;
+      }
+    }
+    if (nearest >= 0) matches.push_back({led, nearest});
+  }
+  return matches;
+}
+
+LedTrackResult LedTracker::Track(const cv::Mat& image, double t_s) {
+  LedTrackResult result;
+  const std::optional<Eigen::Isometry3d> prediction = Predict(t_s);
+  if (prediction) {
+    std::vector<cv::Rect> rois;
+    for (const Eigen::Vector3d& p_T : configuration_.p_T()) {
+      Eigen::Vector2d px;
+      if (!camera_->Project(*prediction * p_T, &px) || !camera_->IsInImage(px)) continue;
+      const int r = params_.roi_half_size_px;
+      rois.emplace_back(static_cast<int>(px.x()) - r, static_cast<int>(px.y()) - r, 2 * r + 1,
+                        2 * r + 1);
+    }
+    if (!rois.empty()) {
+      LedDetectionResult detected = detector_.Detect(image, *camera_, rois);
+      result.detections = std::move(detected.detections);
+      result.warning = detected.warning;
+      result.used_roi = true;
+      const std::vector<LedCorrespondence> matches =
+          MatchPrediction(*prediction, result.detections);
+      std::vector<LedCorrespondence> unique;
+      for (const LedCorrespondence& match : matches) {
+        const auto claims = std::count_if(matches.begin(), matches.end(), [&](const auto& other) {
+          return other.detection == match.detection;
+        });
+        if (claims == 1) unique.push_back(match);
+      }
+      if (unique.size() < matches.size() && unique.size() < 4) {
+        // Predicted LEDs converge on shared blobs (merging, Section C.4.2): too few left.
+        result.status = LedTrackStatus::kAmbiguous;
+        result.correspondences = matches;
+        result.merged_detections = static_cast<int>(matches.size() - unique.size());
+        history_.clear();
+        return result;
+      }
+      const LedCorrespondenceResult verified =
+          search_.Verify(unique, result.detections, *camera_);
+      if (verified.verified) {
+        result.status = LedTrackStatus::kTracked;
+        Finish(&result, matches, *prediction, t_s);
+        return result;
+      }
+    }
+  }
+  // Lost (or never found): full image and brute force.
+  LedDetectionResult detected = detector_.Detect(image, *camera_);
+  result.detections = std::move(detected.detections);
+  result.warning = detected.warning;
+  result.used_roi = false;
+  history_.clear();
+  if (result.detections.size() < 3) {
+    result.status = LedTrackStatus::kNoDetections;
+    return result;
+  }
+  result.used_brute_force = true;
+  const LedCorrespondenceResult found = search_.FindByBruteForce(result.detections, *camera_);
+  if (found.correspondences.size() < 4 || !found.T_CT) {
+    result.status = LedTrackStatus::kNoCorrespondences;
+    result.correspondences = found.correspondences;
+    return result;
+  }
+  result.status = LedTrackStatus::kReinitialized;
+  Finish(&result, found.correspondences, *found.T_CT, t_s);
+  return result;
+}
+
+void LedTracker::Finish(LedTrackResult* result,
+                        const std::vector<LedCorrespondence>& correspondences,
+                        const Eigen::Isometry3d& T_CT_initial, double t_s) {
+  // A blob claimed by several LEDs (merged LEDs, Section C.4.2) has a centroid between them:
+  // drop it instead of pulling the pose towards it.
+  std::map<int, int> claims;
+  for (const LedCorrespondence& c : correspondences) ++claims[c.detection];
+  std::vector<Eigen::Vector3d> p_T;
+  std::vector<Eigen::Vector2d> px;
+  result->correspondences.clear();
+  for (const LedCorrespondence& c : correspondences) {
+    if (claims[c.detection] > 1) continue;
+    result->correspondences.push_back(c);
+    p_T.push_back(configuration_.p_T()[c.led]);
+    px.push_back(result->detections[c.detection].px);
+  }
+  for (const auto& [detection, count] : claims) result->merged_detections += count > 1 ? 1 : 0;
+  if (p_T.size() < 4) {
+    result->status = LedTrackStatus::kAmbiguous;
+    history_.clear();
+    return;
+  }
+  const LedPoseRefinement refined =
+      RefineLedPose(*camera_, p_T, px, T_CT_initial, params_.refiner);
+  result->rms_px = refined.rms_px;
+  if (!refined.valid || refined.rms_px > params_.max_rms_px) {
+    result->status = LedTrackStatus::kInconsistent;
+    history_.clear();
+    return;
+  }
+  result->T_CT = refined.T_CT;
+  result->covariance = refined.covariance;
+  history_.push_back({t_s, refined.T_CT});
+  while (history_.size() > 2) history_.pop_front();
+}
+
+}  // namespace aperture::perception

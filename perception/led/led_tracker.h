@@ -1,0 +1,95 @@
+#pragma once
+// Monocular pose tracking of an infrared-LED target (Faessler thesis, Appendix C, Fig. C.3):
+// detection (C.1)-(C.4) -> prediction (C.6), (C.7) with nearest-detection matching and
+// verification (C.3.5) -> brute-force correspondence search (Algorithm 1) only when that fails ->
+// Gauss-Newton refinement with covariance (C.8), (C.9).
+//
+// Output: T_CT (p_C = T_CT * p_T) with its 6x6 covariance [p_CT; rotation in C], or no pose with
+// the reason. Frames whose correspondences are ambiguous (one blob serving several LEDs, e.g. two
+// LEDs merged, leaving fewer than 4 unique correspondences) or whose refined reprojection error
+// exceeds max_rms_px are rejected rather than answered with a confident wrong pose.
+// Not thread-safe (keeps the pose history and buffers); one tracker per camera.
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <deque>
+#include <memory>
+#include <opencv2/core/mat.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "perception/camera/camera_model.h"
+#include "perception/led/led_configuration.h"
+#include "perception/led/led_correspondence_search.h"
+#include "perception/led/led_detector.h"
+#include "perception/led/led_pose_refiner.h"
+
+namespace aperture::perception {
+
+struct LedTrackerParams {
+  LedDetectorParams detector;
+  LedCorrespondenceParams correspondence;
+  LedPoseRefinerParams refiner;
+  double prediction_match_px = 5.0;  // prediction -> nearest detection gate (thesis: 5 px)
+  int roi_half_size_px = 24;         // ROI around each predicted LED; blob radius + motion
+  double max_rms_px = 2.0;           // refined reprojection RMS above: inconsistent frame
+};
+
+enum class LedTrackStatus {
+  kTracked,             // prediction verified, refined
+  kReinitialized,       // brute-force correspondences, refined
+  kNoDetections,        // fewer than 3 blobs (also: nothing in the image)
+  kNoCorrespondences,   // brute force found < 4 LEDs or no pose candidate fits
+  kAmbiguous,           // blobs shared by several LEDs leave < 4 unique correspondences
+  kInconsistent,        // refinement failed or reprojection RMS > max_rms_px
+};
+std::string LedTrackStatusName(LedTrackStatus status);
+
+struct LedTrackResult {
+  LedTrackStatus status = LedTrackStatus::kNoDetections;
+  std::optional<Eigen::Isometry3d> T_CT;
+  std::optional<Matrix6d> covariance;  // with T_CT
+  std::vector<LedDetection> detections;
+  std::vector<LedCorrespondence> correspondences;  // used for the pose (unique detections)
+  int merged_detections = 0;  // detections that several LEDs claimed (dropped)
+  double rms_px = 0.0;
+  bool used_roi = false;      // detection ran on ROIs around the prediction
+  bool used_brute_force = false;
+  std::string warning;        // e.g. the detector's blob cap
+  bool has_pose() const { return T_CT.has_value(); }
+};
+
+class LedTracker {
+ public:
+  LedTracker(LedConfiguration configuration, std::shared_ptr<const CameraModel> camera,
+             const LedTrackerParams& params = {});
+
+  // One frame at time t_s (seconds, increasing). image: 8-bit gray or BGR of the camera's size.
+  LedTrackResult Track(const cv::Mat& image, double t_s);
+  // The pose predicted for t_s by (C.6), (C.7); none without a previous pose.
+  std::optional<Eigen::Isometry3d> Predict(double t_s) const;
+  void Reset() { history_.clear(); }
+
+  const LedConfiguration& configuration() const { return configuration_; }
+  const CameraModel& camera() const { return *camera_; }
+
+ private:
+  struct TimedPose {
+    double t_s;
+    Eigen::Isometry3d T_CT;
+  };
+  // Nearest detection within prediction_match_px of every predicted LED.
+  std::vector<LedCorrespondence> MatchPrediction(const Eigen::Isometry3d& T_CT_predicted,
+                                                 const std::vector<LedDetection>& detections) const;
+  void Finish(LedTrackResult* result, const std::vector<LedCorrespondence>& correspondences,
+              const Eigen::Isometry3d& T_CT_initial, double t_s);
+
+  LedConfiguration configuration_;
+  std::shared_ptr<const CameraModel> camera_;
+  LedTrackerParams params_;
+  LedDetector detector_;
+  LedCorrespondenceSearch search_;
+  std::deque<TimedPose> history_;  // last two estimated poses
+};
+
+}  // namespace aperture::perception
