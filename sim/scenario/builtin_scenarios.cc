@@ -31,9 +31,6 @@ gap:
   center_W: [5.0, 0.0, 1.5]
   roll_deg: 0
   pitch_deg: 0
-  opening_m: [0.8, 0.28]
-  pattern_inner_m: [1.0, 0.48]
-  pattern_outer_m: [1.3, 0.78]
   panel_m: [1.8, 1.2]
 )";
 

@@ -188,6 +188,14 @@ TEST(GapScenarioTest, DetectorRecoversGroundTruthAlongTheApproach) {
   }
 }
 
+TEST(GapScenarioTest, DefaultPatternIsTheDetectorsDefault) {
+  const GapParams gap = Load("gap").gap;
+  const perception::GapDetectorParams detector;
+  EXPECT_EQ(gap.opening_m, detector.opening_size_m);
+  EXPECT_EQ(gap.pattern_inner_m, detector.inner_size_m);
+  EXPECT_EQ(gap.pattern_outer_m, detector.outer_size_m);
+}
+
 TEST(ScenarioLoadTest, UnknownKeyNamesFileLineAndKey) {
   const TempFile file("scenario_typo", "seed: 3\ngap:\n  rol_deg: 30\n");
   try {
