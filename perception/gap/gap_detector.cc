@@ -247,14 +247,16 @@ class Attempt {
       }
       if (best_g < 0.25 * p_.min_contrast || best == -r || best == r) continue;
       // Sub-pixel: where the profile crosses the mean of the two plateaus next to the edge
-      // (unbiased for any symmetric blur, unlike a parabola through the gradient peak).
-      const auto at = [&](int s) { return profile[std::clamp(s, -r - 1, r + 1) + r + 1]; };
-      const double mid = 0.5 * (at(best - 2) + at(best + 2));
+      // (unbiased for any symmetric blur, unlike a parabola through the gradient peak). Plateaus
+      // are the extremes of the two samples on each side, so a narrow band (the white band can
+      // be ~2 px wide) does not pull the mean level towards its other edge.
+      const auto v = [&](int s) { return polarity * profile[std::clamp(s, -r - 1, r + 1) + r + 1]; };
+      const double mid = 0.5 * (std::min(v(best - 1), v(best - 2)) + std::max(v(best + 1), v(best + 2)));
       double delta = 0.0;
       bool crossed = false;
       for (int k = best - 1; k <= best && !crossed; ++k) {
-        const double a = polarity * (at(k) - mid);
-        const double b = polarity * (at(k + 1) - mid);
+        const double a = v(k) - mid;
+        const double b = v(k + 1) - mid;
         if (a <= 0.0 && b >= 0.0 && b > a) {
           delta = k - a / (b - a) - best;
           crossed = true;
