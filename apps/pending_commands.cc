@@ -21,13 +21,6 @@ void AddPendingCommand(CLI::App& app, const std::string& name, const std::string
 
 }  // namespace
 
-void AddSimCommand(CLI::App& app, int* exit_code) {
-  AddPendingCommand(app, "sim", "Fly a scenario closed-loop in the rendered simulator",
-                    "It will run a scenario (gap, gapflyt, led, tags, forest, tracking, recovery) "
-                    "in lockstep SITL and write summary.json, CSVs, a video and report.html.",
-                    exit_code);
-}
-
 void AddBenchCommand(CLI::App& app, int* exit_code) {
   AddPendingCommand(app, "bench", "Run perception and control benchmarks against ground truth",
                     "It will run the gap, led and control benchmarks and write summary.json and "

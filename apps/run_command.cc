@@ -169,8 +169,12 @@ void AddRunCommand(CLI::App& app, int* exit_code) {
   command->add_option("--source", options->source,
                       "Image folder, video file, or camera:N (device index)")
       ->required();
+  perception::FrontEndRegistry registry;
+  perception::RegisterBuiltinFrontEnds(registry);
+  std::string known;
+  for (const std::string& name : registry.Names()) known += (known.empty() ? "" : ", ") + name;
   command->add_option("--frontends", options->front_ends,
-                      "Comma-separated front ends to run (known: image_quality)");
+                      "Comma-separated front ends to run (known: " + known + ")");
   command->add_option("--fps", options->fps,
                       "Frame rate [Hz] for sources without timestamps")
       ->check(CLI::PositiveNumber);

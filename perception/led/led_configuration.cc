@@ -83,13 +83,16 @@ LedConfiguration::LedConfiguration(std::vector<Eigen::Vector3d> p_T, std::string
   std::vector<Eigen::Vector3d> permuted(n);
   while (std::next_permutation(permutation.begin(), permutation.end())) {
     for (int i = 0; i < n; ++i) permuted[i] = p_T_[permutation[i]];
-    if (RigidAlignmentResidual(p_T_, permuted) < kSymmetryTolerance_m) {
+    const double residual = RigidAlignmentResidual(p_T_, permuted);
+    if (residual < kSymmetryTolerance_m) {
       std::string mapping;
       for (int i = 0; i < n; ++i) {
         mapping += (i ? ", " : "") + std::to_string(i) + "->" + std::to_string(permutation[i]);
       }
       Reject(source_, "is symmetric: a rigid motion maps the LEDs onto each other (" + mapping +
-                          "), so their correspondences are ambiguous; move one LED");
+                          ") within " + std::to_string(residual * 1e3) +
+                          " mm (tolerance 15 mm), so their correspondences are ambiguous; move "
+                          "one LED");
     }
   }
 }

@@ -34,7 +34,7 @@ TEST(Cli, MissingSubcommandExitsWithTwo) {
 }
 
 TEST(Cli, CommandsNotAvailableYetFailAndSaySo) {
-  for (const char* name : {"sim", "bench"}) {
+  for (const char* name : {"bench"}) {
     const CommandResult result = RunAperture(name);
     EXPECT_NE(result.exit_code, 0) << name;
     EXPECT_NE(result.output.find("not available yet"), std::string::npos) << result.output;

@@ -1,0 +1,344 @@
+// aperture sim: fly a scenario closed-loop in the lockstep SITL simulator.
+//
+//   aperture sim NAME [--config FILE] [--set key=value ...] [--seed N] [--duration S] --out DIR
+//
+// NAME is a built-in scenario (sim/scenario); --config/--set override its keys. The vehicle starts
+// at the scenario's start pose and the ground-truth autopilot holds it there (until mission
+// behaviours exist). Writes OUT/summary.json (outcome, crash reason and contact point,
+// real_time_factor, timing, hover errors, frame statistics), OUT/trajectory.csv and
+// OUT/trajectory.tum (ground truth), OUT/commands.csv, OUT/imu.csv, OUT/sim.mp4 (or .avi: the
+// onboard camera with overlays beside a third-person view from behind the vehicle) and
+// OUT/report.html (position and command plots, key frames).
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <opencv2/imgproc.hpp>
+#include <optional>
+
+#include "apps/command_support.h"
+#include "apps/commands.h"
+#include "output/csv_writer.h"
+#include "output/html_report.h"
+#include "output/progress_bar.h"
+#include "output/svg_plot.h"
+#include "output/tum_trajectory_writer.h"
+#include "output/video_writer.h"
+#include "perception/camera/pinhole_camera.h"
+#include "sim/scenario/scenario.h"
+#include "sim/scenario/scenario_sitl.h"
+#include "sim/sitl/ground_truth_autopilot.h"
+#include "sim/sitl/sitl_runner.h"
+
+namespace aperture::apps {
+namespace {
+
+struct SimOptions {
+  CommonOptions common;
+  std::string scenario;
+  std::optional<std::uint64_t> seed;
+  double duration_s = 10.0;
+};
+
+// Name of the marker box drawn for the vehicle in the third-person view; it is parked far below
+// the ground otherwise, and ignored by the collision check.
+constexpr const char* kVehicleMarker = "sitl_vehicle_marker";
+const Eigen::Vector3d kMarkerParking_W(0.0, 0.0, -1000.0);
+
+Eigen::Isometry3d PoseOf(const control::QuadState& state) {
+  Eigen::Isometry3d T_WB = Eigen::Isometry3d::Identity();
+  T_WB.linear() = state.q_WB.toRotationMatrix();
+  T_WB.translation() = state.p_WB;
+  return T_WB;
+}
+
+// Chase view: 1.6 m behind and 0.7 m above the vehicle in its heading frame (no roll/pitch, so the
+// horizon stays level), looking forward and 15 deg down.
+Eigen::Isometry3d ChaseCameraPose(const control::QuadState& state) {
+  const Eigen::Vector3d x_B = state.q_WB * Eigen::Vector3d::UnitX();
+  const double yaw = std::atan2(x_B.y(), x_B.x());
+  const Eigen::Matrix3d R_WH = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  // C (x right, y down, z forward) in the heading frame H (x forward, y left, z up), pitched down.
+  Eigen::Matrix3d R_HC;
+  R_HC << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  const double pitch = 15.0 * M_PI / 180.0;
+  R_HC = Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()).toRotationMatrix() * R_HC;
+  Eigen::Isometry3d T_WC = Eigen::Isometry3d::Identity();
+  T_WC.linear() = R_WH * R_HC;
+  T_WC.translation() = state.p_WB + R_WH * Eigen::Vector3d(-1.6, 0.0, 0.7);
+  return T_WC;
+}
+
+cv::Mat ToBgr(const cv::Mat& image) {
+  cv::Mat bgr;
+  if (image.channels() == 1) {
+    cv::cvtColor(image, bgr, cv::COLOR_GRAY2BGR);
+  } else {
+    bgr = image.clone();
+  }
+  return bgr;
+}
+
+void PutLines(cv::Mat* image, const std::vector<std::string>& lines) {
+  const double scale = std::max(0.35, image->rows / 800.0);
+  int y = static_cast<int>(18 * scale / 0.5);
+  for (const std::string& line : lines) {
+    cv::putText(*image, line, {6, y}, cv::FONT_HERSHEY_SIMPLEX, scale, cv::Scalar(0, 0, 0), 3);
+    cv::putText(*image, line, {6, y}, cv::FONT_HERSHEY_SIMPLEX, scale, cv::Scalar(0, 255, 255), 1);
+    y += static_cast<int>(22 * scale / 0.5);
+  }
+}
+
+std::string Format(const char* format, double a, double b = 0.0, double c = 0.0) {
+  char buffer[128];
+  std::snprintf(buffer, sizeof(buffer), format, a, b, c);
+  return buffer;
+}
+
+nlohmann::json Vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+void WriteTimeSeries(const sim::SitlResult& result, output::OutputFolder& out) {
+  output::CsvWriter trajectory(
+      out.Path("trajectory.csv"),
+      {"t_s", "p_x_m", "p_y_m", "p_z_m", "v_x_mps", "v_y_mps", "v_z_mps", "q_w", "q_x", "q_y",
+       "q_z", "omega_x_radps", "omega_y_radps", "omega_z_radps"});
+  output::TumTrajectoryWriter tum(out.Path("trajectory.tum"));
+  for (const control::QuadState& s : result.trajectory) {
+    trajectory.WriteRow({s.t_s, s.p_WB.x(), s.p_WB.y(), s.p_WB.z(), s.v_W.x(), s.v_W.y(), s.v_W.z(),
+                         s.q_WB.w(), s.q_WB.x(), s.q_WB.y(), s.q_WB.z(), s.omega_B.x(),
+                         s.omega_B.y(), s.omega_B.z()});
+    tum.Write(s.t_s, s.p_WB, s.q_WB);
+  }
+  trajectory.Close();
+  tum.Close();
+  output::CsvWriter commands(
+      out.Path("commands.csv"),
+      {"t_s", "kind", "collective_thrust_mps2", "omega_des_x_radps", "omega_des_y_radps",
+       "omega_des_z_radps", "rotor1_N", "rotor2_N", "rotor3_N", "rotor4_N"});
+  for (const sim::SitlCommandRecord& record : result.commands) {
+    const perception::AutopilotCommand& c = record.command;
+    const char* kind = c.kind == perception::AutopilotCommand::Kind::kThrustRates ? "thrust_rates"
+                       : c.kind == perception::AutopilotCommand::Kind::kRotorThrusts
+                           ? "rotor_thrusts"
+                           : "none";
+    const Eigen::Vector4d& f = record.rotor_thrusts_N;
+    commands.WriteCells({record.t_s, std::string(kind), c.thrust_rates.collective_thrust_mps2,
+                         c.thrust_rates.omega_des_B.x(), c.thrust_rates.omega_des_B.y(),
+                         c.thrust_rates.omega_des_B.z(), f(0), f(1), f(2), f(3)});
+  }
+  commands.Close();
+  output::CsvWriter imu(out.Path("imu.csv"), {"t_s", "acc_x_mps2", "acc_y_mps2", "acc_z_mps2",
+                                              "gyro_x_radps", "gyro_y_radps", "gyro_z_radps"});
+  for (const perception::ImuSample& s : result.imu) {
+    imu.WriteRow({s.t_s, s.specific_force_B.x(), s.specific_force_B.y(), s.specific_force_B.z(),
+                  s.omega_B.x(), s.omega_B.y(), s.omega_B.z()});
+  }
+  imu.Close();
+}
+
+void WriteReport(const sim::SitlResult& result, const std::vector<cv::Mat>& key_frames,
+                 const std::string& title, output::OutputFolder& out) {
+  output::HtmlReport report(title);
+  report.AddSection("Summary");
+  report.AddTable(out.summary());
+  std::vector<double> t, x, y, z;
+  for (const control::QuadState& s : result.trajectory) {
+    t.push_back(s.t_s);
+    x.push_back(s.p_WB.x());
+    y.push_back(s.p_WB.y());
+    z.push_back(s.p_WB.z());
+  }
+  report.AddSection("Trajectory");
+  report.AddSvg(output::SvgPlot({"Position (ground truth)", "t [s]", "p_WB [m]"})
+                    .AddLine("x", t, x)
+                    .AddLine("y", t, y)
+                    .AddLine("z", t, z)
+                    .Render());
+  std::vector<double> tc, thrust, wx, wy, wz;
+  std::vector<std::vector<double>> rotors(4);
+  for (const sim::SitlCommandRecord& record : result.commands) {
+    tc.push_back(record.t_s);
+    thrust.push_back(record.command.thrust_rates.collective_thrust_mps2);
+    wx.push_back(record.command.thrust_rates.omega_des_B.x());
+    wy.push_back(record.command.thrust_rates.omega_des_B.y());
+    wz.push_back(record.command.thrust_rates.omega_des_B.z());
+    for (int i = 0; i < 4; ++i) rotors[i].push_back(record.rotor_thrusts_N(i));
+  }
+  report.AddSection("Commands");
+  report.AddSvg(output::SvgPlot({"Collective thrust command", "t [s]", "c [m/s^2]"})
+                    .AddLine("c_cmd", tc, thrust)
+                    .Render());
+  report.AddSvg(output::SvgPlot({"Body-rate command", "t [s]", "omega_des [rad/s]"})
+                    .AddLine("p", tc, wx)
+                    .AddLine("q", tc, wy)
+                    .AddLine("r", tc, wz)
+                    .Render());
+  output::SvgPlot rotor_plot({"Rotor thrusts (flight controller)", "t [s]", "f [N]"});
+  for (int i = 0; i < 4; ++i) rotor_plot.AddLine("f" + std::to_string(i + 1), tc, rotors[i]);
+  report.AddSvg(rotor_plot.Render());
+  if (!key_frames.empty()) {
+    report.AddSection("Key frames (onboard | third person)");
+    for (const cv::Mat& frame : key_frames) report.AddImage(frame);
+  }
+  report.Write(out.Path("report.html"));
+}
+
+void RunSim(const SimOptions& options, output::OutputFolder& out) {
+  std::vector<std::string> set_items = options.common.set_items;
+  if (options.seed) set_items.push_back("seed=" + std::to_string(*options.seed));
+  const config::ConfigTree tree =
+      sim::ScenarioConfig(options.scenario, options.common.config_files, set_items);
+  const sim::ScenarioParams scenario_params = sim::LoadScenarioParams(tree);
+  sim::Scenario scenario = sim::BuildScenario(scenario_params);
+
+  sim::SitlRunnerParams params;
+  params.duration_s = options.duration_s;
+  params.trajectory_decimation = 5;  // 200 Hz ground truth in the outputs
+  sim::ConfigureSitlFromScenario(scenario, &params);
+  for (sim::SitlCamera& camera : params.cameras) camera.render.ground_truth = false;
+  const Eigen::Isometry3d T_WB_start = scenario.T_WB_start();
+  params.SetSeed(scenario_params.seed);
+  params.collision.ignored_objects.push_back(kVehicleMarker);
+  sim::Material marker_material;
+  marker_material.color = sim::Rgb(0.9f, 0.1f, 0.1f);  // red
+  Eigen::Isometry3d T_parking = Eigen::Isometry3d::Identity();
+  T_parking.translation() = kMarkerParking_W;
+  const int marker_id = scenario.scene().AddObject(
+      {kVehicleMarker, sim::Box{Eigen::Vector3d(0.36, 0.36, 0.06)}, marker_material, T_parking});
+
+  sim::SitlRunner runner(params, &scenario.scene());
+  sim::GroundTruthAutopilotParams autopilot_params;
+  autopilot_params.waypoints.push_back(
+      sim::Waypoint{params.initial_state.p_WB,
+                    std::atan2(T_WB_start.linear()(1, 0), T_WB_start.linear()(0, 0)), 0.0});
+  sim::GroundTruthAutopilot autopilot(params.dynamics.vehicle, autopilot_params);
+
+  // The video shows the first body-mounted camera (else the first camera) beside a third-person
+  // view of the same height, 4:3, colour.
+  int primary = 0;
+  for (int i = static_cast<int>(params.cameras.size()) - 1; i >= 0; --i) {
+    if (!params.cameras[i].T_WC_fixed) primary = i;
+  }
+  const int view_height = params.cameras.empty() ? 480 : params.cameras[primary].model->height();
+  const int view_width = view_height * 4 / 3;
+  const double focal_px = 0.5 * view_width / std::tan(35.0 * M_PI / 180.0);  // 70 deg FOV
+  const perception::PinholeCamera chase_camera(
+      view_width, view_height,
+      perception::PinholeIntrinsics{focal_px, focal_px, 0.5 * (view_width - 1),
+                                    0.5 * (view_height - 1)});
+  sim::RayCaster chase_caster;
+  sim::RenderOptions chase_options;
+  chase_options.color = true;
+  chase_options.ground_truth = false;
+  const sim::CameraEffects chase_effects(sim::CameraEffectsParams{});
+
+  std::unique_ptr<output::VideoWriter> video;
+  std::vector<cv::Mat> key_frames;
+  const int frames_expected =
+      params.cameras.empty() ? 0 : static_cast<int>(options.duration_s * params.cameras[0].rate_hz);
+  output::ProgressBar progress("frames", static_cast<std::size_t>(frames_expected));
+  int frames_seen = 0;
+  sim::SitlHooks hooks = sim::MakeScenarioHooks(&scenario);
+  hooks.on_frame = [&](int camera_index, const sim::CapturedFrame& captured,
+                       const control::QuadState& state) {
+    if (camera_index != primary) return;
+    cv::Mat onboard = ToBgr(captured.frame.image);
+    PutLines(&onboard,
+             {params.cameras[primary].name + Format("  t = %.2f s", state.t_s),
+              Format("p = [%.2f %.2f %.2f] m", state.p_WB.x(), state.p_WB.y(), state.p_WB.z()),
+              Format("|v| = %.2f m/s", state.v_W.norm()), autopilot.status()});
+    scenario.scene().SetPose(marker_id, PoseOf(state));
+    const sim::RenderOutput chase =
+        chase_caster.Render(scenario.scene(), chase_camera, ChaseCameraPose(state), chase_options);
+    scenario.scene().SetPose(marker_id, T_parking);
+    cv::Mat third_person = chase_effects.ToImage8U(chase.radiance, captured.frame.index);
+    PutLines(&third_person, {"third person"});
+    cv::Mat composite;
+    cv::hconcat(onboard, third_person, composite);
+    if (!video) {
+      video =
+          std::make_unique<output::VideoWriter>(out.Path("sim"), params.cameras[primary].rate_hz);
+    }
+    video->Write(composite);
+    if (frames_seen == 0 || frames_seen % 90 == 0) key_frames.push_back(composite);
+    progress.Update(static_cast<std::size_t>(++frames_seen));
+  };
+  const sim::SitlResult result = runner.Run(autopilot, hooks);
+  progress.Finish();
+
+  nlohmann::json& summary = out.summary();
+  summary["command"] = "sim";
+  summary["inputs"] = {{"scenario", options.scenario},
+                       {"seed", scenario_params.seed},
+                       {"duration_s", options.duration_s},
+                       {"autopilot", result.autopilot_name}};
+  summary["config"] = nlohmann::json::parse(tree.ToJson());
+  summary["outcome"] = sim::ToString(result.outcome);
+  summary["reason"] = result.reason;
+  if (result.collision) {
+    summary["collision"] = {{"object", result.collision->object_name},
+                            {"part", result.collision->part},
+                            {"contact_p_W_m", Vec(result.collision->contact_p_W)}};
+  }
+  summary["sim_time_s"] = result.sim_time_s;
+  summary["real_time_factor"] = result.real_time_factor;
+  summary["timing"] = {{"wall_time_s", result.timing.wall_time_s},
+                       {"dynamics_s", result.timing.dynamics_s},
+                       {"render_s", result.timing.render_s},
+                       {"autopilot_s", result.timing.autopilot_s},
+                       {"collision_s", result.timing.collision_s}};
+  double max_error_m = 0.0, sum_squared = 0.0;
+  for (const control::QuadState& s : result.trajectory) {
+    const double e = (s.p_WB - params.initial_state.p_WB).norm();
+    max_error_m = std::max(max_error_m, e);
+    sum_squared += e * e;
+  }
+  summary["hover_error_m"] = {{"max", max_error_m},
+                              {"rms", std::sqrt(sum_squared / result.trajectory.size())}};
+  nlohmann::json cameras = nlohmann::json::array();
+  for (const sim::SitlCameraStats& c : result.cameras) {
+    cameras.push_back({{"name", c.name},
+                       {"frames_due", c.frames_due},
+                       {"frames_dropped", c.frames_dropped},
+                       {"frames_delivered", c.frames_delivered}});
+  }
+  summary["cameras"] = cameras;
+  WriteTimeSeries(result, out);
+  nlohmann::json outputs = {{"trajectory", "trajectory.csv"},
+                            {"tum", "trajectory.tum"},
+                            {"commands", "commands.csv"},
+                            {"imu", "imu.csv"},
+                            {"report", "report.html"}};
+  if (video) {
+    if (const std::optional<std::string> path = video->Close()) {
+      outputs["video"] = std::filesystem::path(*path).filename().string();
+    }
+  }
+  summary["outputs"] = outputs;
+  WriteReport(result, key_frames, "aperture sim: " + options.scenario, out);
+  std::cout << "aperture sim " << options.scenario << ": " << sim::ToString(result.outcome) << " ("
+            << result.reason << ") after " << result.sim_time_s << " s, real-time factor "
+            << result.real_time_factor << "\n";
+}
+
+}  // namespace
+
+void AddSimCommand(CLI::App& app, int* exit_code) {
+  auto options = std::make_shared<SimOptions>();
+  CLI::App* command =
+      app.add_subcommand("sim", "Fly a scenario closed-loop in the rendered simulator (SITL)");
+  command->add_option("scenario", options->scenario, "Built-in scenario name (see aperture render)")
+      ->required();
+  command->add_option("--seed", options->seed, "Seed of the scenario and every sensor stream");
+  command->add_option("--duration", options->duration_s, "Simulated time [s]")
+      ->check(CLI::PositiveNumber);
+  AddCommonOptions(command, &options->common);
+  command->callback([options, exit_code] {
+    output::OutputFolder out(options->common.out_dir);
+    output::RunAndWriteSummary(out, [&] { RunSim(*options, out); });
+    *exit_code = 0;
+  });
+}
+
+}  // namespace aperture::apps

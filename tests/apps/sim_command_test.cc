@@ -1,0 +1,78 @@
+// `aperture sim` end to end on built-in scenarios with tiny cameras: outputs, outcome, crashes.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "tests/apps/cli_runner.h"
+
+namespace aperture::apps::testing {
+namespace {
+
+namespace fs = std::filesystem;
+
+nlohmann::json ReadJson(const fs::path& path) {
+  std::ifstream file(path);
+  return nlohmann::json::parse(file);
+}
+
+std::size_t CountLines(const fs::path& path) {
+  std::ifstream file(path);
+  std::size_t lines = 0;
+  for (std::string line; std::getline(file, line);) ++lines;
+  return lines;
+}
+
+TEST(SimCommand, HoverInTheGapScenarioWritesEveryOutput) {
+  TempFolder temp("sim");
+  const fs::path out = fs::path(temp.path()) / "out";
+  const CommandResult result = RunAperture(
+      "sim gap --duration 0.5 --seed 3 --set cameras.front.width=94 --set cameras.front.height=60 "
+      "--out " +
+      out.string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const nlohmann::json summary = ReadJson(out / "summary.json");
+  EXPECT_EQ(summary["status"], "ok");
+  EXPECT_EQ(summary["outcome"], "duration_reached");
+  EXPECT_EQ(summary["inputs"]["seed"], 3);
+  EXPECT_NEAR(summary["sim_time_s"].get<double>(), 0.5, 1e-6);
+  EXPECT_GT(summary["real_time_factor"].get<double>(), 0.0);
+  // Ground-truth hover from a hover start without disturbances: sub-centimetre.
+  EXPECT_LT(summary["hover_error_m"]["max"].get<double>(), 0.01);
+  // 50 Hz camera over [0, 0.5] s inclusive.
+  EXPECT_EQ(summary["cameras"][0]["frames_delivered"], 26);
+  // 200 Hz ground truth over 0.5 s plus the start; TUM has one comment line, the CSV a header.
+  EXPECT_EQ(CountLines(out / "trajectory.tum"), 1u + 101u);
+  EXPECT_EQ(CountLines(out / "trajectory.csv"), 1u + 101u);
+  EXPECT_EQ(CountLines(out / "commands.csv"), 1u + 51u);  // 100 Hz autopilot
+  EXPECT_TRUE(fs::exists(out / "report.html"));
+  ASSERT_TRUE(summary["outputs"].contains("video"));
+  EXPECT_GT(fs::file_size(out / summary["outputs"]["video"].get<std::string>()), 0u);
+}
+
+TEST(SimCommand, StartingInTheGroundEndsWithAGroundCollision) {
+  TempFolder temp("sim_crash");
+  const fs::path out = fs::path(temp.path()) / "out";
+  const CommandResult result = RunAperture(
+      "sim gapflyt --duration 2 --set cameras.front.width=80 --set cameras.front.height=60 "
+      "--set 'vehicle.start.p_m=[0, 0, 0.05]' --out " +
+      out.string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const nlohmann::json summary = ReadJson(out / "summary.json");
+  EXPECT_EQ(summary["outcome"], "collision");
+  EXPECT_EQ(summary["collision"]["object"], "ground");
+  EXPECT_DOUBLE_EQ(summary["collision"]["contact_p_W_m"][2].get<double>(), 0.0);
+  EXPECT_LT(summary["sim_time_s"].get<double>(), 0.01);
+}
+
+TEST(SimCommand, UnknownScenarioFailsNamingIt) {
+  TempFolder temp("sim_bad");
+  const CommandResult result =
+      RunAperture("sim nowhere --out " + (fs::path(temp.path()) / "out").string());
+  EXPECT_NE(result.exit_code, 0);
+  EXPECT_NE(result.output.find("nowhere"), std::string::npos) << result.output;
+}
+
+}  // namespace
+}  // namespace aperture::apps::testing
