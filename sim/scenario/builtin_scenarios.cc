@@ -31,10 +31,7 @@ gap:
   center_W: [5.0, 0.0, 1.5]
   roll_deg: 0
   pitch_deg: 0
-  opening_m: [0.8, 0.28]
-  pattern_inner_m: [0.9, 0.38]
-  pattern_outer_m: [1.3, 0.78]
-  panel_m: [1.7, 1.2]
+  panel_m: [1.8, 1.2]
 )";
 
 // Seed 002: foreground wall ~2.6 m, background ~5.7 m, lateral motion for parallax.

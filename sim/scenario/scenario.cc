@@ -1,13 +1,13 @@
 #include "sim/scenario/scenario.h"
 
 #include <cmath>
-#include <opencv2/imgproc.hpp>
 #include <optional>
 #include <stdexcept>
 
 #include "perception/camera/camera_factory.h"
 #include "sim/scene/apriltag_object.h"
 #include "sim/scene/counter_hash.h"
+#include "sim/scene/gap_pattern_object.h"
 
 namespace aperture::sim {
 namespace {
@@ -114,28 +114,12 @@ class Builder {
          Eigen::AngleAxisd(gap.roll_deg * kDegToRad, Eigen::Vector3d::UnitX()))
             .toRotationMatrix() *
         FacingPlusX();
-    // Pattern texture over the panel: texel (0, 0) at the panel's top-left corner (u = x_G +
-    // panel.x / 2, v = y_G + panel.y / 2). White 0.95, black 0.05 like printed paper.
-    const double texel = gap.texel_size_m;
-    const auto to_px = [texel](double uv_m) { return static_cast<int>(std::lround(uv_m / texel)); };
-    cv::Mat pattern(to_px(gap.panel_m.y()), to_px(gap.panel_m.x()), CV_8UC3, cv::Scalar::all(242));
-    const auto fill = [&](const Eigen::Vector2d& size_m, int value) {
-      const Eigen::Vector2d corner = (gap.panel_m - size_m) / 2.0;
-      cv::rectangle(
-          pattern, cv::Point(to_px(corner.x()), to_px(corner.y())),
-          cv::Point(to_px(corner.x() + size_m.x()) - 1, to_px(corner.y() + size_m.y()) - 1),
-          cv::Scalar::all(value), cv::FILLED);
-    };
-    fill(gap.pattern_outer_m, 13);
-    fill(gap.pattern_inner_m, 242);
-    Material material;
-    material.texture = std::make_shared<Texture>(pattern, texel, Texture::Filter::kBilinear,
-                                                 Texture::Wrap::kClamp);
-    material.color = Rgb::Ones();
-    const Eigen::Vector2d h = gap.opening_m / 2.0;
-    Rectangle panel{
-        gap.panel_m, {{{-h.x(), -h.y()}, {h.x(), -h.y()}, {h.x(), h.y()}, {-h.x(), h.y()}}}, {}};
-    Add({"gap", panel, material, Jitter(Facing(R_WG, gap.center_W))});
+    // The detector's own pattern definition, so `gap.*` sizes and GapDetectorParams agree.
+    perception::GapDetectorParams pattern;
+    pattern.opening_size_m = gap.opening_m;
+    pattern.inner_size_m = gap.pattern_inner_m;
+    pattern.outer_size_m = gap.pattern_outer_m;
+    Add(MakeGapPatternObject(pattern, gap.panel_m, Jitter(Facing(R_WG, gap.center_W))));
 
     // Textured room around it: x from -3 m, centred in y, floor at z = 0.
     const Eigen::Vector3d room = gap.room_m;

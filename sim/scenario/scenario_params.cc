@@ -177,10 +177,8 @@ void LoadParams(config::ParamReader& reader, GapParams* params) {
   reader.Read("pattern_inner_m", &params->pattern_inner_m);
   reader.Read("pattern_outer_m", &params->pattern_outer_m);
   reader.Read("panel_m", &params->panel_m);
-  reader.Read("texel_size_m", &params->texel_size_m);
   reader.Read("room_m", &params->room_m);
   RequirePositive(reader, "opening_m", params->opening_m);
-  RequirePositive(reader, "texel_size_m", params->texel_size_m);
   RequirePositive(reader, "room_m", params->room_m);
   const bool nested = (params->pattern_inner_m.array() > params->opening_m.array()).all() &&
                       (params->pattern_outer_m.array() > params->pattern_inner_m.array()).all() &&

@@ -114,9 +114,11 @@ struct TrajectoryParams {
 };
 
 // Patterned gap (seed 000): a white panel with a black rectangular band around a rectangular
-// opening; the detector sees nested quadrangles (band outer and inner edge). Frame G: centre of
-// the opening, z_G along the approach direction (+x_W at zero angles), x_G = -y_W, y_G = -z_W
-// (so the pattern reads unmirrored from the approach side); roll/pitch rotate about x_W / y_W.
+// opening (sim/scene/gap_pattern_object.h, the pattern of perception/gap/gap_detector.h); the
+// detector sees nested quadrangles (band outer and inner edge). Defaults = GapDetectorParams'.
+// Frame G: centre of the opening, z_G along the approach direction (+x_W at zero angles),
+// x_G = -y_W, y_G = -z_W (so the pattern reads unmirrored from the approach side); roll/pitch
+// rotate about x_W / y_W. Sizes in multiples of 2 cm put every edge on a texel border.
 struct GapParams {
   Eigen::Vector3d center_W = Eigen::Vector3d(5.0, 0.0, 1.5);
   double roll_deg = 0.0;   // about x_W (the paper's roll, 0..45 deg)
