@@ -81,7 +81,6 @@ struct Quad {
 
 struct Side {
   std::vector<Vec3> bearings_C;    // sub-pixel edge samples
-  std::vector<double> px_per_rad;  // weight turning bearing residuals into pixels
   Vec3 normal_C = Vec3::Zero();    // great-circle (plane through C) normal of the fitted edge
 };
 
@@ -220,7 +219,6 @@ class Attempt {
     const int r = p_.edge_search_px;
     std::vector<double> profile(2 * r + 3);
     side->bearings_C.clear();
-    side->px_per_rad.clear();
     for (int i = 0; i < n; ++i) {
       const double t = p_.corner_exclusion + (1.0 - 2.0 * p_.corner_exclusion) * (i + 0.5) / n;
       const Vec3 b = ((1.0 - t) * b0 + t * b1).normalized();
@@ -299,11 +297,14 @@ class Attempt {
 
   // Gauss-Newton on SE(3) minimizing the pixel distances of all edge samples to the projected
   // model edges (bearing-to-plane residual scaled to pixels). Returns false on degeneracy.
-  bool Refine(std::array<Side, 8>& sides, Mat3* R, Vec3* t, GapDetection* out) const {
+  bool Refine(const std::array<Side, 8>& sides, Mat3* R, Vec3* t, GapDetection* out) const {
     std::array<Vec3, 8> n;
     std::array<Eigen::Matrix<double, 3, 6>, 8> dn;
     ModelNormals(*R, *t, &n, nullptr);
-    // Pixels per radian off the edge's plane at each sample (fixed weights from the start pose).
+    // Residual of sample i on edge e: r_i = f_i * n_e . b_i (sine of the angle between the
+    // sample's bearing and the plane through C and the model edge, times f_i = pixels per radian
+    // off that plane through the camera model; weights fixed at the start pose). The sum of
+    // squares per edge collapses to n_e^T M_e n_e with M_e = sum f_i^2 b_i b_i^T.
     std::array<Mat3, 8> M;
     int samples = 0;
     for (int e = 0; e < 8; ++e) {
