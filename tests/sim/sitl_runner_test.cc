@@ -321,6 +321,61 @@ TEST(SitlRunner, FlyingIntoTheGroundEndsTheRun) {
   EXPECT_LT(result.sim_time_s, 5.0);
 }
 
+// Rotor thrusts stepped at t = 0.5 s: the flight controller applies them command_latency_s later.
+class ThrustStepAutopilot : public perception::Autopilot {
+ public:
+  std::string name() const override { return "thrust_step"; }
+  perception::AutopilotCommand Step(double t_s) override {
+    perception::AutopilotCommand command;
+    command.kind = perception::AutopilotCommand::Kind::kRotorThrusts;
+    // Near the hover thrust m g / 4 = 1.104 N, so the vehicle stays airborne.
+    command.rotor_thrusts.thrust_N.setConstant(t_s < 0.5 - 1e-9 ? 1.10 : 1.15);
+    return command;
+  }
+};
+
+TEST(SitlRunner, CommandLatencyDelaysTheFlightControllerOutput) {
+  for (const double latency_s : {0.0, 0.05}) {
+    SitlRunnerParams params = QuietParams(1.0);
+    params.command_latency_s = latency_s;
+    SitlRunner runner(params, nullptr);
+    ThrustStepAutopilot autopilot;
+    const SitlResult result = runner.Run(autopilot);
+    double first_s = -1.0;
+    for (const SitlCommandRecord& record : result.commands) {
+      if (record.rotor_thrusts_N(0) > 1.125) {
+        first_s = record.t_s;
+        break;
+      }
+    }
+    // Records carry the flight-controller output of the step before: the new thrust applied at
+    // 0.5 s + latency shows in the next 100 Hz record.
+    EXPECT_NEAR(first_s, 0.5 + latency_s + 0.01, 1e-6) << "latency " << latency_s;
+  }
+}
+
+// A push is applied through the disturbances: the hover autopilot is knocked away, then returns.
+TEST(SitlRunner, PushDisturbsTheHoverWhichRecovers) {
+  SitlRunnerParams params = QuietParams(5.0);
+  params.disturbances.pushes.push_back(Push{1.0, Eigen::Vector3d(0.45, 0.0, 0.0)});  // 1 m/s
+  SitlRunner runner(params, nullptr);
+  GroundTruthAutopilot autopilot(params.dynamics.vehicle, HoverAt(params.initial_state.p_WB));
+  const SitlResult result = runner.Run(autopilot);
+  ASSERT_EQ(result.outcome, SitlResult::Outcome::kDurationReached) << result.reason;
+  double max_x = 0.0;
+  for (const control::QuadState& s : result.trajectory) {
+    if (s.t_s < 1.0) {
+      EXPECT_LT(s.p_WB.norm() - 1.5, 1e-6);  // undisturbed before the push
+    }
+    max_x = std::max(max_x, s.p_WB.x());
+  }
+  // 1 m/s against p = 5, d = 4 (damping 0.9, omega_n 2.2 /s): peak ~ v / omega_n * 0.6 ~ 0.2 m.
+  EXPECT_GT(max_x, 0.1);
+  EXPECT_LT(max_x, 0.4);
+  // Four seconds (~9 / omega_n) later it is back within 1 cm.
+  EXPECT_LT((result.trajectory.back().p_WB - params.initial_state.p_WB).norm(), 0.01);
+}
+
 // A world-fixed camera sees the same (noise-free) images whatever the vehicle does; a body
 // camera does not.
 TEST(SitlRunner, WorldFixedCameraIgnoresTheVehiclePose) {
