@@ -244,23 +244,18 @@ class Attempt {
         }
       }
       if (best_g < 0.25 * p_.min_contrast || best == -r || best == r) continue;
-      // Sub-pixel: where the profile crosses the mean of the two plateaus next to the edge
-      // (unbiased for any symmetric blur, unlike a parabola through the gradient peak). Plateaus
-      // are the extremes of the two samples on each side, so a narrow band (the white band can
-      // be ~2 px wide) does not pull the mean level towards its other edge.
+      // Sub-pixel by area: between the dark and the bright plateau, the normalized samples
+      // best-1 .. best+1 sum to (best + 1.5) - edge for any pixel-area / symmetric blur inside
+      // the window, so the estimate is free of the phase-dependent bias of interpolating a
+      // crossing or fitting a parabola. Plateaus are the extremes of the two samples on each
+      // side, so a narrow band (the white band can be ~2 px wide) does not bias the levels.
       const auto v = [&](int s) { return polarity * profile[std::clamp(s, -r - 1, r + 1) + r + 1]; };
-      const double mid = 0.5 * (std::min(v(best - 1), v(best - 2)) + std::max(v(best + 1), v(best + 2)));
-      double delta = 0.0;
-      bool crossed = false;
-      for (int k = best - 1; k <= best && !crossed; ++k) {
-        const double a = v(k) - mid;
-        const double b = v(k + 1) - mid;
-        if (a <= 0.0 && b >= 0.0 && b > a) {
-          delta = k - a / (b - a) - best;
-          crossed = true;
-        }
-      }
-      if (!crossed) continue;
+      const double lo = std::min(v(best - 1), v(best - 2));
+      const double hi = std::max(v(best + 1), v(best + 2));
+      if (hi - lo < 0.5 * p_.min_contrast) continue;
+      double bright = 0.0;
+      for (int k = best - 1; k <= best + 1; ++k) bright += std::clamp((v(k) - lo) / (hi - lo), 0.0, 1.0);
+      const double delta = 1.5 - bright;
       const Vec2 edge_px = px + (best + delta) * out;
       side->bearings_C.push_back(camera_.Unproject(edge_px));
     }
