@@ -13,7 +13,7 @@
 //   OUT/calib.yaml             camera calibration (OpenCV format, with T_BC)
 //   OUT/scenario.yaml          effective scenario configuration (reproduces the run)
 //   OUT/summary.json, OUT/report.html
-// so that `aperture run --source OUT/images --calib OUT/calib.yaml` replays the dataset.
+// so that `aperture run --source OUT --calib OUT/calib.yaml` replays the dataset.
 #include <algorithm>
 #include <chrono>
 #include <filesystem>

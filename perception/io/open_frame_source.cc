@@ -10,6 +10,16 @@
 
 namespace aperture::perception {
 namespace fs = std::filesystem;
+namespace {
+
+bool HoldsImages(const fs::path& folder) {
+  for (const auto& entry : fs::directory_iterator(folder)) {
+    if (entry.is_regular_file() && HasImageExtension(entry.path())) return true;
+  }
+  return false;
+}
+
+}  // namespace
 
 std::unique_ptr<FrameSource> OpenFrameSource(const std::string& spec,
                                              const FrameSourceOptions& options) {
@@ -35,7 +45,14 @@ std::unique_ptr<FrameSource> OpenFrameSource(const std::string& spec,
                              "' does not exist; give an image folder, a video file or "
                              "camera:<N>");
   }
-  if (fs::is_directory(path)) return std::make_unique<ImageFolderSource>(path, options);
+  if (fs::is_directory(path)) {
+    // A dataset folder (as `aperture render` writes) keeps its frames in images/.
+    const fs::path images = path / "images";
+    if (!HoldsImages(path) && fs::is_directory(images) && HoldsImages(images)) {
+      return std::make_unique<ImageFolderSource>(images, options);
+    }
+    return std::make_unique<ImageFolderSource>(path, options);
+  }
   if (HasImageExtension(path)) {
     throw std::invalid_argument("frame source '" + spec +
                                 "' is a single image; give the folder that holds the sequence (" +

@@ -3,7 +3,9 @@
 // `aperture run --source <spec> [--fps F] [--skip-bad-frames] [--color]`.
 //
 //   camera:<N>        CameraDeviceSource on device index N (N >= 0)
-//   <folder>          ImageFolderSource (see image_folder_source.h for timestamps)
+//   <folder>          ImageFolderSource (see image_folder_source.h for timestamps); a dataset
+//                     folder without images of its own but with an images/ subfolder (the
+//                     layout `aperture render` writes) reads images/
 //   <file>            VideoFileSource (any container the installed OpenCV decodes)
 //
 // Throws std::invalid_argument for a malformed camera spec or a single image file given instead

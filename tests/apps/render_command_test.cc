@@ -74,7 +74,8 @@ TEST_F(RenderCommand, DatasetReplaysThroughRun) {
   EXPECT_TRUE(fs::exists(dataset_ / "report.html"));
 
   const fs::path out = fs::path(temp_->path()) / "run";
-  const CommandResult run = RunAperture("run --source " + (dataset_ / "images").string() +
+  // The dataset folder itself is a source: its frames are found in images/.
+  const CommandResult run = RunAperture("run --source " + dataset_.string() +
                                         " --calib " + (dataset_ / "calib.yaml").string() +
                                         " --frontends image_quality --out " + out.string());
   ASSERT_EQ(run.exit_code, 0) << run.output;
