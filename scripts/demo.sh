@@ -1,17 +1,11 @@
 #!/usr/bin/env bash
-# The main demo, run by `make demo`: aperture's front ends on a real recorded image sequence.
-# Until the simulator lands this runs the image-quality front end on ViSP's "mbt/cube" sequence
-# (218 real camera frames shipped by Debian's visp-images-data) and writes summary.json, a CSV,
-# an overlay video and report.html into the output folder.
+# The main demo, run by `make demo`: the simulated vehicle in front of the narrow gap of seed 000,
+# inclined by 30 degrees, seen by its onboard 180-degree fisheye camera. Until the gap mission
+# lands the vehicle holds its hover with the ground-truth autopilot; the run writes summary.json,
+# CSVs, the onboard/third-person video and report.html into the output folder.
 set -euo pipefail
 aperture=${1:?usage: demo.sh APERTURE_BINARY OUT_DIR}
 out=${2:?usage: demo.sh APERTURE_BINARY OUT_DIR}
 
-sequence=$(dpkg -L visp-images-data 2>/dev/null | grep -m1 '/ViSP-images/mbt/cube/image0000.pgm$' || true)
-if [[ -z "$sequence" ]]; then
-  echo "demo: the ViSP image sequence is missing; run scripts/install-deps.sh (visp-images-data)." >&2
-  exit 1
-fi
-"$aperture" run --source "$(dirname "$sequence")" --fps 30 --frontends image_quality \
-  --video --out "$out"
-echo "demo: open $out/report.html"
+"$aperture" sim gap --duration 3 --set gap.roll_deg=30 --out "$out"
+echo "demo: open $out/report.html (video: $out/sim.mp4)"
