@@ -7,7 +7,8 @@
 // Calling contract (the driver is the SITL runner or a hardware node; all times on the data
 // source's clock, the simulator clock in SITL):
 //   * OnImu / OnFrame / OnRange are called when a measurement is *delivered* (after its latency),
-//     in delivery order, each sample's own t_s being its measurement time.
+//     in delivery order (the SITL runner delivers per 1 ms step: IMU, then range, then frames),
+//     each sample's own t_s being its measurement time.
 //   * Step(t_s) is called at the high-level control rate (50-100 Hz typically) with the current
 //     time, after every measurement delivered up to t_s; it returns the command to apply from now
 //     on. The driver holds the last command until the next Step.

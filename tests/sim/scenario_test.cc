@@ -243,6 +243,22 @@ TEST(ScenarioLoadTest, LedConfigFileSetsTheLeds) {
   EXPECT_TRUE(scenario.scene().object("led_target").T_WO.isApprox(T_WB, 1e-12));
 }
 
+TEST(ScenarioLoadTest, LedFalseSpotsAreSeededEmittersInTheArea) {
+  const Scenario a = BuildScenario(Load("led", {"led.false_spots=3", "seed=4"}));
+  const Scenario b = BuildScenario(Load("led", {"led.false_spots=3", "seed=4"}));
+  const LedSceneParams& led = a.params().led;
+  for (int k = 0; k < 3; ++k) {
+    const std::string name = "false_spot" + std::to_string(k);
+    const Eigen::Vector3d p = a.scene().object(name).T_WO.translation();
+    EXPECT_EQ(p, b.scene().object(name).T_WO.translation());
+    EXPECT_TRUE(std::holds_alternative<Led>(a.scene().object(name).primitive));
+    EXPECT_LE(std::abs(p.x()), led.false_spot_area_m.x() / 2);
+    EXPECT_LE(std::abs(p.y()), led.false_spot_area_m.y() / 2);
+    EXPECT_EQ(p.z(), led.false_spot_height_m);
+  }
+  EXPECT_EQ(a.scene().FindId("false_spot3"), -1);
+}
+
 // Image hash of a captured (noisy) frame at a small resolution.
 std::size_t FrameHash(const std::string& name, int seed) {
   ScenarioParams params = Load(name, {"seed=" + std::to_string(seed)});
