@@ -183,19 +183,23 @@ class Attempt {
           std::vector<Vec3> model_corners_G)
       : p_(params), camera_(camera), gray_(gray), model_G_(std::move(model_corners_G)) {}
 
-  // Mean intensity outside minus inside along the quad's sides.
+  // Mean intensity outside minus inside along the quad's sides. Sample points follow the
+  // sides as great circles (curved in a fisheye image), not the chords between the corners.
   double Contrast(const Quad& q) const {
     double outside = 0.0, inside = 0.0;
     int n = 0;
     for (int k = 0; k < 4; ++k) {
-      const Vec2 a = q.px[k];
-      const Vec2 b = q.px[(k + 1) % 4];
-      const Vec2 d = b - a;
-      const double len = d.norm();
-      const Vec2 out(d.y() / len, -d.x() / len);  // outward for clockwise-on-screen order
-      const double offset = std::clamp(0.1 * len, 1.5, 4.0);
+      const Vec3& b0 = q.bearing_C[k];
+      const Vec3& b1 = q.bearing_C[(k + 1) % 4];
+      const double offset = std::clamp(0.1 * (q.px[(k + 1) % 4] - q.px[k]).norm(), 1.5, 4.0);
       for (double t : {0.3, 0.5, 0.7}) {
-        const Vec2 m = a + t * d;
+        Vec2 m, m_next;
+        if (!camera_.Project(((1.0 - t) * b0 + t * b1).normalized(), &m) ||
+            !camera_.Project(((0.99 - t) * b0 + (t + 0.01) * b1).normalized(), &m_next)) {
+          continue;
+        }
+        const Vec2 tangent = (m_next - m).normalized();
+        const Vec2 out(tangent.y(), -tangent.x());  // outward for clockwise-on-screen order
         const Vec2 po = m + offset * out;
         const Vec2 pi = m - offset * out;
         if (!Inside(gray_, po, 0.0) || !Inside(gray_, pi, 0.0)) continue;

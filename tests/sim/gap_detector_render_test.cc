@@ -251,6 +251,31 @@ INSTANTIATE_TEST_SUITE_P(Lenses, GapDetectorRenderTest, ::testing::Values(Lens::
                            return info.param == Lens::kPinhole ? "Pinhole" : "Fisheye";
                          });
 
+// Close up on the fisheye the pattern's sides are strongly curved in the image (the pattern
+// spans +-41 deg at 0.75 m): polarity checks and edge sampling must follow the curved sides.
+TEST(GapDetectorCloseUpTest, FisheyeCloseUpWithCurvedSides) {
+  const auto camera = std::shared_ptr<const CameraModel>(testing::MakeTestFisheye());
+  GapDetector detector(GapDetectorParams{}, camera);
+  const Eigen::Isometry3d T_WG = GapPose(0.0, 0.0, Eigen::Vector3d(0.0, 0.0, 2.0));
+  Scene scene;
+  scene.AddObject(MakeGapPanel(GapDetectorParams{}, T_WG));
+  AddClutter(&scene, 7.0);
+  RayCaster caster;
+  RenderOptions options;
+  options.supersampling = 2;
+  for (const Eigen::Vector3d& p_GC : {Eigen::Vector3d(0.0, 0.0, -0.75), Eigen::Vector3d(0.0, 0.0, -0.9), Eigen::Vector3d(0.2, -0.1, -0.8)}) {
+    const Eigen::Vector3d p_WC = T_WG * p_GC;
+    const Eigen::Isometry3d T_WC = testing::LookAt(p_WC, T_WG.translation() - p_WC);
+    const cv::Mat image = CameraEffects({}).ToImage8U(caster.Render(scene, *camera, T_WC, options).radiance, 0);
+    const GapDetection d = detector.DetectFullImage(image);
+    ASSERT_TRUE(d.detected()) << p_GC.transpose() << ": " << GapDetectionStatusName(d.status);
+    const Eigen::Isometry3d T_CG_true = Canonical(T_WC.inverse() * T_WG);
+    // The accuracy targets (1 % of the distance, 1 deg) on a single frame.
+    EXPECT_LT((d.T_CG.translation() - T_CG_true.translation()).norm(), 0.01 * p_GC.norm());
+    EXPECT_LT(RotationErrorDeg(d.T_CG, T_CG_true), 1.0);
+  }
+}
+
 // No detection without a gap: a cluttered textured scene, all black, all white, pure noise.
 TEST(GapDetectorNegativeTest, NoDetectionWithoutGap) {
   for (const auto& camera : {std::shared_ptr<const CameraModel>(testing::MakeTestPinhole()),
