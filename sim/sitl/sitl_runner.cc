@@ -45,10 +45,11 @@ class PoseHistory {
     }
   }
   // T_WB at t_s: linear in position, slerp in attitude; clamped to the recorded span.
+  // With a single recorded state (the first frame of a run) that state's pose.
   Eigen::Isometry3d T_WB(double t_s) const {
-    size_t i = 1;
+    size_t i = std::min<size_t>(1, states_.size() - 1);
     while (i + 1 < states_.size() && states_[i].t_s < t_s) ++i;
-    const control::QuadState& a = states_[i - 1];
+    const control::QuadState& a = states_[i > 0 ? i - 1 : 0];
     const control::QuadState& b = states_[i];
     double s = (b.t_s > a.t_s) ? (t_s - a.t_s) / (b.t_s - a.t_s) : 1.0;
     s = std::min(1.0, std::max(0.0, s));
