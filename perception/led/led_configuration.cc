@@ -115,14 +115,15 @@ LedConfiguration LedConfiguration::Load(const std::string& path) {
 }
 
 LedConfiguration LedConfiguration::Default() {
-  // Irregular on purpose: four LEDs at uneven angles around the rim, one raised inside, so no
+  // Irregular on purpose: four LEDs at uneven angles around the rim, one lowered inside, so no
   // relabelling comes close to a rigid motion (a near-regular pentagon would be ambiguous at
-  // lambda_r = 5 px).
+  // lambda_r = 5 px). Four lie in the arm plane outside the body, one hangs below it (z < 0),
+  // where the `led` scenario's ground camera sees them all; the scenario uses this same layout.
   return LedConfiguration({{0.000, 0.105, 0.000},
                            {0.100, 0.010, 0.000},
-                           {0.020, -0.090, 0.030},
+                           {0.020, -0.090, -0.030},
                            {-0.090, -0.040, 0.000},
-                           {-0.040, 0.040, 0.080}},
+                           {-0.040, 0.040, -0.080}},
                           "built-in default");
 }
 

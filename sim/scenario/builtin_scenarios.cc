@@ -55,7 +55,7 @@ gapflyt:
   size_m: [1.0, 0.8]
 )";
 
-// Seed 001 paper C: quadrotor with 4 infrared LEDs over a static upward-looking camera.
+// Seed 001 paper C: quadrotor with 5 infrared LEDs over a static upward-looking camera.
 constexpr const char* kLedYaml = R"(scenario: led
 seed: 0
 vehicle: {start: {p_m: [0.0, 0.0, 2.0], rpy_deg: [0, 0, 0]}}
@@ -72,7 +72,9 @@ cameras:
     read_noise_sigma: 0.01
 trajectory: {kind: random, frames: 40, amplitude_m: 0.4, angle_amplitude_deg: 20}
 led:
-  leds: [[0.17, 0.0, -0.02], [0.0, 0.13, -0.03], [-0.12, 0.0, -0.02], [0.0, -0.17, -0.04]]
+  # The led front end's built-in layout (perception/led/led_configuration.cc), so a rendered
+  # sequence replays through `aperture run --frontends led` without a config file.
+  leds: [[0.0, 0.105, 0.0], [0.1, 0.01, 0.0], [0.02, -0.09, -0.03], [-0.09, -0.04, 0.0], [-0.04, 0.04, -0.08]]
   false_spots: 0
 )";
 
