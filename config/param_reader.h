@@ -67,6 +67,11 @@ class ParamReader {
   template <typename T>
   void ReadSection(const std::string& key, T* value);
 
+  // Calls params.Validate() and re-throws its std::invalid_argument prefixed with the location
+  // and name of this section, so a non-physical value names the file (or --set item) it came from.
+  template <typename Params>
+  void Validate(const Params& params) const;
+
   // True when `key` is present in the map (does not mark it as known).
   bool Has(const std::string& key) const;
 
@@ -190,6 +195,17 @@ void ParamReader::ReadEnum(const std::string& key, Enum* value,
     }
   }
   ThrowTypeError(context, child, "one of: " + allowed_list);
+}
+
+template <typename Params>
+void ParamReader::Validate(const Params& params) const {
+  try {
+    params.Validate();
+  } catch (const std::invalid_argument& e) {
+    std::string section = FullKey("");
+    if (!section.empty()) section.pop_back();  // FullKey("") ends in the separating '.'
+    throw std::invalid_argument(Where("") + " (section '" + section + "'): " + e.what());
+  }
 }
 
 template <typename T>

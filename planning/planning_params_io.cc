@@ -5,21 +5,6 @@
 #include <vector>
 
 namespace aperture::planning {
-namespace {
-
-// Re-throws a Validate() failure with the location of the section that was loaded.
-template <typename Params>
-void ValidateAt(const config::ParamReader& reader, const Params& params) {
-  try {
-    params.Validate();
-  } catch (const std::invalid_argument& e) {
-    std::string section = reader.FullKey("");
-    if (!section.empty()) section.pop_back();  // FullKey("") ends in the separating '.'
-    throw std::invalid_argument(reader.Where("") + " (section '" + section + "'): " + e.what());
-  }
-}
-
-}  // namespace
 
 void LoadParams(config::ParamReader& reader, FeasibilityLimits* params) {
   reader.Read("min_thrust_mps2", &params->min_thrust_mps2);
@@ -28,7 +13,7 @@ void LoadParams(config::ParamReader& reader, FeasibilityLimits* params) {
   reader.Read("min_section_duration_s", &params->min_section_duration_s);
   reader.Read("gravity_mps2", &params->gravity_mps2);
   reader.RejectUnknownKeys();
-  ValidateAt(reader, *params);
+  reader.Validate(*params);
 }
 
 void LoadParams(config::ParamReader& reader, TraverseParameters* params) {
@@ -40,7 +25,7 @@ void LoadParams(config::ParamReader& reader, TraverseParameters* params) {
   reader.Read("relative_tolerance", &params->relative_tolerance);
   reader.Read("max_evaluations", &params->max_evaluations);
   reader.RejectUnknownKeys();
-  ValidateAt(reader, *params);
+  reader.Validate(*params);
 }
 
 void LoadParams(config::ParamReader& reader, ApproachPlannerParameters* params) {
@@ -67,7 +52,7 @@ void LoadParams(config::ParamReader& reader, ApproachPlannerParameters* params) 
   reader.Read("min_height_m", &params->min_height_m);
   reader.ReadSection("limits", &params->limits);
   reader.RejectUnknownKeys();
-  ValidateAt(reader, *params);
+  reader.Validate(*params);
 }
 
 }  // namespace aperture::planning

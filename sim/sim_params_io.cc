@@ -19,17 +19,6 @@ void ReadSeed(config::ParamReader& reader, std::uint64_t* seed) {
   *seed = static_cast<std::uint64_t>(value);
 }
 
-// Re-throws a Validate() failure with the location of the section that was loaded.
-template <typename Params>
-void ValidateAt(const config::ParamReader& reader, const Params& params) {
-  try {
-    params.Validate();
-  } catch (const std::invalid_argument& e) {
-    std::string section = reader.FullKey("");
-    if (!section.empty()) section.pop_back();  // FullKey("") ends in the separating '.'
-    throw std::invalid_argument(reader.Where("") + " (section '" + section + "'): " + e.what());
-  }
-}
 
 void LoadRotorParameters(config::ParamReader& reader, control::RotorParameters* params) {
   reader.Read("thrust_coeffs_N", &params->thrust_coeffs_N);
@@ -56,7 +45,7 @@ void LoadVehicleParameters(config::ParamReader& reader, control::VehicleParamete
   config::ParamReader rotor = reader.Section("rotor");
   LoadRotorParameters(rotor, &params->rotor);
   reader.RejectUnknownKeys();
-  ValidateAt(reader, *params);
+  reader.Validate(*params);
 }
 
 void LoadParams(config::ParamReader& reader, QuadrotorDynamicsParams* params) {
@@ -67,7 +56,7 @@ void LoadParams(config::ParamReader& reader, QuadrotorDynamicsParams* params) {
   reader.Read("ground_contact_enabled", &params->ground_contact_enabled);
   reader.Read("ground_height_m", &params->ground_height_m);
   reader.RejectUnknownKeys();
-  ValidateAt(reader, *params);
+  reader.Validate(*params);
 }
 
 void LoadParams(config::ParamReader& reader, DisturbanceParams* params) {
@@ -96,7 +85,7 @@ void LoadParams(config::ParamReader& reader, DisturbanceParams* params) {
     }
   }
   reader.RejectUnknownKeys();
-  ValidateAt(reader, *params);
+  reader.Validate(*params);
 }
 
 void LoadParams(config::ParamReader& reader, ImuSensorParams* params) {
@@ -111,7 +100,7 @@ void LoadParams(config::ParamReader& reader, ImuSensorParams* params) {
   reader.Read("gyro_bias_initial_B", &params->gyro_bias_initial_B);
   ReadSeed(reader, &params->seed);
   reader.RejectUnknownKeys();
-  ValidateAt(reader, *params);
+  reader.Validate(*params);
 }
 
 void LoadParams(config::ParamReader& reader, RangeSensorParams* params) {
@@ -123,7 +112,7 @@ void LoadParams(config::ParamReader& reader, RangeSensorParams* params) {
   reader.Read("p_BS", &params->p_BS);
   ReadSeed(reader, &params->seed);
   reader.RejectUnknownKeys();
-  ValidateAt(reader, *params);
+  reader.Validate(*params);
 }
 
 }  // namespace aperture::sim

@@ -305,5 +305,29 @@ TEST_F(ConfigFileTest, KeysListsUserNamedEntriesInDocumentOrder) {
   EXPECT_TRUE(reader.Section("absent").Keys().empty());
 }
 
+struct MassParams {
+  double mass_kg = 1.0;
+  void Validate() const {
+    if (!(mass_kg > 0.0)) throw std::invalid_argument("mass_kg must be > 0");
+  }
+};
+
+TEST(ParamReaderValidate, NamesTheSectionAndWhereItCameFrom) {
+  ConfigTree tree;
+  tree.ApplySet("vehicle.mass_kg=-2");
+  ParamReader vehicle = tree.Reader().Section("vehicle");
+  MassParams params;
+  vehicle.Read("mass_kg", &params.mass_kg);
+  try {
+    vehicle.Validate(params);
+    FAIL() << "a negative mass must be rejected";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_THAT(e.what(), AllOf(HasSubstr("--set vehicle.mass_kg=-2"),
+                                HasSubstr("section 'vehicle'"), HasSubstr("mass_kg must be > 0")));
+  }
+  params.mass_kg = 0.5;
+  EXPECT_NO_THROW(vehicle.Validate(params));
+}
+
 }  // namespace
 }  // namespace aperture::config
