@@ -1,5 +1,6 @@
 #pragma once
 // Runs the built `aperture` binary for end-to-end CLI tests.
+#include <nlohmann/json.hpp>
 #include <string>
 
 namespace aperture::apps::testing {
@@ -11,6 +12,12 @@ struct CommandResult {
 
 // Runs `aperture <arguments>` through the shell (arguments are passed verbatim).
 CommandResult RunAperture(const std::string& arguments);
+
+// The JSON document in `path` (e.g. a run's summary.json).
+nlohmann::json ReadJson(const std::string& path);
+
+// Number of lines in the text file `path`.
+std::size_t CountLines(const std::string& path);
 
 // A fresh, empty folder under the system temp directory, removed by the destructor.
 class TempFolder {

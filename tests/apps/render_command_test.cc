@@ -17,11 +17,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-nlohmann::json ReadJson(const fs::path& path) {
-  std::ifstream file(path);
-  return nlohmann::json::parse(file);
-}
-
 // Non-comment lines of a text file.
 std::vector<std::string> DataLines(const fs::path& path) {
   std::ifstream file(path);

@@ -14,11 +14,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-nlohmann::json ReadJson(const fs::path& path) {
-  std::ifstream file(path);
-  return nlohmann::json::parse(file);
-}
-
 // `count` PNG frames of a moving, blurring square so image_quality has something to measure.
 void WriteSequence(const fs::path& folder, int count) {
   fs::create_directories(folder);
@@ -33,13 +28,6 @@ void WriteSequence(const fs::path& folder, int count) {
 void CorruptFile(const fs::path& path) {
   std::ofstream file(path, std::ios::binary | std::ios::trunc);
   file << "this is not a png";
-}
-
-std::size_t CountLines(const fs::path& path) {
-  std::ifstream file(path);
-  std::size_t lines = 0;
-  for (std::string line; std::getline(file, line);) ++lines;
-  return lines;
 }
 
 TEST(RunCommand, ImageQualityOnAFolderWritesSummaryCsvAndReport) {

@@ -12,18 +12,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-nlohmann::json ReadJson(const fs::path& path) {
-  std::ifstream file(path);
-  return nlohmann::json::parse(file);
-}
-
-std::size_t CountLines(const fs::path& path) {
-  std::ifstream file(path);
-  std::size_t lines = 0;
-  for (std::string line; std::getline(file, line);) ++lines;
-  return lines;
-}
-
 TEST(SimCommand, HoverInTheGapScenarioWritesEveryOutput) {
   TempFolder temp("sim");
   const fs::path out = fs::path(temp.path()) / "out";
