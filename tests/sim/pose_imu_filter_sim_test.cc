@@ -38,13 +38,16 @@ struct TruthStep {
   Eigen::Vector3d specific_force_B;
 };
 
-// Closed-loop flight of the circle (1.8 m, 4 m/s after a 1.5 s ramp) on the true state; one entry
-// per 1 ms step, entry k at t = k * kSimDt.
-std::vector<TruthStep> FlyCircle() {
-  sim::QuadrotorDynamicsParams sim_params;
+// The circle both closed-loop flights follow: 1.8 m, 4 m/s after a 1.5 s ramp.
+control::CircleTrajectory TestCircle() {
   control::CircleTrajectoryParams circle_params;
   circle_params.ramp.ramp_s = 1.5;
-  const control::CircleTrajectory circle(circle_params);
+  return control::CircleTrajectory(circle_params);
+}
+
+// The simulated vehicle at the circle's start, its rotors settled at hover thrust.
+sim::QuadrotorDynamics HoveringAtStartOf(const control::CircleTrajectory& circle,
+                                         const sim::QuadrotorDynamicsParams& sim_params) {
   control::QuadState start;
   start.p_WB = circle.Evaluate(0.0).p_W;
   sim::QuadrotorDynamics quad(sim_params, start);
@@ -53,6 +56,16 @@ std::vector<TruthStep> FlyCircle() {
       Eigen::Vector4d::Constant(0.25 * vehicle.mass_kg * vehicle.gravity_mps2);
   quad.SetMotorCommands(control::MotorCommandsFromRotorThrusts(vehicle, hover));
   quad.SettleRotors();
+  return quad;
+}
+
+// Closed-loop flight of the circle (1.8 m, 4 m/s after a 1.5 s ramp) on the true state; one entry
+// per 1 ms step, entry k at t = k * kSimDt.
+std::vector<TruthStep> FlyCircle() {
+  const sim::QuadrotorDynamicsParams sim_params;
+  const control::CircleTrajectory circle = TestCircle();
+  sim::QuadrotorDynamics quad = HoveringAtStartOf(circle, sim_params);
+  const control::VehicleParameters& vehicle = sim_params.vehicle;
   const control::PositionController position(vehicle);
   control::LowLevelController low_level(vehicle);
   std::vector<TruthStep> truth;
@@ -276,18 +289,10 @@ struct ClosedLoopResult {
 };
 
 ClosedLoopResult FlyCircleOn(bool use_estimate) {
-  sim::QuadrotorDynamicsParams sim_params;
-  control::CircleTrajectoryParams circle_params;
-  circle_params.ramp.ramp_s = 1.5;
-  const control::CircleTrajectory circle(circle_params);
-  control::QuadState start;
-  start.p_WB = circle.Evaluate(0.0).p_W;
-  sim::QuadrotorDynamics quad(sim_params, start);
+  const sim::QuadrotorDynamicsParams sim_params;
+  const control::CircleTrajectory circle = TestCircle();
+  sim::QuadrotorDynamics quad = HoveringAtStartOf(circle, sim_params);
   const control::VehicleParameters& vehicle = sim_params.vehicle;
-  const Eigen::Vector4d hover =
-      Eigen::Vector4d::Constant(0.25 * vehicle.mass_kg * vehicle.gravity_mps2);
-  quad.SetMotorCommands(control::MotorCommandsFromRotorThrusts(vehicle, hover));
-  quad.SettleRotors();
   const control::PositionController position(vehicle);
   control::LowLevelController low_level(vehicle);
 
@@ -300,7 +305,7 @@ ClosedLoopResult FlyCircleOn(bool use_estimate) {
   imu_params.accel_bias_initial_B = Eigen::Vector3d(0.1, -0.08, 0.15);
   imu_params.gyro_bias_initial_B = Eigen::Vector3d(0.01, 0.008, -0.006);
   sim::ImuSensor imu(imu_params);
-  control::QuadState initial = start;
+  control::QuadState initial = quad.state();  // the start, before any step
   initial.p_WB += Eigen::Vector3d(0.03, -0.02, 0.02);
   perception::PoseImuFilter filter(perception::PoseImuFilterParams{}, initial);
 
