@@ -1,0 +1,15 @@
+// aperture bench: perception and control benchmarks against ground truth. Each benchmark is a
+// subcommand in its own file (bench_<name>_command.cc) that parses its flags, runs the
+// experiments of experiments/<name>/ and writes summary.json and report.html into --out.
+#include "apps/commands.h"
+
+namespace aperture::apps {
+
+void AddBenchCommand(CLI::App& app, int* exit_code) {
+  CLI::App* bench =
+      app.add_subcommand("bench", "Run perception and control benchmarks against ground truth");
+  bench->require_subcommand(1);
+  static_cast<void>(exit_code);  // handed to each benchmark's subcommand
+}
+
+}  // namespace aperture::apps

@@ -1,0 +1,30 @@
+#pragma once
+// One comparison of `aperture bench control` (issue 4; thesis F.6, G.6, B.4 analogs). Each
+// section flies its SITL experiments on the bench vehicle (control::VehicleParameters defaults:
+// rotor drag d_x = 0.5, d_y = 0.35 1/s, asymmetric motor lag and kappa(f) of G.6.1, IMU noise
+// of sim::ImuSensorParams), writes its figures under its own key of `summary` (SI units) and
+// adds its plots to `report`.
+#include <cstdint>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "output/html_report.h"
+
+namespace aperture::experiments {
+
+struct ControlBenchOptions {
+  std::uint64_t seed = 1;    // every random stream of every section derives from it
+  int recovery_trials = 100;  // random throws of the recovery section (B.4)
+  // Shorter flights and fewer trials with the same code paths: for tests and quick looks.
+  bool quick = false;
+};
+
+struct ControlBenchSection {
+  std::string key;  // summary key, e.g. "drag", "mixer"
+  std::function<void(const ControlBenchOptions&, nlohmann::json* summary,
+                     output::HtmlReport* report)>
+      run;
+};
+
+}  // namespace aperture::experiments
