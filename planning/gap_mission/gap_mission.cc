@@ -7,15 +7,10 @@
 #include <utility>
 
 #include "perception/gap/gap_node.h"
+#include "perception/led/se3_twist.h"
 
 namespace aperture::planning {
 namespace {
-
-Eigen::Matrix3d Skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d S;
-  S << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return S;
-}
 
 void RequirePositive(double value, const char* field) {
   if (!std::isfinite(value) || value <= 0.0) {
@@ -165,7 +160,7 @@ void GapMission::OnFrame(const perception::Frame& frame) {
       perception::GapNode::InverseCovariance(last_T_CG_, last_detection_.covariance);
   perception::Matrix6d J = perception::Matrix6d::Zero();
   J.topLeftCorner<3, 3>() = T_WG_.linear();
-  J.topRightCorner<3, 3>() = -T_WG_.linear() * Skew(T_GC.translation());
+  J.topRightCorner<3, 3>() = -T_WG_.linear() * perception::Skew(T_GC.translation());
   J.bottomRightCorner<3, 3>() = T_GC.linear().transpose();
   perception::Matrix6d cov = J * cov_GC * J.transpose();
   cov = 0.5 * (cov + cov.transpose()).eval();
