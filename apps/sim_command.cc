@@ -3,8 +3,9 @@
 //   aperture sim NAME [--config FILE] [--set key=value ...] [--seed N] [--duration S] --out DIR
 //
 // NAME is a built-in scenario (sim/scenario); --config/--set override its keys. The vehicle starts
-// at the scenario's start pose and the ground-truth autopilot holds it there (until mission
-// behaviours exist). Writes OUT/summary.json (outcome, crash reason and contact point,
+// at the scenario's start pose. `gap` flies the vision gap mission (apps/sim_gap_mission.h; its
+// parameters via --set mission.<key>=<value>, its outcome in summary.json "mission"); the other
+// scenarios hover there on the ground-truth autopilot. Writes OUT/summary.json (outcome, crash reason and contact point,
 // real_time_factor, timing, hover errors, frame statistics), OUT/trajectory.csv and
 // OUT/trajectory.tum (ground truth), OUT/commands.csv, OUT/imu.csv, OUT/sim.mp4 (or .avi: the
 // onboard camera with overlays beside a third-person view from behind the vehicle) and
@@ -19,6 +20,7 @@
 
 #include "apps/command_support.h"
 #include "apps/commands.h"
+#include "apps/sim_gap_mission.h"
 #include "output/csv_writer.h"
 #include "output/html_report.h"
 #include "output/progress_bar.h"
@@ -186,6 +188,9 @@ void WriteReport(const sim::SitlResult& result, const std::vector<cv::Mat>& key_
 
 void RunSim(const SimOptions& options, output::OutputFolder& out) {
   std::vector<std::string> set_items = options.common.set_items;
+  const bool gap_mission = options.scenario == "gap";
+  const std::vector<std::string> mission_items =
+      gap_mission ? SimGapMission::TakeMissionSetItems(&set_items) : std::vector<std::string>{};
   if (options.seed) set_items.push_back("seed=" + std::to_string(*options.seed));
   const config::ConfigTree tree =
       sim::ScenarioConfig(options.scenario, options.common.config_files, set_items);
@@ -212,7 +217,11 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
   autopilot_params.waypoints.push_back(
       sim::Waypoint{params.initial_state.p_WB,
                     std::atan2(T_WB_start.linear()(1, 0), T_WB_start.linear()(0, 0)), 0.0});
-  sim::GroundTruthAutopilot autopilot(params.dynamics.vehicle, autopilot_params);
+  sim::GroundTruthAutopilot ground_truth_autopilot(params.dynamics.vehicle, autopilot_params);
+  std::unique_ptr<SimGapMission> mission;
+  if (gap_mission) mission = std::make_unique<SimGapMission>(scenario, params, mission_items);
+  perception::Autopilot& autopilot =
+      mission ? static_cast<perception::Autopilot&>(mission->mission()) : ground_truth_autopilot;
 
   // The video shows the first body-mounted camera (else the first camera) beside a third-person
   // view of the same height, 4:3, colour.
@@ -248,6 +257,7 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
              {params.cameras[primary].name + Format("  t = %.2f s", state.t_s),
               Format("p = [%.2f %.2f %.2f] m", state.p_WB.x(), state.p_WB.y(), state.p_WB.z()),
               Format("|v| = %.2f m/s", state.v_W.norm()), autopilot.status()});
+    if (mission) mission->DrawOverlay(&onboard);
     scenario.scene().SetPose(marker_id, PoseOf(state));
     const sim::RenderOutput chase =
         chase_caster.Render(scenario.scene(), chase_camera, ChaseCameraPose(state), chase_options);
@@ -304,6 +314,7 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
                        {"frames_delivered", c.frames_delivered}});
   }
   summary["cameras"] = cameras;
+  if (mission) summary["mission"] = mission->Summary(result, scenario);
   WriteTimeSeries(result, out);
   nlohmann::json outputs = {{"trajectory", "trajectory.csv"},
                             {"tum", "trajectory.tum"},
@@ -320,6 +331,7 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
   std::cout << "aperture sim " << options.scenario << ": " << sim::ToString(result.outcome) << " ("
             << result.reason << ") after " << result.sim_time_s << " s, real-time factor "
             << result.real_time_factor << "\n";
+  if (mission) std::cout << mission->OutcomeLine(summary["mission"]) << "\n";
 }
 
 }  // namespace

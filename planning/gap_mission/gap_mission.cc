@@ -326,6 +326,7 @@ perception::AutopilotCommand GapMission::Step(double t_s) {
       if (t_s >= approach_end_t_s_) {
         EnterPhase(GapMissionPhase::kTraverse, t_s);
         traverse_start_t_s_ = t_s;
+        traverse_start_estimate_ = estimate();
         return Step(t_s);
       }
       if (t_s - last_detected_t_s_ > params_.detection_timeout_s) {

@@ -134,6 +134,10 @@ class GapMission : public perception::Autopilot {
   const std::optional<TraverseTrajectory>& traverse_plan() const { return traverse_; }
   // Sensor-clock time at which the open-loop traverse began; NaN before.
   double traverse_start_time_s() const { return traverse_start_t_s_; }
+  // The estimate when the traverse began (what the open-loop traverse starts from); empty before.
+  const std::optional<control::QuadState>& traverse_start_estimate() const {
+    return traverse_start_estimate_;
+  }
   // The approach as planned before the transfer (first primitive), empty before planning.
   const std::optional<ApproachCandidate>& approach_plan() const { return approach_; }
   // Time of the approach start (end of transfer and hold); NaN before.
@@ -204,6 +208,7 @@ class GapMission : public perception::Autopilot {
   double approach_start_t_s_ = std::numeric_limits<double>::quiet_NaN();
   double approach_end_t_s_ = 0.0;
   double traverse_start_t_s_ = std::numeric_limits<double>::quiet_NaN();
+  std::optional<control::QuadState> traverse_start_estimate_;
   Eigen::Vector3d last_reference_a_W_ = Eigen::Vector3d::Zero();
   double position_stage_since_t_s_ = std::numeric_limits<double>::quiet_NaN();
 };
