@@ -5,9 +5,9 @@
 // NAME is a built-in scenario (sim/scenario); --config/--set override its keys. The vehicle starts
 // at the scenario's start pose. `gap` flies the vision gap mission (apps/sim_gap_mission.h; its
 // parameters via --set mission.<key>=<value>, its outcome in summary.json "mission"); the other
-// scenarios hover there on the ground-truth autopilot. Writes OUT/summary.json (outcome, crash reason and contact point,
-// real_time_factor, timing, hover errors, frame statistics), OUT/trajectory.csv and
-// OUT/trajectory.tum (ground truth), OUT/commands.csv, OUT/imu.csv, OUT/sim.mp4 (or .avi: the
+// scenarios hover there on the ground-truth autopilot. Writes OUT/summary.json (outcome, crash
+// reason and contact point, real_time_factor, timing, hover errors, frame statistics),
+// OUT/trajectory.csv and OUT/trajectory.tum (ground truth), OUT/commands.csv, OUT/imu.csv, OUT/sim.mp4 (or .avi: the
 // onboard camera with overlays beside a third-person view from behind the vehicle) and
 // OUT/report.html (position and command plots, key frames).
 #include <algorithm>

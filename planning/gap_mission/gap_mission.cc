@@ -57,8 +57,10 @@ void GapMissionParams::Validate() const {
   RequirePositive(transfer_speed_mps, "transfer_speed_mps");
   RequirePositive(min_transfer_s, "min_transfer_s");
   RequireNonNegative(start_hold_s, "start_hold_s");
+  RequireNonNegative(lead_in_s, "lead_in_s");
   RequireNonNegative(min_replan_remaining_s, "min_replan_remaining_s");
   RequirePositive(detection_timeout_s, "detection_timeout_s");
+  RequireNonNegative(approach_commit_s, "approach_commit_s");
   RequireNonNegative(recovered_hold_s, "recovered_hold_s");
 }
 
@@ -68,6 +70,7 @@ const char* ToString(GapMissionPhase phase) {
     case GapMissionPhase::kHover: return "hover";
     case GapMissionPhase::kTransfer: return "transfer";
     case GapMissionPhase::kApproach: return "approach";
+    case GapMissionPhase::kLeadIn: return "lead_in";
     case GapMissionPhase::kTraverse: return "traverse";
     case GapMissionPhase::kRecover: return "recover";
     case GapMissionPhase::kDone: return "done";
@@ -133,6 +136,7 @@ void GapMission::OnFrame(const perception::Frame& frame) {
   const bool looking =
       phase_ == GapMissionPhase::kDetect || phase_ == GapMissionPhase::kHover ||
       phase_ == GapMissionPhase::kTransfer || phase_ == GapMissionPhase::kApproach ||
+      phase_ == GapMissionPhase::kLeadIn ||
       (phase_ == GapMissionPhase::kTraverse &&
        frame.t_s < traverse_start_t_s_ + traverse_->time_to_gap_s());
   if (!looking) return;
@@ -224,7 +228,10 @@ void GapMission::Plan(double t_s) {
           t_s);
     return;
   }
-  const ApproachTarget target = ApproachTarget::FromTraverse(*traverse.trajectory);
+  // The approach ends lead_in_s before the traverse start, on the traverse arc.
+  ApproachTarget target = ApproachTarget::FromTraverse(*traverse.trajectory);
+  target.p_W = traverse.trajectory->Position(-params_.lead_in_s);
+  target.v_W = traverse.trajectory->Velocity(-params_.lead_in_s);
   const ApproachPlan plan = approach_planner_.Plan(target);
   if (!plan.best) {
     Abort("no feasible approach candidate", t_s);
@@ -324,16 +331,15 @@ perception::AutopilotCommand GapMission::Step(double t_s) {
     }
     case GapMissionPhase::kApproach: {
       if (t_s >= approach_end_t_s_) {
-        EnterPhase(GapMissionPhase::kTraverse, t_s);
-        traverse_start_t_s_ = t_s;
-        traverse_start_estimate_ = estimate();
-        return Step(t_s);
-      }
-      if (t_s - last_detected_t_s_ > params_.detection_timeout_s) {
-        Abort("gap lost during the approach", t_s);
+        EnterPhase(GapMissionPhase::kLeadIn, t_s);
         return Step(t_s);
       }
       const double remaining_s = approach_end_t_s_ - t_s;
+      if (remaining_s > params_.approach_commit_s &&
+          t_s - last_detected_t_s_ > params_.detection_timeout_s) {
+        Abort("gap lost during the approach", t_s);
+        return Step(t_s);
+      }
       if (remaining_s > params_.min_replan_remaining_s) {
         const control::QuadState x = estimate();
         const ApproachCandidate candidate = approach_planner_.Replan(
@@ -350,6 +356,19 @@ perception::AutopilotCommand GapMission::Step(double t_s) {
           primitive_, approach_target_.gap_center_W, t_s - primitive_start_t_s_);
       reference.t_s = t_s;
       last_reference_a_W_ = reference.a_W;
+      return Track(reference);
+    }
+    case GapMissionPhase::kLeadIn: {
+      // Traverse time runs from -lead_in_s at the approach end.
+      const double t_traverse = t_s - approach_end_t_s_ - params_.lead_in_s;
+      if (t_traverse >= 0.0) {
+        EnterPhase(GapMissionPhase::kTraverse, t_s);
+        traverse_start_t_s_ = t_s;
+        traverse_start_estimate_ = estimate();
+        return Step(t_s);
+      }
+      control::TrajectoryPoint reference = traverse_->Sample(t_traverse);
+      reference.t_s = t_s;
       return Track(reference);
     }
     case GapMissionPhase::kTraverse: {
@@ -417,6 +436,7 @@ std::string GapMission::status() const {
     case GapMissionPhase::kAborted:
       return "aborted (" + reason_ + "): " + control::ToString(recovery_.stage());
     case GapMissionPhase::kHover:
+    case GapMissionPhase::kLeadIn:
       break;
   }
   return ToString(phase_);

@@ -11,7 +11,11 @@
 //   transfer  fly the transfer primitive (perception-aware heading (8)), then hold start_hold_s.
 //   approach  track the approach primitive, replanned from the current estimate at every control
 //             step (Sec. II-C, V-A: the previous primitive is kept when the replanned one is not
-//             provably feasible or loses the gap from view).
+//             provably feasible or loses the gap from view). It ends lead_in_s before the traverse
+//             start, on the traverse's own arc (3)-(5) extended backwards in time.
+//   lead_in   (beyond the paper) track that arc with position feedback for lead_in_s: a constant
+//             acceleration reference lets the attitude and thrust settle after the approach's
+//             final jerk, so the open-loop part starts on its initial conditions (3a), (3b).
 //   traverse  open loop (Sec. II-A/B): constant collective thrust |<g, e3>| and the constant
 //             attitude of the traverse (thrust along +-e3, the traverse heading), held from the
 //             IMU-propagated attitude; no position feedback. Lasts the traverse's duration_s.
@@ -19,7 +23,8 @@
 //             on the filter's IMU-only estimate (the gap is behind the camera, Sec. II-F), down to
 //             position hold; after recovered_hold_s in the position stage the mission is done.
 //   aborted   (from hover/transfer/approach when the gap is not detected for
-//             detection_timeout_s, or planning fails): straight to the recovery stages.
+//             detection_timeout_s, except in the approach's last approach_commit_s, or when
+//             planning fails): straight to the recovery stages.
 //
 // State estimate: perception::PoseImuFilter fed with every IMU sample and every detection's pose
 // of the camera T_WC = T_WG * T_CG^-1 with its covariance (GapDetection::covariance mapped to the
@@ -58,7 +63,19 @@ struct GapMissionParams {
   perception::GapDetectorParams detector;
   perception::PoseImuFilterParams filter;  // set the IMU noise of the vehicle's IMU
   TraverseParameters traverse;
-  ApproachPlannerParameters approach;
+  // The planner's grid and cost with gentler feasibility limits than its defaults: the approach
+  // is tracked with feedback on an estimate, so it keeps thrust (at most 14 m/s^2, 1.4 hover) and
+  // body-rate (4 rad/s) margin for the feedback and the motors; at the planner's own 30 m/s^2 and
+  // 10 rad/s the chosen approaches saturate rotors and arrive ~5 cm off in SITL. The minimum, 4
+  // m/s^2, stays below the traverse thrust |<g, e3>| = g cos 45 deg cos 30 deg ~ 6 m/s^2 that
+  // the approach ends with at the steepest gap of the acceptance range.
+  ApproachPlannerParameters approach = [] {
+    ApproachPlannerParameters p;
+    p.limits.min_thrust_mps2 = 4.0;
+    p.limits.max_thrust_mps2 = 14.0;
+    p.limits.max_body_rate_radps = 4.0;
+    return p;
+  }();
   control::PositionControllerParams controller;  // approach / transfer / hover tracking
   control::RecoveryParams recovery;             // after the gap
   int camera_id = 0;  // Frame::camera_id of the forward camera; other cameras are ignored
@@ -68,20 +85,25 @@ struct GapMissionParams {
   int init_detections = 10;
   // IMU samples averaged for the gravity direction while hovering before the first detection.
   int gravity_samples = 100;
-  double hover_s = 1.0;  // filter convergence (biases) before planning [s]
+  double hover_s = 0.5;  // filter convergence (biases) before planning [s]
   // Planning waits until the filter's position 1-sigma (largest axis) is below this [m].
   double init_max_position_sigma_m = 0.05;
   // Transfer to the approach start: duration = max(min_transfer_s, 1.875 d / transfer_speed_mps)
   // (1.875 d / T is the peak speed of a rest-to-rest minimum-jerk primitive over distance d).
-  double transfer_speed_mps = 1.5;
+  double transfer_speed_mps = 3.0;
   double min_transfer_s = 1.0;
-  double start_hold_s = 0.5;  // hover at the approach start before the approach [s]
+  double start_hold_s = 0.3;  // hover at the approach start before the approach [s]
+  // Closed-loop lead-in along the traverse arc before the open-loop part [s]; 0 = none (paper).
+  double lead_in_s = 0.2;
   // No replanning in the last part of the approach: the primitive is then too short to be
   // provably feasible anyway (Sec. V-A).
   double min_replan_remaining_s = 0.05;
-  // Without a detection for this long before the traverse the mission aborts [s].
+  // Without a detection for this long before the approach's last approach_commit_s the mission
+  // aborts [s]. In that last part the gap may leave the view (Sec. II intro) and the filter
+  // carries on with the IMU: stopping there would hit the gap anyway.
   double detection_timeout_s = 0.5;
-  double recovered_hold_s = 1.0;  // time in the recovery's position stage before done [s]
+  double approach_commit_s = 1.0;
+  double recovered_hold_s = 0.5;  // time in the recovery's position stage before done [s]
 
   // Throws std::invalid_argument naming the field (and via the components' Validate()).
   void Validate() const;
@@ -92,12 +114,14 @@ enum class GapMissionPhase {
   kHover,
   kTransfer,
   kApproach,
+  kLeadIn,
   kTraverse,
   kRecover,
   kDone,     // recovered and holding position
   kAborted,  // recovering after an abort (see reason())
 };
-// "detect", "hover", "transfer", "approach", "traverse", "recover", "done", "aborted".
+// "detect", "hover", "transfer", "approach", "lead_in", "traverse", "recover", "done",
+// "aborted".
 const char* ToString(GapMissionPhase phase);
 
 struct GapMissionPhaseChange {

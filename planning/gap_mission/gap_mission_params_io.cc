@@ -15,8 +15,10 @@ void LoadParams(config::ParamReader& reader, GapMissionParams* params) {
   reader.Read("transfer_speed_mps", &params->transfer_speed_mps);
   reader.Read("min_transfer_s", &params->min_transfer_s);
   reader.Read("start_hold_s", &params->start_hold_s);
+  reader.Read("lead_in_s", &params->lead_in_s);
   reader.Read("min_replan_remaining_s", &params->min_replan_remaining_s);
   reader.Read("detection_timeout_s", &params->detection_timeout_s);
+  reader.Read("approach_commit_s", &params->approach_commit_s);
   reader.Read("recovered_hold_s", &params->recovered_hold_s);
   reader.ReadSection("detector", &params->detector);
   reader.ReadSection("filter", &params->filter);
