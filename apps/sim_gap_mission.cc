@@ -101,6 +101,7 @@ nlohmann::json SimGapMission::Summary(const sim::SitlResult& result,
   summary["frames_processed"] = m.frames_processed();
   summary["detections"] = m.detections();
   summary["pose_updates_rejected"] = m.updates_rejected();
+  summary["filter_restarts"] = m.filter_restarts();
   summary["replans_accepted"] = m.replans_accepted();
   summary["replans_kept_previous"] = m.replans_rejected();
 

@@ -7,7 +7,8 @@
 //   hover     position control on the filter estimate at the pose where the filter started,
 //             until hover_s have passed and the position is known to init_max_position_sigma_m.
 //   (plan)    one step: traverse (6) through the estimated gap, the approach candidate of lowest
-//             cost (10) (planning/approach_planner.h), a rest-to-rest transfer to its start.
+//             cost (10) (planning/approach_planner.h) above the floor seen by the range sensor, a
+//             rest-to-rest transfer to its start.
 //   transfer  fly the transfer primitive (perception-aware heading (8)), then hold start_hold_s.
 //   approach  track the approach primitive, replanned from the current estimate at every control
 //             step (Sec. II-C, V-A: the previous primitive is kept when the replanned one is not
@@ -83,6 +84,16 @@ struct GapMissionParams {
   // Detections whose gravity direction is averaged to fix the mission frame (detection noise of
   // R_CG tilts W against gravity: 10 frames at 50 Hz average it down in 0.2 s of hover).
   int init_detections = 10;
+  // The detector's covariance (pixel_sigma_px per edge sample, independent samples) is scaled by
+  // this before fusion: rendered edges with noise, blur and aliasing err by more than the model
+  // says, and an overconfident measurement model makes the filter gate out good detections.
+  double detection_covariance_scale = 9.0;
+  // After this many consecutive gated-out detections the filter restarts at the detected pose,
+  // keeping its velocity and biases (a diverged filter otherwise rejects every later update).
+  int max_consecutive_rejections = 5;
+  // The approach stays this high above the ground [m], the ground being measured once by the
+  // downward range sensor while hovering (OnRange); without a range reading there is no floor.
+  double min_ground_clearance_m = 0.5;
   // IMU samples averaged for the gravity direction while hovering before the first detection.
   int gravity_samples = 100;
   double hover_s = 0.5;  // filter convergence (biases) before planning [s]
@@ -140,6 +151,7 @@ class GapMission : public perception::Autopilot {
   std::string name() const override { return "gap_mission"; }
   void OnImu(const perception::ImuSample& sample) override;
   void OnFrame(const perception::Frame& frame) override;
+  void OnRange(const perception::RangeReading& reading) override;
   perception::AutopilotCommand Step(double t_s) override;
   // "<phase>" plus details, e.g. "approach 1.2/2.0 s", "recover: horizontal_velocity".
   std::string status() const override;
@@ -174,6 +186,7 @@ class GapMission : public perception::Autopilot {
   int replans_accepted() const { return replans_accepted_; }
   int replans_rejected() const { return replans_rejected_; }
   int updates_rejected() const { return updates_rejected_; }
+  int filter_restarts() const { return filter_restarts_; }
 
  private:
   void EnterPhase(GapMissionPhase phase, double t_s);
@@ -220,6 +233,9 @@ class GapMission : public perception::Autopilot {
   int replans_accepted_ = 0;
   int replans_rejected_ = 0;
   int updates_rejected_ = 0;
+  int consecutive_rejections_ = 0;
+  int filter_restarts_ = 0;
+  std::optional<double> last_range_m_;
 
   double phase_start_t_s_ = 0.0;
   control::TrajectoryPoint hover_reference_;

@@ -10,6 +10,9 @@ void LoadParams(config::ParamReader& reader, GapMissionParams* params) {
   reader.Read("camera_id", &params->camera_id);
   reader.Read("init_detections", &params->init_detections);
   reader.Read("gravity_samples", &params->gravity_samples);
+  reader.Read("detection_covariance_scale", &params->detection_covariance_scale);
+  reader.Read("max_consecutive_rejections", &params->max_consecutive_rejections);
+  reader.Read("min_ground_clearance_m", &params->min_ground_clearance_m);
   reader.Read("hover_s", &params->hover_s);
   reader.Read("init_max_position_sigma_m", &params->init_max_position_sigma_m);
   reader.Read("transfer_speed_mps", &params->transfer_speed_mps);

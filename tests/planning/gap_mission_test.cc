@@ -128,14 +128,17 @@ TEST_F(GapMissionTest, DetectsHoversAndPlansInTheGapAnchoredFrame) {
   EXPECT_LT(Eigen::AngleAxisd(mission_.gap_W().R_WG.transpose() * TrueGap().linear()).angle(),
             0.3 * M_PI / 180.0);
 
-  // The plan: traverse through the estimated gap, approach ending at its start state.
+  // The plan: traverse through the estimated gap, approach ending lead_in_s before its start on
+  // its arc (3)-(5).
   ASSERT_TRUE(mission_.traverse_plan().has_value());
   ASSERT_TRUE(mission_.approach_plan().has_value());
   const TraverseTrajectory& traverse = *mission_.traverse_plan();
   EXPECT_TRUE(traverse.Position(traverse.time_to_gap_s()).isZero(1e-9));  // through the centre
   const MotionPrimitive& approach = mission_.approach_plan()->primitive;
-  EXPECT_TRUE(approach.Position(approach.duration_s()).isApprox(traverse.start_position_W(), 1e-9));
-  EXPECT_TRUE(approach.Velocity(approach.duration_s()).isApprox(traverse.start_velocity_W(), 1e-9));
+  const double lead_in_s = GapMissionParams{}.lead_in_s;
+  EXPECT_TRUE(approach.Position(approach.duration_s()).isApprox(traverse.Position(-lead_in_s), 1e-9));
+  EXPECT_TRUE(approach.Velocity(approach.duration_s()).isApprox(traverse.Velocity(-lead_in_s), 1e-9));
+  EXPECT_TRUE(approach.Acceleration(approach.duration_s()).isApprox(traverse.plane_gravity_W(), 1e-9));
   EXPECT_TRUE(std::isnan(mission_.traverse_start_time_s()));
   // Transfer starts at hover: the command's thrust is close to hover, the vehicle upright.
   EXPECT_NEAR(last_command_.thrust_rates.collective_thrust_mps2, kGravity, 1.0);
