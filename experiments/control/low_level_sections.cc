@@ -294,13 +294,17 @@ void RunMixer(const ControlBenchOptions& options, nlohmann::json* summary,
 
   report->AddSection("Iterative vs one-shot mixer in hover (Table G.2)");
   report->AddTable(out, "mixer figures (SI units, yaw in rad)");
-  auto degrees = [](std::vector<double> v) {
-    for (double& x : v) x *= 180.0 / kPi;
-    return v;
+  // Plotted at 10 Hz in degrees (the statistics use every 100 Hz sample).
+  auto decimate = [](const std::vector<double>& v, double scale) {
+    std::vector<double> out;
+    for (size_t i = 0; i < v.size(); i += 10) out.push_back(scale * v[i]);
+    return out;
   };
   output::SvgPlot plot({"Yaw error in hover (Fig. G.8 analog)", "t [s]", "yaw error [deg]"});
-  plot.AddLine("one-shot", one_shot.t_s, degrees(one_shot.yaw_error_rad));
-  plot.AddLine("iterative", iterative.t_s, degrees(iterative.yaw_error_rad));
+  plot.AddLine("one-shot", decimate(one_shot.t_s, 1.0),
+               decimate(one_shot.yaw_error_rad, 180.0 / kPi));
+  plot.AddLine("iterative", decimate(iterative.t_s, 1.0),
+               decimate(iterative.yaw_error_rad, 180.0 / kPi));
   report->AddSvg(plot.Render(), "Yaw error (desired heading 0) with each mixer");
 }
 
