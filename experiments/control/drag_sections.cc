@@ -166,8 +166,8 @@ void RunDragId(const ControlBenchOptions& options, nlohmann::json* summary,
   optimizer.set_upper_bounds({2.0, 2.0});
   optimizer.set_initial_step({0.3, 0.3});
   // 5e-3 1/s is 1-1.5 % of the coefficients; the thesis converged after ~70 flights.
-  optimizer.set_xtol_abs(options.quick ? 0.03 : 5e-3);
-  optimizer.set_maxeval(options.quick ? 12 : 80);
+  optimizer.set_xtol_abs(options.quick ? 0.01 : 5e-3);
+  optimizer.set_maxeval(options.quick ? 20 : 80);
   std::vector<double> x = {0.0, 0.0};  // start from the drag-free model
   double cost = 0.0;
   std::string status;
