@@ -3,8 +3,9 @@
 //   aperture sim NAME [--config FILE] [--set key=value ...] [--seed N] [--duration S] --out DIR
 //
 // NAME is a built-in scenario (sim/scenario); --config/--set override its keys. The vehicle starts
-// at the scenario's start pose and the ground-truth autopilot holds it there (until mission
-// behaviours exist). Writes OUT/summary.json (outcome, crash reason and contact point,
+// at the scenario's start pose and the ground-truth autopilot holds it there, except `led`: the
+// LED-stabilized hover (LED pose + IMU only, experiments/led/led_hover_flight.h; summary key
+// `led_hover`, report plots of position vs set-point and estimate vs ground truth). Writes OUT/summary.json (outcome, crash reason and contact point,
 // real_time_factor, timing, hover errors, frame statistics), OUT/trajectory.csv and
 // OUT/trajectory.tum (ground truth), OUT/commands.csv, OUT/imu.csv, OUT/sim.mp4 (or .avi: the
 // onboard camera with overlays beside a third-person view from behind the vehicle) and
@@ -223,8 +224,9 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
   if (scenario_params.scenario == "led") {
     led_flight = std::make_unique<experiments::LedHoverFlight>(scenario, params);
   }
-  perception::Autopilot& autopilot =
-      led_flight ? led_flight->autopilot() : static_cast<perception::Autopilot&>(ground_truth_autopilot);
+  perception::Autopilot& autopilot = led_flight ? led_flight->autopilot()
+                                                : static_cast<perception::Autopilot&>(
+                                                      ground_truth_autopilot);
 
   // The video shows the first body-mounted camera (else the first camera) beside a third-person
   // view of the same height, 4:3, colour.
@@ -330,7 +332,8 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
   summary["outputs"] = outputs;
   std::function<void(output::HtmlReport*)> add_flight_sections;
   if (led_flight) {
-    const experiments::LedHoverFlightResult led = led_flight->Finish(result, params.disturbances.pushes);
+    const experiments::LedHoverFlightResult led =
+        led_flight->Finish(result, params.disturbances.pushes);
     summary["led_hover"] = experiments::LedHoverSummary(led);
     add_flight_sections = [led](output::HtmlReport* report) {
       experiments::AddLedHoverReport(led, report);

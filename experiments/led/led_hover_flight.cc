@@ -70,10 +70,13 @@ HoverMetrics ComputeHoverMetrics(const std::vector<control::QuadState>& trajecto
     }
     if (i < trajectory.size() || (inside_since >= 0.0 && t_end - inside_since >= recovery_hold_s)) {
       recovery.recovery_time_s = inside_since - t_push;
+      // The window ends with the first sample back inside (included).
       window_end = static_cast<std::size_t>(
-          std::lower_bound(trajectory.begin(), trajectory.end(), inside_since,
+                       std::lower_bound(
+                           trajectory.begin(), trajectory.end(), inside_since,
                            [](const control::QuadState& s, double t) { return s.t_s < t; }) -
-          trajectory.begin());
+                       trajectory.begin()) +
+                   1;
     }
     for (std::size_t k = 0; k < window_end; ++k) {
       if (trajectory[k].t_s < t_push) continue;
