@@ -94,10 +94,11 @@ void PoseHold::StartFilter(const perception::PoseMeasurement& z) {
   RequireFinite(z.p_WX.allFinite() && z.q_WX.coeffs().allFinite() && z.p_BX.allFinite() &&
                     z.q_BX.coeffs().allFinite() && std::isfinite(z.t_s),
                 "PoseMeasurement (t_s, p_WX, q_WX, p_BX, q_BX)");
-  perception::PoseImuEstimate initial;
-  initial.state.t_s = z.t_s;
-  initial.state.q_WB = BodyRotation(z);
-  initial.state.p_WB = BodyPosition(z);
+  control::QuadState state;
+  state.t_s = z.t_s;
+  state.q_WB = BodyRotation(z);
+  state.p_WB = BodyPosition(z);
+  perception::PoseImuEstimate initial = perception::InitialEstimate(params_.filter, state);
   if (filter_) {  // restart: keep the biases, velocity from the rejected run of poses
     const perception::PoseImuEstimate previous = filter_->Estimate();
     initial.accel_bias_B = previous.accel_bias_B;
@@ -110,15 +111,7 @@ void PoseHold::StartFilter(const perception::PoseMeasurement& z) {
     }
   }
   rejected_p_WB_.clear();
-  const perception::PoseImuFilterParams& f = params_.filter;
-  perception::Vector15d sigma;
-  sigma << Eigen::Vector3d::Constant(f.initial_position_sigma_m),
-      Eigen::Vector3d::Constant(f.initial_velocity_sigma_mps),
-      Eigen::Vector3d::Constant(f.initial_attitude_sigma_rad),
-      Eigen::Vector3d::Constant(f.initial_accel_bias_sigma_mps2),
-      Eigen::Vector3d::Constant(f.initial_gyro_bias_sigma_radps);
-  initial.covariance = sigma.cwiseAbs2().asDiagonal();
-  filter_ = std::make_unique<perception::PoseImuFilter>(f, initial);
+  filter_ = std::make_unique<perception::PoseImuFilter>(params_.filter, initial);
   for (const perception::ImuSample& sample : imu_buffer_) {
     if (sample.t_s > filter_->time_s()) filter_->Propagate(sample);
   }

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
+#include <vector>
 
 namespace aperture::planning {
 namespace {
@@ -149,27 +151,20 @@ TEST_F(PoseHoldTest, RestartsTheFilterAfterConsecutiveOutliers) {
 }
 
 TEST_F(PoseHoldTest, RejectsBadParameters) {
-  const auto expect_invalid = [&](const PoseHoldParams& params) {
-    EXPECT_THROW(PoseHold(vehicle_, params, setpoint_), std::invalid_argument);
+  // One invalid field at a time.
+  const std::vector<std::function<void(PoseHoldParams*)>> breakers = {
+      [](PoseHoldParams* p) { p->max_position_error_m = 0.0; },
+      [](PoseHoldParams* p) { p->max_integrated_error_m = -0.01; },
+      [](PoseHoldParams* p) { p->max_consecutive_rejections = 0; },
+      [](PoseHoldParams* p) { p->disturbance_time_constant_s = -0.1; },
+      [](PoseHoldParams* p) { p->max_pose_age_s = std::nan(""); },
+      [](PoseHoldParams* p) { p->filter.mahalanobis_gate = -1.0; },
   };
-  PoseHoldParams p = params_;
-  p.max_position_error_m = 0.0;
-  expect_invalid(p);
-  p = params_;
-  p.max_integrated_error_m = -0.01;
-  expect_invalid(p);
-  p = params_;
-  p.max_consecutive_rejections = 0;
-  expect_invalid(p);
-  p = params_;
-  p.disturbance_time_constant_s = -0.1;
-  expect_invalid(p);
-  p = params_;
-  p.max_pose_age_s = std::nan("");
-  expect_invalid(p);
-  p = params_;
-  p.filter.mahalanobis_gate = -1.0;
-  expect_invalid(p);
+  for (std::size_t i = 0; i < breakers.size(); ++i) {
+    PoseHoldParams params = params_;
+    breakers[i](&params);
+    EXPECT_THROW(PoseHold(vehicle_, params, setpoint_), std::invalid_argument) << "breaker " << i;
+  }
   PoseHoldSetpoint bad = setpoint_;
   bad.heading_rad = INFINITY;
   EXPECT_THROW(PoseHold(vehicle_, params_, bad), std::invalid_argument);
