@@ -6,8 +6,9 @@
 // NAME is a built-in scenario (sim/scenario); --config/--set override its keys. The vehicle starts
 // at the scenario's start pose and the ground-truth autopilot holds it there, except `led`: the
 // LED-stabilized hover (LED pose + IMU only, experiments/led/led_hover_flight.h; summary key
-// `led_hover`, report plots of position vs set-point and estimate vs ground truth). Writes OUT/summary.json (outcome, crash reason and contact point,
-// real_time_factor, timing, hover errors, frame statistics), OUT/trajectory.csv and
+// `led_hover`, report plots of position vs set-point and estimate vs ground truth). Writes
+// OUT/summary.json (outcome, crash reason and contact point, real_time_factor, timing, hover
+// errors, frame statistics), OUT/trajectory.csv and
 // OUT/trajectory.tum (ground truth), OUT/commands.csv, OUT/imu.csv, OUT/sim.mp4 (or .avi: the
 // onboard camera with overlays beside a third-person view from behind the vehicle) and
 // OUT/report.html (position and command plots, key frames).
