@@ -102,6 +102,7 @@ nlohmann::json SimGapMission::Summary(const sim::SitlResult& result,
   summary["detections"] = m.detections();
   summary["pose_updates_rejected"] = m.updates_rejected();
   summary["filter_restarts"] = m.filter_restarts();
+  summary["approach_fallback_limits"] = m.used_fallback_limits();
   summary["replans_accepted"] = m.replans_accepted();
   summary["replans_kept_previous"] = m.replans_rejected();
 

@@ -39,6 +39,7 @@ void GapMissionParams::Validate() const {
   traverse.Validate();
   approach.Validate();
   controller.Validate();
+  fallback_limits.Validate();
   recovery.Validate();
   if (camera_id < 0) {
     throw std::invalid_argument("GapMissionParams.camera_id must be >= 0, got " +
@@ -276,7 +277,13 @@ void GapMission::Plan(double t_s) {
         estimate().p_WB.z() - *last_range_m_ + params_.min_ground_clearance_m;
   }
   approach_planner_ = ApproachPlanner(approach_params);
-  const ApproachPlan plan = approach_planner_.Plan(target);
+  ApproachPlan plan = approach_planner_.Plan(target);
+  if (!plan.best) {
+    approach_params.limits = params_.fallback_limits;
+    approach_planner_ = ApproachPlanner(approach_params);
+    plan = approach_planner_.Plan(target);
+    used_fallback_limits_ = true;
+  }
   if (!plan.best) {
     Abort("no feasible approach candidate", t_s);
     return;

@@ -7,8 +7,9 @@
 //   hover     position control on the filter estimate at the pose where the filter started,
 //             until hover_s have passed and the position is known to init_max_position_sigma_m.
 //   (plan)    one step: traverse (6) through the estimated gap, the approach candidate of lowest
-//             cost (10) (planning/approach_planner.h) above the floor seen by the range sensor, a
-//             rest-to-rest transfer to its start.
+//             cost (10) (planning/approach_planner.h) above the floor seen by the range sensor
+//             (with fallback_limits if none passes approach.limits), a rest-to-rest transfer to
+//             its start.
 //   transfer  fly the transfer primitive (perception-aware heading (8)), then hold start_hold_s.
 //   approach  track the approach primitive, replanned from the current estimate at every control
 //             step (Sec. II-C, V-A: the previous primitive is kept when the replanned one is not
@@ -76,6 +77,15 @@ struct GapMissionParams {
     p.limits.max_thrust_mps2 = 14.0;
     p.limits.max_body_rate_radps = 4.0;
     return p;
+  }();
+  // Limits of a second planning attempt when no candidate passes approach.limits (steep gaps:
+  // at 45 deg roll only these wider limits found an approach in SITL).
+  FeasibilityLimits fallback_limits = [] {
+    FeasibilityLimits limits;
+    limits.min_thrust_mps2 = 2.0;
+    limits.max_thrust_mps2 = 20.0;
+    limits.max_body_rate_radps = 10.0;
+    return limits;
   }();
   control::PositionControllerParams controller;  // approach / transfer / hover tracking
   control::RecoveryParams recovery;             // after the gap
@@ -187,6 +197,8 @@ class GapMission : public perception::Autopilot {
   int replans_rejected() const { return replans_rejected_; }
   int updates_rejected() const { return updates_rejected_; }
   int filter_restarts() const { return filter_restarts_; }
+  // True when the approach was planned with fallback_limits.
+  bool used_fallback_limits() const { return used_fallback_limits_; }
 
  private:
   void EnterPhase(GapMissionPhase phase, double t_s);
@@ -235,6 +247,7 @@ class GapMission : public perception::Autopilot {
   int updates_rejected_ = 0;
   int consecutive_rejections_ = 0;
   int filter_restarts_ = 0;
+  bool used_fallback_limits_ = false;
   std::optional<double> last_range_m_;
 
   double phase_start_t_s_ = 0.0;

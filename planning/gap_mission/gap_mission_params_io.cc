@@ -27,6 +27,7 @@ void LoadParams(config::ParamReader& reader, GapMissionParams* params) {
   reader.ReadSection("filter", &params->filter);
   reader.ReadSection("traverse", &params->traverse);
   reader.ReadSection("approach", &params->approach);
+  reader.ReadSection("fallback_limits", &params->fallback_limits);
   reader.RejectUnknownKeys();
   reader.Validate(*params);
 }

@@ -11,6 +11,7 @@
 //     filter: {mahalanobis_gate: 22.46}  # PoseImuFilterParams (perception/estimation)
 //     traverse: {max_start_speed_mps: 3} # TraverseParameters (planning)
 //     approach: {duration_min_s: 1.0}    # ApproachPlannerParameters (planning)
+//     fallback_limits: {max_body_rate_radps: 10}  # FeasibilityLimits of the second attempt
 //
 // The controller and recovery gains keep their Table A.2 defaults (no keys). Ends with
 // GapMissionParams::Validate(); throws std::invalid_argument naming where the bad value is.

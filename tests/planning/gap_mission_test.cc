@@ -187,7 +187,8 @@ TEST(GapMissionParamsTest, RejectsInvalidValuesAndInputs) {
 TEST(GapMissionParamsTest, LoadsTheMissionSectionStrictly) {
   const config::ConfigTree tree = config::ConfigTree::FromCommandLine(
       "", {}, {"mission.hover_s=0.5", "mission.approach.duration_count=4",
-               "mission.detector.canny_low=30", "mission.filter.mahalanobis_gate=30"});
+               "mission.detector.canny_low=30", "mission.filter.mahalanobis_gate=30",
+               "mission.fallback_limits.max_body_rate_radps=8"});
   config::ParamReader root = tree.Reader();
   GapMissionParams params;
   root.ReadSection("mission", &params);
@@ -195,6 +196,7 @@ TEST(GapMissionParamsTest, LoadsTheMissionSectionStrictly) {
   EXPECT_EQ(params.approach.duration_count, 4);
   EXPECT_DOUBLE_EQ(params.detector.canny_low, 30.0);
   EXPECT_DOUBLE_EQ(params.filter.mahalanobis_gate, 30.0);
+  EXPECT_DOUBLE_EQ(params.fallback_limits.max_body_rate_radps, 8.0);
   EXPECT_DOUBLE_EQ(params.start_hold_s, GapMissionParams{}.start_hold_s);  // untouched default
 
   for (const char* bad : {"mission.hover_sec=1", "mission.hover_s=-1"}) {
