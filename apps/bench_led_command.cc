@@ -3,7 +3,8 @@
 //   aperture bench led --out DIR [--seed S] [--quick]
 //
 // Writes DIR/summary.json (sections accuracy, sweep, occlusion, merged, timing, acceptance; see
-// experiments/led/led_bench.h) and DIR/report.html (error plots, box plots per distance).
+// experiments/led/led_bench.h), DIR/frames.csv (every tracked frame with its errors) and
+// DIR/report.html (error plots, box plots per distance).
 #include <memory>
 #include <string>
 
@@ -40,6 +41,7 @@ void AddBenchLedCommand(CLI::App& bench, int* exit_code) {
       experiments::LedBenchOptions bench_options;
       bench_options.seed = static_cast<std::uint64_t>(options->seed);
       bench_options.quick = options->quick;
+      bench_options.frames_csv_path = out.Path("frames.csv");
       experiments::RunLedBench(bench_options, &out.summary(), &report);
       report.Write(out.Path("report.html"));
     });

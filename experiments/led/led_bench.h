@@ -14,6 +14,7 @@
 // Errors: positions in m, orientations in deg (angle of the angle-axis error, C.4.1).
 #include <cstdint>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "output/html_report.h"
 
@@ -23,6 +24,9 @@ struct LedBenchOptions {
   std::uint64_t seed = 1;  // random poses of the sweep and the sensor noise
   // Fewer frames with the same code paths (for tests and quick looks).
   bool quick = false;
+  // Per-frame CSV (section, t_s, status, detections, visible_leds, p_CT_true_x/y/z,
+  // position_error_m, orientation_error_deg, position_sigma_m, rms_px); empty = none.
+  std::string frames_csv_path;
 };
 
 // Fills (*summary)[section] for every section above and adds plots and tables to *report.
