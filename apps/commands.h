@@ -14,4 +14,7 @@ void AddBenchLedCommand(CLI::App& bench, int* exit_code);
 void AddCalibrateCommand(CLI::App& app, int* exit_code);
 void AddVersionCommand(CLI::App& app, int* exit_code);
 
+// Benchmarks under `aperture bench` (apps/bench_<name>_command.cc).
+void AddBenchControlCommand(CLI::App& bench, int* exit_code);
+
 }  // namespace aperture::apps
