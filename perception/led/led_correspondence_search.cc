@@ -40,7 +40,8 @@ LedCorrespondenceResult LedCorrespondenceSearch::FindByBruteForce(
   std::vector<Eigen::Isometry3d> candidates;
   candidates.reserve(4);
   std::array<Eigen::Vector3d, 3> f_C, p_T;
-  // Every candidate that explains at least one remaining LED, with its votes (Algorithm 1) and its labelling: the detection (+1, 0 = none) of every LED, 8 bits per
+  // Every candidate that explains at least as many remaining LEDs as the best so far, with its
+  // votes (Algorithm 1) and its labelling: the detection (+1, 0 = none) of every LED, 8 bits per
   // LED (kMaxLeds = 8), the remaining LEDs with their nearest detection within lambda_r.
   struct Vote {
     int led, detection;
@@ -54,6 +55,7 @@ LedCorrespondenceResult LedCorrespondenceSearch::FindByBruteForce(
   };
   std::vector<Candidate> consistent;
   std::vector<Vote> remaining_votes;
+  int max_matched = 1;
   for (int a = 0; a < n_detections; ++a) {
     for (int b = a + 1; b < n_detections; ++b) {
       for (int c = b + 1; c < n_detections; ++c) {
@@ -98,10 +100,12 @@ LedCorrespondenceResult LedCorrespondenceSearch::FindByBruteForce(
                     labelling |= Label(r, nearest);
                   }
                 }
-                if (matched == 0) {  // explains no LED beyond its own three: no vote
+                // Early rejection: fewer explained LEDs than the best candidate never vote.
+                if (matched < max_matched) {
                   remaining_votes.resize(first_vote);
                   continue;
                 }
+                max_matched = matched;
                 consistent.push_back(
                     {d3, {i, j, l}, matched, labelling, error_sq, first_vote, remaining_votes.size()});
               }
@@ -115,31 +119,29 @@ LedCorrespondenceResult LedCorrespondenceSearch::FindByBruteForce(
   // labelling often reprojects a remaining LED near some detection by chance, but such a
   // coincidence is not reproduced by P3P on another 3-subset of the same labelling, while the
   // true labelling of m LEDs is reproduced by all C(m, 3) of its 3-subsets. So the voters are the
-  // candidates of the labelling the most candidates (>= 2) share; ties go to the labelling that
-  // explains more LEDs, then to the smallest mean squared reprojection error (a 4-LED subset can
-  // mimic another within lambda_r).
-  std::sort(consistent.begin(), consistent.end(),
-            [](const Candidate& x, const Candidate& y) { return x.labelling < y.labelling; });
+  // candidates that explain the most LEDs with the labelling most candidates (>= 2) share; among
+  // equally shared labellings (a 4-LED subset can mimic another within lambda_r) the one with the
+  // smallest mean squared reprojection error of the explained LEDs.
+  std::sort(consistent.begin(), consistent.end(), [](const Candidate& x, const Candidate& y) {
+    return x.matched_leds != y.matched_leds ? x.matched_leds > y.matched_leds
+                                            : x.labelling < y.labelling;
+  });
   std::size_t best_first = 0, best_end = 0;
-  int max_matched = 0;
   double best_error = std::numeric_limits<double>::infinity();
-  for (std::size_t first = 0; first < consistent.size();) {
+  for (std::size_t first = 0;
+       first < consistent.size() && consistent[first].matched_leds == max_matched;) {
     std::size_t end = first;
     double error_sq = 0.0;
-    while (end < consistent.size() && consistent[end].labelling == consistent[first].labelling) {
+    while (end < consistent.size() && consistent[end].matched_leds == max_matched &&
+           consistent[end].labelling == consistent[first].labelling) {
       error_sq += consistent[end++].error_sq;
     }
     const std::size_t support = end - first, best_support = best_end - best_first;
-    const int matched = consistent[first].matched_leds;
     error_sq /= static_cast<double>(support);
-    const bool better =
-        support > best_support ||
-        (support == best_support &&
-         (matched > max_matched || (matched == max_matched && error_sq < best_error)));
-    if (support >= 2 && better) {
+    if (support >= 2 &&
+        (support > best_support || (support == best_support && error_sq < best_error))) {
       best_first = first;
       best_end = end;
-      max_matched = matched;
       best_error = error_sq;
     }
     first = end;

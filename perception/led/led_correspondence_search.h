@@ -10,10 +10,11 @@
 //    Deviations, needed because with a compact target and lambda_r = 5 px wrong labellings often
 //    reproject some remaining LED near a detection by chance and swamp the true bins: a remaining
 //    LED does not vote for one of the candidate's own three detections, and only the candidates
-//    that share the labelling (all LED-detection pairs they imply) reproduced by the most
-//    candidates (>= 2; ties: more LEDs explained, then smallest reprojection error) vote: the
-//    true labelling of m LEDs comes out of all C(m, 3) of its 3-subsets, a chance one out of one.
-//    The true bins then hold C(m, 3) votes, m the number of LEDs those candidates explain (n_L with every LED visible, n_L - 1 with one occluded), so the acceptance is acceptance_ratio * C(m, 3) (the thesis'
+//    that explain the most remaining LEDs of the frame and share the labelling (all LED-detection
+//    pairs they imply) reproduced by the most candidates (>= 2; ties: smallest reprojection
+//    error) vote: the true labelling of m LEDs comes out of all C(m, 3) of its 3-subsets, a
+//    chance one out of one. The true bins then hold C(m, 3) votes, m the number of LEDs those
+//    candidates explain (n_L with every LED visible, n_L - 1 with one occluded), so the acceptance is acceptance_ratio * C(m, 3) (the thesis'
 //    0.5 C(n_L, 3) when all are visible; a fresh start with 4 of 5 LEDs still finds the pose).
 //    The accepted correspondences must then agree with the consensus pose (the P3P candidate of
 //    the accepted set with the most reprojections within lambda_r); the others are dropped. An
