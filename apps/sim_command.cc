@@ -4,15 +4,18 @@
 //   aperture sim tracking ... | aperture sim recovery ...   (sim_tracking/recovery_command.cc)
 //
 // NAME is a built-in scenario (sim/scenario); --config/--set override its keys. The vehicle starts
-// at the scenario's start pose and the ground-truth autopilot holds it there (until mission
-// behaviours exist). Writes OUT/summary.json (outcome, crash reason and contact point,
-// real_time_factor, timing, hover errors, frame statistics), OUT/trajectory.csv and
+// at the scenario's start pose and the ground-truth autopilot holds it there, except `led`: the
+// LED-stabilized hover (LED pose + IMU only, experiments/led/led_hover_flight.h; summary key
+// `led_hover`, report plots of position vs set-point and estimate vs ground truth). Writes
+// OUT/summary.json (outcome, crash reason and contact point, real_time_factor, timing, hover
+// errors, frame statistics), OUT/trajectory.csv and
 // OUT/trajectory.tum (ground truth), OUT/commands.csv, OUT/imu.csv, OUT/sim.mp4 (or .avi: the
 // onboard camera with overlays beside a third-person view from behind the vehicle) and
 // OUT/report.html (position and command plots, key frames).
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <opencv2/imgproc.hpp>
@@ -20,6 +23,7 @@
 
 #include "apps/command_support.h"
 #include "apps/commands.h"
+#include "experiments/led/led_hover_flight.h"
 #include "apps/sitl_outputs.h"
 #include "output/html_report.h"
 #include "output/progress_bar.h"
@@ -99,10 +103,12 @@ std::string Format(const char* format, double a, double b = 0.0, double c = 0.0)
 nlohmann::json Vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
 void WriteReport(const sim::SitlResult& result, const std::vector<cv::Mat>& key_frames,
-                 const std::string& title, output::OutputFolder& out) {
+                 const std::string& title, output::OutputFolder& out,
+                 const std::function<void(output::HtmlReport*)>& add_flight_sections) {
   output::HtmlReport report(title);
   report.AddSection("Summary");
   report.AddTable(out.summary());
+  if (add_flight_sections) add_flight_sections(&report);
   std::vector<double> t, x, y, z;
   for (const control::QuadState& s : result.trajectory) {
     t.push_back(s.t_s);
@@ -152,7 +158,16 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
   autopilot_params.waypoints.push_back(
       sim::Waypoint{params.initial_state.p_WB,
                     std::atan2(T_WB_start.linear()(1, 0), T_WB_start.linear()(0, 0)), 0.0});
-  sim::GroundTruthAutopilot autopilot(params.dynamics.vehicle, autopilot_params);
+  sim::GroundTruthAutopilot ground_truth_autopilot(params.dynamics.vehicle, autopilot_params);
+  // Scenario flights: `led` holds the start from the LED pose + IMU (experiments/led); the others
+  // hover on ground truth.
+  std::unique_ptr<experiments::LedHoverFlight> led_flight;
+  if (scenario_params.scenario == "led") {
+    led_flight = std::make_unique<experiments::LedHoverFlight>(scenario, params);
+  }
+  perception::Autopilot& autopilot = led_flight ? led_flight->autopilot()
+                                                : static_cast<perception::Autopilot&>(
+                                                      ground_truth_autopilot);
 
   // The video shows the first body-mounted camera (else the first camera) beside a third-person
   // view of the same height, 4:3, colour.
@@ -248,7 +263,16 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
     }
   }
   summary["outputs"] = outputs;
-  WriteReport(result, key_frames, "aperture sim: " + options.scenario, out);
+  std::function<void(output::HtmlReport*)> add_flight_sections;
+  if (led_flight) {
+    const experiments::LedHoverFlightResult led =
+        led_flight->Finish(result, params.disturbances.pushes);
+    summary["led_hover"] = experiments::LedHoverSummary(led);
+    add_flight_sections = [led](output::HtmlReport* report) {
+      experiments::AddLedHoverReport(led, report);
+    };
+  }
+  WriteReport(result, key_frames, "aperture sim: " + options.scenario, out, add_flight_sections);
   std::cout << "aperture sim " << options.scenario << ": " << sim::ToString(result.outcome) << " ("
             << result.reason << ") after " << result.sim_time_s << " s, real-time factor "
             << result.real_time_factor << "\n";
