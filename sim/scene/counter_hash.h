@@ -31,4 +31,13 @@ inline double NormalFromHash(std::uint64_t h) {
   return std::sqrt(-2.0 * std::log(u1)) * std::cos(6.283185307179586 * u2);
 }
 
+// Two independent standard normal samples from one hash (both Box-Muller outputs; *a equals
+// NormalFromHash(h)).
+inline void NormalPairFromHash(std::uint64_t h, double* a, double* b) {
+  const double radius = std::sqrt(-2.0 * std::log(1.0 - UniformFromHash(h)));
+  const double angle = 6.283185307179586 * UniformFromHash(MixBits(h));
+  *a = radius * std::cos(angle);
+  *b = radius * std::sin(angle);
+}
+
 }  // namespace aperture::sim
