@@ -9,7 +9,7 @@ void AddBenchCommand(CLI::App& app, int* exit_code) {
   CLI::App* bench =
       app.add_subcommand("bench", "Run perception and control benchmarks against ground truth");
   bench->require_subcommand(1);
-  static_cast<void>(exit_code);  // handed to each benchmark's subcommand
+  AddBenchGapCommand(*bench, exit_code);
 }
 
 }  // namespace aperture::apps
