@@ -10,9 +10,11 @@ void AddRunCommand(CLI::App& app, int* exit_code);
 void AddSimCommand(CLI::App& app, int* exit_code);
 void AddRenderCommand(CLI::App& app, int* exit_code);
 void AddBenchCommand(CLI::App& app, int* exit_code);
-// Benchmarks: subcommands of `aperture bench`, each in apps/bench_<name>_command.cc.
-void AddBenchGapCommand(CLI::App& bench, int* exit_code);
 void AddCalibrateCommand(CLI::App& app, int* exit_code);
 void AddVersionCommand(CLI::App& app, int* exit_code);
+
+// Benchmarks under `aperture bench` (apps/bench_<name>_command.cc).
+void AddBenchControlCommand(CLI::App& bench, int* exit_code);
+void AddBenchGapCommand(CLI::App& bench, int* exit_code);
 
 }  // namespace aperture::apps

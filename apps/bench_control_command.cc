@@ -1,0 +1,104 @@
+// aperture bench control: the control-stack comparisons of issue 4 (thesis F.6/F.7, G.6, B.4
+// analogs) on the simulated bench vehicle.
+//
+//   aperture bench control --out DIR [--seed S] [--quick] [--only drag,mixer]
+//
+// Runs every section of experiments::ControlBenchSections() (or those named by --only) in order,
+// printing one progress line per section, and writes DIR/summary.json (each section's figures
+// under its key, plus timing.<key>_s) and DIR/report.html (each section's plots and tables).
+#include <chrono>
+#include <iostream>
+#include <memory>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "apps/commands.h"
+#include "experiments/control/control_bench_sections.h"
+#include "output/html_report.h"
+#include "output/output_folder.h"
+
+namespace aperture::apps {
+namespace {
+
+struct BenchControlOptions {
+  std::string out_dir;
+  experiments::ControlBenchOptions bench;
+  std::vector<std::string> only;
+};
+
+std::vector<experiments::ControlBenchSection> SelectSections(const std::vector<std::string>& only) {
+  std::vector<experiments::ControlBenchSection> all = experiments::ControlBenchSections();
+  if (only.empty()) return all;
+  std::vector<experiments::ControlBenchSection> selected;
+  std::string known;
+  for (const auto& section : all) known += (known.empty() ? "" : ", ") + section.key;
+  for (const std::string& key : only) {
+    bool found = false;
+    for (const auto& section : all) {
+      if (section.key == key) {
+        selected.push_back(section);
+        found = true;
+      }
+    }
+    if (!found) {
+      throw std::invalid_argument("--only: unknown section '" + key + "'; known: " + known);
+    }
+  }
+  return selected;
+}
+
+void RunBenchControl(const BenchControlOptions& options, output::OutputFolder& out) {
+  const std::vector<experiments::ControlBenchSection> sections = SelectSections(options.only);
+  nlohmann::json& summary = out.summary();
+  summary["command"] = "bench control";
+  nlohmann::json keys = nlohmann::json::array();
+  for (const auto& section : sections) keys.push_back(section.key);
+  summary["inputs"] = {{"seed", options.bench.seed},
+                       {"quick", options.bench.quick},
+                       {"recovery_trials", options.bench.recovery_trials},
+                       {"sections", keys}};
+  output::HtmlReport report("aperture bench control");
+  report.AddParagraph("Control-stack comparisons of issue 4 on the simulated bench vehicle (rotor "
+                      "drag d_x = 0.5, d_y = 0.35 1/s, motor lag and kappa(f) of G.6.1, IMU "
+                      "noise), seed " + std::to_string(options.bench.seed) +
+                      (options.bench.quick ? ", quick mode (shorter flights, fewer trials)" : ""));
+  for (size_t i = 0; i < sections.size(); ++i) {
+    std::cerr << "bench control [" << i + 1 << "/" << sections.size() << "] " << sections[i].key
+              << " ..." << std::flush;
+    const auto start = std::chrono::steady_clock::now();
+    sections[i].run(options.bench, &summary, &report);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    summary["timing"][sections[i].key + "_s"] = seconds;
+    std::cerr << " done in " << seconds << " s\n";
+  }
+  report.AddSection("All figures");
+  report.AddTable(summary);
+  report.Write(out.Path("report.html"));
+  summary["outputs"] = {{"report", "report.html"}};
+  std::cout << "aperture bench control: " << sections.size() << " section(s) written to "
+            << out.directory() << "\n";
+}
+
+}  // namespace
+
+void AddBenchControlCommand(CLI::App& bench, int* exit_code) {
+  auto options = std::make_shared<BenchControlOptions>();
+  CLI::App* command = bench.add_subcommand(
+      "control", "Control-stack comparisons: rotor drag, drag identification, body-rate law, "
+                 "mixer, saturation, throw recovery");
+  command->add_option("--out", options->out_dir, "Output folder")->required();
+  command->add_option("--seed", options->bench.seed, "Seed of every random stream");
+  command->add_flag("--quick", options->bench.quick,
+                    "Shorter flights and fewer trials (same code paths)");
+  command->add_option("--only", options->only, "Run only these sections (comma-separated keys)")
+      ->delimiter(',');
+  command->callback([options, exit_code] {
+    output::OutputFolder out(options->out_dir);
+    output::RunAndWriteSummary(out, [&] { RunBenchControl(*options, out); });
+    *exit_code = 0;
+  });
+}
+
+}  // namespace aperture::apps

@@ -1,0 +1,51 @@
+#include "experiments/gap/gap_mission_factory.h"
+
+#include <stdexcept>
+
+namespace aperture::experiments {
+namespace {
+
+int ForwardCameraIndex(const sim::Scenario& scenario) {
+  const std::vector<sim::ScenarioCamera>& cameras = scenario.cameras();
+  int first_on_body = -1;
+  for (int i = 0; i < static_cast<int>(cameras.size()); ++i) {
+    if (!cameras[i].mount_on_body) continue;
+    if (cameras[i].name == "front") return i;
+    if (first_on_body < 0) first_on_body = i;
+  }
+  if (first_on_body < 0) {
+    throw std::invalid_argument("scenario '" + scenario.kind() +
+                                "' has no body-mounted camera for the gap mission: add a "
+                                "forward camera (cameras.front)");
+  }
+  return first_on_body;
+}
+
+}  // namespace
+
+planning::GapMissionParams GapMissionParamsFor(const sim::Scenario& scenario,
+                                               const sim::ImuSensorParams& imu,
+                                               const planning::GapMissionParams& base) {
+  planning::GapMissionParams params = base;
+  const sim::GapParams& gap = scenario.params().gap;
+  params.detector.opening_size_m = gap.opening_m;
+  params.detector.inner_size_m = gap.pattern_inner_m;
+  params.detector.outer_size_m = gap.pattern_outer_m;
+  params.camera_id = ForwardCameraIndex(scenario);
+  params.filter.accel_noise_density = imu.accel_noise_density;
+  params.filter.gyro_noise_density = imu.gyro_noise_density;
+  params.filter.accel_bias_random_walk = imu.accel_bias_random_walk;
+  params.filter.gyro_bias_random_walk = imu.gyro_bias_random_walk;
+  return params;
+}
+
+std::unique_ptr<planning::GapMission> MakeGapMission(const sim::Scenario& scenario,
+                                                     const control::VehicleParameters& vehicle,
+                                                     const sim::ImuSensorParams& imu,
+                                                     const planning::GapMissionParams& base) {
+  const planning::GapMissionParams params = GapMissionParamsFor(scenario, imu, base);
+  const sim::ScenarioCamera& camera = scenario.cameras()[params.camera_id];
+  return std::make_unique<planning::GapMission>(params, camera.model, camera.T_mount, vehicle);
+}
+
+}  // namespace aperture::experiments

@@ -1,0 +1,33 @@
+#pragma once
+// Builds the vision gap mission (planning/gap_mission/gap_mission.h) from what the simulated
+// vehicle would know on hardware: the scenario's forward camera (model and mount T_BC), the
+// pattern sizes of its gap, the vehicle model and the IMU's noise specification. Nothing about
+// the true gap pose or the ground truth goes in. Used by `aperture sim gap` and `aperture bench
+// gap`; lives in experiments/ because it reads sim/ types and planning/ must not depend on sim/.
+//
+//   const sim::Scenario scenario = sim::BuildScenario(scenario_params);
+//   std::unique_ptr<planning::GapMission> mission =
+//       MakeGapMission(scenario, sitl_params.dynamics.vehicle, sitl_params.imu, mission_params);
+#include <memory>
+
+#include "control/vehicle_parameters.h"
+#include "planning/gap_mission/gap_mission.h"
+#include "sim/scenario/scenario.h"
+#include "sim/sensors/imu_sensor.h"
+
+namespace aperture::experiments {
+
+// `base` with the scenario-derived fields replaced: detector pattern sizes (gap.opening_m,
+// pattern_inner_m, pattern_outer_m), camera_id (the camera named "front", else the first
+// body-mounted one) and the filter's IMU noise densities and random walks (from `imu`). Throws
+// std::invalid_argument when the scenario has no body-mounted camera.
+planning::GapMissionParams GapMissionParamsFor(const sim::Scenario& scenario,
+                                               const sim::ImuSensorParams& imu,
+                                               const planning::GapMissionParams& base = {});
+
+// The mission for that camera (model, T_BC) with GapMissionParamsFor(scenario, imu, base).
+std::unique_ptr<planning::GapMission> MakeGapMission(
+    const sim::Scenario& scenario, const control::VehicleParameters& vehicle,
+    const sim::ImuSensorParams& imu, const planning::GapMissionParams& base = {});
+
+}  // namespace aperture::experiments

@@ -1,0 +1,424 @@
+#include "planning/gap_mission/gap_mission.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <utility>
+
+#include "perception/gap/gap_node.h"
+#include "perception/led/se3_twist.h"
+
+namespace aperture::planning {
+namespace {
+
+void RequirePositive(double value, const char* field) {
+  if (!std::isfinite(value) || value <= 0.0) {
+    throw std::invalid_argument(std::string("GapMissionParams.") + field +
+                                " must be a positive finite number, got " + std::to_string(value));
+  }
+}
+
+void RequireNonNegative(double value, const char* field) {
+  if (!std::isfinite(value) || value < 0.0) {
+    throw std::invalid_argument(std::string("GapMissionParams.") + field +
+                                " must be finite and >= 0, got " + std::to_string(value));
+  }
+}
+
+double HeadingOf(const Eigen::Quaterniond& q_WB) {
+  const Eigen::Vector3d x_B = q_WB * Eigen::Vector3d::UnitX();
+  return std::atan2(x_B.y(), x_B.x());
+}
+
+}  // namespace
+
+void GapMissionParams::Validate() const {
+  perception::ValidateGapDetectorParams(detector);
+  filter.Validate();
+  traverse.Validate();
+  approach.Validate();
+  controller.Validate();
+  recovery.Validate();
+  if (camera_id < 0) {
+    throw std::invalid_argument("GapMissionParams.camera_id must be >= 0, got " +
+                                std::to_string(camera_id));
+  }
+  if (init_detections < 1) {
+    throw std::invalid_argument("GapMissionParams.init_detections must be >= 1, got " +
+                                std::to_string(init_detections));
+  }
+  if (gravity_samples < 1) {
+    throw std::invalid_argument("GapMissionParams.gravity_samples must be >= 1, got " +
+                                std::to_string(gravity_samples));
+  }
+  RequireNonNegative(hover_s, "hover_s");
+  RequirePositive(init_max_position_sigma_m, "init_max_position_sigma_m");
+  RequirePositive(transfer_speed_mps, "transfer_speed_mps");
+  RequirePositive(min_transfer_s, "min_transfer_s");
+  RequireNonNegative(start_hold_s, "start_hold_s");
+  RequireNonNegative(min_replan_remaining_s, "min_replan_remaining_s");
+  RequirePositive(detection_timeout_s, "detection_timeout_s");
+  RequireNonNegative(recovered_hold_s, "recovered_hold_s");
+}
+
+const char* ToString(GapMissionPhase phase) {
+  switch (phase) {
+    case GapMissionPhase::kDetect: return "detect";
+    case GapMissionPhase::kHover: return "hover";
+    case GapMissionPhase::kTransfer: return "transfer";
+    case GapMissionPhase::kApproach: return "approach";
+    case GapMissionPhase::kTraverse: return "traverse";
+    case GapMissionPhase::kRecover: return "recover";
+    case GapMissionPhase::kDone: return "done";
+    case GapMissionPhase::kAborted: return "aborted";
+  }
+  return "unknown";
+}
+
+GapMission::GapMission(const GapMissionParams& params,
+                       std::shared_ptr<const perception::CameraModel> camera,
+                       const Eigen::Isometry3d& T_BC, const control::VehicleParameters& vehicle)
+    : params_((params.Validate(), params)),
+      T_BC_(T_BC),
+      vehicle_(vehicle),
+      detector_(params.detector,
+                camera ? std::move(camera)
+                       : throw std::invalid_argument("GapMission: the camera model is null")),
+      approach_planner_(params.approach),
+      controller_(vehicle, params.controller),
+      attitude_controller_(params.controller.attitude),
+      recovery_(vehicle, params.recovery) {
+  const Eigen::Matrix3d R = T_BC.linear();
+  if (!T_BC.matrix().allFinite() || !(R.transpose() * R).isIdentity(1e-6) ||
+      R.determinant() < 0.0) {
+    throw std::invalid_argument("GapMission: T_BC must be a finite rigid transform (rotation)");
+  }
+  recent_up_B_.reserve(static_cast<std::size_t>(params_.gravity_samples));
+  phase_changes_.push_back({0.0, phase_});
+}
+
+void GapMission::EnterPhase(GapMissionPhase phase, double t_s) {
+  phase_ = phase;
+  phase_start_t_s_ = t_s;
+  phase_changes_.push_back({t_s, phase});
+}
+
+void GapMission::Abort(const std::string& reason, double t_s) {
+  reason_ = reason;
+  EnterPhase(GapMissionPhase::kAborted, t_s);
+  recovery_.StartWithoutLaunch(t_s);
+}
+
+void GapMission::OnImu(const perception::ImuSample& sample) {
+  last_imu_ = sample;
+  if (filter_) {
+    filter_->Propagate(sample);
+    ApplyPendingMeasurements();
+    return;
+  }
+  // Hovering at rest before the filter starts: the specific force is gravity, up in B.
+  const Eigen::Vector3d up_B = sample.specific_force_B.normalized();
+  if (recent_up_B_.size() < static_cast<std::size_t>(params_.gravity_samples)) {
+    recent_up_B_.push_back(up_B);
+  } else {
+    recent_up_B_[recent_up_next_] = up_B;
+    recent_up_next_ = (recent_up_next_ + 1) % recent_up_B_.size();
+  }
+}
+
+void GapMission::OnFrame(const perception::Frame& frame) {
+  if (frame.camera_id != params_.camera_id) return;
+  // The detector looks until the planned crossing of the gap plane; after it the gap is behind.
+  const bool looking =
+      phase_ == GapMissionPhase::kDetect || phase_ == GapMissionPhase::kHover ||
+      phase_ == GapMissionPhase::kTransfer || phase_ == GapMissionPhase::kApproach ||
+      (phase_ == GapMissionPhase::kTraverse &&
+       frame.t_s < traverse_start_t_s_ + traverse_->time_to_gap_s());
+  if (!looking) return;
+  last_detection_ = detector_.Detect(frame.image);
+  last_frame_t_s_ = frame.t_s;
+  ++frames_processed_;
+  if (!last_detection_.detected()) return;
+  ++detections_;
+  last_detected_t_s_ = frame.t_s;
+  last_T_CG_ = last_detection_.T_CG;
+  if (!filter_) {
+    if (recent_up_B_.empty()) return;  // no IMU yet: gravity unknown
+    Eigen::Vector3d up_B = Eigen::Vector3d::Zero();
+    for (const Eigen::Vector3d& u : recent_up_B_) up_B += u;
+    const Eigen::Matrix3d R_GB = last_T_CG_.linear().transpose() * T_BC_.linear().transpose();
+    up_G_sum_ += R_GB * up_B.normalized();
+    return;
+  }
+  // Pose of the camera in W from T_WC = T_WG T_CG^-1, covariance mapped from the detector's left
+  // perturbation of T_GC in G to the filter's [n_p (W); n_theta (C)] (pose_imu_filter.h):
+  // n_p = R_WG (dt - [p_GC]x dr), n_theta = R_CG dr.
+  const Eigen::Isometry3d T_GC = last_T_CG_.inverse();
+  const Eigen::Isometry3d T_WC = T_WG_ * T_GC;
+  const perception::Matrix6d cov_GC =
+      perception::GapNode::InverseCovariance(last_T_CG_, last_detection_.covariance);
+  perception::Matrix6d J = perception::Matrix6d::Zero();
+  J.topLeftCorner<3, 3>() = T_WG_.linear();
+  J.topRightCorner<3, 3>() = -T_WG_.linear() * perception::Skew(T_GC.translation());
+  J.bottomRightCorner<3, 3>() = T_GC.linear().transpose();
+  perception::Matrix6d cov = J * cov_GC * J.transpose();
+  cov = 0.5 * (cov + cov.transpose()).eval();
+  perception::PoseMeasurement z;
+  z.t_s = frame.t_s;
+  z.p_WX = T_WC.translation();
+  z.q_WX = Eigen::Quaterniond(T_WC.linear()).normalized();
+  z.covariance = cov;
+  z.p_BX = T_BC_.translation();
+  z.q_BX = Eigen::Quaterniond(T_BC_.linear()).normalized();
+  // A frame stamped after the latest IMU sample (IMU latency) waits for the IMU to catch up.
+  pending_.push_back(z);
+  ApplyPendingMeasurements();
+}
+
+void GapMission::ApplyPendingMeasurements() {
+  while (!pending_.empty() && pending_.front().t_s <= filter_->time_s()) {
+    const perception::PoseUpdateResult result = filter_->Update(pending_.front());
+    pending_.pop_front();
+    if (!result.applied()) ++updates_rejected_;
+  }
+}
+
+void GapMission::StartFilter() {
+  // Mission frame in G: z_W = up, x_W = horizontal part of z_G, y_W = z_W x x_W.
+  const Eigen::Vector3d up_G = up_G_sum_.normalized();
+  const Eigen::Vector3d z_G = Eigen::Vector3d::UnitZ();
+  const Eigen::Vector3d x_G_of_W = (z_G - z_G.dot(up_G) * up_G).normalized();
+  Eigen::Matrix3d R_GW;
+  R_GW.col(0) = x_G_of_W;
+  R_GW.col(1) = up_G.cross(x_G_of_W);
+  R_GW.col(2) = up_G;
+  T_WG_ = Eigen::Isometry3d::Identity();
+  T_WG_.linear() = R_GW.transpose();
+  gap_W_.p_WG.setZero();
+  gap_W_.R_WG = T_WG_.linear();
+  const Eigen::Isometry3d T_WB = T_WG_ * last_T_CG_.inverse() * T_BC_.inverse();
+  control::QuadState initial;
+  initial.t_s = last_imu_->t_s;
+  initial.p_WB = T_WB.translation();
+  initial.q_WB = Eigen::Quaterniond(T_WB.linear()).normalized();
+  filter_ = std::make_unique<perception::PoseImuFilter>(params_.filter, initial);
+  hover_reference_ = control::TrajectoryPoint();
+  hover_reference_.p_W = initial.p_WB;
+  hover_reference_.heading_rad = HeadingOf(initial.q_WB);
+}
+
+control::QuadState GapMission::estimate() const {
+  if (!filter_) return control::QuadState();
+  return filter_->Estimate().state;
+}
+
+void GapMission::Plan(double t_s) {
+  const TraverseOptimizationResult traverse = OptimizeTraverseTrajectory(gap_W_, params_.traverse);
+  if (traverse.status != TraverseOptimizationResult::Status::kSuccess) {
+    Abort("traverse optimization failed (" +
+              std::string(traverse.status == TraverseOptimizationResult::Status::kInfeasible
+                              ? "infeasible"
+                              : "solver failure") +
+              ")",
+          t_s);
+    return;
+  }
+  const ApproachTarget target = ApproachTarget::FromTraverse(*traverse.trajectory);
+  const ApproachPlan plan = approach_planner_.Plan(target);
+  if (!plan.best) {
+    Abort("no feasible approach candidate", t_s);
+    return;
+  }
+  traverse_ = traverse.trajectory;
+  approach_target_ = target;
+  approach_ = plan.best;
+  primitive_ = plan.best->primitive;
+  const control::QuadState x = estimate();
+  const Eigen::Vector3d start_W = primitive_.initial_position_W();
+  const double distance_m = (start_W - x.p_WB).norm();
+  const double duration_s =
+      std::max(params_.min_transfer_s, 1.875 * distance_m / params_.transfer_speed_mps);
+  const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
+  transfer_ = MotionPrimitive(x.p_WB, x.v_W, zero, start_W, zero, zero, duration_s);
+  EnterPhase(GapMissionPhase::kTransfer, t_s);
+}
+
+perception::AutopilotCommand GapMission::Track(const control::TrajectoryPoint& reference) const {
+  perception::AutopilotCommand command;
+  command.kind = perception::AutopilotCommand::Kind::kThrustRates;
+  command.thrust_rates = controller_.Compute(estimate(), reference).command;
+  return command;
+}
+
+perception::AutopilotCommand GapMission::HoverCommand() const {
+  perception::AutopilotCommand command;
+  command.kind = perception::AutopilotCommand::Kind::kThrustRates;
+  command.thrust_rates.collective_thrust_mps2 = vehicle_.gravity_mps2;
+  return command;
+}
+
+control::RecoveryInputs GapMission::RecoveryInputsAt(double t_s) const {
+  const control::QuadState x = estimate();
+  control::RecoveryInputs inputs;
+  inputs.t_s = t_s;
+  inputs.launch_detected = true;
+  inputs.q_WB = x.q_WB;
+  inputs.omega_B = x.omega_B;
+  // The filter's height is relative to the gap centre, which only offsets the held height.
+  control::HeightEstimate height;
+  height.z_m = x.p_WB.z();
+  height.z_dot_mps = x.v_W.z();
+  height.time_since_init_s = std::max(0.0, t_s - phase_changes_.front().t_s);
+  inputs.height = height;
+  inputs.vision_state = x;
+  return inputs;
+}
+
+perception::AutopilotCommand GapMission::Step(double t_s) {
+  switch (phase_) {
+    case GapMissionPhase::kDetect: {
+      if (up_G_sum_.norm() > 0.0 && detections_ >= params_.init_detections && last_imu_) {
+        StartFilter();
+        EnterPhase(GapMissionPhase::kHover, t_s);
+        return Track(hover_reference_);
+      }
+      return HoverCommand();
+    }
+    case GapMissionPhase::kHover: {
+      if (t_s - last_detected_t_s_ > params_.detection_timeout_s) {
+        Abort("gap lost while hovering", t_s);
+        return Step(t_s);
+      }
+      const perception::Matrix15d P = filter_->Estimate().covariance;
+      const double sigma_m =
+          std::sqrt(P.block<3, 3>(perception::ErrorStateIndex::kPosition,
+                                  perception::ErrorStateIndex::kPosition)
+                        .diagonal()
+                        .maxCoeff());
+      if (t_s - phase_start_t_s_ >= params_.hover_s && sigma_m <= params_.init_max_position_sigma_m) {
+        Plan(t_s);
+        return Step(t_s);
+      }
+      hover_reference_.t_s = t_s;
+      return Track(hover_reference_);
+    }
+    case GapMissionPhase::kTransfer: {
+      if (t_s - last_detected_t_s_ > params_.detection_timeout_s) {
+        Abort("gap lost during the transfer", t_s);
+        return Step(t_s);
+      }
+      const double t_rel = t_s - phase_start_t_s_;
+      if (t_rel >= transfer_.duration_s() + params_.start_hold_s) {
+        EnterPhase(GapMissionPhase::kApproach, t_s);
+        approach_start_t_s_ = t_s;
+        approach_end_t_s_ = t_s + primitive_.duration_s();
+        primitive_start_t_s_ = t_s;
+        last_reference_a_W_.setZero();
+        return Step(t_s);
+      }
+      control::TrajectoryPoint reference = approach_planner_.Sample(
+          transfer_, approach_target_.gap_center_W, std::min(t_rel, transfer_.duration_s()));
+      reference.t_s = t_s;
+      return Track(reference);
+    }
+    case GapMissionPhase::kApproach: {
+      if (t_s >= approach_end_t_s_) {
+        EnterPhase(GapMissionPhase::kTraverse, t_s);
+        traverse_start_t_s_ = t_s;
+        return Step(t_s);
+      }
+      if (t_s - last_detected_t_s_ > params_.detection_timeout_s) {
+        Abort("gap lost during the approach", t_s);
+        return Step(t_s);
+      }
+      const double remaining_s = approach_end_t_s_ - t_s;
+      if (remaining_s > params_.min_replan_remaining_s) {
+        const control::QuadState x = estimate();
+        const ApproachCandidate candidate = approach_planner_.Replan(
+            approach_target_, x.p_WB, x.v_W, last_reference_a_W_, remaining_s);
+        if (candidate.IsValid()) {
+          primitive_ = candidate.primitive;
+          primitive_start_t_s_ = t_s;
+          ++replans_accepted_;
+        } else {
+          ++replans_rejected_;
+        }
+      }
+      control::TrajectoryPoint reference = approach_planner_.Sample(
+          primitive_, approach_target_.gap_center_W, t_s - primitive_start_t_s_);
+      reference.t_s = t_s;
+      last_reference_a_W_ = reference.a_W;
+      return Track(reference);
+    }
+    case GapMissionPhase::kTraverse: {
+      if (t_s - traverse_start_t_s_ >= traverse_->duration_s()) {
+        EnterPhase(GapMissionPhase::kRecover, t_s);
+        recovery_.StartWithoutLaunch(t_s);
+        return Step(t_s);
+      }
+      // Open loop: constant thrust, constant attitude (thrust along +-e3, traverse heading).
+      perception::AutopilotCommand command;
+      command.kind = perception::AutopilotCommand::Kind::kThrustRates;
+      command.thrust_rates.collective_thrust_mps2 = traverse_->collective_thrust_mps2();
+      command.thrust_rates.omega_des_B =
+          attitude_controller_
+              .Compute(estimate().q_WB, traverse_->thrust_direction_W(), traverse_->heading_rad())
+              .omega_fb_B;
+      return command;
+    }
+    case GapMissionPhase::kRecover:
+    case GapMissionPhase::kDone:
+    case GapMissionPhase::kAborted: {
+      const control::RecoveryOutput output = recovery_.Step(RecoveryInputsAt(t_s));
+      if (output.stage == control::RecoveryStage::kPosition) {
+        if (std::isnan(position_stage_since_t_s_)) position_stage_since_t_s_ = t_s;
+      } else {
+        position_stage_since_t_s_ = std::numeric_limits<double>::quiet_NaN();
+      }
+      const bool recovered = !std::isnan(position_stage_since_t_s_) &&
+                             t_s - position_stage_since_t_s_ >= params_.recovered_hold_s;
+      if (recovered && phase_ == GapMissionPhase::kRecover) {
+        EnterPhase(GapMissionPhase::kDone, t_s);
+      }
+      perception::AutopilotCommand command;
+      command.kind = perception::AutopilotCommand::Kind::kThrustRates;
+      command.thrust_rates = output.command;
+      command.done = recovered;
+      return command;
+    }
+  }
+  return HoverCommand();
+}
+
+std::string GapMission::status() const {
+  char buffer[160];
+  const double t_rel = (filter_ ? filter_->time_s() : 0.0) - phase_start_t_s_;
+  switch (phase_) {
+    case GapMissionPhase::kDetect:
+      std::snprintf(buffer, sizeof(buffer), "detect (%d/%d detections)", detections_,
+                    params_.init_detections);
+      return buffer;
+    case GapMissionPhase::kTransfer:
+      std::snprintf(buffer, sizeof(buffer), "transfer %.1f/%.1f s", t_rel, transfer_.duration_s());
+      return buffer;
+    case GapMissionPhase::kApproach:
+      std::snprintf(buffer, sizeof(buffer), "approach %.2f/%.2f s (%d replans)", t_rel,
+                    approach_end_t_s_ - approach_start_t_s_, replans_accepted_);
+      return buffer;
+    case GapMissionPhase::kTraverse:
+      std::snprintf(buffer, sizeof(buffer), "traverse (open loop) %.2f/%.2f s", t_rel,
+                    traverse_->duration_s());
+      return buffer;
+    case GapMissionPhase::kRecover:
+    case GapMissionPhase::kDone:
+      return std::string(ToString(phase_)) + ": " + control::ToString(recovery_.stage());
+    case GapMissionPhase::kAborted:
+      return "aborted (" + reason_ + "): " + control::ToString(recovery_.stage());
+    case GapMissionPhase::kHover:
+      break;
+  }
+  return ToString(phase_);
+}
+
+}  // namespace aperture::planning

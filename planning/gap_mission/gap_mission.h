@@ -1,0 +1,211 @@
+#pragma once
+// The narrow-gap mission of Falanga et al. 2017 (seed 000) as a perception::Autopilot that flies
+// from camera images and IMU samples only (no ground truth, nothing from sim/):
+//
+//   detect    hover on the last command (zero body rates, hover thrust) until the gap detector
+//             has found the gap in init_detections frames; the mission frame W is then fixed.
+//   hover     position control on the filter estimate at the pose where the filter started,
+//             until hover_s have passed and the position is known to init_max_position_sigma_m.
+//   (plan)    one step: traverse (6) through the estimated gap, the approach candidate of lowest
+//             cost (10) (planning/approach_planner.h), a rest-to-rest transfer to its start.
+//   transfer  fly the transfer primitive (perception-aware heading (8)), then hold start_hold_s.
+//   approach  track the approach primitive, replanned from the current estimate at every control
+//             step (Sec. II-C, V-A: the previous primitive is kept when the replanned one is not
+//             provably feasible or loses the gap from view).
+//   traverse  open loop (Sec. II-A/B): constant collective thrust |<g, e3>| and the constant
+//             attitude of the traverse (thrust along +-e3, the traverse heading), held from the
+//             IMU-propagated attitude; no position feedback. Lasts the traverse's duration_s.
+//   recover   the five-stage recovery of Faessler thesis paper B (control/recovery_state_machine.h)
+//             on the filter's IMU-only estimate (the gap is behind the camera, Sec. II-F), down to
+//             position hold; after recovered_hold_s in the position stage the mission is done.
+//   aborted   (from hover/transfer/approach when the gap is not detected for
+//             detection_timeout_s, or planning fails): straight to the recovery stages.
+//
+// State estimate: perception::PoseImuFilter fed with every IMU sample and every detection's pose
+// of the camera T_WC = T_WG * T_CG^-1 with its covariance (GapDetection::covariance mapped to the
+// filter's convention), latency handled by the filter. Mission frame W (Sec. III: the state is
+// estimated relative to the gap): origin at the gap centre, z_W up (gravity from the averaged
+// accelerometer while hovering, expressed in G through the detections' R_CG), x_W the horizontal
+// projection of the gap normal z_G (direction of traversal). The gap pose in W is therefore fixed,
+// and TraverseTrajectory's gap frame G (x_G long side, z_G through the gap) is the detector's.
+//
+// Times are on the sensor clock (the simulator clock in SITL).
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <deque>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "control/position_controller.h"
+#include "control/quad_state.h"
+#include "control/recovery_state_machine.h"
+#include "control/vehicle_parameters.h"
+#include "perception/autopilot.h"
+#include "perception/camera/camera_model.h"
+#include "perception/estimation/pose_imu_filter.h"
+#include "perception/gap/gap_detector.h"
+#include "planning/approach_planner.h"
+#include "planning/motion_primitive.h"
+#include "planning/traverse_trajectory.h"
+
+namespace aperture::planning {
+
+struct GapMissionParams {
+  // Pattern geometry and detector settings; the sizes must be those of the real gap.
+  perception::GapDetectorParams detector;
+  perception::PoseImuFilterParams filter;  // set the IMU noise of the vehicle's IMU
+  TraverseParameters traverse;
+  ApproachPlannerParameters approach;
+  control::PositionControllerParams controller;  // approach / transfer / hover tracking
+  control::RecoveryParams recovery;             // after the gap
+  int camera_id = 0;  // Frame::camera_id of the forward camera; other cameras are ignored
+
+  // Detections whose gravity direction is averaged to fix the mission frame (detection noise of
+  // R_CG tilts W against gravity: 10 frames at 50 Hz average it down in 0.2 s of hover).
+  int init_detections = 10;
+  // IMU samples averaged for the gravity direction while hovering before the first detection.
+  int gravity_samples = 100;
+  double hover_s = 1.0;  // filter convergence (biases) before planning [s]
+  // Planning waits until the filter's position 1-sigma (largest axis) is below this [m].
+  double init_max_position_sigma_m = 0.05;
+  // Transfer to the approach start: duration = max(min_transfer_s, 1.875 d / transfer_speed_mps)
+  // (1.875 d / T is the peak speed of a rest-to-rest minimum-jerk primitive over distance d).
+  double transfer_speed_mps = 1.5;
+  double min_transfer_s = 1.0;
+  double start_hold_s = 0.5;  // hover at the approach start before the approach [s]
+  // No replanning in the last part of the approach: the primitive is then too short to be
+  // provably feasible anyway (Sec. V-A).
+  double min_replan_remaining_s = 0.05;
+  // Without a detection for this long before the traverse the mission aborts [s].
+  double detection_timeout_s = 0.5;
+  double recovered_hold_s = 1.0;  // time in the recovery's position stage before done [s]
+
+  // Throws std::invalid_argument naming the field (and via the components' Validate()).
+  void Validate() const;
+};
+
+enum class GapMissionPhase {
+  kDetect,
+  kHover,
+  kTransfer,
+  kApproach,
+  kTraverse,
+  kRecover,
+  kDone,     // recovered and holding position
+  kAborted,  // recovering after an abort (see reason())
+};
+// "detect", "hover", "transfer", "approach", "traverse", "recover", "done", "aborted".
+const char* ToString(GapMissionPhase phase);
+
+struct GapMissionPhaseChange {
+  double t_s = 0.0;
+  GapMissionPhase phase = GapMissionPhase::kDetect;  // entered at t_s
+};
+
+class GapMission : public perception::Autopilot {
+ public:
+  // camera: the forward camera's model; T_BC its mount (p_B = T_BC * p_C); vehicle: the
+  // controller's model. Throws std::invalid_argument for invalid params, a null camera or a
+  // non-rigid T_BC.
+  GapMission(const GapMissionParams& params, std::shared_ptr<const perception::CameraModel> camera,
+             const Eigen::Isometry3d& T_BC, const control::VehicleParameters& vehicle);
+
+  std::string name() const override { return "gap_mission"; }
+  void OnImu(const perception::ImuSample& sample) override;
+  void OnFrame(const perception::Frame& frame) override;
+  perception::AutopilotCommand Step(double t_s) override;
+  // "<phase>" plus details, e.g. "approach 1.2/2.0 s", "recover: horizontal_velocity".
+  std::string status() const override;
+
+  GapMissionPhase phase() const { return phase_; }
+  const std::vector<GapMissionPhaseChange>& phase_changes() const { return phase_changes_; }
+  // Why the mission aborted (empty otherwise).
+  const std::string& reason() const { return reason_; }
+  // The filter's state estimate in the mission frame (t_s = latest IMU sample); a default
+  // QuadState (t_s = 0) before the filter starts.
+  control::QuadState estimate() const;
+  bool has_estimate() const { return filter_ != nullptr; }
+  // Gap pose in the mission frame (fixed once the frame is set; identity rotation before).
+  const GapPose& gap_W() const { return gap_W_; }
+  // The traverse the vehicle flew (or is flying), in the mission frame; empty before.
+  const std::optional<TraverseTrajectory>& traverse_plan() const { return traverse_; }
+  // Sensor-clock time at which the open-loop traverse began; NaN before.
+  double traverse_start_time_s() const { return traverse_start_t_s_; }
+  // The approach as planned before the transfer (first primitive), empty before planning.
+  const std::optional<ApproachCandidate>& approach_plan() const { return approach_; }
+  // Time of the approach start (end of transfer and hold); NaN before.
+  double approach_start_time_s() const { return approach_start_t_s_; }
+  // Latest processed detection of the forward camera and its frame time (NaN before any).
+  const perception::GapDetection& last_detection() const { return last_detection_; }
+  double last_detection_frame_time_s() const { return last_frame_t_s_; }
+  int detections() const { return detections_; }
+  int frames_processed() const { return frames_processed_; }
+  int replans_accepted() const { return replans_accepted_; }
+  int replans_rejected() const { return replans_rejected_; }
+  int updates_rejected() const { return updates_rejected_; }
+
+ private:
+  void EnterPhase(GapMissionPhase phase, double t_s);
+  void Abort(const std::string& reason, double t_s);
+  void StartFilter();
+  // Fuses the buffered measurements the filter's IMU time has reached, in stamp order.
+  void ApplyPendingMeasurements();
+  void Plan(double t_s);
+  perception::AutopilotCommand Track(const control::TrajectoryPoint& reference) const;
+  perception::AutopilotCommand HoverCommand() const;
+  control::RecoveryInputs RecoveryInputsAt(double t_s) const;
+
+  GapMissionParams params_;
+  Eigen::Isometry3d T_BC_;
+  control::VehicleParameters vehicle_;
+  perception::GapDetector detector_;
+  ApproachPlanner approach_planner_;
+  control::PositionController controller_;
+  control::AttitudeController attitude_controller_;
+  control::RecoveryStateMachine recovery_;
+
+  GapMissionPhase phase_ = GapMissionPhase::kDetect;
+  std::vector<GapMissionPhaseChange> phase_changes_;
+  std::string reason_;
+
+  // Before the filter: gravity direction (up) in B from the latest IMU samples, and the sum of
+  // the up directions in G of the detections so far.
+  std::vector<Eigen::Vector3d> recent_up_B_;
+  std::size_t recent_up_next_ = 0;
+  Eigen::Vector3d up_G_sum_ = Eigen::Vector3d::Zero();
+  std::optional<perception::ImuSample> last_imu_;
+  Eigen::Isometry3d last_T_CG_ = Eigen::Isometry3d::Identity();
+
+  GapPose gap_W_;
+  Eigen::Isometry3d T_WG_ = Eigen::Isometry3d::Identity();
+  std::unique_ptr<perception::PoseImuFilter> filter_;
+  std::deque<perception::PoseMeasurement> pending_;
+
+  perception::GapDetection last_detection_;
+  double last_frame_t_s_ = std::numeric_limits<double>::quiet_NaN();
+  double last_detected_t_s_ = std::numeric_limits<double>::quiet_NaN();
+  int detections_ = 0;
+  int frames_processed_ = 0;
+  int replans_accepted_ = 0;
+  int replans_rejected_ = 0;
+  int updates_rejected_ = 0;
+
+  double phase_start_t_s_ = 0.0;
+  control::TrajectoryPoint hover_reference_;
+  std::optional<TraverseTrajectory> traverse_;
+  std::optional<ApproachCandidate> approach_;
+  ApproachTarget approach_target_;
+  MotionPrimitive transfer_;
+  MotionPrimitive primitive_;  // current approach primitive
+  double primitive_start_t_s_ = 0.0;
+  double approach_start_t_s_ = std::numeric_limits<double>::quiet_NaN();
+  double approach_end_t_s_ = 0.0;
+  double traverse_start_t_s_ = std::numeric_limits<double>::quiet_NaN();
+  Eigen::Vector3d last_reference_a_W_ = Eigen::Vector3d::Zero();
+  double position_stage_since_t_s_ = std::numeric_limits<double>::quiet_NaN();
+};
+
+}  // namespace aperture::planning

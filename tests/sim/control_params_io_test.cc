@@ -1,0 +1,100 @@
+#include "sim/control_params_io.h"
+
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include <functional>
+#include <stdexcept>
+#include <string>
+
+namespace aperture::sim {
+namespace {
+
+ControlStackParams Load(const std::string& yaml) {
+  config::ParamReader reader(YAML::Load(yaml), "control.yaml");
+  ControlStackParams params;
+  LoadParams(reader, &params);
+  return params;
+}
+
+std::string ErrorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+using BodyRateLaw = control::LowLevelControllerParameters::BodyRateLaw;
+using Mixing = control::MixerParameters::Mixing;
+using Saturation = control::MixerParameters::Saturation;
+
+TEST(ControlParamsIoTest, DefaultsAreTheThesisStack) {
+  const ControlStackParams params = Load("{}");
+  EXPECT_TRUE(params.position.compensate_rotor_drag);
+  EXPECT_EQ(BodyRateName(params.low_level), "lqr");
+  EXPECT_EQ(params.low_level.mixer.mixing, Mixing::kIterative);
+  EXPECT_EQ(params.low_level.mixer.saturation, Saturation::kPrioritized);
+}
+
+TEST(ControlParamsIoTest, SelectsEveryBaselineAndGains) {
+  const ControlStackParams params = Load(R"(
+drag_compensation: false
+body_rate: p_high
+mixer: one_shot
+saturation: clipping
+assured_yaw_torque_Nm: 0.002
+position: {p_xy_per_s2: 6, d_z_per_s: 7, p_rp_per_s: 12}
+lqr: {state_weights: [1, 2, 3, 4, 5, 6]}
+)");
+  EXPECT_FALSE(params.position.compensate_rotor_drag);
+  EXPECT_EQ(params.low_level.body_rate_law, BodyRateLaw::kProportional);
+  EXPECT_EQ(params.low_level.proportional.rate_gains_per_s,
+            control::ProportionalBodyRateParameters::HighGain().rate_gains_per_s);
+  EXPECT_EQ(BodyRateName(params.low_level), "p_high");
+  EXPECT_EQ(params.low_level.mixer.mixing, Mixing::kOneShot);
+  EXPECT_EQ(params.low_level.mixer.saturation, Saturation::kClip);
+  EXPECT_EQ(params.low_level.mixer.assured_yaw_torque_Nm, 0.002);
+  EXPECT_EQ(params.position.p_xy_per_s2, 6.0);
+  EXPECT_EQ(params.position.p_z_per_s2, control::PositionControllerParams().p_z_per_s2);
+  EXPECT_EQ(params.position.d_z_per_s, 7.0);
+  EXPECT_EQ(params.position.attitude.p_rp_per_s, 12.0);
+  EXPECT_EQ(params.low_level.lqr.state_weights(5), 6.0);
+
+  const ControlStackParams low = Load("body_rate: p_low");
+  EXPECT_EQ(low.low_level.body_rate_law, BodyRateLaw::kProportional);
+  EXPECT_EQ(low.low_level.proportional.rate_gains_per_s,
+            control::ProportionalBodyRateParameters::LowGain().rate_gains_per_s);
+  EXPECT_EQ(BodyRateName(low.low_level), "p_low");
+}
+
+TEST(ControlParamsIoTest, UnknownKeyIsNamedWithTheKnownKeys) {
+  const std::string error = ErrorOf([] { Load("drag_compensaton: true"); });
+  EXPECT_NE(error.find("drag_compensaton"), std::string::npos) << error;
+  EXPECT_NE(error.find("drag_compensation"), std::string::npos) << error;
+  const std::string nested = ErrorOf([] { Load("position: {p_xy: 3}"); });
+  EXPECT_NE(nested.find("position.p_xy"), std::string::npos) << nested;
+}
+
+TEST(ControlParamsIoTest, BadEnumValueListsTheAllowedValues) {
+  const std::string error = ErrorOf([] { Load("body_rate: pid"); });
+  EXPECT_NE(error.find("body_rate"), std::string::npos) << error;
+  EXPECT_NE(error.find("lqr, p_low, p_high"), std::string::npos) << error;
+  const std::string mixer = ErrorOf([] { Load("mixer: fancy"); });
+  EXPECT_NE(mixer.find("iterative, one_shot"), std::string::npos) << mixer;
+  const std::string saturation = ErrorOf([] { Load("saturation: none"); });
+  EXPECT_NE(saturation.find("prioritized, clipping"), std::string::npos) << saturation;
+}
+
+TEST(ControlParamsIoTest, NonPhysicalValuesAreRejectedWithTheirName) {
+  EXPECT_NE(ErrorOf([] { Load("lqr: {input_weights: [1, 0, 1]}"); }).find("input_weights"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf([] { Load("position: {p_xy_per_s2: -1}"); }).find("control.yaml"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf([] { Load("assured_yaw_torque_Nm: -1"); }).find("assured_yaw_torque_Nm"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace aperture::sim
