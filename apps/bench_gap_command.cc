@@ -2,7 +2,8 @@
 // Sec. IV-B: success rate, Table I errors at the gap, Fig. 6 estimate vs ground truth).
 //
 //   aperture bench gap [--trials N] [--seed S] [--max-roll-deg R] [--max-pitch-deg P]
-//                      [--autopilot ground_truth] [--duration S] [--threads T]
+//                      [--max-drop-probability D] [--motion-blur-subframes K]
+//                      [--autopilot mission|ground_truth] [--duration S] [--threads T]
 //                      [--config FILE] [--set key=value ...] --out DIR
 //
 // --config/--set override the built-in `gap` scenario (e.g. --set cameras.front.supersampling=1).
@@ -14,6 +15,7 @@
 #include "apps/command_support.h"
 #include "apps/commands.h"
 #include "experiments/gap/gap_bench.h"
+#include "experiments/gap/gap_mission_trial.h"
 #include "experiments/gap/ground_truth_gap_autopilot.h"
 #include "output/progress_bar.h"
 
@@ -23,14 +25,16 @@ namespace {
 struct BenchGapOptions {
   CommonOptions common;
   experiments::GapBenchOptions bench;
-  std::string autopilot = "ground_truth";
+  std::string autopilot = "mission";
 };
 
 void RunBenchGap(BenchGapOptions options, output::OutputFolder& out) {
   options.bench.config_files = options.common.config_files;
   options.bench.set_items = options.common.set_items;
   experiments::GapTrialAutopilotFactory factory;
-  if (options.autopilot == "ground_truth") {
+  if (options.autopilot == "mission") {
+    factory = experiments::MakeGapMissionTrialFactory();
+  } else {
     factory = experiments::MakeGroundTruthGapAutopilotFactory();
     options.bench.render_cameras = false;  // flies on ground truth: no camera needed
   }
@@ -65,6 +69,10 @@ void AddBenchGapCommand(CLI::App& bench, int* exit_code) {
   command->add_option("--max-drop-probability", options->bench.ranges.max_drop_probability,
                       "Camera frame-drop probability drawn uniformly from [0, max]")
       ->check(CLI::Range(0.0, 0.99));
+  command->add_option("--motion-blur-subframes", options->bench.ranges.motion_blur_subframes,
+                      "Renders averaged per frame over the random exposure (1 = no blur; each "
+                      "one costs a full render)")
+      ->check(CLI::PositiveNumber);
   command->add_option("--duration", options->bench.duration_s, "Simulated time per trial [s]")
       ->check(CLI::PositiveNumber);
   command->add_option("--threads", options->bench.threads,
@@ -72,8 +80,9 @@ void AddBenchGapCommand(CLI::App& bench, int* exit_code) {
       ->check(CLI::NonNegativeNumber);
   command
       ->add_option("--autopilot", options->autopilot,
-                   "ground_truth: the traverse flown on ground truth (control-only reference)")
-      ->check(CLI::IsMember({"ground_truth"}));
+                   "mission: the vision gap mission (camera + IMU); ground_truth: the same "
+                   "traverse flown on ground truth without cameras (control-only reference)")
+      ->check(CLI::IsMember({"mission", "ground_truth"}));
   AddCommonOptions(command, &options->common);
   command->callback([options, exit_code] {
     output::OutputFolder out(options->common.out_dir);

@@ -20,11 +20,14 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// Forwards everything to the trial's autopilot and records its estimate after every Step.
+// Forwards everything to the trial's autopilot and records its estimate after every Step, mapped
+// from the autopilot's world frame into the simulator's through the gap: T_WG_true * T_MG_est^-1
+// (the estimate relative to the estimated gap, placed at the true gap), as the errors at the gap
+// are defined (gap_trial_evaluation.h).
 class RecordingAutopilot : public perception::Autopilot {
  public:
-  explicit RecordingAutopilot(GapTrialAutopilot* trial)
-      : trial_(trial), inner_(trial->autopilot()) {}
+  RecordingAutopilot(GapTrialAutopilot* trial, const Eigen::Isometry3d& T_WG_true)
+      : trial_(trial), inner_(trial->autopilot()), T_WG_true_(T_WG_true) {}
   std::string name() const override { return inner_.name(); }
   void OnImu(const perception::ImuSample& sample) override { inner_.OnImu(sample); }
   void OnFrame(const perception::Frame& frame) override { inner_.OnFrame(frame); }
@@ -33,9 +36,19 @@ class RecordingAutopilot : public perception::Autopilot {
   void OnGroundTruth(const control::QuadState& state) override { inner_.OnGroundTruth(state); }
   perception::AutopilotCommand Step(double t_s) override {
     const perception::AutopilotCommand command = inner_.Step(t_s);
-    if (std::optional<control::QuadState> estimate = trial_->estimate()) {
-      estimate->t_s = t_s;
-      estimates_.push_back(*estimate);
+    const std::optional<control::QuadState> estimate = trial_->estimate();
+    const std::optional<planning::GapPose> gap = trial_->gap_estimate();
+    if (estimate && gap) {
+      Eigen::Isometry3d T_MG = Eigen::Isometry3d::Identity();
+      T_MG.linear() = gap->R_WG;
+      T_MG.translation() = gap->p_WG;
+      const Eigen::Isometry3d T_WM = T_WG_true_ * T_MG.inverse();
+      control::QuadState mapped = *estimate;
+      mapped.t_s = t_s;
+      mapped.p_WB = T_WM * estimate->p_WB;
+      mapped.v_W = T_WM.linear() * estimate->v_W;
+      mapped.q_WB = Eigen::Quaterniond(T_WM.linear()) * estimate->q_WB;
+      estimates_.push_back(mapped);
     }
     return command;
   }
@@ -45,6 +58,7 @@ class RecordingAutopilot : public perception::Autopilot {
  private:
   GapTrialAutopilot* trial_;
   perception::Autopilot& inner_;
+  Eigen::Isometry3d T_WG_true_;
   std::vector<control::QuadState> estimates_;
 };
 
@@ -174,21 +188,23 @@ GapTrialRecord RunGapTrial(const GapBenchOptions& options, const sim::ScenarioPa
     sim::ConfigureSitlFromScenario(scenario, &params);
     if (!options.render_cameras) params.cameras.clear();
     for (sim::SitlCamera& camera : params.cameras) camera.render.ground_truth = false;
+    const sim::ImuSensorParams nominal_imu = params.imu;
     ApplyGapTrial(trial, &params);
+    GapGeometry gap;
+    gap.T_WG = scenario.scene().object("gap").T_WO;
+    gap.opening_m = scenario_params.gap.opening_m;
 
     GapTrialSetup setup;
     setup.scenario = &scenario;
     setup.vehicle = params.dynamics.vehicle;
     setup.initial_state = params.initial_state;
     setup.control_rate_hz = params.control_rate_hz;
+    setup.imu = nominal_imu;
     const std::unique_ptr<GapTrialAutopilot> autopilot = factory(setup);
-    RecordingAutopilot recorder(autopilot.get());
+    RecordingAutopilot recorder(autopilot.get(), gap.T_WG);
     sim::SitlRunner runner(params, &scenario.scene());
     const sim::SitlResult result = runner.Run(recorder, sim::MakeScenarioHooks(&scenario));
 
-    GapGeometry gap;
-    gap.T_WG = scenario.scene().object("gap").T_WO;
-    gap.opening_m = scenario_params.gap.opening_m;
     record.plan = autopilot->traverse_plan();
     record.traverse_start_time_s = autopilot->traverse_start_time_s();
     record.evaluation = EvaluateGapTrial(result, gap, record.plan, record.traverse_start_time_s,

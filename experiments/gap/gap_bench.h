@@ -55,8 +55,9 @@ struct GapTrialRecord {
   std::string autopilot_status;  // at the end of the run
   int frames_delivered = 0;
   int frames_dropped = 0;
-  // Fig. 6: the autopilot's estimate after every control step (when it had one) and the ground
-  // truth at the same times.
+  // Fig. 6: the autopilot's estimate after every control step (when it had one, with a gap
+  // estimate), in simulator coordinates relative to the gap (T_WG_true * T_MG_est^-1 * estimate
+  // of the autopilot's frame M), and the ground truth at the same times.
   std::vector<control::QuadState> estimate_trace;
   std::vector<control::QuadState> truth_trace;
 };

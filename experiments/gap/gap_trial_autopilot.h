@@ -12,6 +12,7 @@
 #include "perception/autopilot.h"
 #include "planning/traverse_trajectory.h"
 #include "sim/scenario/scenario.h"
+#include "sim/sensors/imu_sensor.h"
 
 namespace aperture::experiments {
 
@@ -27,6 +28,10 @@ class GapTrialAutopilot {
   virtual double traverse_start_time_s() const = 0;
   // The autopilot's current state estimate in its world frame; nullopt when it has none.
   virtual std::optional<control::QuadState> estimate() const = 0;
+  // The gap pose it flies through, in its world frame; nullopt when it has none. A mission may
+  // fix its own world frame (e.g. at the gap); the bench compares its estimate with the ground
+  // truth through this pose (estimate relative to the estimated gap, mapped onto the true gap).
+  virtual std::optional<planning::GapPose> gap_estimate() const = 0;
 };
 
 // Everything a trial's autopilot may be built from. Mission autopilots use only what a real
@@ -38,6 +43,9 @@ struct GapTrialSetup {
   control::VehicleParameters vehicle;
   control::QuadState initial_state;
   double control_rate_hz = 100.0;
+  // The IMU's specification (noise densities, random walks) as a datasheet gives it: the
+  // nominal sim::ImuSensorParams, not the trial's randomized noise and biases.
+  sim::ImuSensorParams imu;
 };
 
 using GapTrialAutopilotFactory =

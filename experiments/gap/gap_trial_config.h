@@ -37,7 +37,8 @@ struct GapTrialRanges {
   // Exposure uniform in this range [s] with motion_blur_subframes renders per frame: at the
   // traverse's ~400 deg/s, 4 ms smear edges by ~7 px on the 180 deg fisheye.
   Eigen::Vector2d exposure_s = Eigen::Vector2d(0.5e-3, 4.0e-3);
-  int motion_blur_subframes = 3;  // 1 = no blur (exposure then only recorded)
+  // Renders per frame (1 = no blur, the exposure is then only recorded); each costs a render.
+  int motion_blur_subframes = 3;
 
   // Throws std::invalid_argument naming the field for negative or non-finite values, inverted
   // ranges, a drop probability outside [0, 1) or motion_blur_subframes < 1.

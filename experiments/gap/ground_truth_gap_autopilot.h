@@ -58,6 +58,7 @@ class GroundTruthGapAutopilot : public perception::Autopilot, public GapTrialAut
   std::optional<planning::TraverseTrajectory> traverse_plan() const override { return traverse_; }
   double traverse_start_time_s() const override;
   std::optional<control::QuadState> estimate() const override;
+  std::optional<planning::GapPose> gap_estimate() const override { return traverse_.gap(); }
 
   // The reference flown at t_s (simulator time).
   control::TrajectoryPoint Reference(double t_s) const;

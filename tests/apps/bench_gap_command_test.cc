@@ -44,6 +44,31 @@ TEST(BenchGapCommand, TwoGroundTruthTrialsWriteTheTableIKeys) {
   EXPECT_TRUE(fs::exists(out / "report.html"));
 }
 
+// The default autopilot is the vision mission on rendered frames. Two seconds of small, unblurred
+// 30 Hz frames keep this to seconds: the mission is still detecting / hovering, so no trial
+// crosses and the errors are null, but every trial ran the camera + IMU path.
+TEST(BenchGapCommand, MissionTrialsRunOnRenderedFrames) {
+  TempFolder temp("bench_gap_mission");
+  const fs::path out = fs::path(temp.path()) / "out";
+  const CommandResult result = RunAperture(
+      "bench gap --trials 2 --duration 2 --motion-blur-subframes 1 "
+      "--set cameras.front.supersampling=1 --set cameras.front.rate_hz=30 --out " +
+      out.string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const nlohmann::json summary = ReadJson(out / "summary.json");
+  EXPECT_EQ(summary["inputs"]["autopilot"], "gap_mission");
+  EXPECT_EQ(summary["trials"], 2);
+  EXPECT_EQ(summary["successes"], 0);
+  EXPECT_EQ(summary["error_at_gap"]["trials"], 0);
+  for (const nlohmann::json& trial : summary["per_trial"]) {
+    EXPECT_EQ(trial["outcome"], "duration_reached");
+    EXPECT_EQ(trial["failure_reason"].get<std::string>().rfind("never crossed", 0), 0u);
+    // 30 Hz over [0, 2] s, less the seeded drops.
+    EXPECT_EQ(trial["frames_delivered"].get<int>() + trial["frames_dropped"].get<int>(), 61);
+  }
+  EXPECT_EQ(CountLines(out / "trials.csv"), 1u + 2u);
+}
+
 TEST(BenchGapCommand, RejectsAnInclinationRangeOutOfBounds) {
   TempFolder temp("bench_gap_bad");
   const CommandResult result = RunAperture("bench gap --max-roll-deg 95 --out " +
