@@ -48,7 +48,10 @@ double RotorParameters::CommandFromThrust(double f_N) const {
 }
 
 double RotorParameters::TorqueCoefficient(double f_N) const {
-  const double f = std::max(f_N, std::max(MinThrust(), 1e-6));
+  // Outside the thrust range kappa is held at its value at the nearest limit: the mixer's
+  // saturation (Algorithm 4) evaluates yaw torques of intermediate, infeasible thrusts, and
+  // tau(u_max) / f would make kappa vanish as 1 / f there (and flip the sign of their yaw torque).
+  const double f = std::clamp(f_N, std::max(MinThrust(), 1e-6), MaxThrust());
   return DragTorqueFromCommand(CommandFromThrust(f)) / f;
 }
 

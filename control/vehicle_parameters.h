@@ -32,7 +32,8 @@ struct RotorParameters {
   double CommandFromThrust(double f_N) const;
   double MinThrust() const { return ThrustFromCommand(command_min); }
   double MaxThrust() const { return ThrustFromCommand(command_max); }
-  // kappa(f) of (G.5): drag torque over thrust at the command that produces f [m].
+  // kappa(f) of (G.5): drag torque over thrust at the command that produces f [m]; outside
+  // [MinThrust, MaxThrust] the value at the nearest limit.
   double TorqueCoefficient(double f_N) const;
 };
 

@@ -1,5 +1,7 @@
 #include "planning/approach_planner.h"
 
+#include "planning/fast_acos.h"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
@@ -141,8 +143,7 @@ std::ostream& operator<<(std::ostream& os, const ApproachPlan& plan) {
 ApproachPlanner::ApproachPlanner(const ApproachPlannerParameters& parameters)
     : parameters_(parameters) {
   parameters_.Validate();
-  k_ = parameters_.optical_axis_B.normalized().z();
-  sqrt_1_k2_ = std::sqrt(1.0 - k_ * k_);
+  axis_to_z_B_rad_ = std::acos(parameters_.optical_axis_B.normalized().z());
 }
 
 Eigen::Vector3d ApproachPlanner::StartPosition(const ApproachTarget& target, int i, int j,
@@ -201,16 +202,13 @@ bool ApproachPlanner::ScorePerception(const MotionPrimitive& primitive,
     const Eigen::Vector3d p = p0 + t * (v0 + t * (a2 + t * (g6 + t * (b24 + t * a120))));
     const Eigen::Vector3d c = c0 + t * (g + t * (b2 + t * a6));  // thrust vector a - g_W
     const Eigen::Vector3d d = gap_center_W - p;
-    // (9) with z_B = c / |c| folded in: cos(theta) = (sqrt(1-k^2) |d x c| + k <d, c>) / (|d||c|),
-    // |d x c| = sqrt(|d|^2 |c|^2 - <d, c>^2): two square roots and one division per sample.
-    const double dc = d.dot(c);
+    // (9) on the sphere: the optical axis keeps the angle beta = acos(k) to z_B = c / |c| and
+    // the yaw turns it freely about z_B, so the nearest it gets to d is |phi - beta|, phi the
+    // angle between d and z_B (expanding the cosine gives (9)). One square root, one division and
+    // one FastAcos per sample.
     const double product = d.squaredNorm() * c.squaredNorm();
-    double angle = 0.0;
-    if (product > 0.0) {
-      const double cross = std::sqrt(std::max(0.0, product - dc * dc));
-      const double cosine = (sqrt_1_k2_ * cross + k_ * dc) / std::sqrt(product);
-      angle = std::acos(std::clamp(cosine, -1.0, 1.0));
-    }
+    const double angle =
+        product > 0.0 ? std::abs(FastAcos(d.dot(c) / std::sqrt(product)) - axis_to_z_B_rad_) : 0.0;
     sum_sq += angle * angle;
     max_angle = std::max(max_angle, angle);
     if (sum_sq > max_sum_sq) return false;

@@ -147,8 +147,7 @@ class ApproachPlanner {
                    double t_s) const;
 
   ApproachPlannerParameters parameters_;
-  double k_ = 0.0;  // <optical axis, z_B> of (7)
-  double sqrt_1_k2_ = 1.0;
+  double axis_to_z_B_rad_ = 0.5 * 3.14159265358979323846;  // acos(k), k of (7)
 };
 
 }  // namespace aperture::planning

@@ -1,5 +1,7 @@
 #include "perception/gap/gap_detector.h"
 
+#include "perception/gap/canny_edge_detector.h"
+
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <array>
@@ -135,6 +137,7 @@ std::string GapDetectionStatusName(GapDetectionStatus status) {
 struct GapDetector::Impl {
   cv::Mat bearing_table;  // CV_32FC3, unit bearing of every pixel centre
   cv::Mat gray;
+  CannyEdgeDetector canny;
   cv::Mat edges;
   std::vector<std::vector<cv::Point>> contours;
   std::vector<cv::Point2f> gnomonic;
@@ -475,9 +478,9 @@ class Attempt {
 
 GapDetection GapDetector::DetectIn(const cv::Mat& gray, const cv::Rect& roi) {
   Impl& im = *impl_;
-  cv::Canny(gray(roi), im.edges, params_.canny_low, params_.canny_high);
-  // Close one-pixel breaks (corners) so each pattern edge gives a closed contour.
-  cv::dilate(im.edges, im.edges, cv::Mat());
+  // Canny edges dilated by one pixel to close one-pixel breaks (corners), so each pattern edge
+  // gives a closed contour.
+  im.canny.Detect(gray, roi, params_.canny_low, params_.canny_high, /*dilate_3x3=*/true, &im.edges);
   im.contours.clear();
   cv::findContours(im.edges, im.contours, cv::RETR_LIST, cv::CHAIN_APPROX_NONE, roi.tl());
 

@@ -18,6 +18,17 @@ constexpr size_t kMaxCachedCameras = 4;
 // LED blob: window half-width and ground-truth mask radius in sigmas.
 constexpr double kLedWindowSigmas = 4.5;
 constexpr double kLedMaskSigmas = 2.0;
+// Adaptive supersampling: neighbouring centre samples on one object differ at an edge when their
+// normals turn by more than acos(0.99) = 8.1 deg (box edges; a 0.5 m sphere 3 m away turns by
+// ~1.6 deg per fisheye pixel) or, on hard-edged textures, the albedo luminance steps by more than
+// 0.02 (~5 grey levels; pattern edges step by ~0.9).
+constexpr float kEdgeNormalCos = 0.99f;
+constexpr float kEdgeLuminanceStep = 0.02f;
+// Planar objects are rejected from the ray-plane distance in C before the exact test in O; the
+// two computations of that distance differ by rounding (~1e-15 relative), so rejecting only
+// beyond these margins never drops a hit the exact test would find.
+constexpr double kPlaneRejectRelative = 1e-9;
+constexpr double kPlaneRejectAbsolute_m = 1e-9;
 
 float Luminance(const Rgb& c) { return 0.299f * c.x() + 0.587f * c.y() + 0.114f * c.z(); }
 
@@ -29,6 +40,10 @@ struct FrameObject {
   Eigen::Matrix3d R_OC;
   Eigen::Vector3d p_OC;          // camera centre in O
   Eigen::Vector3d to_light_O;    // unit vector towards the light, in O
+  bool hard_edged;               // texture with hard edges (Texture::has_hard_edges)
+  bool planar;                   // Rectangle or GroundPlane: the plane z_O = 0
+  Eigen::Vector3d n_C;           // planar: z_O in C
+  double plane_offset_m;         // planar: n_C . (origin of O in C)
   bool bounded;
   Eigen::Vector3d center_C;      // bounding sphere centre in C
   double center_sq;
@@ -55,6 +70,10 @@ int TraceRay(const Eigen::Vector3d& d_C, const std::vector<FrameObject>& objects
       if (tca + f.radius < 0.0 || tca - f.radius >= best_t) return;
       if (f.center_sq - tca * tca > f.radius_sq) return;
     }
+    if (f.planar) {
+      const double t = f.plane_offset_m / f.n_C.dot(d_C);
+      if (t < -kPlaneRejectAbsolute_m || t > best_t * (1.0 + kPlaneRejectRelative)) return;
+    }
     if (IntersectPrimitive(*f.primitive, f.p_OC, f.R_OC * d_C, kMinT, best_t, &candidate)) {
       best_t = candidate.t_m;
       best = i;
@@ -71,10 +90,14 @@ int TraceRay(const Eigen::Vector3d& d_C, const std::vector<FrameObject>& objects
 
 // sample_angle_rad: angular size of the sample (pixel angle / supersampling) for the texture
 // footprint: distance * angle, stretched by 1 / sqrt(cos incidence) (geometric mean of the
-// footprint's two axes).
+// footprint's two axes). *albedo (optional) receives the surface albedo (sky: its radiance).
 Rgb Shade(const Scene& scene, const FrameContext& frame, const Eigen::Vector3d& d_C, int index,
-          const LocalHit& hit, double sample_angle_rad) {
-  if (index < 0) return scene.sky.Radiance(frame.R_WC * d_C);
+          const LocalHit& hit, double sample_angle_rad, Rgb* albedo = nullptr) {
+  if (index < 0) {
+    const Rgb sky = scene.sky.Radiance(frame.R_WC * d_C);
+    if (albedo) *albedo = sky;
+    return sky;
+  }
   const FrameObject& f = frame.objects[static_cast<size_t>(index)];
   Eigen::Vector3d n_O = hit.n_O;
   double cos_incidence = n_O.dot(f.R_OC * d_C);
@@ -86,8 +109,9 @@ Rgb Shade(const Scene& scene, const FrameContext& frame, const Eigen::Vector3d& 
   const float lambert = static_cast<float>(std::max(0.0, n_O.dot(f.to_light_O)));
   const double footprint_m =
       hit.t_m * sample_angle_rad / std::sqrt(std::max(cos_incidence, 1e-3));
-  return f.material->Albedo(hit.uv_m, footprint_m) *
-         (scene.lighting.ambient + scene.lighting.directional * lambert);
+  const Rgb surface_albedo = f.material->Albedo(hit.uv_m, footprint_m);
+  if (albedo) *albedo = surface_albedo;
+  return surface_albedo * (scene.lighting.ambient + scene.lighting.directional * lambert);
 }
 
 // Mass of N(mu, sigma^2) in [i - 0.5, i + 0.5] for i = first .. first + n - 1.
@@ -118,6 +142,22 @@ struct RayCaster::RayTable {
   std::vector<Eigen::Vector3f> center;  // width * height
   std::vector<Eigen::Vector3f> sub;     // width * height * k * k (empty for k = 1)
   std::vector<float> pixel_angle_rad;   // angular pixel size (to the right / lower neighbour)
+};
+
+// What adaptive supersampling compares between neighbouring pixel centres.
+struct RayCaster::CenterSample {
+  int index;               // frame object index, -1 for sky
+  bool hard_edged;         // the object's texture has hard edges
+  float albedo_luminance;
+  Eigen::Vector3f n_O;     // surface normal as hit, in the object frame
+
+  // True when an edge lies between this and a neighbouring centre sample (thresholds above).
+  bool EdgeTo(const CenterSample& other) const {
+    if (index != other.index) return true;
+    if (index < 0) return false;  // sky varies smoothly
+    if (n_O.dot(other.n_O) < kEdgeNormalCos) return true;
+    return hard_edged && std::abs(albedo_luminance - other.albedo_luminance) > kEdgeLuminanceStep;
+  }
 };
 
 namespace {
@@ -240,6 +280,11 @@ void RayCaster::Render(const Scene& scene, const perception::CameraModel& camera
     f.R_OC = T_OC.linear();
     f.p_OC = T_OC.translation();
     f.to_light_O = object.T_WO.linear().transpose() * to_light_W;
+    f.hard_edged = object.material.texture && object.material.texture->has_hard_edges();
+    f.planar = std::holds_alternative<Rectangle>(object.primitive) ||
+               std::holds_alternative<GroundPlane>(object.primitive);
+    f.n_C = f.R_OC.row(2).transpose();
+    f.plane_offset_m = -f.p_OC.z();  // n_C . p_CO with p_CO = -R_CO p_OC
     f.radius = BoundingRadius(object.primitive);
     f.bounded = std::isfinite(f.radius);
     f.center_C = T_WC.inverse() * (object.T_WO * BoundingCenter(object.primitive));
@@ -259,54 +304,106 @@ void RayCaster::Render(const Scene& scene, const perception::CameraModel& camera
   }
   const float scale = options.reflectance_scale;
   const float inv_samples = 1.0f / static_cast<float>(k * k);
+  const bool adaptive = k > 1 && options.adaptive_supersampling;
+  if (adaptive) {
+    center_samples_.resize(rays.center.size());
+    edge_pairs_.resize(rays.center.size());
+  }
 
+  // Average radiance of the k x k sub-pixel rays of pixel p.
+  auto supersample = [&](size_t p, int hint) {
+    const double sample_angle = rays.pixel_angle_rad[p] / k;
+    Rgb sum = Rgb::Zero();
+    LocalHit hit;
+    for (int s = 0; s < k * k; ++s) {
+      const Eigen::Vector3d d = rays.sub[p * k * k + static_cast<size_t>(s)].cast<double>();
+      const int index = TraceRay(d, frame.objects, hint, kInf, &hit);
+      sum += Shade(scene, frame, d, index, hit, sample_angle);
+      hint = index;
+    }
+    return Rgb(sum * inv_samples);
+  };
+  auto store = [&](int y, int x, const Rgb& radiance) {
+    const Rgb value = radiance * scale;
+    if (options.color) {
+      output->radiance.ptr<cv::Vec3f>(y)[x] = cv::Vec3f(value.z(), value.y(), value.x());
+    } else {
+      output->radiance.ptr<float>(y)[x] = Luminance(value);
+    }
+  };
+
+  // Pixel centres: ground truth, and the radiance for k = 1 and adaptive supersampling.
   tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& row_range) {
     for (int y = row_range.begin(); y < row_range.end(); ++y) {
       int hint = -1;  // per row, so results never depend on how rows are split among threads
-      float* gray = options.color ? nullptr : output->radiance.ptr<float>(y);
-      cv::Vec3f* bgr = options.color ? output->radiance.ptr<cv::Vec3f>(y) : nullptr;
       float* depth = options.ground_truth ? output->depth_C.ptr<float>(y) : nullptr;
       int32_t* ids = options.ground_truth ? output->object_id.ptr<int32_t>(y) : nullptr;
       LocalHit hit;
       for (int x = 0; x < w; ++x) {
         const size_t p = static_cast<size_t>(y) * w + x;
-        Rgb sum = Rgb::Zero();
-        if (k == 1) {
-          const Eigen::Vector3d d = rays.center[p].cast<double>();
-          const int index = TraceRay(d, frame.objects, hint, kInf, &hit);
-          sum = Shade(scene, frame, d, index, hit, rays.pixel_angle_rad[p]);
-          if (depth) {
-            depth[x] = index < 0 ? std::numeric_limits<float>::infinity()
-                                 : static_cast<float>(hit.t_m * d.z());
-            ids[x] = index < 0 ? 0 : frame.objects[static_cast<size_t>(index)].id;
-          }
-          hint = index;
-        } else {
-          const double sample_angle = rays.pixel_angle_rad[p] / k;
-          for (int s = 0; s < k * k; ++s) {
-            const Eigen::Vector3d d = rays.sub[p * k * k + static_cast<size_t>(s)].cast<double>();
-            const int index = TraceRay(d, frame.objects, hint, kInf, &hit);
-            sum += Shade(scene, frame, d, index, hit, sample_angle);
-            hint = index;
-          }
-          sum *= inv_samples;
-          if (depth) {
-            const Eigen::Vector3d d = rays.center[p].cast<double>();
-            const int index = TraceRay(d, frame.objects, hint, kInf, &hit);
-            depth[x] = index < 0 ? std::numeric_limits<float>::infinity()
-                                 : static_cast<float>(hit.t_m * d.z());
-            ids[x] = index < 0 ? 0 : frame.objects[static_cast<size_t>(index)].id;
-          }
+        const Eigen::Vector3d d = rays.center[p].cast<double>();
+        const int index = TraceRay(d, frame.objects, hint, kInf, &hit);
+        if (depth) {
+          depth[x] = index < 0 ? std::numeric_limits<float>::infinity()
+                               : static_cast<float>(hit.t_m * d.z());
+          ids[x] = index < 0 ? 0 : frame.objects[static_cast<size_t>(index)].id;
         }
-        sum *= scale;
-        if (gray) {
-          gray[x] = Luminance(sum);
+        if (k == 1 || adaptive) {
+          Rgb albedo;
+          store(y, x, Shade(scene, frame, d, index, hit, rays.pixel_angle_rad[p], &albedo));
+          if (adaptive) {
+            center_samples_[p] = CenterSample{
+                index, index >= 0 && frame.objects[static_cast<size_t>(index)].hard_edged,
+                Luminance(albedo), index < 0 ? Eigen::Vector3f(Eigen::Vector3f::Zero()) : Eigen::Vector3f(hit.n_O.cast<float>())};
+          }
         } else {
-          bgr[x] = cv::Vec3f(sum.z(), sum.y(), sum.x());
+          store(y, x, supersample(p, index));
         }
+        hint = index;
       }
     }
   });
+
+  // Adaptive supersampling: k x k rays where the centre samples show an edge. First each pixel
+  // compares itself with its right, lower-left, lower and lower-right neighbours (each of the 8
+  // neighbour pairs once), then a pixel is supersampled when any pair touching it is an edge.
+  if (adaptive) {
+    enum : uint8_t { kRight = 1, kDownLeft = 2, kDown = 4, kDownRight = 8 };
+    tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& row_range) {
+      for (int y = row_range.begin(); y < row_range.end(); ++y) {
+        const CenterSample* row = &center_samples_[static_cast<size_t>(y) * w];
+        const CenterSample* below = y + 1 < h ? row + w : nullptr;
+        uint8_t* pairs = &edge_pairs_[static_cast<size_t>(y) * w];
+        for (int x = 0; x < w; ++x) {
+          uint8_t bits = 0;
+          if (x + 1 < w && row[x].EdgeTo(row[x + 1])) bits |= kRight;
+          if (below) {
+            if (x > 0 && row[x].EdgeTo(below[x - 1])) bits |= kDownLeft;
+            if (row[x].EdgeTo(below[x])) bits |= kDown;
+            if (x + 1 < w && row[x].EdgeTo(below[x + 1])) bits |= kDownRight;
+          }
+          pairs[x] = bits;
+        }
+      }
+    });
+    tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& row_range) {
+      for (int y = row_range.begin(); y < row_range.end(); ++y) {
+        const uint8_t* pairs = &edge_pairs_[static_cast<size_t>(y) * w];
+        const uint8_t* above = y > 0 ? pairs - w : nullptr;
+        for (int x = 0; x < w; ++x) {
+          bool edge = pairs[x] != 0 || (x > 0 && (pairs[x - 1] & kRight));
+          if (above && !edge) {
+            edge = (above[x] & kDown) || (x > 0 && (above[x - 1] & kDownRight)) ||
+                   (x + 1 < w && (above[x + 1] & kDownLeft));
+          }
+          if (edge) {
+            const size_t p = static_cast<size_t>(y) * w + x;
+            store(y, x, supersample(p, center_samples_[p].index));
+          }
+        }
+      }
+    });
+  }
 
   // LEDs: exact pixel integrals of an isotropic Gaussian around the projected centre.
   const Eigen::Isometry3d T_CW = T_WC.inverse();

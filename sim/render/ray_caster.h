@@ -9,9 +9,17 @@
 //              blob centre), 0 for sky.
 // Shading: Lambertian, Scene::lighting (ambient + one directional light, no shadows); sky from
 // Scene::sky. Textures are sampled at the mip level matching each sample's footprint on the
-// surface (distance * angular sample size / sqrt(cos incidence)). With supersampling k, each pixel averages k x k rays, one per cell of a k x k
-// sub-pixel grid with all x and all y offsets distinct (box filter; ground truth stays on the
-// pixel centre ray).
+// surface (distance * angular sample size / sqrt(cos incidence)). With supersampling k, each
+// pixel averages k x k rays, one per cell of a k x k sub-pixel grid with all x and all y offsets
+// distinct (box filter; ground truth stays on the pixel centre ray).
+// Adaptive supersampling (default): every pixel centre is traced first; a pixel gets its k x k
+// rays only where it or one of its 8 neighbours differs at the centre: another object (or sky),
+// a surface normal turned by more than ~8 deg (box edges), or, on hard-edged textures
+// (Texture::has_hard_edges: checkerboard, nearest-filtered tags and gap patterns), an albedo
+// luminance step > 0.02. Any straight edge crossing a pixel separates its centre from one of the
+// 8 neighbour centres, so every pixel an edge touches is supersampled exactly as without
+// adaptivity; elsewhere the centre sample stands for the pixel (its texture mip level chosen for
+// the whole pixel's footprint). Features thinner than a pixel that no centre hits are missed.
 //
 // LEDs (Led primitives) are drawn as an isotropic Gaussian radiance distribution centred on the
 // projected emitter centre, integrated exactly over each pixel's square footprint (erf
@@ -27,6 +35,7 @@
 // by its previous pixel. Output is independent of the thread count (rows are independent).
 // A RayCaster is not safe for concurrent Render calls (the ray cache); use one per thread.
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <memory>
 #include <opencv2/core/mat.hpp>
 #include <string>
@@ -40,6 +49,8 @@ namespace aperture::sim {
 struct RenderOptions {
   bool color = false;      // false: gray CV_32FC1; true: BGR CV_32FC3
   int supersampling = 1;   // k >= 1: k x k rays per pixel (2-3 for sub-pixel-accurate edges)
+  // true: k x k rays only for pixels at edges (see above), ~1.3x the cost of k = 1 instead of k^2.
+  bool adaptive_supersampling = true;
   bool ground_truth = true;  // fill depth_C and object_id
   // Multiplies surface and sky radiance, not LEDs: < 1 for infrared mode (dark scene, bright
   // emitters; camera_effects.h).
@@ -68,9 +79,13 @@ class RayCaster {
 
  private:
   struct RayTable;
+  struct CenterSample;
   const RayTable& Rays(const perception::CameraModel& camera, int supersampling);
 
   std::vector<std::unique_ptr<RayTable>> ray_cache_;  // most recently used last
+  // Adaptive supersampling, per pixel: centre samples and edge bits towards 4 neighbours.
+  std::vector<CenterSample> center_samples_;
+  std::vector<std::uint8_t> edge_pairs_;
 };
 
 }  // namespace aperture::sim

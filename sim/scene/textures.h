@@ -43,6 +43,10 @@ class Texture {
   // stands for [m] (0: finest level); selects the mip level of bilinear image textures.
   Rgb Sample(double u_m, double v_m, double footprint_m = 0.0) const;
 
+  // True when a sample can change abruptly between neighbouring points (analytic checkerboard,
+  // nearest filtering); false for bilinear image textures, which the mip level selected by the
+  // footprint already band-limits. The renderer supersamples hard-edged textures only.
+  bool has_hard_edges() const { return image_.empty() || filter_ == Filter::kNearest; }
   double texel_size_m() const { return texel_size_m_; }
   const cv::Mat& image() const { return image_; }  // CV_32FC3 RGB; empty for a checkerboard
 

@@ -218,6 +218,66 @@ TEST(RayCasterTest, OutputIsIndependentOfThreadCountAndRepeatable) {
   EXPECT_GE(max_id, 6.0);
 }
 
+TEST(RayCasterTest, AdaptiveSupersamplingEqualsFullSupersamplingWhereItMatters) {
+  // Every primitive with smooth textures, plus a checkerboard (hard-edged texture) in view.
+  Scene scene = TexturedScene();
+  const int board = scene.AddObject(
+      {"board", Rectangle{{1.2, 0.9}, {}, {}},
+       {std::make_shared<const Texture>(Texture::Checkerboard(0.1, 10, 7, 0.1)), Rgb::Ones()},
+       Pose({0.3, M_PI / 2 + 0.4, 0.0}, {2.2, 0.6, 0.3})});
+  const auto camera = testing::MakeTestFisheye()->Scaled(376, 240);
+  const Eigen::Isometry3d T_WC = LookAt({0, 0, 0}, {1.0, 0.05, -0.1});
+  RenderOptions options;
+  options.supersampling = 2;
+  RayCaster caster;
+  const RenderOutput adaptive = caster.Render(scene, *camera, T_WC, options);
+  options.adaptive_supersampling = false;
+  const RenderOutput full = caster.Render(scene, *camera, T_WC, options);
+  options.supersampling = 1;
+  const RenderOutput single = caster.Render(scene, *camera, T_WC, options);
+  const cv::Mat& ids = full.object_id;
+  double worst_at_edges = 0.0, worst_on_board = 0.0, sum_elsewhere = 0.0, single_at_edges = 0.0;
+  int edges = 0, board_pixels = 0, elsewhere = 0;
+  for (int y = 1; y + 1 < ids.rows; ++y) {
+    for (int x = 1; x + 1 < ids.cols; ++x) {
+      const double error =
+          std::abs(adaptive.radiance.at<float>(y, x) - full.radiance.at<float>(y, x));
+      bool edge = false;
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) edge |= ids.at<int>(y + dy, x + dx) != ids.at<int>(y, x);
+      }
+      if (edge) {
+        worst_at_edges = std::max(worst_at_edges, error);
+        single_at_edges +=
+            std::abs(single.radiance.at<float>(y, x) - full.radiance.at<float>(y, x));
+        ++edges;
+      } else if (ids.at<int>(y, x) == board) {
+        worst_on_board = std::max(worst_on_board, error);
+        ++board_pixels;
+      } else {
+        sum_elsewhere += error;
+        ++elsewhere;
+      }
+    }
+  }
+  std::printf("adaptive vs full 2x2: worst at %d object edges %.2g, worst on board %.2g, mean "
+              "elsewhere %.2g (k = 1 at edges: mean %.2g)\n",
+              edges, worst_at_edges, worst_on_board, sum_elsewhere / elsewhere,
+              single_at_edges / edges);
+  ASSERT_GT(edges, 1000);
+  ASSERT_GT(board_pixels, 1000);
+  // Object edges and the checkerboard's texture edges get the same k x k rays as full
+  // supersampling; inside uniform squares the centre sample equals the mean of the 4 equal
+  // samples up to float rounding (1e-6 of a radiance ~1).
+  EXPECT_LT(worst_at_edges, 1e-6);
+  EXPECT_LT(worst_on_board, 1e-6);
+  // Smooth textures: the centre sample at the pixel's mip level vs 4 samples one level finer
+  // differ by texture detail below the pixel scale, well under one grey level (1/255) on average.
+  EXPECT_LT(sum_elsewhere / elsewhere, 1.0 / 255.0);
+  // Without supersampling the edges are visibly off (the test would notice a fallback to k = 1).
+  EXPECT_GT(single_at_edges / edges, 0.01);
+}
+
 TEST(RayCasterTest, RayCacheFollowsTheCamera) {
   // Same model name and size, different focal length: the cached rays must not be reused.
   PlaneScene s;
