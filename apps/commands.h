@@ -13,6 +13,10 @@ void AddBenchCommand(CLI::App& app, int* exit_code);
 void AddCalibrateCommand(CLI::App& app, int* exit_code);
 void AddVersionCommand(CLI::App& app, int* exit_code);
 
+// Flows under `aperture sim` (apps/sim_<flow>_command.cc).
+void AddSimTrackingCommand(CLI::App& sim, int* exit_code);
+void AddSimRecoveryCommand(CLI::App& sim, int* exit_code);
+
 // Benchmarks under `aperture bench` (apps/bench_<name>_command.cc).
 void AddBenchControlCommand(CLI::App& bench, int* exit_code);
 void AddBenchGapCommand(CLI::App& bench, int* exit_code);

@@ -1,6 +1,7 @@
 // aperture sim: fly a scenario closed-loop in the lockstep SITL simulator.
 //
 //   aperture sim NAME [--config FILE] [--set key=value ...] [--seed N] [--duration S] --out DIR
+//   aperture sim tracking ... | aperture sim recovery ...   (sim_tracking/recovery_command.cc)
 //
 // NAME is a built-in scenario (sim/scenario); --config/--set override its keys. The vehicle starts
 // at the scenario's start pose and the ground-truth autopilot holds it there (until mission
@@ -19,11 +20,10 @@
 
 #include "apps/command_support.h"
 #include "apps/commands.h"
-#include "output/csv_writer.h"
+#include "apps/sitl_outputs.h"
 #include "output/html_report.h"
 #include "output/progress_bar.h"
 #include "output/svg_plot.h"
-#include "output/tum_trajectory_writer.h"
 #include "output/video_writer.h"
 #include "perception/camera/pinhole_camera.h"
 #include "sim/scenario/scenario.h"
@@ -98,45 +98,6 @@ std::string Format(const char* format, double a, double b = 0.0, double c = 0.0)
 
 nlohmann::json Vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
-void WriteTimeSeries(const sim::SitlResult& result, output::OutputFolder& out) {
-  output::CsvWriter trajectory(
-      out.Path("trajectory.csv"),
-      {"t_s", "p_x_m", "p_y_m", "p_z_m", "v_x_mps", "v_y_mps", "v_z_mps", "q_w", "q_x", "q_y",
-       "q_z", "omega_x_radps", "omega_y_radps", "omega_z_radps"});
-  output::TumTrajectoryWriter tum(out.Path("trajectory.tum"));
-  for (const control::QuadState& s : result.trajectory) {
-    trajectory.WriteRow({s.t_s, s.p_WB.x(), s.p_WB.y(), s.p_WB.z(), s.v_W.x(), s.v_W.y(), s.v_W.z(),
-                         s.q_WB.w(), s.q_WB.x(), s.q_WB.y(), s.q_WB.z(), s.omega_B.x(),
-                         s.omega_B.y(), s.omega_B.z()});
-    tum.Write(s.t_s, s.p_WB, s.q_WB);
-  }
-  trajectory.Close();
-  tum.Close();
-  output::CsvWriter commands(
-      out.Path("commands.csv"),
-      {"t_s", "kind", "collective_thrust_mps2", "omega_des_x_radps", "omega_des_y_radps",
-       "omega_des_z_radps", "rotor1_N", "rotor2_N", "rotor3_N", "rotor4_N"});
-  for (const sim::SitlCommandRecord& record : result.commands) {
-    const perception::AutopilotCommand& c = record.command;
-    const char* kind = c.kind == perception::AutopilotCommand::Kind::kThrustRates ? "thrust_rates"
-                       : c.kind == perception::AutopilotCommand::Kind::kRotorThrusts
-                           ? "rotor_thrusts"
-                           : "none";
-    const Eigen::Vector4d& f = record.rotor_thrusts_N;
-    commands.WriteCells({record.t_s, std::string(kind), c.thrust_rates.collective_thrust_mps2,
-                         c.thrust_rates.omega_des_B.x(), c.thrust_rates.omega_des_B.y(),
-                         c.thrust_rates.omega_des_B.z(), f(0), f(1), f(2), f(3)});
-  }
-  commands.Close();
-  output::CsvWriter imu(out.Path("imu.csv"), {"t_s", "acc_x_mps2", "acc_y_mps2", "acc_z_mps2",
-                                              "gyro_x_radps", "gyro_y_radps", "gyro_z_radps"});
-  for (const perception::ImuSample& s : result.imu) {
-    imu.WriteRow({s.t_s, s.specific_force_B.x(), s.specific_force_B.y(), s.specific_force_B.z(),
-                  s.omega_B.x(), s.omega_B.y(), s.omega_B.z()});
-  }
-  imu.Close();
-}
-
 void WriteReport(const sim::SitlResult& result, const std::vector<cv::Mat>& key_frames,
                  const std::string& title, output::OutputFolder& out) {
   output::HtmlReport report(title);
@@ -155,28 +116,7 @@ void WriteReport(const sim::SitlResult& result, const std::vector<cv::Mat>& key_
                     .AddLine("y", t, y)
                     .AddLine("z", t, z)
                     .Render());
-  std::vector<double> tc, thrust, wx, wy, wz;
-  std::vector<std::vector<double>> rotors(4);
-  for (const sim::SitlCommandRecord& record : result.commands) {
-    tc.push_back(record.t_s);
-    thrust.push_back(record.command.thrust_rates.collective_thrust_mps2);
-    wx.push_back(record.command.thrust_rates.omega_des_B.x());
-    wy.push_back(record.command.thrust_rates.omega_des_B.y());
-    wz.push_back(record.command.thrust_rates.omega_des_B.z());
-    for (int i = 0; i < 4; ++i) rotors[i].push_back(record.rotor_thrusts_N(i));
-  }
-  report.AddSection("Commands");
-  report.AddSvg(output::SvgPlot({"Collective thrust command", "t [s]", "c [m/s^2]"})
-                    .AddLine("c_cmd", tc, thrust)
-                    .Render());
-  report.AddSvg(output::SvgPlot({"Body-rate command", "t [s]", "omega_des [rad/s]"})
-                    .AddLine("p", tc, wx)
-                    .AddLine("q", tc, wy)
-                    .AddLine("r", tc, wz)
-                    .Render());
-  output::SvgPlot rotor_plot({"Rotor thrusts (flight controller)", "t [s]", "f [N]"});
-  for (int i = 0; i < 4; ++i) rotor_plot.AddLine("f" + std::to_string(i + 1), tc, rotors[i]);
-  report.AddSvg(rotor_plot.Render());
+  AddSitlCommandPlots(result, &report);
   if (!key_frames.empty()) {
     report.AddSection("Key frames (onboard | third person)");
     for (const cv::Mat& frame : key_frames) report.AddImage(frame);
@@ -274,20 +214,12 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
                        {"duration_s", options.duration_s},
                        {"autopilot", result.autopilot_name}};
   summary["config"] = nlohmann::json::parse(tree.ToJson());
-  summary["outcome"] = sim::ToString(result.outcome);
-  summary["reason"] = result.reason;
+  AddSitlRunSummary(result, &summary);
   if (result.collision) {
     summary["collision"] = {{"object", result.collision->object_name},
                             {"part", result.collision->part},
                             {"contact_p_W_m", Vec(result.collision->contact_p_W)}};
   }
-  summary["sim_time_s"] = result.sim_time_s;
-  summary["real_time_factor"] = result.real_time_factor;
-  summary["timing"] = {{"wall_time_s", result.timing.wall_time_s},
-                       {"dynamics_s", result.timing.dynamics_s},
-                       {"render_s", result.timing.render_s},
-                       {"autopilot_s", result.timing.autopilot_s},
-                       {"collision_s", result.timing.collision_s}};
   double max_error_m = 0.0, sum_squared = 0.0;
   for (const control::QuadState& s : result.trajectory) {
     const double e = (s.p_WB - params.initial_state.p_WB).norm();
@@ -304,7 +236,7 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
                        {"frames_delivered", c.frames_delivered}});
   }
   summary["cameras"] = cameras;
-  WriteTimeSeries(result, out);
+  WriteSitlTimeSeries(result, out);
   nlohmann::json outputs = {{"trajectory", "trajectory.csv"},
                             {"tum", "trajectory.tum"},
                             {"commands", "commands.csv"},
@@ -328,13 +260,20 @@ void AddSimCommand(CLI::App& app, int* exit_code) {
   auto options = std::make_shared<SimOptions>();
   CLI::App* command =
       app.add_subcommand("sim", "Fly a scenario closed-loop in the rendered simulator (SITL)");
-  command->add_option("scenario", options->scenario, "Built-in scenario name (see aperture render)")
-      ->required();
+  command->add_option("scenario", options->scenario,
+                      "Built-in scenario name (see aperture render); or a flow below");
   command->add_option("--seed", options->seed, "Seed of the scenario and every sensor stream");
   command->add_option("--duration", options->duration_s, "Simulated time [s]")
       ->check(CLI::PositiveNumber);
   AddCommonOptions(command, &options->common);
-  command->callback([options, exit_code] {
+  // Flows with their own options (apps/sim_<flow>_command.cc); a scenario run needs NAME and --out.
+  command->get_option("--out")->required(false);
+  AddSimTrackingCommand(*command, exit_code);
+  AddSimRecoveryCommand(*command, exit_code);
+  command->callback([command, options, exit_code] {
+    if (!command->get_subcommands().empty()) return;
+    if (options->scenario.empty()) throw CLI::RequiredError("scenario");
+    if (options->common.out_dir.empty()) throw CLI::RequiredError("--out");
     output::OutputFolder out(options->common.out_dir);
     output::RunAndWriteSummary(out, [&] { RunSim(*options, out); });
     *exit_code = 0;

@@ -1,6 +1,8 @@
 #include "experiments/control/control_bench_sections.h"
 
 #include "experiments/control/drag_sections.h"
+#include "experiments/control/low_level_sections.h"
+#include "experiments/control/recovery_section.h"
 
 namespace aperture::experiments {
 
@@ -8,6 +10,10 @@ std::vector<ControlBenchSection> ControlBenchSections() {
   return {
       MakeDragSection(),
       MakeDragIdSection(),
+      MakeBodyRateSection(),
+      MakeMixerSection(),
+      MakeSaturationSection(),
+      MakeRecoverySection(),
   };
 }
 

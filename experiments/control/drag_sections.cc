@@ -42,6 +42,40 @@ sim::TrackingFlightParams FullSpeedFlight(std::shared_ptr<const control::Referen
   return params;
 }
 
+// Figs. F.6, F.7: the F.7 speed ramp (maximum speed 0 -> 5 m/s linearly in 30 s), error over the
+// reference speed without and with compensation; keys ramp_E_a_off, ramp_E_a_on over the ramp.
+void RunSpeedRamp(const std::string& name, const ControlBenchOptions& options, nlohmann::json* out,
+                  output::HtmlReport* report) {
+  constexpr double kRampEndS = 30.0;
+  std::shared_ptr<const control::ReferenceTrajectory> reference;
+  if (name == "circle") {
+    reference = std::make_shared<control::CircleTrajectory>(
+        control::CircleTrajectoryParams::ThesisSpeedRamp());
+  } else {
+    reference = std::make_shared<control::LemniscateTrajectory>(
+        control::LemniscateTrajectoryParams::ThesisSpeedRamp());
+  }
+  output::SvgPlot plot({name + ": error over speed on the 0 -> 5 m/s ramp (Figs. F.6, F.7 analog)",
+                        "reference speed [m/s]", "|p - p_ref| [m]"});
+  for (const bool compensate : {false, true}) {
+    sim::TrackingFlightParams params;
+    params.reference = reference;
+    params.duration_s = kRampEndS;
+    params.seed = options.seed;
+    params.control.position.compensate_rotor_drag = compensate;
+    const sim::TrackingFlightResult flight = sim::FlyTrackingFlight(params);
+    const std::string tag = compensate ? "on" : "off";
+    (*out)["ramp_E_a_" + tag] = flight.error.E_a_m;
+    std::vector<double> speed, error;
+    for (size_t k = 0; k < flight.sitl.trajectory.size(); ++k) {
+      speed.push_back(flight.reference[k].v_W.norm());
+      error.push_back((flight.sitl.trajectory[k].p_WB - flight.reference[k].p_W).norm());
+    }
+    plot.AddLine("drag compensation " + tag, speed, error);
+  }
+  report->AddSvg(plot.Render());
+}
+
 void RunDrag(const ControlBenchOptions& options, nlohmann::json* summary,
              output::HtmlReport* report) {
   report->AddSection("Rotor-drag compensation (thesis F.7.4, Table F.1)");
@@ -85,6 +119,7 @@ void RunDrag(const ControlBenchOptions& options, nlohmann::json* summary,
     }
     report->AddSvg(paths.Render());
     report->AddSvg(errors.Render());
+    if (!options.quick) RunSpeedRamp(name, options, &out, report);
   }
   report->AddTable((*summary)["drag"], "drag: E_a and max error [m], reduction = 1 - on/off");
 }
@@ -131,13 +166,26 @@ void RunDragId(const ControlBenchOptions& options, nlohmann::json* summary,
   optimizer.set_upper_bounds({2.0, 2.0});
   optimizer.set_initial_step({0.3, 0.3});
   // 5e-3 1/s is 1-1.5 % of the coefficients; the thesis converged after ~70 flights.
-  optimizer.set_xtol_abs(options.quick ? 0.03 : 5e-3);
-  optimizer.set_maxeval(options.quick ? 12 : 80);
+  optimizer.set_xtol_abs(options.quick ? 0.01 : 5e-3);
+  optimizer.set_maxeval(options.quick ? 20 : 80);
   std::vector<double> x = {0.0, 0.0};  // start from the drag-free model
   double cost = 0.0;
   std::string status;
   try {
-    status = std::to_string(static_cast<int>(optimizer.optimize(x, cost)));
+    switch (optimizer.optimize(x, cost)) {
+      case nlopt::XTOL_REACHED:
+        status = "xtol_reached";
+        break;
+      case nlopt::FTOL_REACHED:
+        status = "ftol_reached";
+        break;
+      case nlopt::MAXEVAL_REACHED:
+        status = "maxeval_reached";
+        break;
+      default:
+        status = "success";
+        break;
+    }
   } catch (const nlopt::roundoff_limited&) {
     status = "roundoff_limited";
   }

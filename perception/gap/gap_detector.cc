@@ -224,7 +224,7 @@ class Attempt {
                                               p_.edge_sample_step_px),
                              4, p_.max_samples_per_side);
     const int r = p_.edge_search_px;
-    std::vector<double> profile(2 * r + 3);
+    std::array<double, 35> profile;  // 2 r + 3 samples, edge_search_px <= 16
     side->bearings_C.clear();
     for (int i = 0; i < n; ++i) {
       const double t = p_.corner_exclusion + (1.0 - 2.0 * p_.corner_exclusion) * (i + 0.5) / n;
@@ -488,7 +488,12 @@ GapDetection GapDetector::DetectIn(const cv::Mat& gray, const cv::Rect& roi) {
   const double focal = camera_->intrinsics()[0];
   std::vector<Quad> outers, inners;
   for (const auto& contour : im.contours) {
-    if (cv::arcLength(contour, true) < params_.min_perimeter_px) continue;
+    // A closed chain of n 8-connected steps is n to sqrt(2) n long: arcLength only in between.
+    const double steps = static_cast<double>(contour.size());
+    if (steps * std::sqrt(2.0) < params_.min_perimeter_px ||
+        (steps < params_.min_perimeter_px && cv::arcLength(contour, true) < params_.min_perimeter_px)) {
+      continue;
+    }
     Vec3 mean = Vec3::Zero();
     for (const cv::Point& p : contour) mean += im.TableBearing(p);
     if (mean.norm() < 1e-6) continue;

@@ -20,6 +20,7 @@ void RequireFinite(bool finite, const std::string& field) {
 
 void DisturbanceParams::Validate() const {
   RequireFinite(steady_wind_W_mps.allFinite(), "steady_wind_W_mps");
+  RequireFinite(torque_B_Nm.allFinite(), "torque_B_Nm");
   for (size_t i = 0; i < gusts.size(); ++i) {
     const std::string name = "gusts[" + std::to_string(i) + "]";
     RequireFinite(std::isfinite(gusts[i].t_start_s) && gusts[i].wind_W_mps.allFinite(), name);
@@ -63,6 +64,7 @@ void Disturbances::StepVehicle(double dt_s, QuadrotorDynamics* vehicle) {
   }
   double t_s = vehicle->state().t_s;
   const double t_end_s = t_s + dt_s;
+  vehicle->SetExternalTorque_B(params_.torque_B_Nm);
   while (t_end_s - t_s > kTimeEpsilon_s) {
     while (next_push_ < static_cast<int>(params_.pushes.size()) &&
            params_.pushes[next_push_].t_s <= t_s + kTimeEpsilon_s) {

@@ -40,11 +40,12 @@ TEST(DragSectionsTest, NelderMeadRecoversTheDragCoefficients) {
   const nlohmann::json& id = summary["drag_id"];
   EXPECT_EQ(id["true"]["dx"].get<double>(), 0.5);
   EXPECT_EQ(id["true"]["dy"].get<double>(), 0.35);
-  // Quick mode stops at x tolerance 0.03 1/s after at most 12 flights, from d = 0: within 0.04
-  // 1/s (8 % of d_x, 11 % of d_y; the full run's 5e-3 tolerance gives < 1 %, measured).
-  EXPECT_NEAR(id["estimated"]["dx"].get<double>(), 0.5, 0.04);
-  EXPECT_NEAR(id["estimated"]["dy"].get<double>(), 0.35, 0.04);
-  EXPECT_LE(id["evaluations"].get<int>(), 12);
+  // Quick mode (one loop per flight, at most 20 flights from d = 0, x tolerance 0.01 1/s) ends
+  // at (0.518, 0.343), 4 % / 2 % off; the bound 0.035 1/s is 7 % of d_x and 10 % of d_y (the
+  // acceptance of issue 4; the full run's 80 flights at 5e-3 tolerance reach < 1 %).
+  EXPECT_NEAR(id["estimated"]["dx"].get<double>(), 0.5, 0.035);
+  EXPECT_NEAR(id["estimated"]["dy"].get<double>(), 0.35, 0.035);
+  EXPECT_LE(id["evaluations"].get<int>(), 20);
 }
 
 }  // namespace

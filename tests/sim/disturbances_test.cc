@@ -71,6 +71,19 @@ TEST(DisturbancesTest, GustDragsVehicleTowardsWindAsF2Predicts) {
   EXPECT_NEAR(vehicle.state().v_W.y(), 0.0, 1e-12);
 }
 
+TEST(DisturbancesTest, ConstantBodyTorqueSpinsUpHoveringVehicleAsJOmegaDotPredicts) {
+  QuadrotorDynamicsParams vehicle_params;
+  QuadrotorDynamics vehicle = MakeHoveringVehicle(vehicle_params);
+  DisturbanceParams params;
+  params.torque_B_Nm = Eigen::Vector3d(0.0, 0.0, 2e-4);  // about z_B only: omega x J omega = 0
+  Disturbances disturbances(params);
+  for (int k = 0; k < 100; ++k) disturbances.StepVehicle(0.001, &vehicle);
+  // Equal hover thrusts give no rotor torque, rotor_drag_B = 0: r' = tau_z / J_zz exactly.
+  const double expected = 2e-4 / vehicle_params.vehicle.inertia_diag_kgm2.z() * 0.1;
+  EXPECT_NEAR(vehicle.state().omega_B.z(), expected, 1e-9);
+  EXPECT_NEAR(vehicle.state().omega_B.head<2>().norm(), 0.0, 1e-12);
+}
+
 TEST(DisturbancesTest, ValidateNamesTheBadEntry) {
   DisturbanceParams params;
   params.gusts.push_back({0.0, 1.0, Eigen::Vector3d::Zero()});

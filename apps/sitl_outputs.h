@@ -1,0 +1,19 @@
+#pragma once
+// Outputs every `aperture sim` flow writes from a SITL run (scenario, tracking, recovery).
+#include "output/html_report.h"
+#include "output/output_folder.h"
+#include "sim/sitl/sitl_runner.h"
+
+namespace aperture::apps {
+
+// OUT/trajectory.csv and OUT/trajectory.tum (ground truth), OUT/commands.csv (autopilot commands
+// and flight-controller rotor thrusts), OUT/imu.csv (IMU samples as delivered).
+void WriteSitlTimeSeries(const sim::SitlResult& result, output::OutputFolder& out);
+
+// A "Commands" section: collective thrust and body-rate commands, rotor thrusts.
+void AddSitlCommandPlots(const sim::SitlResult& result, output::HtmlReport* report);
+
+// summary["sim_time_s"], ["real_time_factor"], ["timing"], ["outcome"], ["reason"].
+void AddSitlRunSummary(const sim::SitlResult& result, nlohmann::json* summary);
+
+}  // namespace aperture::apps
