@@ -1,7 +1,8 @@
 // aperture bench gap: Monte-Carlo flights through the inclined patterned gap (issue 5; seed 000
 // Sec. IV-B: success rate, Table I errors at the gap, Fig. 6 estimate vs ground truth).
 //
-//   aperture bench gap [--trials N] [--seed S] [--max-roll-deg R] [--max-pitch-deg P]
+//   aperture bench gap [--trials N] [--seed S] [--first-trial K]
+//                      [--max-roll-deg R] [--max-pitch-deg P]
 //                      [--max-drop-probability D] [--motion-blur-subframes K]
 //                      [--autopilot mission|ground_truth] [--duration S] [--threads T]
 //                      [--config FILE] [--set key=value ...] --out DIR
@@ -60,6 +61,9 @@ void AddBenchGapCommand(CLI::App& bench, int* exit_code) {
   command->add_option("--trials", options->bench.trials, "Number of trials")
       ->check(CLI::PositiveNumber);
   command->add_option("--seed", options->bench.seed, "Seed of every trial's random choices");
+  command->add_option("--first-trial", options->bench.first_trial,
+                      "Index of the first trial (a part of a longer run of the same seed)")
+      ->check(CLI::NonNegativeNumber);
   command->add_option("--max-roll-deg", options->bench.ranges.max_roll_deg,
                       "Gap roll drawn uniformly from [0, max] deg")
       ->check(CLI::Range(0.0, 89.0));

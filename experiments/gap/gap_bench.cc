@@ -165,6 +165,9 @@ void GapBenchOptions::Validate() const {
   if (!(std::isfinite(duration_s) && duration_s > 0.0)) {
     throw std::invalid_argument("--duration " + std::to_string(duration_s) + ": must be > 0 s");
   }
+  if (first_trial < 0) {
+    throw std::invalid_argument("--first-trial " + std::to_string(first_trial) + ": must be >= 0");
+  }
   if (threads < 0) {
     throw std::invalid_argument("--threads " + std::to_string(threads) +
                                 ": must be >= 0 (0 = all cores)");
@@ -244,7 +247,8 @@ GapBenchResult RunGapBench(const GapBenchOptions& options, const GapTrialAutopil
   result.scenario_config = nlohmann::json::parse(tree.ToJson());
   std::vector<GapTrialConfig> configs;
   for (int i = 0; i < options.trials; ++i) {
-    configs.push_back(DrawGapTrial(options.ranges, options.seed, i, base.vehicle_start.p_m));
+    configs.push_back(DrawGapTrial(options.ranges, options.seed, options.first_trial + i,
+                                   base.vehicle_start.p_m));
   }
   result.trials.resize(configs.size());
   std::mutex mutex;

@@ -29,6 +29,9 @@ namespace aperture::experiments {
 struct GapBenchOptions {
   int trials = 100;
   std::uint64_t seed = 1;
+  // Index of the first trial: trials first_trial .. first_trial + trials - 1 of the seed's
+  // sequence, so a long run can be split into parts that fly exactly the trials of one run.
+  int first_trial = 0;
   GapTrialRanges ranges;
   double duration_s = 12.0;  // per trial, unless the autopilot reports done earlier [s]
   int threads = 0;           // concurrent trials; 0 = oneTBB's default (all cores)

@@ -222,6 +222,7 @@ void WriteGapBenchOutputs(const GapBenchResult& result, output::OutputFolder& ou
   summary["inputs"] = {
       {"trials", o.trials},
       {"seed", o.seed},
+      {"first_trial", o.first_trial},
       {"duration_s", o.duration_s},
       {"threads", o.threads},
       {"autopilot", result.autopilot_name},

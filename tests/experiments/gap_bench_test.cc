@@ -51,6 +51,21 @@ TEST(GapBench, GroundTruthFlightsPassTheGapAndDoNotDependOnTheThreadCount) {
   }
 }
 
+TEST(GapBench, APartStartingAtFirstTrialFliesTheSameTrialsAsTheWholeRun) {
+  GapBenchOptions whole = QuickOptions(1);
+  whole.trials = 2;
+  GapBenchOptions part = whole;
+  part.first_trial = 1;
+  part.trials = 1;
+  const GapBenchResult a = RunGapBench(whole, MakeGroundTruthGapAutopilotFactory());
+  const GapBenchResult b = RunGapBench(part, MakeGroundTruthGapAutopilotFactory());
+  ASSERT_EQ(b.trials.size(), 1u);
+  EXPECT_EQ(b.trials[0].config.index, 1);
+  EXPECT_EQ(b.trials[0].config.seed, a.trials[1].config.seed);
+  ASSERT_TRUE(b.trials[0].evaluation.crossing.has_value());
+  EXPECT_EQ(b.trials[0].evaluation.crossing->t_s, a.trials[1].evaluation.crossing->t_s);
+}
+
 TEST(GapBench, RecordsABrokenAutopilotAsAFailedTrial) {
   GapBenchOptions options = QuickOptions(1);
   options.trials = 1;
