@@ -33,7 +33,9 @@ struct GapBenchOptions {
   // sequence, so a long run can be split into parts that fly exactly the trials of one run.
   int first_trial = 0;
   GapTrialRanges ranges;
-  double duration_s = 12.0;  // per trial, unless the autopilot reports done earlier [s]
+  // Per trial, unless the autopilot reports done earlier [s]: the mission needs up to ~13 s
+  // (detection, hover, transfer, approach, traverse, recovery, 1 s position hold).
+  double duration_s = 15.0;
   int threads = 0;           // concurrent trials; 0 = oneTBB's default (all cores)
   HoverCriteria hover;
   // Overrides of the built-in `gap` scenario (sim/scenario), e.g. "cameras.front.supersampling=1".

@@ -46,9 +46,9 @@ std::string CheckFinalHover(const std::vector<control::QuadState>& trajectory,
     if (tilt_deg > hover.max_tilt_deg) {
       return Format("not hovering at the end: tilt %.1f deg at t = %.2f s", tilt_deg, s.t_s);
     }
-    if (s.omega_B.norm() > hover.max_rate_radps) {
-      return Format("not hovering at the end: body rate %.2f rad/s at t = %.2f s",
-                    s.omega_B.norm(), s.t_s);
+    if (s.omega_B.head<2>().norm() > hover.max_rate_radps) {
+      return Format("not hovering at the end: roll/pitch rate %.2f rad/s at t = %.2f s",
+                    s.omega_B.head<2>().norm(), s.t_s);
     }
     if (s.p_WB.z() < hover.min_height_m) {
       return Format("not hovering at the end: height %.2f m at t = %.2f s", s.p_WB.z(), s.t_s);

@@ -153,9 +153,10 @@ sim::SitlResult ThroughAndHover(const GapGeometry& gap, double final_speed_mps) 
     if (s.t_s < 2.0) {  // 2 m/s along z_G, through the centre at t = 1 s
       s.p_WB = gap.T_WG.translation() + (s.t_s - 1.0) * 2.0 * z_G;
       s.v_W = 2.0 * z_G;
-    } else {  // then (nearly) still
+    } else {  // then (nearly) still, turning about z_B at 1 rad/s (a heading change)
       s.p_WB = gap.T_WG.translation() + 2.0 * z_G;
       s.v_W = final_speed_mps * z_G;
+      s.omega_B = Eigen::Vector3d(0.0, 0.0, 1.0);
     }
     result.trajectory.push_back(s);
   }
@@ -181,6 +182,12 @@ TEST(EvaluateGapTrial, NamesTheFirstFailedCriterion) {
   GapGeometry gap;
   gap.T_WG = GapPoseW(20.0, 5.0, Eigen::Vector3d(5.0, 0.0, 1.5));
   const planning::TraverseTrajectory plan(ToGapPose(gap.T_WG), 1.0, 0.5, 9.81);
+
+  // Rocking about x_B at 0.6 rad/s at the end (criterion: 0.5 rad/s roll/pitch rate).
+  sim::SitlResult rocking = ThroughAndHover(gap, 0.0);
+  rocking.trajectory.back().omega_B.x() = 0.6;
+  EXPECT_EQ(EvaluateGapTrial(rocking, gap, plan, 0.5).failure_reason,
+            "not hovering at the end: roll/pitch rate 0.60 rad/s at t = 4.00 s");
 
   // Still moving at 0.5 m/s at the end (criterion: 0.3 m/s).
   GapTrialEvaluation drifting = EvaluateGapTrial(ThroughAndHover(gap, 0.5), gap, plan, 0.5);
