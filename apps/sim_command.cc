@@ -4,15 +4,19 @@
 //   aperture sim tracking ... | aperture sim recovery ...   (sim_tracking/recovery_command.cc)
 //
 // NAME is a built-in scenario (sim/scenario); --config/--set override its keys. The vehicle starts
-// at the scenario's start pose and the ground-truth autopilot holds it there (until mission
-// behaviours exist). Writes OUT/summary.json (outcome, crash reason and contact point,
-// real_time_factor, timing, hover errors, frame statistics), OUT/trajectory.csv and
-// OUT/trajectory.tum (ground truth), OUT/commands.csv, OUT/imu.csv, OUT/sim.mp4 (or .avi: the
+// at the scenario's start pose and the ground-truth autopilot holds it there, except `gap`: the
+// vision gap mission (apps/sim_gap_mission.h; parameters via --set mission.<key>=<value>, its
+// outcome in summary.json "mission"), and `led`: the LED-stabilized hover (LED pose + IMU only,
+// experiments/led/led_hover_flight.h; summary key `led_hover`, report plots of position vs
+// set-point and estimate vs ground truth). Writes OUT/summary.json (outcome, crash reason and
+// contact point, real_time_factor, timing, hover errors, frame statistics), OUT/trajectory.csv
+// and OUT/trajectory.tum (ground truth), OUT/commands.csv, OUT/imu.csv, OUT/sim.mp4 (or .avi: the
 // onboard camera with overlays beside a third-person view from behind the vehicle) and
 // OUT/report.html (position and command plots, key frames).
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <opencv2/imgproc.hpp>
@@ -20,7 +24,9 @@
 
 #include "apps/command_support.h"
 #include "apps/commands.h"
+#include "apps/sim_gap_mission.h"
 #include "apps/sitl_outputs.h"
+#include "experiments/led/led_hover_flight.h"
 #include "output/html_report.h"
 #include "output/progress_bar.h"
 #include "output/svg_plot.h"
@@ -99,10 +105,12 @@ std::string Format(const char* format, double a, double b = 0.0, double c = 0.0)
 nlohmann::json Vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
 void WriteReport(const sim::SitlResult& result, const std::vector<cv::Mat>& key_frames,
-                 const std::string& title, output::OutputFolder& out) {
+                 const std::string& title, output::OutputFolder& out,
+                 const std::function<void(output::HtmlReport*)>& add_flight_sections) {
   output::HtmlReport report(title);
   report.AddSection("Summary");
   report.AddTable(out.summary());
+  if (add_flight_sections) add_flight_sections(&report);
   std::vector<double> t, x, y, z;
   for (const control::QuadState& s : result.trajectory) {
     t.push_back(s.t_s);
@@ -126,6 +134,9 @@ void WriteReport(const sim::SitlResult& result, const std::vector<cv::Mat>& key_
 
 void RunSim(const SimOptions& options, output::OutputFolder& out) {
   std::vector<std::string> set_items = options.common.set_items;
+  const bool gap_mission = options.scenario == "gap";
+  const std::vector<std::string> mission_items =
+      gap_mission ? SimGapMission::TakeMissionSetItems(&set_items) : std::vector<std::string>{};
   if (options.seed) set_items.push_back("seed=" + std::to_string(*options.seed));
   const config::ConfigTree tree =
       sim::ScenarioConfig(options.scenario, options.common.config_files, set_items);
@@ -152,7 +163,19 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
   autopilot_params.waypoints.push_back(
       sim::Waypoint{params.initial_state.p_WB,
                     std::atan2(T_WB_start.linear()(1, 0), T_WB_start.linear()(0, 0)), 0.0});
-  sim::GroundTruthAutopilot autopilot(params.dynamics.vehicle, autopilot_params);
+  sim::GroundTruthAutopilot ground_truth_autopilot(params.dynamics.vehicle, autopilot_params);
+  // Scenario flights: `gap` flies the gap mission, `led` holds the start from the LED pose + IMU
+  // (experiments/led); the others hover on ground truth.
+  std::unique_ptr<SimGapMission> mission;
+  if (gap_mission) mission = std::make_unique<SimGapMission>(scenario, params, mission_items);
+  std::unique_ptr<experiments::LedHoverFlight> led_flight;
+  if (scenario_params.scenario == "led") {
+    led_flight = std::make_unique<experiments::LedHoverFlight>(scenario, params);
+  }
+  perception::Autopilot& autopilot =
+      mission     ? static_cast<perception::Autopilot&>(mission->mission())
+      : led_flight ? led_flight->autopilot()
+                   : static_cast<perception::Autopilot&>(ground_truth_autopilot);
 
   // The video shows the first body-mounted camera (else the first camera) beside a third-person
   // view of the same height, 4:3, colour.
@@ -188,6 +211,7 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
              {params.cameras[primary].name + Format("  t = %.2f s", state.t_s),
               Format("p = [%.2f %.2f %.2f] m", state.p_WB.x(), state.p_WB.y(), state.p_WB.z()),
               Format("|v| = %.2f m/s", state.v_W.norm()), autopilot.status()});
+    if (mission) mission->DrawOverlay(&onboard);
     scenario.scene().SetPose(marker_id, PoseOf(state));
     const sim::RenderOutput chase =
         chase_caster.Render(scenario.scene(), chase_camera, ChaseCameraPose(state), chase_options);
@@ -236,6 +260,7 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
                        {"frames_delivered", c.frames_delivered}});
   }
   summary["cameras"] = cameras;
+  if (mission) summary["mission"] = mission->Summary(result, scenario);
   WriteSitlTimeSeries(result, out);
   nlohmann::json outputs = {{"trajectory", "trajectory.csv"},
                             {"tum", "trajectory.tum"},
@@ -248,10 +273,20 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
     }
   }
   summary["outputs"] = outputs;
-  WriteReport(result, key_frames, "aperture sim: " + options.scenario, out);
+  std::function<void(output::HtmlReport*)> add_flight_sections;
+  if (led_flight) {
+    const experiments::LedHoverFlightResult led =
+        led_flight->Finish(result, params.disturbances.pushes);
+    summary["led_hover"] = experiments::LedHoverSummary(led);
+    add_flight_sections = [led](output::HtmlReport* report) {
+      experiments::AddLedHoverReport(led, report);
+    };
+  }
+  WriteReport(result, key_frames, "aperture sim: " + options.scenario, out, add_flight_sections);
   std::cout << "aperture sim " << options.scenario << ": " << sim::ToString(result.outcome) << " ("
             << result.reason << ") after " << result.sim_time_s << " s, real-time factor "
             << result.real_time_factor << "\n";
+  if (mission) std::cout << mission->OutcomeLine(summary["mission"]) << "\n";
 }
 
 }  // namespace

@@ -1,6 +1,8 @@
 #include "experiments/gap/gap_mission_factory.h"
 
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 namespace aperture::experiments {
 namespace {
@@ -41,10 +43,15 @@ planning::GapMissionParams GapMissionParamsFor(const sim::Scenario& scenario,
 
 std::unique_ptr<planning::GapMission> MakeGapMission(const sim::Scenario& scenario,
                                                      const control::VehicleParameters& vehicle,
-                                                     const sim::ImuSensorParams& imu,
-                                                     const planning::GapMissionParams& base) {
-  const planning::GapMissionParams params = GapMissionParamsFor(scenario, imu, base);
-  const sim::ScenarioCamera& camera = scenario.cameras()[params.camera_id];
+                                                     const planning::GapMissionParams& params) {
+  const std::vector<sim::ScenarioCamera>& cameras = scenario.cameras();
+  if (params.camera_id < 0 || params.camera_id >= static_cast<int>(cameras.size()) ||
+      !cameras[params.camera_id].mount_on_body) {
+    throw std::invalid_argument("gap mission camera_id " + std::to_string(params.camera_id) +
+                                " is not a body-mounted camera of scenario '" + scenario.kind() +
+                                "' (it has " + std::to_string(cameras.size()) + " cameras)");
+  }
+  const sim::ScenarioCamera& camera = cameras[params.camera_id];
   return std::make_unique<planning::GapMission>(params, camera.model, camera.T_mount, vehicle);
 }
 

@@ -6,8 +6,10 @@
 // gap`; lives in experiments/ because it reads sim/ types and planning/ must not depend on sim/.
 //
 //   const sim::Scenario scenario = sim::BuildScenario(scenario_params);
+//   planning::GapMissionParams params = GapMissionParamsFor(scenario, sitl_params.imu);
+//   (optional: overrides, e.g. config::ParamReader `mission` section, planning's LoadParams)
 //   std::unique_ptr<planning::GapMission> mission =
-//       MakeGapMission(scenario, sitl_params.dynamics.vehicle, sitl_params.imu, mission_params);
+//       MakeGapMission(scenario, sitl_params.dynamics.vehicle, params);
 #include <memory>
 
 #include "control/vehicle_parameters.h"
@@ -25,9 +27,11 @@ planning::GapMissionParams GapMissionParamsFor(const sim::Scenario& scenario,
                                                const sim::ImuSensorParams& imu,
                                                const planning::GapMissionParams& base = {});
 
-// The mission for that camera (model, T_BC) with GapMissionParamsFor(scenario, imu, base).
-std::unique_ptr<planning::GapMission> MakeGapMission(
-    const sim::Scenario& scenario, const control::VehicleParameters& vehicle,
-    const sim::ImuSensorParams& imu, const planning::GapMissionParams& base = {});
+// The mission for the scenario camera params.camera_id (its model and mount T_BC). Throws
+// std::invalid_argument when that camera does not exist or is not body-mounted, or (through the
+// mission) for invalid params.
+std::unique_ptr<planning::GapMission> MakeGapMission(const sim::Scenario& scenario,
+                                                     const control::VehicleParameters& vehicle,
+                                                     const planning::GapMissionParams& params);
 
 }  // namespace aperture::experiments

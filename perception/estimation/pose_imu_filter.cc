@@ -119,9 +119,8 @@ std::ostream& operator<<(std::ostream& os, const PoseUpdateResult& result) {
             << "], replayed_steps=" << result.replayed_steps << "}";
 }
 
-namespace {
-
-PoseImuEstimate DefaultInitial(const PoseImuFilterParams& params, const control::QuadState& state) {
+PoseImuEstimate InitialEstimate(const PoseImuFilterParams& params,
+                                const control::QuadState& state) {
   params.Validate();
   PoseImuEstimate initial;
   initial.state = state;
@@ -135,10 +134,8 @@ PoseImuEstimate DefaultInitial(const PoseImuFilterParams& params, const control:
   return initial;
 }
 
-}  // namespace
-
 PoseImuFilter::PoseImuFilter(const PoseImuFilterParams& params, const control::QuadState& initial)
-    : PoseImuFilter(params, DefaultInitial(params, initial)) {}
+    : PoseImuFilter(params, InitialEstimate(params, initial)) {}
 
 PoseImuFilter::PoseImuFilter(const PoseImuFilterParams& params, const PoseImuEstimate& initial)
     : params_(params) {

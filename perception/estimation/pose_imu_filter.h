@@ -130,6 +130,11 @@ struct PoseImuEstimate {
   Matrix15d covariance = Matrix15d::Zero();  // of the error state, ErrorStateIndex order
 };
 
+// The estimate a filter starts from given only a state: `state` (t_s = filter time), zero biases
+// and the diagonal covariance of the params' initial sigmas. Throws for invalid params.
+PoseImuEstimate InitialEstimate(const PoseImuFilterParams& params,
+                                const control::QuadState& state);
+
 class PoseImuFilter {
  public:
   // Starts at `initial` (state.t_s is the filter time; omega_B is ignored) with the diagonal

@@ -54,11 +54,19 @@ void GapMissionParams::Validate() const {
   }
   RequireNonNegative(hover_s, "hover_s");
   RequirePositive(init_max_position_sigma_m, "init_max_position_sigma_m");
+  RequirePositive(detection_covariance_scale, "detection_covariance_scale");
+  RequireNonNegative(min_ground_clearance_m, "min_ground_clearance_m");
+  if (max_consecutive_rejections < 1) {
+    throw std::invalid_argument("GapMissionParams.max_consecutive_rejections must be >= 1, got " +
+                                std::to_string(max_consecutive_rejections));
+  }
   RequirePositive(transfer_speed_mps, "transfer_speed_mps");
   RequirePositive(min_transfer_s, "min_transfer_s");
   RequireNonNegative(start_hold_s, "start_hold_s");
+  RequireNonNegative(lead_in_s, "lead_in_s");
   RequireNonNegative(min_replan_remaining_s, "min_replan_remaining_s");
   RequirePositive(detection_timeout_s, "detection_timeout_s");
+  RequireNonNegative(approach_commit_s, "approach_commit_s");
   RequireNonNegative(recovered_hold_s, "recovered_hold_s");
 }
 
@@ -68,6 +76,7 @@ const char* ToString(GapMissionPhase phase) {
     case GapMissionPhase::kHover: return "hover";
     case GapMissionPhase::kTransfer: return "transfer";
     case GapMissionPhase::kApproach: return "approach";
+    case GapMissionPhase::kLeadIn: return "lead_in";
     case GapMissionPhase::kTraverse: return "traverse";
     case GapMissionPhase::kRecover: return "recover";
     case GapMissionPhase::kDone: return "done";
@@ -133,6 +142,7 @@ void GapMission::OnFrame(const perception::Frame& frame) {
   const bool looking =
       phase_ == GapMissionPhase::kDetect || phase_ == GapMissionPhase::kHover ||
       phase_ == GapMissionPhase::kTransfer || phase_ == GapMissionPhase::kApproach ||
+      phase_ == GapMissionPhase::kLeadIn ||
       (phase_ == GapMissionPhase::kTraverse &&
        frame.t_s < traverse_start_t_s_ + traverse_->time_to_gap_s());
   if (!looking) return;
@@ -162,7 +172,7 @@ void GapMission::OnFrame(const perception::Frame& frame) {
   J.topLeftCorner<3, 3>() = T_WG_.linear();
   J.topRightCorner<3, 3>() = -T_WG_.linear() * perception::Skew(T_GC.translation());
   J.bottomRightCorner<3, 3>() = T_GC.linear().transpose();
-  perception::Matrix6d cov = J * cov_GC * J.transpose();
+  perception::Matrix6d cov = params_.detection_covariance_scale * J * cov_GC * J.transpose();
   cov = 0.5 * (cov + cov.transpose()).eval();
   perception::PoseMeasurement z;
   z.t_s = frame.t_s;
@@ -178,10 +188,41 @@ void GapMission::OnFrame(const perception::Frame& frame) {
 
 void GapMission::ApplyPendingMeasurements() {
   while (!pending_.empty() && pending_.front().t_s <= filter_->time_s()) {
-    const perception::PoseUpdateResult result = filter_->Update(pending_.front());
+    const perception::PoseMeasurement z = pending_.front();
     pending_.pop_front();
-    if (!result.applied()) ++updates_rejected_;
+    const perception::PoseUpdateResult result = filter_->Update(z);
+    if (result.applied()) {
+      consecutive_rejections_ = 0;
+      continue;
+    }
+    ++updates_rejected_;
+    if (result.status != perception::PoseUpdateStatus::kRejectedOutlier ||
+        ++consecutive_rejections_ < params_.max_consecutive_rejections) {
+      continue;
+    }
+    // Diverged: restart at the measured pose (T_WB = T_WX T_BX^-1), keeping velocity and biases.
+    perception::PoseImuEstimate restart = filter_->Estimate();
+    const Eigen::Quaterniond q_WB = (z.q_WX * z.q_BX.inverse()).normalized();
+    restart.state.q_WB = q_WB;
+    restart.state.p_WB = z.p_WX - q_WB * z.p_BX;
+    const double kInitial[5] = {params_.filter.initial_position_sigma_m,
+                                params_.filter.initial_velocity_sigma_mps,
+                                params_.filter.initial_attitude_sigma_rad,
+                                params_.filter.initial_accel_bias_sigma_mps2,
+                                params_.filter.initial_gyro_bias_sigma_radps};
+    restart.covariance.setZero();
+    for (int block = 0; block < 5; ++block) {
+      restart.covariance.block<3, 3>(3 * block, 3 * block) =
+          kInitial[block] * kInitial[block] * Eigen::Matrix3d::Identity();
+    }
+    filter_ = std::make_unique<perception::PoseImuFilter>(params_.filter, restart);
+    consecutive_rejections_ = 0;
+    ++filter_restarts_;
   }
+}
+
+void GapMission::OnRange(const perception::RangeReading& reading) {
+  if (reading.valid) last_range_m_ = reading.range_m;
 }
 
 void GapMission::StartFilter() {
@@ -224,7 +265,17 @@ void GapMission::Plan(double t_s) {
           t_s);
     return;
   }
-  const ApproachTarget target = ApproachTarget::FromTraverse(*traverse.trajectory);
+  // The approach ends lead_in_s before the traverse start, on the traverse arc.
+  ApproachTarget target = ApproachTarget::FromTraverse(*traverse.trajectory);
+  target.p_W = traverse.trajectory->Position(-params_.lead_in_s);
+  target.v_W = traverse.trajectory->Velocity(-params_.lead_in_s);
+  // Floor in W from the range reading while hovering level: the ground is range_m below B.
+  ApproachPlannerParameters approach_params = params_.approach;
+  if (last_range_m_) {
+    approach_params.min_height_m =
+        estimate().p_WB.z() - *last_range_m_ + params_.min_ground_clearance_m;
+  }
+  approach_planner_ = ApproachPlanner(approach_params);
   const ApproachPlan plan = approach_planner_.Plan(target);
   if (!plan.best) {
     Abort("no feasible approach candidate", t_s);
@@ -324,15 +375,15 @@ perception::AutopilotCommand GapMission::Step(double t_s) {
     }
     case GapMissionPhase::kApproach: {
       if (t_s >= approach_end_t_s_) {
-        EnterPhase(GapMissionPhase::kTraverse, t_s);
-        traverse_start_t_s_ = t_s;
-        return Step(t_s);
-      }
-      if (t_s - last_detected_t_s_ > params_.detection_timeout_s) {
-        Abort("gap lost during the approach", t_s);
+        EnterPhase(GapMissionPhase::kLeadIn, t_s);
         return Step(t_s);
       }
       const double remaining_s = approach_end_t_s_ - t_s;
+      if (remaining_s > params_.approach_commit_s &&
+          t_s - last_detected_t_s_ > params_.detection_timeout_s) {
+        Abort("gap lost during the approach", t_s);
+        return Step(t_s);
+      }
       if (remaining_s > params_.min_replan_remaining_s) {
         const control::QuadState x = estimate();
         const ApproachCandidate candidate = approach_planner_.Replan(
@@ -349,6 +400,19 @@ perception::AutopilotCommand GapMission::Step(double t_s) {
           primitive_, approach_target_.gap_center_W, t_s - primitive_start_t_s_);
       reference.t_s = t_s;
       last_reference_a_W_ = reference.a_W;
+      return Track(reference);
+    }
+    case GapMissionPhase::kLeadIn: {
+      // Traverse time runs from -lead_in_s at the approach end.
+      const double t_traverse = t_s - approach_end_t_s_ - params_.lead_in_s;
+      if (t_traverse >= 0.0) {
+        EnterPhase(GapMissionPhase::kTraverse, t_s);
+        traverse_start_t_s_ = t_s;
+        traverse_start_estimate_ = estimate();
+        return Step(t_s);
+      }
+      control::TrajectoryPoint reference = traverse_->Sample(t_traverse);
+      reference.t_s = t_s;
       return Track(reference);
     }
     case GapMissionPhase::kTraverse: {
@@ -416,6 +480,7 @@ std::string GapMission::status() const {
     case GapMissionPhase::kAborted:
       return "aborted (" + reason_ + "): " + control::ToString(recovery_.stage());
     case GapMissionPhase::kHover:
+    case GapMissionPhase::kLeadIn:
       break;
   }
   return ToString(phase_);

@@ -7,11 +7,16 @@
 //   hover     position control on the filter estimate at the pose where the filter started,
 //             until hover_s have passed and the position is known to init_max_position_sigma_m.
 //   (plan)    one step: traverse (6) through the estimated gap, the approach candidate of lowest
-//             cost (10) (planning/approach_planner.h), a rest-to-rest transfer to its start.
+//             cost (10) (planning/approach_planner.h) above the floor seen by the range sensor, a
+//             rest-to-rest transfer to its start.
 //   transfer  fly the transfer primitive (perception-aware heading (8)), then hold start_hold_s.
 //   approach  track the approach primitive, replanned from the current estimate at every control
 //             step (Sec. II-C, V-A: the previous primitive is kept when the replanned one is not
-//             provably feasible or loses the gap from view).
+//             provably feasible or loses the gap from view). It ends lead_in_s before the traverse
+//             start, on the traverse's own arc (3)-(5) extended backwards in time.
+//   lead_in   (beyond the paper) track that arc with position feedback for lead_in_s: a constant
+//             acceleration reference lets the attitude and thrust settle after the approach's
+//             final jerk, so the open-loop part starts on its initial conditions (3a), (3b).
 //   traverse  open loop (Sec. II-A/B): constant collective thrust |<g, e3>| and the constant
 //             attitude of the traverse (thrust along +-e3, the traverse heading), held from the
 //             IMU-propagated attitude; no position feedback. Lasts the traverse's duration_s.
@@ -19,7 +24,8 @@
 //             on the filter's IMU-only estimate (the gap is behind the camera, Sec. II-F), down to
 //             position hold; after recovered_hold_s in the position stage the mission is done.
 //   aborted   (from hover/transfer/approach when the gap is not detected for
-//             detection_timeout_s, or planning fails): straight to the recovery stages.
+//             detection_timeout_s, except in the approach's last approach_commit_s, or when
+//             planning fails): straight to the recovery stages.
 //
 // State estimate: perception::PoseImuFilter fed with every IMU sample and every detection's pose
 // of the camera T_WC = T_WG * T_CG^-1 with its covariance (GapDetection::covariance mapped to the
@@ -58,7 +64,19 @@ struct GapMissionParams {
   perception::GapDetectorParams detector;
   perception::PoseImuFilterParams filter;  // set the IMU noise of the vehicle's IMU
   TraverseParameters traverse;
-  ApproachPlannerParameters approach;
+  // The planner's grid and cost with gentler feasibility limits than its defaults: the approach
+  // is tracked with feedback on an estimate, so it keeps thrust (at most 14 m/s^2, 1.4 hover) and
+  // body-rate (4 rad/s) margin for the feedback and the motors; at the planner's own 30 m/s^2 and
+  // 10 rad/s the chosen approaches saturate rotors and arrive ~5 cm off in SITL. The minimum, 4
+  // m/s^2, stays below the traverse thrust |<g, e3>| = g cos 45 deg cos 30 deg ~ 6 m/s^2 that
+  // the approach ends with at the steepest gap of the acceptance range.
+  ApproachPlannerParameters approach = [] {
+    ApproachPlannerParameters p;
+    p.limits.min_thrust_mps2 = 4.0;
+    p.limits.max_thrust_mps2 = 14.0;
+    p.limits.max_body_rate_radps = 4.0;
+    return p;
+  }();
   control::PositionControllerParams controller;  // approach / transfer / hover tracking
   control::RecoveryParams recovery;             // after the gap
   int camera_id = 0;  // Frame::camera_id of the forward camera; other cameras are ignored
@@ -66,22 +84,37 @@ struct GapMissionParams {
   // Detections whose gravity direction is averaged to fix the mission frame (detection noise of
   // R_CG tilts W against gravity: 10 frames at 50 Hz average it down in 0.2 s of hover).
   int init_detections = 10;
+  // The detector's covariance (pixel_sigma_px per edge sample, independent samples) is scaled by
+  // this before fusion: rendered edges with noise, blur and aliasing err by more than the model
+  // says, and an overconfident measurement model makes the filter gate out good detections.
+  double detection_covariance_scale = 9.0;
+  // After this many consecutive gated-out detections the filter restarts at the detected pose,
+  // keeping its velocity and biases (a diverged filter otherwise rejects every later update).
+  int max_consecutive_rejections = 5;
+  // The approach stays this high above the ground [m], the ground being measured once by the
+  // downward range sensor while hovering (OnRange); without a range reading there is no floor.
+  double min_ground_clearance_m = 0.5;
   // IMU samples averaged for the gravity direction while hovering before the first detection.
   int gravity_samples = 100;
-  double hover_s = 1.0;  // filter convergence (biases) before planning [s]
+  double hover_s = 0.5;  // filter convergence (biases) before planning [s]
   // Planning waits until the filter's position 1-sigma (largest axis) is below this [m].
   double init_max_position_sigma_m = 0.05;
   // Transfer to the approach start: duration = max(min_transfer_s, 1.875 d / transfer_speed_mps)
   // (1.875 d / T is the peak speed of a rest-to-rest minimum-jerk primitive over distance d).
-  double transfer_speed_mps = 1.5;
+  double transfer_speed_mps = 3.0;
   double min_transfer_s = 1.0;
-  double start_hold_s = 0.5;  // hover at the approach start before the approach [s]
+  double start_hold_s = 0.3;  // hover at the approach start before the approach [s]
+  // Closed-loop lead-in along the traverse arc before the open-loop part [s]; 0 = none (paper).
+  double lead_in_s = 0.2;
   // No replanning in the last part of the approach: the primitive is then too short to be
   // provably feasible anyway (Sec. V-A).
   double min_replan_remaining_s = 0.05;
-  // Without a detection for this long before the traverse the mission aborts [s].
+  // Without a detection for this long before the approach's last approach_commit_s the mission
+  // aborts [s]. In that last part the gap may leave the view (Sec. II intro) and the filter
+  // carries on with the IMU: stopping there would hit the gap anyway.
   double detection_timeout_s = 0.5;
-  double recovered_hold_s = 1.0;  // time in the recovery's position stage before done [s]
+  double approach_commit_s = 1.0;
+  double recovered_hold_s = 0.5;  // time in the recovery's position stage before done [s]
 
   // Throws std::invalid_argument naming the field (and via the components' Validate()).
   void Validate() const;
@@ -92,12 +125,14 @@ enum class GapMissionPhase {
   kHover,
   kTransfer,
   kApproach,
+  kLeadIn,
   kTraverse,
   kRecover,
   kDone,     // recovered and holding position
   kAborted,  // recovering after an abort (see reason())
 };
-// "detect", "hover", "transfer", "approach", "traverse", "recover", "done", "aborted".
+// "detect", "hover", "transfer", "approach", "lead_in", "traverse", "recover", "done",
+// "aborted".
 const char* ToString(GapMissionPhase phase);
 
 struct GapMissionPhaseChange {
@@ -116,6 +151,7 @@ class GapMission : public perception::Autopilot {
   std::string name() const override { return "gap_mission"; }
   void OnImu(const perception::ImuSample& sample) override;
   void OnFrame(const perception::Frame& frame) override;
+  void OnRange(const perception::RangeReading& reading) override;
   perception::AutopilotCommand Step(double t_s) override;
   // "<phase>" plus details, e.g. "approach 1.2/2.0 s", "recover: horizontal_velocity".
   std::string status() const override;
@@ -134,6 +170,10 @@ class GapMission : public perception::Autopilot {
   const std::optional<TraverseTrajectory>& traverse_plan() const { return traverse_; }
   // Sensor-clock time at which the open-loop traverse began; NaN before.
   double traverse_start_time_s() const { return traverse_start_t_s_; }
+  // The estimate when the traverse began (what the open-loop traverse starts from); empty before.
+  const std::optional<control::QuadState>& traverse_start_estimate() const {
+    return traverse_start_estimate_;
+  }
   // The approach as planned before the transfer (first primitive), empty before planning.
   const std::optional<ApproachCandidate>& approach_plan() const { return approach_; }
   // Time of the approach start (end of transfer and hold); NaN before.
@@ -146,6 +186,7 @@ class GapMission : public perception::Autopilot {
   int replans_accepted() const { return replans_accepted_; }
   int replans_rejected() const { return replans_rejected_; }
   int updates_rejected() const { return updates_rejected_; }
+  int filter_restarts() const { return filter_restarts_; }
 
  private:
   void EnterPhase(GapMissionPhase phase, double t_s);
@@ -192,6 +233,9 @@ class GapMission : public perception::Autopilot {
   int replans_accepted_ = 0;
   int replans_rejected_ = 0;
   int updates_rejected_ = 0;
+  int consecutive_rejections_ = 0;
+  int filter_restarts_ = 0;
+  std::optional<double> last_range_m_;
 
   double phase_start_t_s_ = 0.0;
   control::TrajectoryPoint hover_reference_;
@@ -204,6 +248,7 @@ class GapMission : public perception::Autopilot {
   double approach_start_t_s_ = std::numeric_limits<double>::quiet_NaN();
   double approach_end_t_s_ = 0.0;
   double traverse_start_t_s_ = std::numeric_limits<double>::quiet_NaN();
+  std::optional<control::QuadState> traverse_start_estimate_;
   Eigen::Vector3d last_reference_a_W_ = Eigen::Vector3d::Zero();
   double position_stage_since_t_s_ = std::numeric_limits<double>::quiet_NaN();
 };

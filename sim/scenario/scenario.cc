@@ -392,6 +392,7 @@ ScenarioCamera BuildCamera(const std::string& name, const CameraParams& c, std::
   camera.mount_on_body = c.mount_on_body;
   camera.T_mount = c.pose.ToIsometry();
   camera.rate_hz = c.rate_hz;
+  camera.latency_s = c.latency_s;
   camera.render.color = c.color;
   camera.render.supersampling = c.supersampling;
   return camera;

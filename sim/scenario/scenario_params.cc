@@ -7,6 +7,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "sim/sim_params_io.h"
+
 namespace aperture::sim {
 namespace {
 
@@ -134,6 +136,7 @@ void LoadParams(config::ParamReader& reader, CameraParams* params) {
   reader.Read("mount_on_body", &params->mount_on_body);
   reader.ReadSection("pose", &params->pose);
   reader.Read("rate_hz", &params->rate_hz);
+  reader.Read("latency_s", &params->latency_s);
   reader.Read("exposure_s", &params->exposure_s);
   reader.Read("motion_blur_subframes", &params->motion_blur_subframes);
   reader.Read("gain", &params->gain);
@@ -146,6 +149,9 @@ void LoadParams(config::ParamReader& reader, CameraParams* params) {
   RequirePositive(reader, "height", params->height);
   RequirePositive(reader, "rate_hz", params->rate_hz);
   RequirePositive(reader, "supersampling", params->supersampling);
+  if (!(params->latency_s >= 0.0) || !std::isfinite(params->latency_s)) {
+    ThrowAt(reader, "latency_s", "must be finite and >= 0, got " + std::to_string(params->latency_s));
+  }
   if (params->intrinsics.size() == 0 &&
       (!(params->fov_deg > 0.0) || (params->model != "equidistant" && !(params->fov_deg < 180.0)) ||
        params->fov_deg > 360.0)) {
@@ -294,6 +300,7 @@ void LoadParams(config::ParamReader& reader, ScenarioParams* params) {
       params->objects.emplace_back(name, object);
     }
   }
+  reader.ReadSection("disturbances", &params->disturbances);
   const auto& trajectory_camera = params->trajectory.camera;
   if (!trajectory_camera.empty()) {
     bool found = false;

@@ -14,6 +14,9 @@
 //   gap: {...}               # the section of the kind (only that one is accepted)
 //   objects:                 # extra objects, name -> object
 //     crate: {shape: box, size_m: [1, 1, 1], pose: {p_m: [3, 2, 0.5]}, texture: {kind: noise}}
+//   disturbances:            # SITL only: gusts and pushes (sim/sim_params_io.h)
+//     gusts: [[t_start_s, duration_s, wind_x, wind_y, wind_z]]
+//     pushes: [[t_s, J_x, J_y, J_z]]
 //
 // Poses: p_m [m] and rpy_deg [deg] with R = Rz(yaw) * Ry(pitch) * Rx(roll) (rpy = [roll, pitch,
 // yaw]). World W: z up. Body B: x forward, y left, z up. Camera C: OpenCV (z forward, y down).
@@ -26,6 +29,7 @@
 #include <vector>
 
 #include "config/param_reader.h"
+#include "sim/vehicle/disturbances.h"
 
 namespace aperture::sim {
 
@@ -85,6 +89,7 @@ struct CameraParams {
   bool mount_on_body = true;   // false: fixed in the world, `pose` is T_WC
   PoseParams pose;             // T_BC (body mount) or T_WC (world mount)
   double rate_hz = 30.0;
+  double latency_s = 0.0;   // SITL: end of exposure -> delivery to the autopilot [s]
   double exposure_s = 0.0;  // > 0 with motion_blur_subframes > 1: motion blur
   int motion_blur_subframes = 1;
   double gain = 1.0;
@@ -195,6 +200,8 @@ struct ScenarioParams {
   TagsSceneParams tags;
   ForestParams forest;
   std::vector<std::pair<std::string, ObjectParams>> objects;  // in document order
+  // SITL only: wind, gusts and pushes (key `disturbances`, format in sim/sim_params_io.h).
+  DisturbanceParams disturbances;
 };
 
 void LoadParams(config::ParamReader& reader, PoseParams* params);

@@ -12,6 +12,7 @@ SitlCamera MakeSitlCamera(const ScenarioCamera& camera) {
     sitl.T_WC_fixed = camera.T_mount;
   }
   sitl.rate_hz = camera.rate_hz;
+  sitl.latency_s = camera.latency_s;
   sitl.effects = camera.effects.params();
   sitl.render = camera.render;
   return sitl;
@@ -30,6 +31,7 @@ void ConfigureSitlFromScenario(const Scenario& scenario, SitlRunnerParams* param
   params->initial_state.q_WB = Eigen::Quaterniond(T_WB.linear());
   params->initial_state.v_W.setZero();
   params->initial_state.omega_B.setZero();
+  params->disturbances = scenario.params().disturbances;
 }
 
 SitlHooks MakeScenarioHooks(Scenario* scenario) {

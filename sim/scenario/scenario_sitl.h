@@ -17,9 +17,10 @@ namespace aperture::sim {
 
 SitlCamera MakeSitlCamera(const ScenarioCamera& camera);
 
-// Replaces params->cameras with the scenario's (in order: index = Frame::camera_id) and sets the
-// initial position and attitude to the scenario's start pose (velocity and rates zero), and adds
-// the body-attached objects to params->collision.ignored_objects.
+// Replaces params->cameras with the scenario's (in order: index = Frame::camera_id, with their
+// rates and latencies), sets the initial position and attitude to the scenario's start pose
+// (velocity and rates zero) and the disturbances to the scenario's, and adds the body-attached
+// objects to params->collision.ignored_objects.
 void ConfigureSitlFromScenario(const Scenario& scenario, SitlRunnerParams* params);
 
 // Hooks whose before_render moves the scenario's body-attached objects to the vehicle pose.

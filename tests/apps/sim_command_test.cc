@@ -26,7 +26,11 @@ TEST(SimCommand, HoverInTheGapScenarioWritesEveryOutput) {
   EXPECT_EQ(summary["inputs"]["seed"], 3);
   EXPECT_NEAR(summary["sim_time_s"].get<double>(), 0.5, 1e-6);
   EXPECT_GT(summary["real_time_factor"].get<double>(), 0.0);
-  // Ground-truth hover from a hover start without disturbances: sub-centimetre.
+  // `gap` flies the gap mission; 94x60 frames are too coarse for the detector, so it holds the
+  // hover it started in (hover thrust, zero rates) without disturbances: sub-centimetre.
+  EXPECT_EQ(summary["inputs"]["autopilot"], "gap_mission");
+  EXPECT_EQ(summary["mission"]["phase"], "detect");
+  EXPECT_EQ(summary["mission"]["passed"], false);
   EXPECT_LT(summary["hover_error_m"]["max"].get<double>(), 0.01);
   // 50 Hz camera over [0, 0.5] s inclusive.
   EXPECT_EQ(summary["cameras"][0]["frames_delivered"], 26);
@@ -37,6 +41,17 @@ TEST(SimCommand, HoverInTheGapScenarioWritesEveryOutput) {
   EXPECT_TRUE(fs::exists(out / "report.html"));
   ASSERT_TRUE(summary["outputs"].contains("video"));
   EXPECT_GT(fs::file_size(out / summary["outputs"]["video"].get<std::string>()), 0u);
+}
+
+TEST(SimCommand, UnknownMissionKeyIsRejectedByName) {
+  TempFolder temp("sim_mission_key");
+  const fs::path out = fs::path(temp.path()) / "out";
+  const CommandResult result = RunAperture(
+      "sim gap --duration 0.1 --set cameras.front.width=94 --set cameras.front.height=60 "
+      "--set mission.hover_sec=1 --out " +
+      out.string());
+  EXPECT_NE(result.exit_code, 0);
+  EXPECT_NE(result.output.find("mission.hover_sec"), std::string::npos) << result.output;
 }
 
 TEST(SimCommand, StartingInTheGroundEndsWithAGroundCollision) {

@@ -12,6 +12,7 @@
 #include "perception/graph/builtin_front_ends.h"
 #include "perception/graph/frame_graph.h"
 #include "perception/sensor_data.h"
+#include "tests/perception/gap_test_images.h"
 
 namespace aperture::perception {
 namespace {
@@ -27,33 +28,6 @@ Eigen::Isometry3d MakePose(double roll, double pitch, double yaw, const Eigen::V
                    .toRotationMatrix();
   T.translation() = p_CG;
   return T;
-}
-
-// Draws the pattern (white surround, black band, white band, gray opening) on a gray background,
-// rendered at 8x and area-averaged, so edges are anti-aliased like a real sensor's.
-cv::Mat DrawPattern(const CameraModel& camera, const GapDetectorParams& p, const Eigen::Isometry3d& T_CG) {
-  constexpr int kScale = 8;
-  constexpr int kShift = 4;  // fillConvexPoly fractional bits
-  cv::Mat hi(camera.height() * kScale, camera.width() * kScale, CV_8UC1, cv::Scalar(90));
-  const auto fill = [&](const Eigen::Vector2d& size, int value) {
-    std::vector<cv::Point> poly;
-    for (const Eigen::Vector2d& c : {Eigen::Vector2d(-1, -1), Eigen::Vector2d(1, -1), Eigen::Vector2d(1, 1), Eigen::Vector2d(-1, 1)}) {
-      Eigen::Vector2d px;
-      ASSERT_TRUE(camera.Project(T_CG * Eigen::Vector3d(0.5 * c.x() * size.x(), 0.5 * c.y() * size.y(), 0.0), &px));
-      // Pixel centre x of the image is at kScale * (x + 0.5) - 0.5 in the fine image.
-      const Eigen::Vector2d fine = kScale * (px.array() + 0.5).matrix() - Eigen::Vector2d::Constant(0.5);
-      poly.emplace_back(static_cast<int>(std::lround(fine.x() * (1 << kShift))),
-                        static_cast<int>(std::lround(fine.y() * (1 << kShift))));
-    }
-    cv::fillConvexPoly(hi, poly, cv::Scalar(value), cv::LINE_8, kShift);
-  };
-  fill(p.outer_size_m + Eigen::Vector2d(0.4, 0.4), 235);
-  fill(p.outer_size_m, 15);
-  fill(p.inner_size_m, 235);
-  fill(p.opening_size_m, 120);
-  cv::Mat image;
-  cv::resize(hi, image, cv::Size(camera.width(), camera.height()), 0, 0, cv::INTER_AREA);
-  return image;
 }
 
 TEST(GapDetectorTest, RejectsInvalidParameters) {
@@ -83,7 +57,7 @@ TEST(GapDetectorTest, DrawnPatternGivesExactPoseWithSymmetryConvention) {
     const double distance = 1.5 + 0.4 * trial;
     const Eigen::Isometry3d T_CG = MakePose(0.4 * u(rng), 0.4 * u(rng), 0.4 * u(rng),
                                             Eigen::Vector3d(0.15 * distance * u(rng), 0.1 * distance * u(rng), distance));
-    const cv::Mat image = DrawPattern(*camera, params, T_CG);
+    const cv::Mat image = DrawGapPattern(*camera, params, T_CG);
     const GapDetection d = detector.DetectFullImage(image);
     ASSERT_TRUE(d.detected()) << "trial " << trial << ": " << GapDetectionStatusName(d.status);
     // cv::fillConvexPoly includes boundary pixels: each drawn edge lies up to one fine pixel
@@ -105,7 +79,7 @@ TEST(GapDetectorTest, DrawnPatternGivesExactPoseWithSymmetryConvention) {
   const Eigen::Isometry3d T_CG = MakePose(0.2, 0.1, 0.0, Eigen::Vector3d(0.0, 0.0, 2.5));
   Eigen::Isometry3d T_flipped = T_CG;
   T_flipped.linear() = T_CG.linear() * Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  const GapDetection d = detector.DetectFullImage(DrawPattern(*camera, params, T_flipped));
+  const GapDetection d = detector.DetectFullImage(DrawGapPattern(*camera, params, T_flipped));
   ASSERT_TRUE(d.detected());
   EXPECT_GT(d.T_CG.linear()(0, 0), 0.0);
   EXPECT_LT(Eigen::AngleAxisd(d.T_CG.linear().transpose() * T_CG.linear()).angle(), 0.5 * M_PI / 180);
@@ -154,7 +128,7 @@ TEST(GapNodeTest, ReportsCameraPoseInGapFrame) {
   FrameGraph graph(std::move(nodes));
   const Eigen::Isometry3d T_CG = MakePose(0.3, 0.2, -0.1, Eigen::Vector3d(0.1, 0.05, 3.0));
   Frame frame;
-  frame.image = DrawPattern(*camera, GapDetectorParams{}, T_CG);
+  frame.image = DrawGapPattern(*camera, GapDetectorParams{}, T_CG);
   FrameSlots slots = graph.MakeSlots(frame);
   NodeContext context = graph.ContextFor(0, slots);
   graph.node(0).Run(context);

@@ -24,6 +24,12 @@ TEST(ScenarioSitlTest, LedTargetFliesWithTheVehicleInFrames) {
   ASSERT_TRUE(params.cameras[0].T_WC_fixed.has_value());  // the ground camera is world-mounted
   EXPECT_TRUE(params.initial_state.p_WB.isApprox(scenario.T_WB_start().translation()));
   EXPECT_TRUE(params.cameras[0].effects.infrared);
+  // Rate, latency and disturbances of the scenario (C.4.3: 40 Hz poses; gusts and a push).
+  EXPECT_DOUBLE_EQ(params.cameras[0].rate_hz, scenario_params.cameras.front().second.rate_hz);
+  EXPECT_DOUBLE_EQ(params.cameras[0].latency_s, scenario_params.cameras.front().second.latency_s);
+  EXPECT_GT(params.cameras[0].latency_s, 0.0);
+  EXPECT_EQ(params.disturbances.pushes.size(), scenario_params.disturbances.pushes.size());
+  EXPECT_FALSE(params.disturbances.gusts.empty());
   // The target is carried by the vehicle: not an obstacle to it (else the run ends at once).
   const auto& ignored = params.collision.ignored_objects;
   EXPECT_NE(std::find(ignored.begin(), ignored.end(), "led_target"), ignored.end());
@@ -47,7 +53,7 @@ TEST(ScenarioSitlTest, LedTargetFliesWithTheVehicleInFrames) {
   };
   const SitlResult result = runner.Run(autopilot, hooks);
   EXPECT_EQ(result.outcome, SitlResult::Outcome::kDurationReached) << result.reason;
-  EXPECT_GE(frames, 4);      // 50 Hz over 0.1 s
+  EXPECT_GE(frames, 4);      // 40 Hz over 0.1 s
   EXPECT_GT(led_pixels, 0);  // the LED is drawn where the moving target carries it
 }
 

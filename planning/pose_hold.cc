@@ -1,0 +1,213 @@
+#include "planning/pose_hold.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include "control/trajectory_point.h"
+
+namespace aperture::planning {
+namespace {
+
+void RequireFinite(bool finite, const std::string& what) {
+  if (!finite) throw std::invalid_argument(what + " must be finite");
+}
+
+// T_WB = T_WX * T_BX^-1 of a pose measurement.
+Eigen::Quaterniond BodyRotation(const perception::PoseMeasurement& z) {
+  return (z.q_WX.normalized() * z.q_BX.normalized().conjugate()).normalized();
+}
+Eigen::Vector3d BodyPosition(const perception::PoseMeasurement& z) {
+  return z.p_WX - BodyRotation(z) * z.p_BX;
+}
+
+// Largest gap between control steps integrated at once [s]: a stalled caller must not wind up
+// the integral in one step.
+constexpr double kMaxIntegrationStep_s = 0.1;
+
+}  // namespace
+
+void PoseHoldParams::Validate() const {
+  filter.Validate();
+  controller.Validate();
+  if (!std::isfinite(integral_gain_per_s3) || integral_gain_per_s3 < 0.0) {
+    throw std::invalid_argument("PoseHoldParams.integral_gain_per_s3 must be finite and >= 0, got " +
+                                std::to_string(integral_gain_per_s3));
+  }
+  if (!std::isfinite(max_integral_accel_mps2) || max_integral_accel_mps2 < 0.0) {
+    throw std::invalid_argument(
+        "PoseHoldParams.max_integral_accel_mps2 must be finite and >= 0, got " +
+        std::to_string(max_integral_accel_mps2));
+  }
+  if (!std::isfinite(disturbance_time_constant_s) || disturbance_time_constant_s < 0.0) {
+    throw std::invalid_argument(
+        "PoseHoldParams.disturbance_time_constant_s must be finite and >= 0, got " +
+        std::to_string(disturbance_time_constant_s));
+  }
+  if (!std::isfinite(max_disturbance_accel_mps2) || max_disturbance_accel_mps2 < 0.0) {
+    throw std::invalid_argument(
+        "PoseHoldParams.max_disturbance_accel_mps2 must be finite and >= 0, got " +
+        std::to_string(max_disturbance_accel_mps2));
+  }
+  if (!std::isfinite(max_integrated_error_m) || max_integrated_error_m <= 0.0) {
+    throw std::invalid_argument("PoseHoldParams.max_integrated_error_m must be positive, got " +
+                                std::to_string(max_integrated_error_m));
+  }
+  if (!std::isfinite(max_position_error_m) || max_position_error_m <= 0.0) {
+    throw std::invalid_argument("PoseHoldParams.max_position_error_m must be positive, got " +
+                                std::to_string(max_position_error_m));
+  }
+  if (!std::isfinite(max_pose_age_s) || max_pose_age_s <= 0.0) {
+    throw std::invalid_argument("PoseHoldParams.max_pose_age_s must be positive, got " +
+                                std::to_string(max_pose_age_s));
+  }
+  if (max_consecutive_rejections < 1) {
+    throw std::invalid_argument("PoseHoldParams.max_consecutive_rejections must be >= 1, got " +
+                                std::to_string(max_consecutive_rejections));
+  }
+}
+
+PoseHold::PoseHold(const control::VehicleParameters& vehicle, const PoseHoldParams& params,
+                   const PoseHoldSetpoint& setpoint)
+    : params_(params), controller_(vehicle, params.controller) {
+  params_.Validate();
+  SetSetpoint(setpoint);
+}
+
+void PoseHold::SetSetpoint(const PoseHoldSetpoint& setpoint) {
+  RequireFinite(setpoint.p_W.allFinite(), "PoseHoldSetpoint.p_W");
+  RequireFinite(std::isfinite(setpoint.heading_rad), "PoseHoldSetpoint.heading_rad");
+  setpoint_ = setpoint;
+}
+
+void PoseHold::AddImu(const perception::ImuSample& sample) {
+  if (filter_ && sample.t_s > filter_->time_s()) filter_->Propagate(sample);
+  imu_buffer_.push_back(sample);
+  last_imu_ = sample;
+  while (imu_buffer_.front().t_s < sample.t_s - params_.filter.history_duration_s) {
+    imu_buffer_.pop_front();
+  }
+}
+
+void PoseHold::StartFilter(const perception::PoseMeasurement& z) {
+  RequireFinite(z.p_WX.allFinite() && z.q_WX.coeffs().allFinite() && z.p_BX.allFinite() &&
+                    z.q_BX.coeffs().allFinite() && std::isfinite(z.t_s),
+                "PoseMeasurement (t_s, p_WX, q_WX, p_BX, q_BX)");
+  control::QuadState state;
+  state.t_s = z.t_s;
+  state.q_WB = BodyRotation(z);
+  state.p_WB = BodyPosition(z);
+  perception::PoseImuEstimate initial = perception::InitialEstimate(params_.filter, state);
+  if (filter_) {  // restart: keep the biases, velocity from the rejected run of poses
+    const perception::PoseImuEstimate previous = filter_->Estimate();
+    initial.accel_bias_B = previous.accel_bias_B;
+    initial.gyro_bias_B = previous.gyro_bias_B;
+    initial.state.v_W = previous.state.v_W;
+    if (rejected_p_WB_.size() >= 2 &&
+        rejected_p_WB_.back().first > rejected_p_WB_.front().first) {
+      initial.state.v_W = (rejected_p_WB_.back().second - rejected_p_WB_.front().second) /
+                          (rejected_p_WB_.back().first - rejected_p_WB_.front().first);
+    }
+  }
+  rejected_p_WB_.clear();
+  filter_ = std::make_unique<perception::PoseImuFilter>(params_.filter, initial);
+  for (const perception::ImuSample& sample : imu_buffer_) {
+    if (sample.t_s > filter_->time_s()) filter_->Propagate(sample);
+  }
+  consecutive_rejections_ = 0;
+  last_pose_t_s_ = z.t_s;
+  ++filter_starts_;
+}
+
+PoseHoldUpdate PoseHold::AddPose(const perception::PoseMeasurement& measurement) {
+  PoseHoldUpdate result;
+  if (!filter_) {
+    StartFilter(measurement);
+    result.initialized_filter = true;
+    return result;
+  }
+  result.update = filter_->Update(measurement);
+  if (result.update.applied()) {
+    consecutive_rejections_ = 0;
+    rejected_p_WB_.clear();
+    last_pose_t_s_ = std::max(last_pose_t_s_, measurement.t_s);
+  } else if (result.update.status == perception::PoseUpdateStatus::kRejectedOutlier) {
+    rejected_p_WB_.emplace_back(measurement.t_s, BodyPosition(measurement));
+    if (++consecutive_rejections_ >= params_.max_consecutive_rejections) {
+      StartFilter(measurement);
+      result.initialized_filter = true;
+    }
+  }
+  return result;
+}
+
+std::optional<perception::PoseImuEstimate> PoseHold::estimate() const {
+  if (!filter_) return std::nullopt;
+  return filter_->Estimate();
+}
+
+Eigen::Vector3d PoseHold::integral_accel_W() const {
+  return params_.integral_gain_per_s3 * error_integral_W_;
+}
+
+perception::AutopilotCommand PoseHold::Step(double t_s) {
+  RequireFinite(std::isfinite(t_s), "PoseHold::Step t_s");
+  perception::AutopilotCommand command;
+  if (!filter_) return command;
+  const perception::PoseImuEstimate estimate = filter_->Estimate();
+  const Eigen::Vector3d error_W = setpoint_.p_W - estimate.state.p_WB;
+  if (stepped_ && params_.integral_gain_per_s3 > 0.0) {
+    const double dt_s = std::clamp(t_s - last_step_t_s_, 0.0, kMaxIntegrationStep_s);
+    Eigen::Vector3d integrated_error_W = error_W;
+    if (integrated_error_W.norm() > params_.max_integrated_error_m) {
+      integrated_error_W *= params_.max_integrated_error_m / integrated_error_W.norm();
+    }
+    error_integral_W_ += integrated_error_W * dt_s;
+    const double max_integral = params_.max_integral_accel_mps2 / params_.integral_gain_per_s3;
+    if (error_integral_W_.norm() > max_integral) {
+      error_integral_W_ *= max_integral / error_integral_W_.norm();
+    }
+  }
+  if (stepped_ && params_.disturbance_time_constant_s > 0.0 && last_imu_ &&
+      last_collective_thrust_mps2_ > 0.0) {
+    const double dt_s = std::clamp(t_s - last_step_t_s_, 0.0, kMaxIntegrationStep_s);
+    const Eigen::Matrix3d R_WB = estimate.state.q_WB.toRotationMatrix();
+    const Eigen::Vector3d a_ext_W =
+        R_WB * (last_imu_->specific_force_B - estimate.accel_bias_B) -
+        last_collective_thrust_mps2_ * R_WB.col(2);
+    const double alpha = dt_s / (params_.disturbance_time_constant_s + dt_s);
+    disturbance_accel_W_ += alpha * (a_ext_W - disturbance_accel_W_);
+    if (disturbance_accel_W_.norm() > params_.max_disturbance_accel_mps2) {
+      disturbance_accel_W_ *= params_.max_disturbance_accel_mps2 / disturbance_accel_W_.norm();
+    }
+  }
+  stepped_ = true;
+  last_step_t_s_ = t_s;
+  // A constant reference at most max_position_error_m from the estimate: the PD law sees a
+  // clamped error, not a different goal.
+  Eigen::Vector3d clamped_error_W = error_W;
+  if (clamped_error_W.norm() > params_.max_position_error_m) {
+    clamped_error_W *= params_.max_position_error_m / clamped_error_W.norm();
+  }
+  control::TrajectoryPoint reference;
+  reference.t_s = t_s;
+  reference.p_W = estimate.state.p_WB + clamped_error_W;
+  reference.a_W = integral_accel_W() - disturbance_accel_W_;
+  reference.heading_rad = setpoint_.heading_rad;
+  command.kind = perception::AutopilotCommand::Kind::kThrustRates;
+  command.thrust_rates = controller_.Compute(estimate.state, reference).command;
+  last_collective_thrust_mps2_ = command.thrust_rates.collective_thrust_mps2;
+  return command;
+}
+
+std::string PoseHold::status(double t_s) const {
+  if (!filter_) return "waiting for pose";
+  const double age_s = t_s - last_pose_t_s_;
+  if (age_s <= params_.max_pose_age_s) return "hold";
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), "hold, dead reckoning %.1f s", age_s);
+  return buffer;
+}
+
+}  // namespace aperture::planning

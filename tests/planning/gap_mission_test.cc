@@ -1,0 +1,214 @@
+// GapMission's phase logic without the simulator: a static vehicle hovering 4 m in front of a
+// gap drawn through an exact pinhole projection (tests/perception/gap_test_images.h), an ideal
+// IMU at rest, frames at 30 Hz and control steps at 100 Hz. The closed-loop flight through the
+// rendered gap is tests/experiments/gap_mission_sitl_test.cc.
+#include "planning/gap_mission/gap_mission.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "config/config_tree.h"
+#include "perception/camera/pinhole_camera.h"
+#include "planning/gap_mission/gap_mission_params_io.h"
+#include "tests/perception/gap_test_images.h"
+
+namespace aperture::planning {
+namespace {
+
+constexpr double kGravity = 9.81;
+constexpr double kRollRad = 30.0 * M_PI / 180.0;
+
+std::shared_ptr<const perception::CameraModel> Pinhole() {
+  return std::make_shared<perception::PinholeCamera>(
+      752, 480, perception::PinholeIntrinsics{420.0, 420.0, 375.5, 239.5});
+}
+
+// Forward camera 10 cm ahead of the centre of mass: z_C = x_B, x_C = -y_B, y_C = -z_B.
+Eigen::Isometry3d ForwardCameraMount() {
+  Eigen::Isometry3d T_BC = Eigen::Isometry3d::Identity();
+  T_BC.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  T_BC.translation() = Eigen::Vector3d(0.1, 0.0, 0.0);
+  return T_BC;
+}
+
+// The gap 4 m ahead of the level vehicle at (0, 0, 1.5), facing it (z_G = x_W), rolled by 30 deg
+// about x_W; x_G points to the image's right (-y_W), the detector's convention.
+Eigen::Isometry3d TrueGap() {
+  Eigen::Matrix3d R_facing;
+  R_facing << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  Eigen::Isometry3d T_WG = Eigen::Isometry3d::Identity();
+  T_WG.linear() = Eigen::AngleAxisd(kRollRad, Eigen::Vector3d::UnitX()).toRotationMatrix() * R_facing;
+  T_WG.translation() = Eigen::Vector3d(4.0, 0.0, 1.5);
+  return T_WG;
+}
+
+class GapMissionTest : public ::testing::Test {
+ protected:
+  GapMissionTest() : mission_(GapMissionParams{}, Pinhole(), ForwardCameraMount(), control::VehicleParameters{}) {
+    Eigen::Isometry3d T_WB = Eigen::Isometry3d::Identity();
+    T_WB.translation() = p_WB_;
+    const Eigen::Isometry3d T_CG = (T_WB * ForwardCameraMount()).inverse() * TrueGap();
+    gap_image_ = perception::DrawGapPattern(*Pinhole(), perception::GapDetectorParams{}, T_CG);
+    blank_image_ = cv::Mat(480, 752, CV_8UC1, cv::Scalar(90));
+  }
+
+  // Runs the sensors and the control loop in 1 ms steps from the current time until `until_s` or
+  // `stop` holds after a control step; frames show the gap while `gap_visible`.
+  template <typename Stop>
+  void Run(double until_s, bool gap_visible, Stop stop) {
+    for (; step_ * 1e-3 <= until_s; ++step_) {
+      const double t = step_ * 1e-3;
+      if (step_ % 2 == 0) {  // 500 Hz IMU at rest: specific force = gravity, up in B
+        mission_.OnImu({t, Eigen::Vector3d(0.0, 0.0, kGravity), Eigen::Vector3d::Zero()});
+      }
+      if (step_ % 33 == 0) {  // ~30 Hz camera
+        perception::Frame frame;
+        frame.t_s = t;
+        frame.index = frame_index_++;
+        frame.image = gap_visible ? gap_image_ : blank_image_;
+        mission_.OnFrame(frame);
+      }
+      if (step_ % 10 == 0) {
+        last_command_ = mission_.Step(t);
+        if (stop()) {
+          ++step_;
+          return;
+        }
+      }
+    }
+  }
+
+  const Eigen::Vector3d p_WB_{0.0, 0.0, 1.5};
+  GapMission mission_;
+  cv::Mat gap_image_, blank_image_;
+  perception::AutopilotCommand last_command_;
+  int step_ = 0;
+  int frame_index_ = 0;
+};
+
+TEST_F(GapMissionTest, HoversOpenLoopUntilTheGapIsSeen) {
+  const perception::AutopilotCommand command = mission_.Step(0.0);
+  EXPECT_EQ(command.kind, perception::AutopilotCommand::Kind::kThrustRates);
+  EXPECT_DOUBLE_EQ(command.thrust_rates.collective_thrust_mps2, kGravity);
+  EXPECT_TRUE(command.thrust_rates.omega_des_B.isZero());
+  EXPECT_FALSE(mission_.has_estimate());
+  EXPECT_TRUE(std::isnan(mission_.traverse_start_time_s()));
+  // No gap in 1 s of frames: still detecting, never done.
+  Run(1.0, false, [] { return false; });
+  EXPECT_EQ(mission_.phase(), GapMissionPhase::kDetect);
+  EXPECT_EQ(mission_.detections(), 0);
+  EXPECT_FALSE(last_command_.done);
+}
+
+TEST_F(GapMissionTest, DetectsHoversAndPlansInTheGapAnchoredFrame) {
+  Run(5.0, true, [&] { return mission_.phase() != GapMissionPhase::kDetect &&
+                              mission_.phase() != GapMissionPhase::kHover; });
+  ASSERT_EQ(mission_.phase(), GapMissionPhase::kTransfer) << mission_.reason();
+  const auto& changes = mission_.phase_changes();
+  ASSERT_EQ(changes.size(), 3u);
+  EXPECT_EQ(changes[1].phase, GapMissionPhase::kHover);
+  EXPECT_EQ(changes[2].phase, GapMissionPhase::kTransfer);
+  // The frame is fixed after init_detections (10) frames at 30 Hz: the 10th comes at 9 * 33 ms.
+  EXPECT_GE(changes[1].t_s, 9 * 0.033);
+  EXPECT_LT(changes[1].t_s, 11 * 0.033);
+  EXPECT_GE(changes[2].t_s - changes[1].t_s, GapMissionParams{}.hover_s - 1e-9);
+
+  // Mission frame: origin at the gap centre, z_W up, x_W the horizontal gap normal. The true
+  // normal is x_W, so the mission frame is W shifted to the gap: the vehicle is at (-4, 0, 0)
+  // and the gap's axes are the true ones. 2 cm (0.5 % of the distance, half the detector's
+  // accuracy target of 1 %) and 0.3 deg bound the detector's error on drawn patterns (a fraction
+  // of a pixel at 4 m) carried into the anchored frame, plus the filter's wander over 1.3 s.
+  const control::QuadState x = mission_.estimate();
+  EXPECT_LT((x.p_WB - (p_WB_ - TrueGap().translation())).norm(), 0.02) << x.p_WB.transpose();
+  EXPECT_LT(x.v_W.norm(), 0.02);
+  EXPECT_LT(Eigen::AngleAxisd(x.q_WB).angle(), 0.3 * M_PI / 180.0);
+  EXPECT_TRUE(mission_.gap_W().p_WG.isZero());
+  EXPECT_LT(Eigen::AngleAxisd(mission_.gap_W().R_WG.transpose() * TrueGap().linear()).angle(),
+            0.3 * M_PI / 180.0);
+
+  // The plan: traverse through the estimated gap, approach ending lead_in_s before its start on
+  // its arc (3)-(5).
+  ASSERT_TRUE(mission_.traverse_plan().has_value());
+  ASSERT_TRUE(mission_.approach_plan().has_value());
+  const TraverseTrajectory& traverse = *mission_.traverse_plan();
+  EXPECT_TRUE(traverse.Position(traverse.time_to_gap_s()).isZero(1e-9));  // through the centre
+  const MotionPrimitive& approach = mission_.approach_plan()->primitive;
+  const double lead_in_s = GapMissionParams{}.lead_in_s;
+  EXPECT_TRUE(approach.Position(approach.duration_s()).isApprox(traverse.Position(-lead_in_s), 1e-9));
+  EXPECT_TRUE(approach.Velocity(approach.duration_s()).isApprox(traverse.Velocity(-lead_in_s), 1e-9));
+  EXPECT_TRUE(approach.Acceleration(approach.duration_s()).isApprox(traverse.plane_gravity_W(), 1e-9));
+  EXPECT_TRUE(std::isnan(mission_.traverse_start_time_s()));
+  // Transfer starts at hover: the command's thrust is close to hover, the vehicle upright.
+  EXPECT_NEAR(last_command_.thrust_rates.collective_thrust_mps2, kGravity, 1.0);
+}
+
+TEST_F(GapMissionTest, AbortsIntoRecoveryWhenTheGapIsLost) {
+  Run(5.0, true, [&] { return mission_.phase() == GapMissionPhase::kHover; });
+  ASSERT_EQ(mission_.phase(), GapMissionPhase::kHover);
+  const double lost_s = step_ * 1e-3;
+  Run(5.0, false, [&] { return mission_.phase() != GapMissionPhase::kHover; });
+  ASSERT_EQ(mission_.phase(), GapMissionPhase::kAborted);
+  EXPECT_NE(mission_.reason().find("lost"), std::string::npos) << mission_.reason();
+  // Aborted detection_timeout_s after the last detection (one frame period before lost_s at most).
+  const double abort_s = mission_.phase_changes().back().t_s;
+  EXPECT_GE(abort_s, lost_s - 0.034 + GapMissionParams{}.detection_timeout_s - 1e-9);
+  EXPECT_LE(abort_s, lost_s + GapMissionParams{}.detection_timeout_s + 0.011);
+  EXPECT_EQ(last_command_.kind, perception::AutopilotCommand::Kind::kThrustRates);
+  EXPECT_NE(mission_.status().find("aborted"), std::string::npos);
+  // The static vehicle is level and at rest, so the recovery reaches its position stage and, after
+  // recovered_hold_s, reports done.
+  Run(10.0, false, [&] { return last_command_.done; });
+  EXPECT_TRUE(last_command_.done);
+  EXPECT_EQ(mission_.phase(), GapMissionPhase::kAborted);
+}
+
+TEST(GapMissionParamsTest, RejectsInvalidValuesAndInputs) {
+  GapMissionParams params;
+  params.init_detections = 0;
+  try {
+    params.Validate();
+    FAIL() << "expected std::invalid_argument";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("init_detections"), std::string::npos) << e.what();
+  }
+  params = GapMissionParams{};
+  params.detection_timeout_s = 0.0;
+  EXPECT_THROW(params.Validate(), std::invalid_argument);
+  EXPECT_THROW(GapMission(GapMissionParams{}, nullptr, ForwardCameraMount(), control::VehicleParameters{}),
+               std::invalid_argument);
+  Eigen::Isometry3d scaled = ForwardCameraMount();
+  scaled.linear() *= 2.0;
+  EXPECT_THROW(GapMission(GapMissionParams{}, Pinhole(), scaled, control::VehicleParameters{}),
+               std::invalid_argument);
+}
+
+TEST(GapMissionParamsTest, LoadsTheMissionSectionStrictly) {
+  const config::ConfigTree tree = config::ConfigTree::FromCommandLine(
+      "", {}, {"mission.hover_s=0.5", "mission.approach.duration_count=4",
+               "mission.detector.canny_low=30", "mission.filter.mahalanobis_gate=30"});
+  config::ParamReader root = tree.Reader();
+  GapMissionParams params;
+  root.ReadSection("mission", &params);
+  EXPECT_DOUBLE_EQ(params.hover_s, 0.5);
+  EXPECT_EQ(params.approach.duration_count, 4);
+  EXPECT_DOUBLE_EQ(params.detector.canny_low, 30.0);
+  EXPECT_DOUBLE_EQ(params.filter.mahalanobis_gate, 30.0);
+  EXPECT_DOUBLE_EQ(params.start_hold_s, GapMissionParams{}.start_hold_s);  // untouched default
+
+  for (const char* bad : {"mission.hover_sec=1", "mission.hover_s=-1"}) {
+    const config::ConfigTree bad_tree = config::ConfigTree::FromCommandLine("", {}, {bad});
+    config::ParamReader bad_root = bad_tree.Reader();
+    GapMissionParams ignored;
+    try {
+      bad_root.ReadSection("mission", &ignored);
+      FAIL() << "expected std::invalid_argument for " << bad;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("hover_s"), std::string::npos) << e.what();
+    }
+  }
+}
+
+}  // namespace
+}  // namespace aperture::planning
