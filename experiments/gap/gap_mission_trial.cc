@@ -33,7 +33,8 @@ class GapMissionTrial : public GapTrialAutopilot {
 GapTrialAutopilotFactory MakeGapMissionTrialFactory(const planning::GapMissionParams& base) {
   return [base](const GapTrialSetup& setup) -> std::unique_ptr<GapTrialAutopilot> {
     return std::make_unique<GapMissionTrial>(
-        MakeGapMission(*setup.scenario, setup.vehicle, setup.imu, base));
+        MakeGapMission(*setup.scenario, setup.vehicle,
+                       GapMissionParamsFor(*setup.scenario, setup.imu, base)));
   };
 }
 
