@@ -10,6 +10,7 @@ void AddRunCommand(CLI::App& app, int* exit_code);
 void AddSimCommand(CLI::App& app, int* exit_code);
 void AddRenderCommand(CLI::App& app, int* exit_code);
 void AddBenchCommand(CLI::App& app, int* exit_code);
+void AddBenchLedCommand(CLI::App& bench, int* exit_code);
 void AddCalibrateCommand(CLI::App& app, int* exit_code);
 void AddVersionCommand(CLI::App& app, int* exit_code);
 
@@ -19,5 +20,6 @@ void AddSimRecoveryCommand(CLI::App& sim, int* exit_code);
 
 // Benchmarks under `aperture bench` (apps/bench_<name>_command.cc).
 void AddBenchControlCommand(CLI::App& bench, int* exit_code);
+void AddBenchGapCommand(CLI::App& bench, int* exit_code);
 
 }  // namespace aperture::apps

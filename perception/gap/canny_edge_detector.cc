@@ -162,21 +162,20 @@ void CannyEdgeDetector::Detect(const cv::Mat& gray, const cv::Rect& roi, double 
     }
   }
 
+  // Output through a padded buffer: the 3x3 dilation writes need no clipping and no division
+  // back to (row, column); the padding is dropped by the row copies.
+  output_.assign(padded, 0);
+  if (dilate_3x3) {
+    const int offsets[9] = {-stride_ - 1, -stride_, -stride_ + 1, -1, 0, 1, stride_ - 1, stride_, stride_ + 1};
+    for (const int i : edge_indices_) {
+      for (const int offset : offsets) output_[i + offset] = 255;
+    }
+  } else {
+    for (const int i : edge_indices_) output_[i] = 255;
+  }
   edges->create(roi.height, roi.width, CV_8UC1);
-  edges->setTo(0);
-  for (const int i : edge_indices_) {
-    const int r = i / stride_ - 1;
-    const int c = i % stride_ - 1;
-    if (!dilate_3x3) {
-      edges->ptr<uint8_t>(r)[c] = 255;
-      continue;
-    }
-    const int c0 = std::max(c - 1, 0);
-    const int c1 = std::min(c + 1, width_ - 1);
-    for (int rr = std::max(r - 1, 0); rr <= std::min(r + 1, height_ - 1); ++rr) {
-      uint8_t* out = edges->ptr<uint8_t>(rr);
-      for (int cc = c0; cc <= c1; ++cc) out[cc] = 255;
-    }
+  for (int y = 0; y < height_; ++y) {
+    std::memcpy(edges->ptr<uint8_t>(y), output_.data() + (y + 1) * stride_ + 1, width_);
   }
 }
 

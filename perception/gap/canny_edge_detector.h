@@ -48,6 +48,7 @@ class CannyEdgeDetector {
   std::vector<uint8_t> state_;
   std::vector<int> stack_;
   std::vector<int> edge_indices_;  // padded indices of this call's edges
+  std::vector<uint8_t> output_;    // padded edge image
 };
 
 }  // namespace aperture::perception

@@ -10,16 +10,21 @@
 //    Deviations, needed because with a compact target and lambda_r = 5 px wrong labellings often
 //    reproject some remaining LED near a detection by chance and swamp the true bins: a remaining
 //    LED does not vote for one of the candidate's own three detections, and only the candidates
-//    that explain the most remaining LEDs of the frame vote. Consequence: the true bins hold
-//    C(n_L, 3) votes with every LED visible but fewer with an LED missing, so occlusions are
-//    bridged by the prediction (C.3.5), as in the thesis. An LED still unmatched after the
-//    greedy step gets the nearest detection within lambda_r of its reprojection from the best
-//    candidate, even a taken one (merged blobs).
+//    that explain the most remaining LEDs of the frame and share the labelling (all LED-detection
+//    pairs they imply) reproduced by the most candidates (>= 2; ties: smallest reprojection
+//    error) vote: the true labelling of m LEDs comes out of all C(m, 3) of its 3-subsets, a
+//    chance one out of one. The true bins then hold C(m, 3) votes, m the number of LEDs those
+//    candidates explain (n_L with every LED visible, n_L - 1 with one occluded), so the acceptance is acceptance_ratio * C(m, 3) (the thesis'
+//    0.5 C(n_L, 3) when all are visible; a fresh start with 4 of 5 LEDs still finds the pose).
+//    The accepted correspondences must then agree with the consensus pose (the P3P candidate of
+//    the accepted set with the most reprojections within lambda_r); the others are dropped. An
+//    LED still unmatched gets the nearest detection within lambda_r of its reprojection from that
+//    pose, even a taken one (merged blobs).
 //  - Verify: the check of predicted correspondences: for every 3-subset, P3P, reproject the other
 //    corresponded LEDs; the subset passes when for one candidate >= min_inlier_ratio of them lie
 //    within lambda_r; the set passes when > min_subset_ratio of the subsets pass.
-// Both also return the candidate pose with the smallest reprojection error over all
-// correspondences (the Gauss-Newton start, C.3.6).
+// Both also return the candidate pose with the most correspondences within lambda_r, ties broken
+// by their squared reprojection error (the Gauss-Newton start, C.3.6).
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <optional>
@@ -34,7 +39,7 @@ namespace aperture::perception {
 struct LedCorrespondenceParams {
   P3pMethod p3p_method = P3pMethod::kKneip;
   double reprojection_threshold_px = 5.0;  // lambda_r; thesis: 5 px
-  double acceptance_ratio = 0.5;           // of C(n_L, 3) votes (Fig. C.5)
+  double acceptance_ratio = 0.5;           // of C(m, 3) votes, m LEDs explained (Fig. C.5)
   double min_inlier_ratio = 0.75;          // verification: reprojections within lambda_r
   double min_subset_ratio = 0.7;           // verification: 3-subsets that must pass
 };
@@ -54,10 +59,14 @@ struct LedCorrespondenceResult {
 
 class LedCorrespondenceSearch {
  public:
+  // FindByBruteForce labels detections in 8 bits (and costs O(n_D^3) P3P calls).
+  static constexpr int kMaxDetections = 254;
+
   LedCorrespondenceSearch(const std::vector<Eigen::Vector3d>& p_T,
                           const LedCorrespondenceParams& params = {});
 
   // Algorithm 1. histogram (optional) receives the votes, rows = LEDs, columns = detections.
+  // Throws std::invalid_argument for more than kMaxDetections detections.
   LedCorrespondenceResult FindByBruteForce(const std::vector<LedDetection>& detections,
                                            const CameraModel& camera,
                                            Eigen::MatrixXi* histogram = nullptr) const;

@@ -1,12 +1,22 @@
 #include "perception/led/led_tracker.h"
 
 #include <algorithm>
+#include <chrono>
 #include <map>
 #include <stdexcept>
 
 #include "perception/led/se3_twist.h"
 
 namespace aperture::perception {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+}  // namespace
 
 std::string LedTrackStatusName(LedTrackStatus status) {
   switch (status) {
@@ -64,7 +74,10 @@ std::vector<LedCorrespondence> LedTracker::MatchPrediction(
 
 LedTrackResult LedTracker::Track(const cv::Mat& image, double t_s) {
   LedTrackResult result;
+  LedStageTimes& times = result.stage_times;
+  Clock::time_point start = Clock::now();
   const std::optional<Eigen::Isometry3d> prediction = Predict(t_s);
+  times.prediction_s = SecondsSince(start);
   if (prediction) {
     std::vector<cv::Rect> rois;
     for (const Eigen::Vector3d& p_T : configuration_.p_T()) {
@@ -75,7 +88,10 @@ LedTrackResult LedTracker::Track(const cv::Mat& image, double t_s) {
                         2 * r + 1);
     }
     if (!rois.empty()) {
+      start = Clock::now();
       LedDetectionResult detected = detector_.Detect(image, *camera_, rois);
+      times.detection_s = SecondsSince(start);
+      start = Clock::now();
       result.detections = std::move(detected.detections);
       result.warning = detected.warning;
       result.used_roi = true;
@@ -93,11 +109,13 @@ LedTrackResult LedTracker::Track(const cv::Mat& image, double t_s) {
         result.status = LedTrackStatus::kAmbiguous;
         result.correspondences = matches;
         result.merged_detections = static_cast<int>(matches.size() - unique.size());
+        times.prediction_s += SecondsSince(start);
         history_.clear();
         return result;
       }
       const LedCorrespondenceResult verified =
           search_.Verify(unique, result.detections, *camera_);
+      times.prediction_s += SecondsSince(start);
       if (verified.verified) {
         result.status = LedTrackStatus::kTracked;
         Finish(&result, matches, *prediction, t_s);
@@ -106,7 +124,9 @@ LedTrackResult LedTracker::Track(const cv::Mat& image, double t_s) {
     }
   }
   // Lost (or never found): full image and brute force.
+  start = Clock::now();
   LedDetectionResult detected = detector_.Detect(image, *camera_);
+  times.detection_s += SecondsSince(start);
   result.detections = std::move(detected.detections);
   result.warning = detected.warning;
   result.used_roi = false;
@@ -116,7 +136,9 @@ LedTrackResult LedTracker::Track(const cv::Mat& image, double t_s) {
     return result;
   }
   result.used_brute_force = true;
+  start = Clock::now();
   const LedCorrespondenceResult found = search_.FindByBruteForce(result.detections, *camera_);
+  times.brute_force_s = SecondsSince(start);
   if (found.correspondences.size() < 4 || !found.T_CT) {
     result.status = LedTrackStatus::kNoCorrespondences;
     result.correspondences = found.correspondences;
@@ -149,8 +171,10 @@ void LedTracker::Finish(LedTrackResult* result,
     history_.clear();
     return;
   }
+  const Clock::time_point start = Clock::now();
   const LedPoseRefinement refined =
       RefineLedPose(*camera_, p_T, px, T_CT_initial, params_.refiner);
+  result->stage_times.refinement_s = SecondsSince(start);
   result->rms_px = refined.rms_px;
   if (!refined.valid || refined.rms_px > params_.max_rms_px) {
     result->status = LedTrackStatus::kInconsistent;

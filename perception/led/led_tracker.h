@@ -45,6 +45,15 @@ enum class LedTrackStatus {
 };
 std::string LedTrackStatusName(LedTrackStatus status);
 
+// Wall-clock time each stage of one Track call took [s]; 0 when the stage did not run (Table
+// C.2's steps). For benchmarks: the figures depend on the machine and its load.
+struct LedStageTimes {
+  double detection_s = 0.0;    // ROI and, when tracking was lost, full-image detection
+  double prediction_s = 0.0;   // (C.6), (C.7), nearest-detection matching and verification
+  double brute_force_s = 0.0;  // Algorithm 1
+  double refinement_s = 0.0;   // Gauss-Newton and covariance (C.8), (C.9)
+};
+
 struct LedTrackResult {
   LedTrackStatus status = LedTrackStatus::kNoDetections;
   std::optional<Eigen::Isometry3d> T_CT;
@@ -56,6 +65,7 @@ struct LedTrackResult {
   bool used_roi = false;      // detection ran on ROIs around the prediction
   bool used_brute_force = false;
   std::string warning;        // e.g. the detector's blob cap
+  LedStageTimes stage_times;
   bool has_pose() const { return T_CT.has_value(); }
 };
 

@@ -19,7 +19,9 @@ std::unique_ptr<Node> LedTrackerNode::Create(config::ParamReader& params,
   params.Read("threshold", &tracker_params.detector.threshold);
   params.Read("max_blobs", &tracker_params.detector.max_blobs);
   params.ReadEnum("p3p", &tracker_params.correspondence.p3p_method,
-                  {{"kneip", P3pMethod::kKneip}, {"ap3p", P3pMethod::kAp3p}});
+                  {{"kneip", P3pMethod::kKneip},
+                   {"opengv", P3pMethod::kOpenGv},
+                   {"ap3p", P3pMethod::kAp3p}});
   params.Read("reprojection_threshold_px",
               &tracker_params.correspondence.reprojection_threshold_px);
   params.Read("max_rms_px", &tracker_params.max_rms_px);

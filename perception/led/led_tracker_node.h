@@ -2,7 +2,7 @@
 // Front end "led": infrared-LED target pose tracking (LedTracker) on every frame.
 //   needs:  a camera calibration (`aperture run --calib`)
 //   params: config (LED configuration YAML path, `leds: [[x, y, z], ...]`; empty = the built-in
-//           5-LED LedConfiguration::Default()), threshold, max_blobs, p3p (kneip | ap3p),
+//           5-LED LedConfiguration::Default()), threshold, max_blobs, p3p (kneip | opengv | ap3p),
 //           reprojection_threshold_px, max_rms_px
 //   reads:  "frame" (Frame)
 //   writes: "led" (LedTrackResult)

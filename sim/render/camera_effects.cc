@@ -47,21 +47,28 @@ cv::Mat CameraEffects::ToImage8U(const cv::Mat& radiance, int frame_index) const
   const bool shot = params_.full_well_electrons > 0.0;
   const bool read = params_.read_noise_sigma > 0.0;
   const std::uint64_t frame_seed = HashCounters(params_.seed, static_cast<std::uint64_t>(frame_index));
+  const double gain = params_.gain;
+  const double read_variance = read ? params_.read_noise_sigma * params_.read_noise_sigma : 0.0;
+  const double inv_full_well = shot ? 1.0 / params_.full_well_electrons : 0.0;
   tbb::parallel_for(tbb::blocked_range<int>(0, radiance.rows), [&](const tbb::blocked_range<int>& rows) {
     for (int y = rows.begin(); y < rows.end(); ++y) {
       const float* in = radiance.ptr<float>(y);
       uint8_t* out = image.ptr<uint8_t>(y);
+      // Box-Muller gives two independent normals per hash: values 2j and 2j + 1 share one.
+      const std::uint64_t row_seed = HashCounters(frame_seed, static_cast<std::uint64_t>(y));
+      float normals[2] = {0.0f, 0.0f};
       for (int i = 0; i < values_per_row; ++i) {
         double v = in[i];
         if (shot || read) {
-          const std::uint64_t h = HashCounters(frame_seed, static_cast<std::uint64_t>(y),
-                                               static_cast<std::uint64_t>(i));
-          double variance = read ? params_.read_noise_sigma * params_.read_noise_sigma : 0.0;
-          if (shot) variance += std::max(v, 0.0) / params_.full_well_electrons;
-          v += std::sqrt(variance) * NormalFromHash(h);
+          if (i % 2 == 0) {
+            NormalPairFromHashF(MixBits(row_seed ^ static_cast<std::uint64_t>(i / 2)), &normals[0],
+                                &normals[1]);
+          }
+          v += std::sqrt(static_cast<float>(read_variance + std::max(v, 0.0) * inv_full_well)) *
+               normals[i % 2];
         }
-        v = std::clamp(params_.gain * v, 0.0, 1.0);
-        out[i] = static_cast<uint8_t>(std::lround(v * 255.0));
+        // In [0, 255] after the clamp: + 0.5 and truncation round to nearest like lround.
+        out[i] = static_cast<uint8_t>(std::clamp(gain * v, 0.0, 1.0) * 255.0 + 0.5);
       }
     }
   });

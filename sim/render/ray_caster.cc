@@ -29,6 +29,10 @@ constexpr float kEdgeLuminanceStep = 0.02f;
 // beyond these margins never drops a hit the exact test would find.
 constexpr double kPlaneRejectRelative = 1e-9;
 constexpr double kPlaneRejectAbsolute_m = 1e-9;
+// Pixels per side of the image tiles whose rays share one candidate-object list per frame.
+constexpr int kTileSize = 16;
+// Widening of each tile's ray cone [rad]: covers the float rounding of the stored rays.
+constexpr double kTileConeMargin_rad = 1e-5;
 
 float Luminance(const Rgb& c) { return 0.299f * c.x() + 0.587f * c.y() + 0.114f * c.z(); }
 
@@ -54,12 +58,23 @@ struct FrameObject {
 struct FrameContext {
   std::vector<FrameObject> objects;
   Eigen::Matrix3d R_WC;
+  // Candidate object indices per image tile: tile_objects[tile_begin[t] .. tile_begin[t + 1]).
+  std::vector<int> tile_objects;
+  std::vector<size_t> tile_begin;
+  std::vector<int> all_objects;  // 0 .. objects.size() - 1
+
+  // Candidate list of tile t.
+  std::pair<const int*, const int*> Candidates(size_t t) const {
+    return {tile_objects.data() + tile_begin[t], tile_objects.data() + tile_begin[t + 1]};
+  }
 };
 
-// Nearest hit along the unit ray d_C from the camera centre with t < t_max; returns the index in
-// objects (or -1) and fills *hit. Tries `hint` first so its hit tightens t for the early-outs.
-int TraceRay(const Eigen::Vector3d& d_C, const std::vector<FrameObject>& objects, int hint,
-             double t_max, LocalHit* hit) {
+// Nearest hit along the unit ray d_C from the camera centre with t < t_max among the candidate
+// objects [first, last) (indices into objects); returns the object index (or -1) and fills *hit.
+// Tries `hint` first so its hit tightens t for the early-outs.
+int TraceRay(const Eigen::Vector3d& d_C, const std::vector<FrameObject>& objects,
+             std::pair<const int*, const int*> candidates, int hint, double t_max,
+             LocalHit* hit) {
   int best = -1;
   double best_t = t_max;
   LocalHit candidate;
@@ -71,8 +86,15 @@ int TraceRay(const Eigen::Vector3d& d_C, const std::vector<FrameObject>& objects
       if (f.center_sq - tca * tca > f.radius_sq) return;
     }
     if (f.planar) {
-      const double t = f.plane_offset_m / f.n_C.dot(d_C);
-      if (t < -kPlaneRejectAbsolute_m || t > best_t * (1.0 + kPlaneRejectRelative)) return;
+      // t = plane_offset / n_C.d outside [-absolute margin, best_t (1 + relative margin)],
+      // without the division (best_t = inf gives +-inf bounds, which reject nothing).
+      const double den = f.n_C.dot(d_C);
+      const double near = -kPlaneRejectAbsolute_m * den;
+      const double far = best_t * (1.0 + kPlaneRejectRelative) * den;
+      if (den > 0.0 ? (f.plane_offset_m < near || f.plane_offset_m > far)
+                    : (den < 0.0 && (f.plane_offset_m > near || f.plane_offset_m < far))) {
+        return;
+      }
     }
     if (IntersectPrimitive(*f.primitive, f.p_OC, f.R_OC * d_C, kMinT, best_t, &candidate)) {
       best_t = candidate.t_m;
@@ -80,10 +102,9 @@ int TraceRay(const Eigen::Vector3d& d_C, const std::vector<FrameObject>& objects
       *hit = candidate;
     }
   };
-  const int n = static_cast<int>(objects.size());
   if (hint >= 0) test(hint);
-  for (int i = 0; i < n; ++i) {
-    if (i != hint) test(i);
+  for (const int* i = candidates.first; i != candidates.second; ++i) {
+    if (*i != hint) test(*i);
   }
   return best;
 }
@@ -142,7 +163,46 @@ struct RayCaster::RayTable {
   std::vector<Eigen::Vector3f> center;  // width * height
   std::vector<Eigen::Vector3f> sub;     // width * height * k * k (empty for k = 1)
   std::vector<float> pixel_angle_rad;   // angular pixel size (to the right / lower neighbour)
+  // Per kTileSize x kTileSize tile (row-major): the cone around all its rays (centre and sub).
+  int tiles_x = 0;
+  int tiles_y = 0;
+  std::vector<Eigen::Vector3d> tile_axis;
+  std::vector<double> tile_half_angle_rad;
+
+  size_t Tile(int x, int y) const {
+    return static_cast<size_t>(y / kTileSize) * tiles_x + static_cast<size_t>(x / kTileSize);
+  }
 };
+
+namespace {
+
+// Whether a ray within the cone (unit axis_C, half_angle) can hit the frame object: its bounding
+// sphere must overlap the cone and, for planes, some direction must reach the plane at t > 0.
+// Conservative: true whenever unsure.
+bool ConeMayHit(const FrameObject& f, const Eigen::Vector3d& axis_C, double half_angle) {
+  const auto angle_to = [&](const Eigen::Vector3d& v) {
+    return std::acos(std::clamp(axis_C.dot(v) / v.norm(), -1.0, 1.0));
+  };
+  if (f.bounded) {
+    const double distance = std::sqrt(f.center_sq);
+    if (distance > f.radius &&
+        angle_to(f.center_C) > half_angle + std::asin(f.radius / distance)) {
+      return false;
+    }
+  }
+  if (f.planar && f.plane_offset_m != 0.0) {
+    // t = offset / n.d > 0 needs n.d of the offset's sign: the angle between n and d below
+    // 90 deg (offset > 0) or above (offset < 0) for some d in the cone.
+    const double normal_angle = angle_to(f.n_C);
+    if (f.plane_offset_m > 0.0 ? normal_angle - half_angle >= M_PI / 2
+                               : normal_angle + half_angle <= M_PI / 2) {
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
 
 // What adaptive supersampling compares between neighbouring pixel centres.
 struct RayCaster::CenterSample {
@@ -235,6 +295,35 @@ const RayCaster::RayTable& RayCaster::Rays(const perception::CameraModel& camera
       }
     }
   });
+  table->tiles_x = (w + kTileSize - 1) / kTileSize;
+  table->tiles_y = (h + kTileSize - 1) / kTileSize;
+  const size_t tiles = static_cast<size_t>(table->tiles_x) * table->tiles_y;
+  table->tile_axis.assign(tiles, Eigen::Vector3d::Zero());
+  table->tile_half_angle_rad.assign(tiles, 0.0);
+  const size_t samples = static_cast<size_t>(k) * k;
+  const auto for_each_ray = [&](int x, int y, const auto& visit) {
+    const size_t p = static_cast<size_t>(y) * w + x;
+    visit(table->center[p].cast<double>());
+    for (size_t s = 0; s < table->sub.size() / table->center.size(); ++s) {
+      visit(table->sub[p * samples + s].cast<double>());
+    }
+  };
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      for_each_ray(x, y, [&](const Eigen::Vector3d& d) { table->tile_axis[table->Tile(x, y)] += d; });
+    }
+  }
+  for (Eigen::Vector3d& axis : table->tile_axis) axis.normalize();
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const size_t t = table->Tile(x, y);
+      for_each_ray(x, y, [&](const Eigen::Vector3d& d) {
+        const double angle = std::acos(std::clamp(table->tile_axis[t].dot(d) / d.norm(), -1.0, 1.0));
+        table->tile_half_angle_rad[t] = std::max(table->tile_half_angle_rad[t], angle);
+      });
+    }
+  }
+  for (double& half_angle : table->tile_half_angle_rad) half_angle += kTileConeMargin_rad;
   if (ray_cache_.size() >= kMaxCachedCameras) ray_cache_.erase(ray_cache_.begin());
   ray_cache_.push_back(std::move(table));
   return *ray_cache_.back();
@@ -292,6 +381,19 @@ void RayCaster::Render(const Scene& scene, const perception::CameraModel& camera
     f.radius_sq = f.radius * f.radius;
     frame.objects.push_back(f);
   }
+  for (int i = 0; i < static_cast<int>(frame.objects.size()); ++i) frame.all_objects.push_back(i);
+  const size_t tiles = rays.tile_axis.size();
+  frame.tile_begin.reserve(tiles + 1);
+  frame.tile_begin.push_back(0);
+  for (size_t t = 0; t < tiles; ++t) {
+    for (int i = 0; i < static_cast<int>(frame.objects.size()); ++i) {
+      if (ConeMayHit(frame.objects[static_cast<size_t>(i)], rays.tile_axis[t],
+                     rays.tile_half_angle_rad[t])) {
+        frame.tile_objects.push_back(i);
+      }
+    }
+    frame.tile_begin.push_back(frame.tile_objects.size());
+  }
 
   const int image_type = options.color ? CV_32FC3 : CV_32FC1;
   output->radiance.create(h, w, image_type);
@@ -311,13 +413,15 @@ void RayCaster::Render(const Scene& scene, const perception::CameraModel& camera
   }
 
   // Average radiance of the k x k sub-pixel rays of pixel p.
-  auto supersample = [&](size_t p, int hint) {
+  auto supersample = [&](int x, int y, int hint) {
+    const size_t p = static_cast<size_t>(y) * w + x;
+    const auto candidates = frame.Candidates(rays.Tile(x, y));
     const double sample_angle = rays.pixel_angle_rad[p] / k;
     Rgb sum = Rgb::Zero();
     LocalHit hit;
     for (int s = 0; s < k * k; ++s) {
       const Eigen::Vector3d d = rays.sub[p * k * k + static_cast<size_t>(s)].cast<double>();
-      const int index = TraceRay(d, frame.objects, hint, kInf, &hit);
+      const int index = TraceRay(d, frame.objects, candidates, hint, kInf, &hit);
       sum += Shade(scene, frame, d, index, hit, sample_angle);
       hint = index;
     }
@@ -342,7 +446,8 @@ void RayCaster::Render(const Scene& scene, const perception::CameraModel& camera
       for (int x = 0; x < w; ++x) {
         const size_t p = static_cast<size_t>(y) * w + x;
         const Eigen::Vector3d d = rays.center[p].cast<double>();
-        const int index = TraceRay(d, frame.objects, hint, kInf, &hit);
+        const int index =
+            TraceRay(d, frame.objects, frame.Candidates(rays.Tile(x, y)), hint, kInf, &hit);
         if (depth) {
           depth[x] = index < 0 ? std::numeric_limits<float>::infinity()
                                : static_cast<float>(hit.t_m * d.z());
@@ -357,7 +462,7 @@ void RayCaster::Render(const Scene& scene, const perception::CameraModel& camera
                 Luminance(albedo), index < 0 ? Eigen::Vector3f(Eigen::Vector3f::Zero()) : Eigen::Vector3f(hit.n_O.cast<float>())};
           }
         } else {
-          store(y, x, supersample(p, index));
+          store(y, x, supersample(x, y, index));
         }
         hint = index;
       }
@@ -397,8 +502,7 @@ void RayCaster::Render(const Scene& scene, const perception::CameraModel& camera
                    (x + 1 < w && (above[x + 1] & kDownLeft));
           }
           if (edge) {
-            const size_t p = static_cast<size_t>(y) * w + x;
-            store(y, x, supersample(p, center_samples_[p].index));
+            store(y, x, supersample(x, y, center_samples_[static_cast<size_t>(y) * w + x].index));
           }
         }
       }
@@ -415,7 +519,9 @@ void RayCaster::Render(const Scene& scene, const perception::CameraModel& camera
     const double distance = p_C.norm();
     if (!(distance > led.radius_m)) continue;  // camera inside the emitter
     LocalHit occluder;
-    if (TraceRay(p_C / distance, frame.objects, -1, distance - led.radius_m, &occluder) >= 0) {
+    const std::pair<const int*, const int*> all(frame.all_objects.data(),
+                                                frame.all_objects.data() + frame.all_objects.size());
+    if (TraceRay(p_C / distance, frame.objects, all, -1, distance - led.radius_m, &occluder) >= 0) {
       continue;
     }
     double projected_radius_px = 0.0;

@@ -32,7 +32,7 @@ struct Material {
   // footprint_m: surface size one sample covers [m] (texture mip level selection).
   Rgb Albedo(const Eigen::Vector2d& uv_m, double footprint_m = 0.0) const {
     if (!texture) return color;
-    const double inv_scale = 1.0 / texture_scale;
+    const double inv_scale = texture_scale == 1.0 ? 1.0 : 1.0 / texture_scale;
     const Eigen::Vector2d st = (uv_m + texture_offset_m) * inv_scale;
     return color.cwiseProduct(texture->Sample(st.x(), st.y(), footprint_m * inv_scale));
   }

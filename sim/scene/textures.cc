@@ -108,14 +108,20 @@ Texture::Texture(const cv::Mat& image_rgb, double texel_size_m, Filter filter, W
 
 void Texture::BuildMipLevels() {
   levels_ = {image_};
-  if (filter_ != Filter::kBilinear) return;  // nearest textures (tags) stay exact
-  while (levels_.back().cols >= 2 && levels_.back().rows >= 2 && levels_.back().cols % 2 == 0 &&
+  // Nearest textures (tags) stay exact: level 0 only.
+  while (filter_ == Filter::kBilinear && levels_.back().cols >= 2 && levels_.back().rows >= 2 && levels_.back().cols % 2 == 0 &&
          levels_.back().rows % 2 == 0) {
     cv::Mat next;
     // An exact 2:1 INTER_AREA resize is the 2 x 2 box average (no wrap needed: sizes are even).
     cv::resize(levels_.back(), next, cv::Size(levels_.back().cols / 2, levels_.back().rows / 2), 0,
                0, cv::INTER_AREA);
     levels_.push_back(next);
+  }
+  double texel = texel_size_m_;
+  for (const cv::Mat& level : levels_) {
+    mips_.push_back(MipLevel{level.ptr<float>(), level.step1(), level.cols, level.rows,
+                             1.0 / level.cols, 1.0 / level.rows, texel, 1.0 / texel});
+    texel *= 2.0;
   }
 }
 
@@ -155,13 +161,14 @@ inline double FastFloor(double x) {
   return t > x ? t - 1.0 : t;
 }
 
-inline TexelSpan Span(double x, int n, bool repeat) {
+// inv_n = 1.0 / n.
+inline TexelSpan Span(double x, int n, double inv_n, bool repeat) {
   const double fx = FastFloor(x);
   TexelSpan s;
   s.w1 = static_cast<float>(x - fx);
   if (repeat) {
     // One floating-point wrap instead of two integer modulos per sample.
-    const double wrapped = fx - n * FastFloor(fx * (1.0 / n));
+    const double wrapped = fx - n * FastFloor(fx * inv_n);
     s.i0 = std::clamp(static_cast<int>(wrapped), 0, n - 1);
     s.i1 = s.i0 + 1 == n ? 0 : s.i0 + 1;
   } else {
@@ -174,7 +181,7 @@ inline TexelSpan Span(double x, int n, bool repeat) {
 }  // namespace
 
 Rgb Texture::Sample(double u_m, double v_m, double footprint_m) const {
-  if (image_.empty()) {
+  if (mips_.empty()) {
     const double su = (u_m - margin_m_) / texel_size_m_;
     const double sv = (v_m - margin_m_) / texel_size_m_;
     const double iu = FastFloor(su);
@@ -189,26 +196,21 @@ Rgb Texture::Sample(double u_m, double v_m, double footprint_m) const {
   const bool repeat = wrap_ == Wrap::kRepeat;
   // Finest level whose texels are at least the footprint / 2 (nearest textures: level 0 only).
   size_t level = 0;
-  double texel = texel_size_m_;
-  while (level + 1 < levels_.size() && footprint_m >= 2.0 * texel) {
-    texel *= 2.0;
-    ++level;
-  }
-  const cv::Mat& image = levels_[level];
+  while (level + 1 < mips_.size() && footprint_m >= 2.0 * mips_[level].texel_m) ++level;
+  const MipLevel& mip = mips_[level];
   // Texel centres sit at (i + 0.5) * texel.
-  const double inv_texel = 1.0 / texel;
-  const double x = u_m * inv_texel - 0.5;
-  const double y = v_m * inv_texel - 0.5;
+  const double x = u_m * mip.inv_texel_m - 0.5;
+  const double y = v_m * mip.inv_texel_m - 0.5;
   if (filter_ == Filter::kNearest) {
-    const TexelSpan sx = Span(FastFloor(x + 0.5), image.cols, repeat);
-    const TexelSpan sy = Span(FastFloor(y + 0.5), image.rows, repeat);
-    const float* t = image.ptr<float>(sy.i0) + 3 * sx.i0;
+    const TexelSpan sx = Span(FastFloor(x + 0.5), mip.cols, mip.inv_cols, repeat);
+    const TexelSpan sy = Span(FastFloor(y + 0.5), mip.rows, mip.inv_rows, repeat);
+    const float* t = mip.data + sy.i0 * mip.row_floats + 3 * sx.i0;
     return {t[0], t[1], t[2]};
   }
-  const TexelSpan sx = Span(x, image.cols, repeat);
-  const TexelSpan sy = Span(y, image.rows, repeat);
-  const float* row0 = image.ptr<float>(sy.i0);
-  const float* row1 = image.ptr<float>(sy.i1);
+  const TexelSpan sx = Span(x, mip.cols, mip.inv_cols, repeat);
+  const TexelSpan sy = Span(y, mip.rows, mip.inv_rows, repeat);
+  const float* row0 = mip.data + sy.i0 * mip.row_floats;
+  const float* row1 = mip.data + sy.i1 * mip.row_floats;
   const Eigen::Map<const Rgb> t00(row0 + 3 * sx.i0), t01(row0 + 3 * sx.i1);
   const Eigen::Map<const Rgb> t10(row1 + 3 * sx.i0), t11(row1 + 3 * sx.i1);
   const Rgb top = t00 + (t01 - t00) * sx.w1;

@@ -54,8 +54,21 @@ class Texture {
   Texture() = default;
   void BuildMipLevels();
 
+  // One mip level as Sample reads it (the pixels stay owned by levels_).
+  struct MipLevel {
+    const float* data;  // RGB rows
+    size_t row_floats;  // floats per row (step)
+    int cols;
+    int rows;
+    double inv_cols;
+    double inv_rows;
+    double texel_m;      // texel size at this level
+    double inv_texel_m;
+  };
+
   cv::Mat image_;
   std::vector<cv::Mat> levels_;  // levels_[0] = image_, each next one half the size
+  std::vector<MipLevel> mips_;   // one per levels_ entry; empty for a checkerboard
   double texel_size_m_ = 1.0;
   Filter filter_ = Filter::kBilinear;
   Wrap wrap_ = Wrap::kRepeat;

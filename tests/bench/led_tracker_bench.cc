@@ -3,6 +3,7 @@
 // 1 false detection <= 1 ms, prediction + verification + refinement <= 0.1 ms.
 #include <benchmark/benchmark.h>
 
+#include <array>
 #include <cmath>
 #include <memory>
 #include <opencv2/core.hpp>
@@ -82,11 +83,12 @@ void BM_LedDetectionFullImage(benchmark::State& state) {
 }
 BENCHMARK(BM_LedDetectionFullImage)->Unit(benchmark::kMicrosecond);
 
-// Argument: 0 = Kneip (OpenGV), 1 = AP3P (OpenCV).
+// Argument: 0 = Kneip (own), 1 = Kneip through OpenGV, 2 = AP3P (OpenCV).
 void BM_LedBruteForceFiveLedsOneOutlier(benchmark::State& state) {
   const Fixture fixture;
   LedCorrespondenceParams params;
-  params.p3p_method = state.range(0) == 0 ? P3pMethod::kKneip : P3pMethod::kAp3p;
+  params.p3p_method = std::array<P3pMethod, 3>{P3pMethod::kKneip, P3pMethod::kOpenGv,
+                                                P3pMethod::kAp3p}[state.range(0)];
   const LedCorrespondenceSearch search(fixture.configuration.p_T(), params);
   const std::vector<LedDetection> detections = fixture.Detections(true);
   int found = 0;
@@ -98,7 +100,11 @@ void BM_LedBruteForceFiveLedsOneOutlier(benchmark::State& state) {
   state.SetLabel(P3pMethodName(params.p3p_method) + ", " + std::to_string(found) +
                  " correspondences");
 }
-BENCHMARK(BM_LedBruteForceFiveLedsOneOutlier)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_LedBruteForceFiveLedsOneOutlier)
+    ->Arg(0)
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMicrosecond);
 
 // Tracking step without detection: prediction (C.6), nearest-detection matching, verification
 // (C.3.5) and Gauss-Newton refinement with covariance (C.8), (C.9).

@@ -29,6 +29,7 @@ void BM_CaptureScenarioFrame(benchmark::State& state) {
   const ScenarioCamera& camera = scenario.render_camera();
   const Eigen::Isometry3d T_WC = camera.T_WC(scenario.T_WB_start());
   RayCaster caster;
+  caster.Render(scenario.scene(), *camera.model, T_WC, camera.render);  // builds the ray cache
   int index = 0;
   for (auto _ : state) {
     const CapturedFrame frame = camera.effects.Capture(

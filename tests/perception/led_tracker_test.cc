@@ -55,6 +55,42 @@ TEST_F(LedTrackerTest, InitializesByBruteForceThenTracksWithPredictionInRois) {
   EXPECT_LT((predicted->translation() - PoseAt(0.2).translation()).norm(), 0.006);
 }
 
+TEST_F(LedTrackerTest, FreshStartWithFourOfFiveLedsFindsTheTruePose) {
+  // Each LED hidden in turn, with and without a false bright spot: the brute force alone (no
+  // prior pose) must find the four visible LEDs and the true pose (thesis C.4.2: four LEDs fix
+  // the pose).
+  for (int hidden = 0; hidden < configuration_.size(); ++hidden) {
+    for (const bool false_spot : {false, true}) {
+      std::vector<Eigen::Vector2d> px = Projections(PoseAt(0.0));
+      px.erase(px.begin() + hidden);
+      if (false_spot) px.emplace_back(610.0, 80.0);
+      LedTracker tracker(configuration_, camera_);
+      const LedTrackResult result = tracker.Track(test_support::BlobImage(752, 480, px, 2.0), 0.0);
+      ASSERT_TRUE(result.has_pose()) << "LED " << hidden << " hidden, false spot " << false_spot
+                                     << ": " << LedTrackStatusName(result.status);
+      EXPECT_EQ(result.status, LedTrackStatus::kReinitialized);
+      EXPECT_EQ(result.correspondences.size(), 4u);
+      for (const LedCorrespondence& c : result.correspondences) EXPECT_NE(c.led, hidden);
+      // Four centroids within ~0.05 px still give millimetre poses at 1.3 m.
+      EXPECT_LT((result.T_CT->translation() - PoseAt(0.0).translation()).norm(), 0.003);
+      EXPECT_LT(Eigen::AngleAxisd(result.T_CT->linear().transpose() * PoseAt(0.0).linear()).angle(),
+                0.01);
+    }
+  }
+}
+
+TEST_F(LedTrackerTest, ReportsStageTimes) {
+  LedTracker tracker(configuration_, camera_);
+  const cv::Mat image = test_support::BlobImage(752, 480, Projections(PoseAt(0.0)), 2.0);
+  const LedStageTimes first = tracker.Track(image, 0.0).stage_times;
+  EXPECT_GT(first.detection_s, 0.0);
+  EXPECT_GT(first.brute_force_s, 0.0);
+  EXPECT_GT(first.refinement_s, 0.0);
+  const LedStageTimes second = tracker.Track(image, 0.02).stage_times;
+  EXPECT_GT(second.prediction_s, 0.0);
+  EXPECT_EQ(second.brute_force_s, 0.0);  // tracked: no brute force
+}
+
 TEST_F(LedTrackerTest, PredictionFollowsEquationC6) {
   LedTracker tracker(configuration_, camera_);
   EXPECT_FALSE(tracker.Predict(0.0).has_value());

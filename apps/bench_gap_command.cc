@@ -1,0 +1,98 @@
+// aperture bench gap: Monte-Carlo flights through the inclined patterned gap (issue 5; seed 000
+// Sec. IV-B: success rate, Table I errors at the gap, Fig. 6 estimate vs ground truth).
+//
+//   aperture bench gap [--trials N] [--seed S] [--first-trial K]
+//                      [--max-roll-deg R] [--max-pitch-deg P]
+//                      [--max-drop-probability D] [--motion-blur-subframes K]
+//                      [--autopilot mission|ground_truth] [--duration S] [--threads T]
+//                      [--config FILE] [--set key=value ...] --out DIR
+//
+// --config/--set override the built-in `gap` scenario (e.g. --set cameras.front.supersampling=1).
+// Writes DIR/summary.json (success_rate, error_at_gap.*, per_trial), DIR/trials.csv and
+// DIR/report.html (experiments/gap/gap_bench.h).
+#include <iostream>
+#include <memory>
+
+#include "apps/command_support.h"
+#include "apps/commands.h"
+#include "experiments/gap/gap_bench.h"
+#include "experiments/gap/gap_mission_trial.h"
+#include "experiments/gap/ground_truth_gap_autopilot.h"
+#include "output/progress_bar.h"
+
+namespace aperture::apps {
+namespace {
+
+struct BenchGapOptions {
+  CommonOptions common;
+  experiments::GapBenchOptions bench;
+  std::string autopilot = "mission";
+};
+
+void RunBenchGap(BenchGapOptions options, output::OutputFolder& out) {
+  options.bench.config_files = options.common.config_files;
+  options.bench.set_items = options.common.set_items;
+  experiments::GapTrialAutopilotFactory factory;
+  if (options.autopilot == "mission") {
+    factory = experiments::MakeGapMissionTrialFactory();
+  } else {
+    factory = experiments::MakeGroundTruthGapAutopilotFactory();
+    options.bench.render_cameras = false;  // flies on ground truth: no camera needed
+  }
+  output::ProgressBar progress("gap trials", static_cast<std::size_t>(options.bench.trials));
+  const experiments::GapBenchResult result = experiments::RunGapBench(
+      options.bench, factory, [&](int done) { progress.Update(static_cast<std::size_t>(done)); });
+  progress.Finish();
+  experiments::WriteGapBenchOutputs(result, out);
+  const nlohmann::json& summary = out.summary();
+  const nlohmann::json& error = summary["error_at_gap"];
+  std::cout << "aperture bench gap (" << result.autopilot_name << "): "
+            << summary["successes"].get<int>() << "/" << summary["trials"].get<int>()
+            << " successful, mean |position error| at the gap " << error["position_mean"].dump()
+            << " m over " << error["trials"].get<int>() << " crossings\n";
+}
+
+}  // namespace
+
+void AddBenchGapCommand(CLI::App& bench, int* exit_code) {
+  auto options = std::make_shared<BenchGapOptions>();
+  CLI::App* command = bench.add_subcommand(
+      "gap", "Monte-Carlo flights through the inclined patterned gap (seed 000 Table I, Fig. 6)");
+  command->add_option("--trials", options->bench.trials, "Number of trials")
+      ->check(CLI::PositiveNumber);
+  command->add_option("--seed", options->bench.seed, "Seed of every trial's random choices");
+  command->add_option("--first-trial", options->bench.first_trial,
+                      "Index of the first trial (a part of a longer run of the same seed)")
+      ->check(CLI::NonNegativeNumber);
+  command->add_option("--max-roll-deg", options->bench.ranges.max_roll_deg,
+                      "Gap roll drawn uniformly from [0, max] deg")
+      ->check(CLI::Range(0.0, 89.0));
+  command->add_option("--max-pitch-deg", options->bench.ranges.max_pitch_deg,
+                      "Gap pitch drawn uniformly from [0, max] deg")
+      ->check(CLI::Range(0.0, 89.0));
+  command->add_option("--max-drop-probability", options->bench.ranges.max_drop_probability,
+                      "Camera frame-drop probability drawn uniformly from [0, max]")
+      ->check(CLI::Range(0.0, 0.99));
+  command->add_option("--motion-blur-subframes", options->bench.ranges.motion_blur_subframes,
+                      "Renders averaged per frame over the random exposure (1 = no blur; each "
+                      "one costs a full render)")
+      ->check(CLI::PositiveNumber);
+  command->add_option("--duration", options->bench.duration_s, "Simulated time per trial [s]")
+      ->check(CLI::PositiveNumber);
+  command->add_option("--threads", options->bench.threads,
+                      "Trials flown concurrently (0 = all cores)")
+      ->check(CLI::NonNegativeNumber);
+  command
+      ->add_option("--autopilot", options->autopilot,
+                   "mission: the vision gap mission (camera + IMU); ground_truth: the same "
+                   "traverse flown on ground truth without cameras (control-only reference)")
+      ->check(CLI::IsMember({"mission", "ground_truth"}));
+  AddCommonOptions(command, &options->common);
+  command->callback([options, exit_code] {
+    output::OutputFolder out(options->common.out_dir);
+    output::RunAndWriteSummary(out, [&] { RunBenchGap(*options, out); });
+    *exit_code = 0;
+  });
+}
+
+}  // namespace aperture::apps

@@ -1,0 +1,351 @@
+#include "experiments/gap/gap_bench.h"
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <mutex>
+#include <stdexcept>
+
+#include "output/json_eigen.h"
+#include "sim/scenario/scenario.h"
+#include "sim/scenario/scenario_sitl.h"
+
+namespace aperture::experiments {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Forwards everything to the trial's autopilot and records its estimate after every Step, mapped
+// from the autopilot's world frame into the simulator's through the gap: T_WG_true * T_MG_est^-1
+// (the estimate relative to the estimated gap, placed at the true gap), as the errors at the gap
+// are defined (gap_trial_evaluation.h).
+class RecordingAutopilot : public perception::Autopilot {
+ public:
+  RecordingAutopilot(GapTrialAutopilot* trial, const Eigen::Isometry3d& T_WG_true)
+      : trial_(trial), inner_(trial->autopilot()), T_WG_true_(T_WG_true) {}
+  std::string name() const override { return inner_.name(); }
+  void OnImu(const perception::ImuSample& sample) override { inner_.OnImu(sample); }
+  void OnFrame(const perception::Frame& frame) override { inner_.OnFrame(frame); }
+  void OnRange(const perception::RangeReading& reading) override { inner_.OnRange(reading); }
+  bool UsesGroundTruth() const override { return inner_.UsesGroundTruth(); }
+  void OnGroundTruth(const control::QuadState& state) override { inner_.OnGroundTruth(state); }
+  perception::AutopilotCommand Step(double t_s) override {
+    const perception::AutopilotCommand command = inner_.Step(t_s);
+    const std::optional<control::QuadState> estimate = trial_->estimate();
+    const std::optional<planning::GapPose> gap = trial_->gap_estimate();
+    if (estimate && gap) {
+      Eigen::Isometry3d T_MG = Eigen::Isometry3d::Identity();
+      T_MG.linear() = gap->R_WG;
+      T_MG.translation() = gap->p_WG;
+      const Eigen::Isometry3d T_WM = T_WG_true_ * T_MG.inverse();
+      control::QuadState mapped = *estimate;
+      mapped.t_s = t_s;
+      mapped.p_WB = T_WM * estimate->p_WB;
+      mapped.v_W = T_WM.linear() * estimate->v_W;
+      mapped.q_WB = Eigen::Quaterniond(T_WM.linear()) * estimate->q_WB;
+      estimates_.push_back(mapped);
+    }
+    return command;
+  }
+  std::string status() const override { return inner_.status(); }
+  std::vector<control::QuadState>& estimates() { return estimates_; }
+
+ private:
+  GapTrialAutopilot* trial_;
+  perception::Autopilot& inner_;
+  Eigen::Isometry3d T_WG_true_;
+  std::vector<control::QuadState> estimates_;
+};
+
+// Ground truth at each of `times` (the latest recorded state at or before it).
+std::vector<control::QuadState> SampleTruth(const std::vector<control::QuadState>& trajectory,
+                                            const std::vector<control::QuadState>& at) {
+  std::vector<control::QuadState> truth;
+  truth.reserve(at.size());
+  for (const control::QuadState& sample : at) {
+    auto it = std::upper_bound(
+        trajectory.begin(), trajectory.end(), sample.t_s + 1e-9,
+        [](double t, const control::QuadState& state) { return t < state.t_s; });
+    if (it == trajectory.begin()) continue;
+    truth.push_back(*std::prev(it));
+  }
+  return truth;
+}
+
+struct AxisStatistics {
+  Eigen::VectorXd abs_mean, abs_std, signed_mean, signed_std;
+};
+
+AxisStatistics ComputeAxisStatistics(const std::vector<Eigen::VectorXd>& errors, int axes) {
+  AxisStatistics stats{Eigen::VectorXd::Constant(axes, kNaN), Eigen::VectorXd::Constant(axes, kNaN),
+                       Eigen::VectorXd::Constant(axes, kNaN),
+                       Eigen::VectorXd::Constant(axes, kNaN)};
+  const double n = static_cast<double>(errors.size());
+  if (errors.empty()) return stats;
+  for (int a = 0; a < axes; ++a) {
+    double sum_abs = 0.0, sum = 0.0;
+    for (const Eigen::VectorXd& e : errors) {
+      sum_abs += std::abs(e(a));
+      sum += e(a);
+    }
+    stats.abs_mean(a) = sum_abs / n;
+    stats.signed_mean(a) = sum / n;
+    double ss_abs = 0.0, ss = 0.0;
+    for (const Eigen::VectorXd& e : errors) {
+      ss_abs += std::pow(std::abs(e(a)) - stats.abs_mean(a), 2);
+      ss += std::pow(e(a) - stats.signed_mean(a), 2);
+    }
+    // Sample standard deviation (n - 1), as for the paper's 35 flights; 0 for a single trial.
+    const double dof = std::max(1.0, n - 1.0);
+    stats.abs_std(a) = std::sqrt(ss_abs / dof);
+    stats.signed_std(a) = std::sqrt(ss / dof);
+  }
+  return stats;
+}
+
+nlohmann::json MeanStd(const std::vector<double>& values) {
+  if (values.empty()) return {{"mean", kNaN}, {"std", kNaN}};
+  double sum = 0.0;
+  for (double v : values) sum += v;
+  const double mean = sum / values.size();
+  double ss = 0.0;
+  for (double v : values) ss += (v - mean) * (v - mean);
+  return {{"mean", mean}, {"std", std::sqrt(ss / std::max<double>(1.0, values.size() - 1.0))}};
+}
+
+nlohmann::json TrialJson(const GapTrialRecord& record) {
+  const GapTrialConfig& c = record.config;
+  nlohmann::json trial = {
+      {"trial", c.index},
+      {"seed", c.seed},
+      {"roll_deg", c.roll_deg},
+      {"pitch_deg", c.pitch_deg},
+      {"start_p_W_m", output::EigenToJson(c.start_p_W)},
+      {"start_yaw_deg", c.start_yaw_deg},
+      {"imu_noise_scale", c.imu_noise_scale},
+      {"accel_bias_B_mps2", output::EigenToJson(c.accel_bias_B)},
+      {"gyro_bias_B_radps", output::EigenToJson(c.gyro_bias_B)},
+      {"drop_probability", c.drop_probability},
+      {"exposure_s", c.exposure_s},
+      {"outcome", record.outcome},
+      {"success", record.evaluation.success},
+      {"failure_reason", record.evaluation.failure_reason},
+      {"sim_time_s", record.sim_time_s},
+      {"wall_time_s", record.wall_time_s},
+      {"autopilot_status", record.autopilot_status},
+      {"frames_delivered", record.frames_delivered},
+      {"frames_dropped", record.frames_dropped},
+      {"traverse_start_time_s", record.traverse_start_time_s},
+  };
+  if (const std::optional<GapCrossing>& crossing = record.evaluation.crossing) {
+    trial["crossing"] = {{"t_s", crossing->t_s},
+                         {"p_G_m", output::EigenToJson(crossing->p_G_m)},
+                         {"inside_opening", crossing->inside_opening}};
+  }
+  if (const std::optional<GapStateError>& error = record.evaluation.error) {
+    trial["error_at_gap"] = {{"position_m", output::EigenToJson(error->position_m)},
+                             {"velocity_mps", output::EigenToJson(error->velocity_mps)},
+                             {"orientation_deg", output::EigenToJson(error->orientation_deg)},
+                             {"time_s", error->time_s}};
+  }
+  return trial;
+}
+
+}  // namespace
+
+void GapBenchOptions::Validate() const {
+  if (trials < 1) {
+    throw std::invalid_argument("--trials " + std::to_string(trials) + ": must be >= 1");
+  }
+  if (!(std::isfinite(duration_s) && duration_s > 0.0)) {
+    throw std::invalid_argument("--duration " + std::to_string(duration_s) + ": must be > 0 s");
+  }
+  if (first_trial < 0) {
+    throw std::invalid_argument("--first-trial " + std::to_string(first_trial) + ": must be >= 0");
+  }
+  if (threads < 0) {
+    throw std::invalid_argument("--threads " + std::to_string(threads) +
+                                ": must be >= 0 (0 = all cores)");
+  }
+  ranges.Validate();
+}
+
+GapTrialRecord RunGapTrial(const GapBenchOptions& options, const sim::ScenarioParams& base,
+                           const GapTrialConfig& trial, const GapTrialAutopilotFactory& factory) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  GapTrialRecord record;
+  record.config = trial;
+  record.traverse_start_time_s = kNaN;
+  try {
+    sim::ScenarioParams scenario_params = base;
+    ApplyGapTrial(trial, &scenario_params);
+    sim::Scenario scenario = sim::BuildScenario(scenario_params);
+    sim::SitlRunnerParams params;
+    params.duration_s = options.duration_s;
+    params.trajectory_decimation = 1;  // 1 kHz ground truth: the crossing within ~3 mm
+    sim::ConfigureSitlFromScenario(scenario, &params);
+    if (!options.render_cameras) params.cameras.clear();
+    for (sim::SitlCamera& camera : params.cameras) camera.render.ground_truth = false;
+    const sim::ImuSensorParams nominal_imu = params.imu;
+    ApplyGapTrial(trial, &params);
+    GapGeometry gap;
+    gap.T_WG = scenario.scene().object("gap").T_WO;
+    gap.opening_m = scenario_params.gap.opening_m;
+
+    GapTrialSetup setup;
+    setup.scenario = &scenario;
+    setup.vehicle = params.dynamics.vehicle;
+    setup.initial_state = params.initial_state;
+    setup.control_rate_hz = params.control_rate_hz;
+    setup.imu = nominal_imu;
+    const std::unique_ptr<GapTrialAutopilot> autopilot = factory(setup);
+    RecordingAutopilot recorder(autopilot.get(), gap.T_WG);
+    sim::SitlRunner runner(params, &scenario.scene());
+    const sim::SitlResult result = runner.Run(recorder, sim::MakeScenarioHooks(&scenario));
+
+    record.plan = autopilot->traverse_plan();
+    record.traverse_start_time_s = autopilot->traverse_start_time_s();
+    record.evaluation = EvaluateGapTrial(result, gap, record.plan, record.traverse_start_time_s,
+                                         options.hover);
+    record.outcome = sim::ToString(result.outcome);
+    record.sim_time_s = result.sim_time_s;
+    record.autopilot_name = result.autopilot_name;
+    record.autopilot_status = result.autopilot_status;
+    for (const sim::SitlCameraStats& camera : result.cameras) {
+      record.frames_delivered += camera.frames_delivered;
+      record.frames_dropped += camera.frames_dropped;
+    }
+    record.estimate_trace = std::move(recorder.estimates());
+    record.truth_trace = SampleTruth(result.trajectory, record.estimate_trace);
+  } catch (const std::exception& error) {
+    record.outcome = "error";
+    record.evaluation = GapTrialEvaluation{};
+    record.evaluation.failure_reason = std::string("error: ") + error.what();
+  }
+  record.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  return record;
+}
+
+GapBenchResult RunGapBench(const GapBenchOptions& options, const GapTrialAutopilotFactory& factory,
+                           const std::function<void(int)>& on_trial_done) {
+  options.Validate();
+  const config::ConfigTree tree =
+      sim::ScenarioConfig("gap", options.config_files, options.set_items);
+  const sim::ScenarioParams base = sim::LoadScenarioParams(tree);
+  if (base.scenario != "gap") {
+    throw std::invalid_argument("aperture bench gap: the scenario overrides set scenario: " +
+                                base.scenario + "; only the gap scenario can be benchmarked");
+  }
+  GapBenchResult result;
+  result.options = options;
+  result.scenario_config = nlohmann::json::parse(tree.ToJson());
+  std::vector<GapTrialConfig> configs;
+  for (int i = 0; i < options.trials; ++i) {
+    configs.push_back(DrawGapTrial(options.ranges, options.seed, options.first_trial + i,
+                                   base.vehicle_start.p_m));
+  }
+  result.trials.resize(configs.size());
+  std::mutex mutex;
+  int done = 0;
+  tbb::task_arena arena(options.threads > 0 ? options.threads
+                                            : tbb::task_arena::automatic);
+  arena.execute([&] {
+    tbb::parallel_for(0, options.trials, [&](int i) {
+      result.trials[i] = RunGapTrial(options, base, configs[i], factory);
+      const std::lock_guard<std::mutex> lock(mutex);
+      ++done;
+      if (on_trial_done) on_trial_done(done);
+    });
+  });
+  for (const GapTrialRecord& record : result.trials) {
+    if (result.autopilot_name.empty()) result.autopilot_name = record.autopilot_name;
+  }
+  return result;
+}
+
+nlohmann::json SummarizeGapBench(const GapBenchResult& result) {
+  nlohmann::json summary;
+  const int trials = static_cast<int>(result.trials.size());
+  int successes = 0;
+  std::vector<Eigen::VectorXd> position, velocity, orientation;
+  std::vector<double> position_norm, velocity_norm, time_error;
+  std::map<std::string, int> failures;
+  nlohmann::json per_trial = nlohmann::json::array();
+  for (const GapTrialRecord& record : result.trials) {
+    if (record.evaluation.success) {
+      ++successes;
+    } else {
+      // Group reasons by their text before the first digit-bearing detail.
+      const std::string& reason = record.evaluation.failure_reason;
+      const std::size_t cut = reason.find_first_of(":0123456789");
+      failures[reason.substr(0, cut == std::string::npos ? reason.size() : cut)]++;
+    }
+    if (const std::optional<GapStateError>& e = record.evaluation.error) {
+      position.push_back(e->position_m);
+      velocity.push_back(e->velocity_mps);
+      orientation.push_back(e->orientation_deg);
+      position_norm.push_back(e->position_m.norm());
+      velocity_norm.push_back(e->velocity_mps.norm());
+      if (std::isfinite(e->time_s)) time_error.push_back(e->time_s);
+    }
+    per_trial.push_back(TrialJson(record));
+  }
+  summary["trials"] = trials;
+  summary["successes"] = successes;
+  summary["success_rate"] = trials > 0 ? static_cast<double>(successes) / trials : kNaN;
+  const AxisStatistics p = ComputeAxisStatistics(position, 3);
+  const AxisStatistics v = ComputeAxisStatistics(velocity, 3);
+  const AxisStatistics o = ComputeAxisStatistics(orientation, 2);
+  summary["error_at_gap"] = {
+      {"definition",
+       "Table I analog at t_c (ground truth crossing the gap plane): actual (ground truth relative "
+       "to the true gap) minus desired (traverse plan at its t_c relative to the plan's gap "
+       "estimate), world axes; *_mean/*_std = mean/std of |error| per axis, *_signed_* of the "
+       "signed error; every trial that crossed with a plan, successful or not"},
+      {"trials", static_cast<int>(position.size())},
+      {"position_mean", output::EigenToJson(p.abs_mean)},
+      {"position_std", output::EigenToJson(p.abs_std)},
+      {"position_signed_mean", output::EigenToJson(p.signed_mean)},
+      {"position_signed_std", output::EigenToJson(p.signed_std)},
+      {"velocity_mean", output::EigenToJson(v.abs_mean)},
+      {"velocity_std", output::EigenToJson(v.abs_std)},
+      {"velocity_signed_mean", output::EigenToJson(v.signed_mean)},
+      {"velocity_signed_std", output::EigenToJson(v.signed_std)},
+      {"orientation_mean_deg", output::EigenToJson(o.abs_mean)},
+      {"orientation_std_deg", output::EigenToJson(o.abs_std)},
+      {"orientation_signed_mean_deg", output::EigenToJson(o.signed_mean)},
+      {"orientation_signed_std_deg", output::EigenToJson(o.signed_std)},
+      {"position_norm_m", MeanStd(position_norm)},
+      {"velocity_norm_mps", MeanStd(velocity_norm)},
+      {"arrival_time_error_s", MeanStd(time_error)},
+  };
+  summary["failures"] = failures;
+  // Success by inclination: 15 deg roll bins x 15 deg pitch bins.
+  std::map<std::pair<int, int>, std::pair<int, int>> bins;  // (roll, pitch) bin -> (ok, all)
+  for (const GapTrialRecord& record : result.trials) {
+    const std::pair<int, int> key{static_cast<int>(record.config.roll_deg / 15.0),
+                                  static_cast<int>(record.config.pitch_deg / 15.0)};
+    bins[key].second++;
+    if (record.evaluation.success) bins[key].first++;
+  }
+  nlohmann::json by_inclination = nlohmann::json::array();
+  for (const auto& [key, counts] : bins) {
+    by_inclination.push_back(
+        {{"roll_deg", {15 * key.first, 15 * (key.first + 1)}},
+         {"pitch_deg", {15 * key.second, 15 * (key.second + 1)}},
+         {"trials", counts.second},
+         {"successes", counts.first},
+         {"success_rate", static_cast<double>(counts.first) / counts.second}});
+  }
+  summary["success_by_inclination"] = by_inclination;
+  summary["per_trial"] = per_trial;
+  return summary;
+}
+
+}  // namespace aperture::experiments

@@ -1,0 +1,98 @@
+#pragma once
+// Ground-truth evaluation of one gap flight (seed 000 Sec. IV-B): success and the Table I errors.
+//
+// Success (the paper's definition): the vehicle passed through the gap without collision and
+// recovered to a stable hover. Here: the ground truth crosses the gap plane for the first time
+// with B's origin inside the opening (inner rectangle of the pattern), the run has no collision,
+// and over the final hover window the vehicle is past the gap plane, slow, level and not rotating.
+//
+// Error at the gap (Table I analog), at t_c = the time the ground truth crosses the gap plane:
+// actual minus desired state, each relative to its own gap. Desired = the traverse plan at its
+// t_c (the gap centre of its apex, eqs. (3)-(5)) relative to the plan's gap estimate (p_WG, R_WG
+// of planning::GapPose, possibly wrong); actual = the ground truth relative to the true gap. Both
+// relative states are mapped onto the true gap (desired_W = T_WG_true * T_WG_est^-1 * desired),
+// so the error is in world axes, as the paper's motion capture measured it:
+//   position_m    = p_true(t_c) - T_WG_true T_WG_est^-1 p_plan(t_c)
+//   velocity_mps  = v_true(t_c) - R_WG_true R_WG_est^T v_plan(t_c)
+//   orientation   = [roll, pitch](R_WB_true) - [roll, pitch](R_WG_true R_WG_est^T R_WB_plan),
+//                   ZYX Euler angles (R = Rz Ry Rx) in degrees, wrapped to (-180, 180]; R_WB_plan
+//                   has z_B along the plan's thrust direction (1) and x_B at its heading.
+//   time_s        = t_c - (traverse start + plan t_c): arrival late (> 0) or early (< 0).
+// A perfect estimate makes T_WG_true T_WG_est^-1 the identity (the usual definition); a wrong
+// gap estimate shows up here only through the flown path, as it would in the real system.
+#include <Eigen/Geometry>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "control/quad_state.h"
+#include "planning/traverse_trajectory.h"
+#include "sim/sitl/sitl_runner.h"
+
+namespace aperture::experiments {
+
+struct GapGeometry {
+  // True gap: origin at the opening centre, axes of planning::GapPose (x_G long side, y_G short
+  // side, z_G along the traversal direction) = the scenario's "gap" object pose.
+  Eigen::Isometry3d T_WG = Eigen::Isometry3d::Identity();
+  Eigen::Vector2d opening_m = Eigen::Vector2d(0.8, 0.28);  // inner rectangle along x_G, y_G [m]
+};
+
+struct GapCrossing {
+  double t_s = 0.0;
+  control::QuadState state;  // ground truth interpolated to t_s (linear; slerp for attitude)
+  Eigen::Vector2d p_G_m = Eigen::Vector2d::Zero();  // where B's origin crossed (x_G, y_G) [m]
+  bool inside_opening = false;
+};
+
+// First crossing of the gap plane from its approach side (z_G < 0) to z_G >= 0 between two
+// consecutive ground-truth states; nullopt if it never happens. Throws std::invalid_argument if
+// the opening is not positive.
+std::optional<GapCrossing> FindGapCrossing(const std::vector<control::QuadState>& trajectory,
+                                           const GapGeometry& gap);
+
+struct GapStateError {
+  Eigen::Vector3d position_m = Eigen::Vector3d::Zero();
+  Eigen::Vector3d velocity_mps = Eigen::Vector3d::Zero();
+  Eigen::Vector2d orientation_deg = Eigen::Vector2d::Zero();  // [roll, pitch]
+  double time_s = 0.0;
+};
+
+// The error at the gap defined in the header comment; `traverse_start_time_s` is the simulator
+// time the plan's t = 0 was flown from (NaN gives a NaN time_s).
+GapStateError ComputeErrorAtGap(const GapCrossing& crossing, const GapGeometry& gap,
+                                const planning::TraverseTrajectory& plan,
+                                double traverse_start_time_s);
+
+// Roll and pitch [deg] of R = Rz(yaw) Ry(pitch) Rx(roll).
+Eigen::Vector2d RollPitchDeg(const Eigen::Matrix3d& R_WB);
+
+// A stable hover at the end of the run.
+struct HoverCriteria {
+  double window_s = 0.5;         // the final part of the run that must hover [s]
+  double max_speed_mps = 0.3;    // |v| in the window
+  double max_tilt_deg = 10.0;    // angle between z_B and z_W in the window
+  // Roll/pitch rate |omega_xy| in the window: a hover may turn about z_B (a heading hold does)
+  // without losing its stability.
+  double max_rate_radps = 0.5;
+  double min_height_m = 0.2;     // z_W of B in the window (not sitting on the ground)
+};
+
+struct GapTrialEvaluation {
+  bool success = false;
+  // Empty on success; else the first failed criterion, e.g. "collision: body with 'gap'",
+  // "crossed the gap plane outside the opening at x_G = 0.45 m, y_G = -0.02 m",
+  // "never crossed the gap plane", "not hovering at the end: speed 1.2 m/s at t = 9.50 s".
+  std::string failure_reason;
+  std::optional<GapCrossing> crossing;
+  std::optional<GapStateError> error;  // when the gap plane was crossed and a plan exists
+};
+
+// Evaluates a finished run. `plan` is the autopilot's traverse plan (nullopt if it never planned
+// one). Success also needs the run to last the hover window (a run shorter than it fails).
+GapTrialEvaluation EvaluateGapTrial(const sim::SitlResult& result, const GapGeometry& gap,
+                                    const std::optional<planning::TraverseTrajectory>& plan,
+                                    double traverse_start_time_s,
+                                    const HoverCriteria& hover = {});
+
+}  // namespace aperture::experiments

@@ -1,0 +1,36 @@
+#pragma once
+// `aperture bench led` (issue 6; Faessler thesis C.4 analogs): the LedTracker on sequences
+// rendered by the simulator (LedTargetRenderer: 752 x 480 pinhole camera with 90 deg field of view
+// like the thesis' mvBlueFOX, infrared mode with sensor noise and motion blur) against their
+// ground truth. Sections, each under its own summary key:
+//   accuracy   Table C.1 analog: 6-DOF excitation at 1.05-1.95 m, n_L = 4
+//   sweep      Fig. C.7 analog: distances 0.3-5.6 m, n_L = 5 (box plots per distance)
+//   occlusion  C.4.2 / Fig. C.10 analog: one LED of five hidden mid-sequence; also a fresh start
+//              (no prior pose) during the occlusion
+//   merged     C.4.2 / Fig. C.11 analog: two LEDs sweep through alignment (merged blobs)
+//   timing     Table C.2 analog: medians per stage [s], from the tracker's LedStageTimes and a
+//              brute-force pass on the sweep's detections (+ one false detection)
+//   acceptance the issue's acceptance checks as booleans
+// Errors: positions in m, orientations in deg (angle of the angle-axis error, C.4.1).
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "output/html_report.h"
+
+namespace aperture::experiments {
+
+struct LedBenchOptions {
+  std::uint64_t seed = 1;  // random poses of the sweep and the sensor noise
+  // Fewer frames with the same code paths (for tests and quick looks).
+  bool quick = false;
+  // Per-frame CSV (section, t_s, status, detections, visible_leds, p_CT_true_x/y/z,
+  // position_error_m, orientation_error_deg, position_sigma_m, rms_px); empty = none.
+  std::string frames_csv_path;
+};
+
+// Fills (*summary)[section] for every section above and adds plots and tables to *report.
+void RunLedBench(const LedBenchOptions& options, nlohmann::json* summary,
+                 output::HtmlReport* report);
+
+}  // namespace aperture::experiments

@@ -1,0 +1,69 @@
+#pragma once
+// Renders an infrared-LED target for `aperture bench led` through the simulator: a sim::Scene with
+// one sim::Led emitter per LED of the configuration (target frame T = world frame W), a dark
+// textured ceiling behind the target, and the camera at T_WC = T_CT^-1, so the target's motion is
+// the camera's and the exposure's motion blur applies (sim::CameraEffects, infrared mode: dark
+// scene, bright LEDs, shot and read noise, 8-bit clipping). The ground truth of a frame is
+// T_CT(t_s) at mid-exposure.
+#include <Eigen/Geometry>
+#include <functional>
+#include <memory>
+#include <opencv2/core/mat.hpp>
+#include <vector>
+
+#include "perception/camera/camera_model.h"
+#include "perception/led/led_configuration.h"
+#include "sim/render/camera_effects.h"
+#include "sim/render/ray_caster.h"
+#include "sim/scene/scene.h"
+
+namespace aperture::experiments {
+
+struct LedTargetRenderParams {
+  double led_radius_m = 0.0025;  // SMD LED emitter (Harvatek HT-260, thesis C.4.1: ~2-3 mm)
+  // Blob energy at 1 m [radiance * px^2]: ~3x full scale at the blob peak at 5.6 m, so the
+  // farthest sweep distance is still detected above the 120 threshold; nearer LEDs saturate.
+  double led_intensity = 150.0;
+  double min_led_sigma_px = 0.8;  // lens blur of a point source (renderer floor)
+  double ceiling_distance_m = 3.0;  // dark textured plane at z_T = +3 m behind the target
+  sim::CameraEffectsParams effects = DefaultEffects();
+
+  // mvBlueFOX-like sensor behind an IR-pass filter: read noise 1 % of full scale (~2.5 gray
+  // levels), shot noise of a 4000 e- well, 2 ms exposure with motion blur over 3 subframes.
+  static sim::CameraEffectsParams DefaultEffects() {
+    sim::CameraEffectsParams effects;
+    effects.infrared = true;
+    effects.read_noise_sigma = 0.01;
+    effects.full_well_electrons = 4000.0;
+    effects.exposure_s = 0.002;
+    effects.motion_blur_subframes = 3;
+    return effects;
+  }
+};
+
+class LedTargetRenderer {
+ public:
+  // Throws std::invalid_argument for a null camera or invalid effects parameters.
+  LedTargetRenderer(const perception::LedConfiguration& configuration,
+                    std::shared_ptr<const perception::CameraModel> camera,
+                    const LedTargetRenderParams& params = {});
+
+  // The 8-bit image of the frame at mid-exposure time t_s (T_CT_at is sampled over the
+  // exposure); `hidden` LEDs (indices into the configuration) are occluded. frame_index seeds
+  // the sensor noise.
+  cv::Mat Render(const std::function<Eigen::Isometry3d(double t_s)>& T_CT_at, double t_s,
+                 int frame_index, const std::vector<int>& hidden = {});
+
+  const perception::CameraModel& camera() const { return *camera_; }
+
+ private:
+  perception::LedConfiguration configuration_;
+  std::shared_ptr<const perception::CameraModel> camera_;
+  LedTargetRenderParams params_;
+  sim::CameraEffects effects_;
+  sim::Scene scene_;
+  std::vector<int> led_ids_;
+  sim::RayCaster ray_caster_;
+};
+
+}  // namespace aperture::experiments

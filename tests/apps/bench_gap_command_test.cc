@@ -1,0 +1,81 @@
+// `aperture bench gap` end to end: the figures of summary.json, trials.csv, report.html, bad flags.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "tests/apps/cli_runner.h"
+
+namespace aperture::apps::testing {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(BenchGapCommand, TwoGroundTruthTrialsWriteTheTableIKeys) {
+  TempFolder temp("bench_gap");
+  const fs::path out = fs::path(temp.path()) / "out";
+  const CommandResult result = RunAperture(
+      "bench gap --trials 2 --seed 4 --autopilot ground_truth --duration 6 --out " + out.string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const nlohmann::json summary = ReadJson(out / "summary.json");
+  EXPECT_EQ(summary["status"], "ok");
+  EXPECT_EQ(summary["trials"], 2);
+  EXPECT_EQ(summary["inputs"]["seed"], 4);
+  // Ground truth flies the planned traverse: both pass.
+  EXPECT_EQ(summary["successes"], 2);
+  EXPECT_DOUBLE_EQ(summary["success_rate"].get<double>(), 1.0);
+  const nlohmann::json& error = summary["error_at_gap"];
+  for (const char* key : {"position_mean", "position_std", "velocity_mean", "velocity_std"}) {
+    EXPECT_EQ(error[key].size(), 3u) << key;
+  }
+  EXPECT_EQ(error["orientation_mean_deg"].size(), 2u);
+  EXPECT_EQ(error["orientation_std_deg"].size(), 2u);
+  ASSERT_EQ(summary["per_trial"].size(), 2u);
+  for (const nlohmann::json& trial : summary["per_trial"]) {
+    EXPECT_GE(trial["roll_deg"].get<double>(), 0.0);
+    EXPECT_LE(trial["roll_deg"].get<double>(), 45.0);
+    EXPECT_GE(trial["pitch_deg"].get<double>(), 0.0);
+    EXPECT_LE(trial["pitch_deg"].get<double>(), 30.0);
+    EXPECT_TRUE(trial.contains("outcome"));
+    EXPECT_TRUE(trial.contains("failure_reason"));
+    EXPECT_EQ(trial["error_at_gap"]["position_m"].size(), 3u);
+  }
+  EXPECT_EQ(CountLines(out / "trials.csv"), 1u + 2u);
+  EXPECT_TRUE(fs::exists(out / "report.html"));
+}
+
+// The default autopilot is the vision mission on rendered frames. Two seconds of small, unblurred
+// 30 Hz frames keep this to seconds: the mission is still detecting / hovering, so no trial
+// crosses and the errors are null, but every trial ran the camera + IMU path.
+TEST(BenchGapCommand, MissionTrialsRunOnRenderedFrames) {
+  TempFolder temp("bench_gap_mission");
+  const fs::path out = fs::path(temp.path()) / "out";
+  const CommandResult result = RunAperture(
+      "bench gap --trials 2 --duration 2 --motion-blur-subframes 1 "
+      "--set cameras.front.supersampling=1 --set cameras.front.rate_hz=30 --out " +
+      out.string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const nlohmann::json summary = ReadJson(out / "summary.json");
+  EXPECT_EQ(summary["inputs"]["autopilot"], "gap_mission");
+  EXPECT_EQ(summary["trials"], 2);
+  EXPECT_EQ(summary["successes"], 0);
+  EXPECT_EQ(summary["error_at_gap"]["trials"], 0);
+  for (const nlohmann::json& trial : summary["per_trial"]) {
+    EXPECT_EQ(trial["outcome"], "duration_reached");
+    EXPECT_EQ(trial["failure_reason"].get<std::string>().rfind("never crossed", 0), 0u);
+    // 30 Hz over [0, 2] s, less the seeded drops.
+    EXPECT_EQ(trial["frames_delivered"].get<int>() + trial["frames_dropped"].get<int>(), 61);
+  }
+  EXPECT_EQ(CountLines(out / "trials.csv"), 1u + 2u);
+}
+
+TEST(BenchGapCommand, RejectsAnInclinationRangeOutOfBounds) {
+  TempFolder temp("bench_gap_bad");
+  const CommandResult result = RunAperture("bench gap --max-roll-deg 95 --out " +
+                                           (fs::path(temp.path()) / "out").string());
+  EXPECT_EQ(result.exit_code, 2) << result.output;
+  EXPECT_NE(result.output.find("--max-roll-deg"), std::string::npos) << result.output;
+}
+
+}  // namespace
+}  // namespace aperture::apps::testing

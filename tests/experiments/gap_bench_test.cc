@@ -1,0 +1,122 @@
+// `aperture bench gap` harness with the ground-truth gap autopilot (no cameras): the flights
+// succeed, results do not depend on the thread count, broken trials are recorded, and the
+// outputs carry the documented keys.
+#include "experiments/gap/gap_bench.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#include "experiments/gap/ground_truth_gap_autopilot.h"
+
+namespace aperture::experiments {
+namespace {
+
+GapBenchOptions QuickOptions(int threads) {
+  GapBenchOptions options;
+  options.trials = 3;
+  options.seed = 11;
+  options.duration_s = 6.0;  // approach <= 2.5 s + traverse + 1.5 s braking + hover window
+  options.threads = threads;
+  options.render_cameras = false;
+  return options;
+}
+
+TEST(GapBench, GroundTruthFlightsPassTheGapAndDoNotDependOnTheThreadCount) {
+  const GapBenchResult serial =
+      RunGapBench(QuickOptions(1), MakeGroundTruthGapAutopilotFactory());
+  const GapBenchResult parallel =
+      RunGapBench(QuickOptions(2), MakeGroundTruthGapAutopilotFactory());
+  ASSERT_EQ(serial.trials.size(), 3u);
+  EXPECT_EQ(serial.autopilot_name, "ground_truth_gap");
+  for (std::size_t i = 0; i < serial.trials.size(); ++i) {
+    const GapTrialRecord& a = serial.trials[i];
+    const GapTrialRecord& b = parallel.trials[i];
+    EXPECT_EQ(a.config.index, static_cast<int>(i));
+    EXPECT_TRUE(a.evaluation.success) << a.evaluation.failure_reason;
+    ASSERT_TRUE(a.evaluation.error.has_value());
+    // Perfect state and gap: the PositionController tracks the traverse to within a few cm
+    // (the opening leaves 12.5 cm / 8 cm of margin); 5 cm would already scrape the frame.
+    EXPECT_LT(a.evaluation.error->position_m.norm(), 0.05) << "trial " << i;
+    EXPECT_LT(std::abs(a.evaluation.error->time_s), 0.02) << "trial " << i;
+    // Bit-identical across thread counts: every trial owns its seeded streams.
+    ASSERT_TRUE(b.evaluation.error.has_value());
+    EXPECT_EQ(a.evaluation.error->position_m, b.evaluation.error->position_m);
+    EXPECT_EQ(a.evaluation.crossing->t_s, b.evaluation.crossing->t_s);
+    // Fig. 6 traces: the estimate (= ground truth here) at every 100 Hz control step.
+    EXPECT_EQ(a.estimate_trace.size(), a.truth_trace.size());
+    EXPECT_GT(a.estimate_trace.size(), 500u);
+  }
+}
+
+TEST(GapBench, APartStartingAtFirstTrialFliesTheSameTrialsAsTheWholeRun) {
+  GapBenchOptions whole = QuickOptions(1);
+  whole.trials = 2;
+  GapBenchOptions part = whole;
+  part.first_trial = 1;
+  part.trials = 1;
+  const GapBenchResult a = RunGapBench(whole, MakeGroundTruthGapAutopilotFactory());
+  const GapBenchResult b = RunGapBench(part, MakeGroundTruthGapAutopilotFactory());
+  ASSERT_EQ(b.trials.size(), 1u);
+  EXPECT_EQ(b.trials[0].config.index, 1);
+  EXPECT_EQ(b.trials[0].config.seed, a.trials[1].config.seed);
+  ASSERT_TRUE(b.trials[0].evaluation.crossing.has_value());
+  EXPECT_EQ(b.trials[0].evaluation.crossing->t_s, a.trials[1].evaluation.crossing->t_s);
+}
+
+TEST(GapBench, RecordsABrokenAutopilotAsAFailedTrial) {
+  GapBenchOptions options = QuickOptions(1);
+  options.trials = 1;
+  const GapBenchResult result =
+      RunGapBench(options, [](const GapTrialSetup&) -> std::unique_ptr<GapTrialAutopilot> {
+        throw std::runtime_error("camera calibration missing");
+      });
+  ASSERT_EQ(result.trials.size(), 1u);
+  EXPECT_EQ(result.trials[0].outcome, "error");
+  EXPECT_FALSE(result.trials[0].evaluation.success);
+  EXPECT_EQ(result.trials[0].evaluation.failure_reason, "error: camera calibration missing");
+  const nlohmann::json summary = SummarizeGapBench(result);
+  EXPECT_EQ(summary["successes"], 0);
+  EXPECT_EQ(summary["error_at_gap"]["trials"], 0);
+}
+
+TEST(GapBench, WritesSummaryTrialsCsvAndReport) {
+  GapBenchOptions options = QuickOptions(0);
+  options.trials = 2;
+  const GapBenchResult result = RunGapBench(options, MakeGroundTruthGapAutopilotFactory());
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "aperture_gap_bench_test";
+  std::filesystem::remove_all(dir);
+  output::OutputFolder out(dir.string());
+  WriteGapBenchOutputs(result, out);
+  const nlohmann::json& summary = out.summary();
+  EXPECT_EQ(summary["trials"], 2);
+  EXPECT_EQ(summary["successes"], 2);
+  EXPECT_DOUBLE_EQ(summary["success_rate"].get<double>(), 1.0);
+  for (const char* key : {"position_mean", "position_std", "velocity_mean", "velocity_std"}) {
+    ASSERT_EQ(summary["error_at_gap"][key].size(), 3u) << key;
+  }
+  for (const char* key : {"orientation_mean_deg", "orientation_std_deg"}) {
+    ASSERT_EQ(summary["error_at_gap"][key].size(), 2u) << key;
+  }
+  // Mean |error| per axis is the mean of the per-trial |errors|.
+  const nlohmann::json& per_trial = summary["per_trial"];
+  ASSERT_EQ(per_trial.size(), 2u);
+  const double x0 = per_trial[0]["error_at_gap"]["position_m"][0].get<double>();
+  const double x1 = per_trial[1]["error_at_gap"]["position_m"][0].get<double>();
+  EXPECT_NEAR(summary["error_at_gap"]["position_mean"][0].get<double>(),
+              0.5 * (std::abs(x0) + std::abs(x1)), 1e-12);
+  EXPECT_EQ(per_trial[0]["roll_deg"], result.trials[0].config.roll_deg);
+  EXPECT_EQ(per_trial[0]["outcome"], "duration_reached");
+  std::ifstream csv(dir / "trials.csv");
+  int lines = 0;
+  for (std::string line; std::getline(csv, line);) ++lines;
+  EXPECT_EQ(lines, 3);  // header + 2 trials
+  EXPECT_GT(std::filesystem::file_size(dir / "report.html"), 1000u);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace aperture::experiments
