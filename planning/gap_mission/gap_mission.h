@@ -124,7 +124,9 @@ struct GapMissionParams {
   // carries on with the IMU: stopping there would hit the gap anyway.
   double detection_timeout_s = 0.5;
   double approach_commit_s = 1.0;
-  double recovered_hold_s = 0.5;  // time in the recovery's position stage before done [s]
+  // Time in the recovery's position stage before done [s]: long enough that the vehicle has
+  // settled (the stage starts while attitude rates are still decaying).
+  double recovered_hold_s = 2.0;
 
   // Throws std::invalid_argument naming the field (and via the components' Validate()).
   void Validate() const;
