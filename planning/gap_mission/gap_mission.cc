@@ -26,6 +26,13 @@ void RequireNonNegative(double value, const char* field) {
   }
 }
 
+void RequireAtLeast(int value, int minimum, const char* field) {
+  if (value < minimum) {
+    throw std::invalid_argument(std::string("GapMissionParams.") + field + " must be >= " +
+                                std::to_string(minimum) + ", got " + std::to_string(value));
+  }
+}
+
 double HeadingOf(const Eigen::Quaterniond& q_WB) {
   const Eigen::Vector3d x_B = q_WB * Eigen::Vector3d::UnitX();
   return std::atan2(x_B.y(), x_B.x());
@@ -41,26 +48,14 @@ void GapMissionParams::Validate() const {
   controller.Validate();
   fallback_limits.Validate();
   recovery.Validate();
-  if (camera_id < 0) {
-    throw std::invalid_argument("GapMissionParams.camera_id must be >= 0, got " +
-                                std::to_string(camera_id));
-  }
-  if (init_detections < 1) {
-    throw std::invalid_argument("GapMissionParams.init_detections must be >= 1, got " +
-                                std::to_string(init_detections));
-  }
-  if (gravity_samples < 1) {
-    throw std::invalid_argument("GapMissionParams.gravity_samples must be >= 1, got " +
-                                std::to_string(gravity_samples));
-  }
+  RequireAtLeast(camera_id, 0, "camera_id");
+  RequireAtLeast(init_detections, 1, "init_detections");
+  RequireAtLeast(gravity_samples, 1, "gravity_samples");
   RequireNonNegative(hover_s, "hover_s");
   RequirePositive(init_max_position_sigma_m, "init_max_position_sigma_m");
   RequirePositive(detection_covariance_scale, "detection_covariance_scale");
   RequireNonNegative(min_ground_clearance_m, "min_ground_clearance_m");
-  if (max_consecutive_rejections < 1) {
-    throw std::invalid_argument("GapMissionParams.max_consecutive_rejections must be >= 1, got " +
-                                std::to_string(max_consecutive_rejections));
-  }
+  RequireAtLeast(max_consecutive_rejections, 1, "max_consecutive_rejections");
   RequirePositive(transfer_speed_mps, "transfer_speed_mps");
   RequirePositive(min_transfer_s, "min_transfer_s");
   RequireNonNegative(start_hold_s, "start_hold_s");
