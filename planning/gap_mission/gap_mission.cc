@@ -1,5 +1,6 @@
 #include "planning/gap_mission/gap_mission.h"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -52,7 +53,7 @@ void GapMissionParams::Validate() const {
   RequireAtLeast(init_detections, 1, "init_detections");
   RequireAtLeast(gravity_samples, 1, "gravity_samples");
   RequireNonNegative(hover_s, "hover_s");
-  RequirePositive(init_max_position_sigma_m, "init_max_position_sigma_m");
+  RequirePositive(init_max_relative_sigma, "init_max_relative_sigma");
   RequirePositive(detection_covariance_scale, "detection_covariance_scale");
   RequireNonNegative(min_ground_clearance_m, "min_ground_clearance_m");
   RequireAtLeast(max_consecutive_rejections, 1, "max_consecutive_rejections");
@@ -250,6 +251,17 @@ control::QuadState GapMission::estimate() const {
   return filter_->Estimate().state;
 }
 
+double GapMission::position_sigma_m() const {
+  if (!filter_) return std::numeric_limits<double>::quiet_NaN();
+  const perception::Matrix15d P = filter_->Estimate().covariance;
+  // The largest eigenvalue of the position block (its largest diagonal entry can understate it).
+  return std::sqrt(P.block<3, 3>(perception::ErrorStateIndex::kPosition,
+                                 perception::ErrorStateIndex::kPosition)
+                       .selfadjointView<Eigen::Lower>()
+                       .eigenvalues()
+                       .maxCoeff());
+}
+
 void GapMission::Plan(double t_s) {
   const TraverseOptimizationResult traverse = OptimizeTraverseTrajectory(gap_W_, params_.traverse);
   if (traverse.status != TraverseOptimizationResult::Status::kSuccess) {
@@ -343,13 +355,9 @@ perception::AutopilotCommand GapMission::Step(double t_s) {
         Abort("gap lost while hovering", t_s);
         return Step(t_s);
       }
-      const perception::Matrix15d P = filter_->Estimate().covariance;
-      const double sigma_m =
-          std::sqrt(P.block<3, 3>(perception::ErrorStateIndex::kPosition,
-                                  perception::ErrorStateIndex::kPosition)
-                        .diagonal()
-                        .maxCoeff());
-      if (t_s - phase_start_t_s_ >= params_.hover_s && sigma_m <= params_.init_max_position_sigma_m) {
+      const double distance_m = (estimate().p_WB - gap_W_.p_WG).norm();
+      if (t_s - phase_start_t_s_ >= params_.hover_s &&
+          position_sigma_m() <= params_.init_max_relative_sigma * distance_m) {
         Plan(t_s);
         return Step(t_s);
       }

@@ -14,7 +14,7 @@ void LoadParams(config::ParamReader& reader, GapMissionParams* params) {
   reader.Read("max_consecutive_rejections", &params->max_consecutive_rejections);
   reader.Read("min_ground_clearance_m", &params->min_ground_clearance_m);
   reader.Read("hover_s", &params->hover_s);
-  reader.Read("init_max_position_sigma_m", &params->init_max_position_sigma_m);
+  reader.Read("init_max_relative_sigma", &params->init_max_relative_sigma);
   reader.Read("transfer_speed_mps", &params->transfer_speed_mps);
   reader.Read("min_transfer_s", &params->min_transfer_s);
   reader.Read("start_hold_s", &params->start_hold_s);

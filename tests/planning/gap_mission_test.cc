@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <string>
 
 #include "config/config_tree.h"
@@ -46,7 +47,8 @@ Eigen::Isometry3d TrueGap() {
 
 class GapMissionTest : public ::testing::Test {
  protected:
-  GapMissionTest() : mission_(GapMissionParams{}, Pinhole(), ForwardCameraMount(), control::VehicleParameters{}) {
+  explicit GapMissionTest(const GapMissionParams& params = GapMissionParams{})
+      : mission_(params, Pinhole(), ForwardCameraMount(), control::VehicleParameters{}) {
     Eigen::Isometry3d T_WB = Eigen::Isometry3d::Identity();
     T_WB.translation() = p_WB_;
     const Eigen::Isometry3d T_CG = (T_WB * ForwardCameraMount()).inverse() * TrueGap();
@@ -142,6 +144,63 @@ TEST_F(GapMissionTest, DetectsHoversAndPlansInTheGapAnchoredFrame) {
   EXPECT_TRUE(std::isnan(mission_.traverse_start_time_s()));
   // Transfer starts at hover: the command's thrust is close to hover, the vehicle upright.
   EXPECT_NEAR(last_command_.thrust_rates.collective_thrust_mps2, kGravity, 1.0);
+}
+
+// The hover ends at the first control step after hover_s at which the filter's position sigma is
+// within init_max_relative_sigma of the estimated distance to the gap (4 m here).
+void ExpectHoverEndsWhenSigmaIsSmallRelativeToTheDistance(
+    GapMission& mission, const std::function<void(double, std::function<bool()>)>& run,
+    const GapMissionParams& params) {
+  double last_hover_t_s = -1.0, last_hover_ratio = 0.0;
+  run(10.0, [&] {
+    if (mission.phase() == GapMissionPhase::kHover) {
+      last_hover_t_s = mission.phase_changes().back().t_s;
+      last_hover_ratio = mission.position_sigma_m() / mission.estimate().p_WB.norm();
+    }
+    return mission.phase() != GapMissionPhase::kDetect && mission.phase() != GapMissionPhase::kHover;
+  });
+  ASSERT_EQ(mission.phase(), GapMissionPhase::kTransfer) << mission.reason();
+  const auto& changes = mission.phase_changes();
+  const double hover_start_s = changes[1].t_s, plan_s = changes[2].t_s;
+  // Planning does not change the filter: its sigma now is the one the decision saw.
+  const double ratio = mission.position_sigma_m() / mission.estimate().p_WB.norm();
+  EXPECT_LE(ratio, params.init_max_relative_sigma);
+  EXPECT_GE(plan_s - hover_start_s, params.hover_s - 1e-9);
+  // The step before (10 ms earlier) was still hovering for want of hover_s or of a small sigma.
+  if (plan_s - 0.01 - hover_start_s >= params.hover_s) {
+    EXPECT_GT(last_hover_ratio, params.init_max_relative_sigma) << "at " << last_hover_t_s;
+  }
+}
+
+TEST_F(GapMissionTest, PlansWhenThePositionIsKnownRelativeToTheDistance) {
+  ExpectHoverEndsWhenSigmaIsSmallRelativeToTheDistance(
+      mission_, [&](double until_s, std::function<bool()> stop) { Run(until_s, true, stop); },
+      GapMissionParams{});
+  // At 4 m the default 2 % (8 cm) is reached within a second of hover: the absolute 5 cm that
+  // this replaced kept the vehicle hovering for ~8 s at 5 m.
+  const auto& changes = mission_.phase_changes();
+  EXPECT_LT(changes[2].t_s - changes[1].t_s, 1.0);
+}
+
+// 0.5 % = 2 cm at 4 m: the filter needs ~2.4 s of the drawn pattern's detections for it.
+GapMissionParams StrictSigmaParams() {
+  GapMissionParams params;
+  params.init_max_relative_sigma = 0.005;
+  return params;
+}
+
+class GapMissionStrictSigmaTest : public GapMissionTest {
+ protected:
+  GapMissionStrictSigmaTest() : GapMissionTest(StrictSigmaParams()) {}
+};
+
+// A tighter ratio waits longer for the same detections: the sigma, not hover_s, ends the hover.
+TEST_F(GapMissionStrictSigmaTest, WaitsLongerForATighterRatio) {
+  ExpectHoverEndsWhenSigmaIsSmallRelativeToTheDistance(
+      mission_, [&](double until_s, std::function<bool()> stop) { Run(until_s, true, stop); },
+      StrictSigmaParams());
+  const auto& changes = mission_.phase_changes();
+  EXPECT_GT(changes[2].t_s - changes[1].t_s, StrictSigmaParams().hover_s + 0.1);
 }
 
 TEST_F(GapMissionTest, AbortsIntoRecoveryWhenTheGapIsLost) {
