@@ -1,6 +1,5 @@
 #include "planning/gap_mission/gap_mission.h"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -254,11 +253,9 @@ control::QuadState GapMission::estimate() const {
 double GapMission::position_sigma_m() const {
   if (!filter_) return std::numeric_limits<double>::quiet_NaN();
   const perception::Matrix15d P = filter_->Estimate().covariance;
-  // The largest eigenvalue of the position block (its largest diagonal entry can understate it).
   return std::sqrt(P.block<3, 3>(perception::ErrorStateIndex::kPosition,
                                  perception::ErrorStateIndex::kPosition)
-                       .selfadjointView<Eigen::Lower>()
-                       .eigenvalues()
+                       .diagonal()
                        .maxCoeff());
 }
 

@@ -184,7 +184,7 @@ class GapMission : public perception::Autopilot {
   // QuadState (t_s = 0) before the filter starts.
   control::QuadState estimate() const;
   bool has_estimate() const { return filter_ != nullptr; }
-  // The filter's position 1-sigma along its most uncertain axis [m]; NaN before the filter starts.
+  // The filter's position 1-sigma along its most uncertain axis of W [m]; NaN before the filter.
   double position_sigma_m() const;
   // Gap pose in the mission frame (fixed once the frame is set; identity rotation before).
   const GapPose& gap_W() const { return gap_W_; }
