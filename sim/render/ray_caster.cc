@@ -97,7 +97,6 @@ RayHit TraceRay(const Eigen::Vector3d& d_C, const std::vector<FrameObject>& obje
                 double t_max) {
   RayHit best;
   double best_t = t_max;
-  LocalHit candidate;
   auto test = [&](int i) {
     const FrameObject& f = objects[static_cast<size_t>(i)];
     if (f.bounded) {
@@ -117,10 +116,10 @@ RayHit TraceRay(const Eigen::Vector3d& d_C, const std::vector<FrameObject>& obje
       }
     }
     const Eigen::Vector3d direction_O = f.R_OC * d_C;
-    if (IntersectPrimitive(*f.primitive, f.p_OC, direction_O, kMinT, best_t, &candidate)) {
-      best_t = candidate.t_m;
+    // Written in place (IntersectPrimitive leaves *hit alone on a miss): no copy of the hit.
+    if (IntersectPrimitive(*f.primitive, f.p_OC, direction_O, kMinT, best_t, &best.local)) {
+      best_t = best.local.t_m;
       best.index = i;
-      best.local = candidate;
       best.d_O = direction_O;
     }
   };
