@@ -476,6 +476,15 @@ TEST_F(OutputTest, Base64MatchesRfc4648Vectors) {
   EXPECT_THROW(Base64Decode("Zm9*"), std::invalid_argument);
 }
 
+// The first image embedded as a data URI with `prefix` ("data:image/png;base64,"); empty if none.
+cv::Mat DecodeFirstImage(const std::string& html, const std::string& prefix) {
+  const std::size_t begin = html.find(prefix);
+  if (begin == std::string::npos) return cv::Mat();
+  const std::size_t data_begin = begin + prefix.size();
+  const std::string encoded = html.substr(data_begin, html.find('"', data_begin) - data_begin);
+  return cv::imdecode(Base64Decode(encoded), cv::IMREAD_UNCHANGED);
+}
+
 TEST_F(OutputTest, HtmlReportEmbedsPngThatDecodesToTheSameImage) {
   fs::create_directories(directory_);
   cv::Mat image(37, 53, CV_8UC3);
@@ -504,12 +513,7 @@ TEST_F(OutputTest, HtmlReportEmbedsPngThatDecodesToTheSameImage) {
   EXPECT_EQ(html.find("<script"), std::string::npos);  // self-contained, no JS
   EXPECT_EQ(html.find("http://www.w3.org/2000/svg"), html.find("xmlns=") + 7);  // only the SVG ns
 
-  const std::string prefix = "data:image/png;base64,";
-  const std::size_t begin = html.find(prefix);
-  ASSERT_NE(begin, std::string::npos);
-  const std::size_t data_begin = begin + prefix.size();
-  const std::string encoded = html.substr(data_begin, html.find('"', data_begin) - data_begin);
-  const cv::Mat decoded = cv::imdecode(Base64Decode(encoded), cv::IMREAD_UNCHANGED);
+  const cv::Mat decoded = DecodeFirstImage(html, "data:image/png;base64,");
   ASSERT_FALSE(decoded.empty());
   ASSERT_EQ(decoded.size(), image.size());
   ASSERT_EQ(decoded.type(), image.type());
@@ -532,12 +536,7 @@ TEST_F(OutputTest, HtmlReportEmbedsJpegKeyFramesCloseToTheImage) {
   HtmlReport png_report("png");
   png_report.AddImage(image, "key frame");
   const std::string html = jpeg_report.ToHtml();
-  const std::string prefix = "data:image/jpeg;base64,";
-  const std::size_t begin = html.find(prefix);
-  ASSERT_NE(begin, std::string::npos);
-  const std::size_t data_begin = begin + prefix.size();
-  const std::string encoded = html.substr(data_begin, html.find('"', data_begin) - data_begin);
-  const cv::Mat decoded = cv::imdecode(Base64Decode(encoded), cv::IMREAD_UNCHANGED);
+  const cv::Mat decoded = DecodeFirstImage(html, "data:image/jpeg;base64,");
   ASSERT_EQ(decoded.size(), image.size());
   ASSERT_EQ(decoded.type(), image.type());
   EXPECT_LT(cv::norm(decoded, image, cv::NORM_L1) / image.total() / 3, 2.0);
