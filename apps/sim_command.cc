@@ -31,7 +31,7 @@
 #include "output/html_report.h"
 #include "output/progress_bar.h"
 #include "output/svg_plot.h"
-#include "output/video_writer.h"
+#include "output/background_video_writer.h"
 #include "sim/scenario/scenario.h"
 #include "sim/scenario/scenario_sitl.h"
 #include "sim/sitl/ground_truth_autopilot.h"
@@ -153,7 +153,7 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
       : led_flight ? led_flight->autopilot()
                    : static_cast<perception::Autopilot&>(ground_truth_autopilot);
 
-  std::unique_ptr<output::VideoWriter> video;
+  std::unique_ptr<output::BackgroundVideoWriter> video;
   std::vector<cv::Mat> key_frames;
   const int frames_expected =
       params.cameras.empty() ? 0
@@ -179,8 +179,8 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
     cv::Mat third_person = composite.colRange(onboard.cols, composite.cols);
     PutLines(&third_person, {"third person"});
     if (!video) {
-      video =
-          std::make_unique<output::VideoWriter>(out.Path("sim"), params.cameras[primary].rate_hz);
+      video = std::make_unique<output::BackgroundVideoWriter>(out.Path("sim"),
+                                                              params.cameras[primary].rate_hz);
     }
     video->Write(composite);
     if (key_frame) key_frames.push_back(composite);
