@@ -4,13 +4,12 @@
 // 70 deg horizontal field of view, colour, 4:3, with a red box marking the vehicle.
 //
 // For the video it is rendered at render_height (a quarter of the pixels of the 480-row onboard
-// view by default) on every render_every-th onboard frame and shown scaled to the onboard view's
-// height; frames in between repeat the last view (on a 30 Hz camera, every 3rd frame gives a
-// 10 Hz chase view). Its cost is booked in render_s(), apart from the onboard cameras.
+// view by default) on every render_every-th video frame and shown scaled to the onboard view's
+// height; frames in between repeat the last view (a 15 frames/s video: a 7.5 Hz chase view). Its cost is booked in render_s(), apart from the onboard cameras.
 // Usage (before the SitlRunner is built, so the collision check can ignore the marker):
 //   ChaseView chase(ChaseViewParams{}, 480, &scenario.scene());
 //   params.collision.ignored_objects.push_back(ChaseView::kMarkerName);
-//   ... per onboard frame: cv::hconcat(onboard, chase.Update(index, state, false), composite);
+//   ... per video frame: cv::hconcat(onboard, chase.Update(index, state, false), composite);
 #include <Eigen/Geometry>
 #include <opencv2/core/mat.hpp>
 
@@ -22,7 +21,7 @@
 namespace aperture::apps {
 
 struct ChaseViewParams {
-  int render_every = 3;      // onboard frames per chase render (>= 1)
+  int render_every = 2;      // video frames per chase render (>= 1)
   int render_height = 240;   // rendered rows (width 4/3 of it) before scaling to the video [px]
   // Throws std::invalid_argument naming the option (--chase-every, --chase-height) when out of
   // range: render_every < 1, render_height outside [16, 2160].
@@ -38,7 +37,7 @@ class ChaseView {
 
   static constexpr const char* kMarkerName = "sitl_vehicle_marker";
 
-  // The view for onboard frame `frame_index` (0, 1, ...) with the vehicle at `state`: rendered
+  // The view for video frame `frame_index` (0, 1, ...) with the vehicle at `state`: rendered
   // afresh when frame_index % render_every == 0 or `force_render`, else the previous one.
   // BGR 8-bit, view_height x 4/3 view_height.
   const cv::Mat& Update(int frame_index, const control::QuadState& state, bool force_render);

@@ -45,6 +45,7 @@ struct SimOptions {
   std::string scenario;
   std::optional<std::uint64_t> seed;
   double duration_s = 10.0;
+  int video_every = 2;  // camera frames per video frame (30 Hz camera: 15 frames/s video)
   ChaseViewParams chase;
 };
 
@@ -158,33 +159,38 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
   const int frames_expected =
       params.cameras.empty() ? 0
                              : static_cast<int>(options.duration_s * params.cameras[primary].rate_hz);
-  // At most ~kMaxKeyFrames evenly spaced key frames in the report (JPEG), whatever the duration.
+  // The video takes every video_every-th camera frame (the others cost nothing here); at most
+  // ~kMaxKeyFrames evenly spaced video frames go into the report (JPEG), whatever the duration.
+  const int video_frames_expected = frames_expected / options.video_every;
   constexpr int kMaxKeyFrames = 8;
-  const int key_frame_every = std::max(1, (frames_expected + kMaxKeyFrames - 1) / kMaxKeyFrames);
+  const int key_frame_every =
+      std::max(1, (video_frames_expected + kMaxKeyFrames - 1) / kMaxKeyFrames);
   output::ProgressBar progress("frames", static_cast<std::size_t>(frames_expected));
-  int frames_seen = 0;
+  int frames_seen = 0, video_frames = 0;
   sim::SitlHooks hooks = sim::MakeScenarioHooks(&scenario);
   hooks.on_frame = [&](int camera_index, const sim::CapturedFrame& captured,
                        const control::QuadState& state) {
     if (camera_index != primary) return;
+    progress.Update(static_cast<std::size_t>(++frames_seen));
+    if ((frames_seen - 1) % options.video_every != 0) return;
     cv::Mat onboard = ToBgr(captured.frame.image);
     PutLines(&onboard,
              {params.cameras[primary].name + Format("  t = %.2f s", state.t_s),
               Format("p = [%.2f %.2f %.2f] m", state.p_WB.x(), state.p_WB.y(), state.p_WB.z()),
               Format("|v| = %.2f m/s", state.v_W.norm()), autopilot.status()});
     if (mission) mission->DrawOverlay(&onboard);
-    const bool key_frame = frames_seen % key_frame_every == 0;
+    const bool key_frame = video_frames % key_frame_every == 0;
     cv::Mat composite;
-    cv::hconcat(onboard, chase.Update(frames_seen, state, key_frame), composite);
+    cv::hconcat(onboard, chase.Update(video_frames, state, key_frame), composite);
     cv::Mat third_person = composite.colRange(onboard.cols, composite.cols);
     PutLines(&third_person, {"third person"});
     if (!video) {
-      video = std::make_unique<output::BackgroundVideoWriter>(out.Path("sim"),
-                                                              params.cameras[primary].rate_hz);
+      video = std::make_unique<output::BackgroundVideoWriter>(
+          out.Path("sim"), params.cameras[primary].rate_hz / options.video_every);
     }
     video->Write(composite);
     if (key_frame) key_frames.push_back(composite);
-    progress.Update(static_cast<std::size_t>(++frames_seen));
+    ++video_frames;
   };
   const sim::SitlResult result = runner.Run(autopilot, hooks);
   progress.Finish();
@@ -198,7 +204,11 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
   summary["config"] = nlohmann::json::parse(tree.ToJson());
   AddSitlRunSummary(result, &summary);
   summary["timing"]["chase_render_s"] = chase.render_s();  // part of hooks_s
-  summary["timing"]["chase_renders"] = chase.renders();
+  summary["video"] = {{"frames", video_frames},
+                      {"rate_hz", params.cameras.empty()
+                                      ? 0.0
+                                      : params.cameras[primary].rate_hz / options.video_every},
+                      {"chase_renders", chase.renders()}};
   if (result.collision) {
     summary["collision"] = {{"object", result.collision->object_name},
                             {"part", result.collision->part},
@@ -260,9 +270,13 @@ void AddSimCommand(CLI::App& app, int* exit_code) {
   command->add_option("--seed", options->seed, "Seed of the scenario and every sensor stream");
   command->add_option("--duration", options->duration_s, "Simulated time [s]")
       ->check(CLI::PositiveNumber);
+  command->add_option("--video-every", options->video_every,
+                      "Put every N-th camera frame into the video (default 2; the video's frame "
+                      "rate is the camera's / N)")
+      ->check(CLI::PositiveNumber);
   command->add_option("--chase-every", options->chase.render_every,
-                      "Render the video's third-person view every N-th camera frame, repeat it "
-                      "in between (default 3)");
+                      "Render the video's third-person view every N-th video frame, repeat it "
+                      "in between (default 2)");
   command->add_option("--chase-height", options->chase.render_height,
                       "Rows the third-person view is rendered at, scaled to the video "
                       "(default 240 px)");
