@@ -11,6 +11,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Eigenvalues>
@@ -45,6 +46,15 @@ std::shared_ptr<const perception::CameraModel> BenchCamera() {
   // 752 x 480, 90 deg horizontal field of view: f = 376 / tan(45 deg).
   return std::make_shared<perception::PinholeCamera>(
       752, 480, perception::PinholeIntrinsics{376.0, 376.0, 375.5, 239.5});
+}
+
+// The bench's renderer of `configuration` seen by `camera`, its camera noise seeded with `seed`.
+LedTargetRenderer MakeBenchRenderer(const LedConfiguration& configuration,
+                                    std::shared_ptr<const perception::CameraModel> camera,
+                                    std::uint64_t seed) {
+  LedTargetRenderParams render_params;
+  render_params.effects.seed = seed;
+  return LedTargetRenderer(configuration, std::move(camera), render_params);
 }
 
 // Thesis Fig. C.2 analog with four LEDs (circumsphere ~11 cm): three in the arm plane, one below,
@@ -240,9 +250,7 @@ void RunAccuracy(const SectionSizes& sizes, std::uint64_t seed, BenchContext* co
                  nlohmann::json* summary, output::HtmlReport* report) {
   const LedConfiguration configuration = FourLedConfiguration();
   const auto camera = BenchCamera();
-  LedTargetRenderParams render_params;
-  render_params.effects.seed = seed;
-  LedTargetRenderer renderer(configuration, camera, render_params);
+  LedTargetRenderer renderer = MakeBenchRenderer(configuration, camera, seed);
   LedTracker tracker(configuration, camera);
   const std::vector<FrameRecord> records =
       TrackSequence("accuracy", renderer, tracker, ExcitationPose, sizes.accuracy_frames, 0,
@@ -272,9 +280,7 @@ void RunSweep(const SectionSizes& sizes, std::uint64_t seed, BenchContext* conte
               nlohmann::json* summary, output::HtmlReport* report) {
   const LedConfiguration configuration = LedConfiguration::Default();
   const auto camera = BenchCamera();
-  LedTargetRenderParams render_params;
-  render_params.effects.seed = seed + 1;
-  LedTargetRenderer renderer(configuration, camera, render_params);
+  LedTargetRenderer renderer = MakeBenchRenderer(configuration, camera, seed + 1);
   const perception::LedCorrespondenceSearch search(configuration.p_T());
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
@@ -379,9 +385,7 @@ void RunOcclusion(const SectionSizes& sizes, std::uint64_t seed, BenchContext* c
                   nlohmann::json* summary, output::HtmlReport* report) {
   const LedConfiguration configuration = LedConfiguration::Default();
   const auto camera = BenchCamera();
-  LedTargetRenderParams render_params;
-  render_params.effects.seed = seed + 2;
-  LedTargetRenderer renderer(configuration, camera, render_params);
+  LedTargetRenderer renderer = MakeBenchRenderer(configuration, camera, seed + 2);
   LedTracker tracker(configuration, camera);
   const int n = sizes.occlusion_frames;
   const int occlusion_begin = static_cast<int>(0.3 * n), occlusion_end = static_cast<int>(0.7 * n);
@@ -446,9 +450,7 @@ void RunMerged(const SectionSizes& sizes, std::uint64_t seed, BenchContext* cont
                nlohmann::json* summary, output::HtmlReport* report) {
   const LedConfiguration configuration = LedConfiguration::Default();
   const auto camera = BenchCamera();
-  LedTargetRenderParams render_params;
-  render_params.effects.seed = seed + 3;
-  LedTargetRenderer renderer(configuration, camera, render_params);
+  LedTargetRenderer renderer = MakeBenchRenderer(configuration, camera, seed + 3);
   LedTracker tracker(configuration, camera);
   // LEDs a and b (the longest baseline) lie along the viewing direction at angle 0; the target
   // turns about y_C through -12..12 deg, so their images approach, merge and separate again.

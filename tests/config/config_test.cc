@@ -9,9 +9,12 @@
 
 #include "config/config_tree.h"
 #include "config/param_reader.h"
+#include "tests/support/message_of.h"
 
 namespace aperture::config {
 namespace {
+
+using test_support::MessageOf;
 
 using ::testing::AllOf;
 using ::testing::HasSubstr;
@@ -81,18 +84,6 @@ class ConfigFileTest : public ::testing::Test {
     return path;
   }
 
-  // Message of the std::invalid_argument thrown by `action` ("" when nothing is thrown).
-  template <typename Action>
-  static std::string ErrorOf(Action action) {
-    try {
-      action();
-    } catch (const std::invalid_argument& e) {
-      return e.what();
-    }
-    ADD_FAILURE() << "expected std::invalid_argument";
-    return "";
-  }
-
   std::filesystem::path directory_;
 };
 
@@ -141,7 +132,7 @@ TEST_F(ConfigFileTest, UnknownKeyNamesFileLineKeyAndKnownKeys) {
                                      "    treshold: 0.1\n");
   ConfigTree tree;
   tree.MergeFile(file);
-  const std::string message = ErrorOf([&] { LoadVehicle(tree); });
+  const std::string message = MessageOf([&] { LoadVehicle(tree); });
   // "treshold" is on line 5, column 5 (1-based).
   EXPECT_THAT(message, AllOf(HasSubstr(file + ":5:5"), HasSubstr("vehicle.detector.treshold"),
                              HasSubstr("pyramid_levels"), HasSubstr("threshold")));
@@ -150,7 +141,7 @@ TEST_F(ConfigFileTest, UnknownKeyNamesFileLineKeyAndKnownKeys) {
 TEST_F(ConfigFileTest, OverriddenUnknownKeyPointsAtTheLaterFile) {
   const std::string first = WriteFile("first.yaml", "vehicle: {extra: 1}\n");
   const std::string second = WriteFile("second.yaml", "# comment\n\nvehicle:\n  extra: 2\n");
-  const std::string message = ErrorOf([&] {
+  const std::string message = MessageOf([&] {
     LoadVehicle(ConfigTree::FromCommandLine("", {first, second}, {}));
   });
   EXPECT_THAT(message, HasSubstr(second + ":4:3"));
@@ -160,13 +151,13 @@ TEST_F(ConfigFileTest, OverriddenUnknownKeyPointsAtTheLaterFile) {
 TEST_F(ConfigFileTest, UnknownTopLevelSectionIsRejected) {
   ConfigTree tree;
   tree.MergeFile(WriteFile("top.yaml", "vehicle: {}\nvehicel: {mass_kg: 1}\n"));
-  EXPECT_THAT(ErrorOf([&] { LoadVehicle(tree); }),
+  EXPECT_THAT(MessageOf([&] { LoadVehicle(tree); }),
               AllOf(HasSubstr("top.yaml:2:1"), HasSubstr("'vehicel'"), HasSubstr("vehicle")));
 }
 
 TEST_F(ConfigFileTest, UnknownKeyFromSetNamesTheSetItem) {
   const ConfigTree tree = ConfigTree::FromCommandLine("", {}, {"vehicle.mas_kg=2"});
-  EXPECT_THAT(ErrorOf([&] { LoadVehicle(tree); }),
+  EXPECT_THAT(MessageOf([&] { LoadVehicle(tree); }),
               AllOf(HasSubstr("--set vehicle.mas_kg=2"), HasSubstr("mass_kg")));
 }
 
@@ -174,7 +165,7 @@ TEST_F(ConfigFileTest, WrongTypeNamesFileLineKeyAndExpectedType) {
   const std::string file = WriteFile("type.yaml", "vehicle:\n  rotors: 4\n  mass_kg: heavy\n");
   ConfigTree tree;
   tree.MergeFile(file);
-  EXPECT_THAT(ErrorOf([&] { LoadVehicle(tree); }),
+  EXPECT_THAT(MessageOf([&] { LoadVehicle(tree); }),
               AllOf(HasSubstr(file + ":3:12"), HasSubstr("vehicle.mass_kg"), HasSubstr("a number"),
                     HasSubstr("'heavy'")));
 }
@@ -184,7 +175,7 @@ TEST_F(ConfigFileTest, WrongTypeFromSetKeepsSetLocationAfterFileMerge) {
   // the --set item, not at the file line the key used to come from.
   const std::string file = WriteFile("ok.yaml", "vehicle:\n  rotors: 4\n");
   const ConfigTree tree = ConfigTree::FromCommandLine("", {file}, {"vehicle.rotors=2.5"});
-  const std::string message = ErrorOf([&] { LoadVehicle(tree); });
+  const std::string message = MessageOf([&] { LoadVehicle(tree); });
   EXPECT_THAT(message, AllOf(HasSubstr("--set vehicle.rotors=2.5"), HasSubstr("an integer")));
   EXPECT_THAT(message, ::testing::Not(HasSubstr("ok.yaml")));
 }
@@ -195,11 +186,11 @@ TEST_F(ConfigFileTest, ScalarTypesAreStrict) {
     tree.MergeYaml(yaml, "inline");
     return LoadVehicle(tree);
   };
-  EXPECT_THAT(ErrorOf([&] { load("vehicle: {rotors: 4x}"); }), HasSubstr("an integer"));
-  EXPECT_THAT(ErrorOf([&] { load("vehicle: {enabled: 1}"); }), HasSubstr("a boolean"));
-  EXPECT_THAT(ErrorOf([&] { load("vehicle: {name: [a, b]}"); }), HasSubstr("a string"));
-  EXPECT_THAT(ErrorOf([&] { load("vehicle: {mass_kg: }"); }), HasSubstr("null"));
-  EXPECT_THAT(ErrorOf([&] { load("vehicle: {detector: 3}"); }), HasSubstr("must be a map"));
+  EXPECT_THAT(MessageOf([&] { load("vehicle: {rotors: 4x}"); }), HasSubstr("an integer"));
+  EXPECT_THAT(MessageOf([&] { load("vehicle: {enabled: 1}"); }), HasSubstr("a boolean"));
+  EXPECT_THAT(MessageOf([&] { load("vehicle: {name: [a, b]}"); }), HasSubstr("a string"));
+  EXPECT_THAT(MessageOf([&] { load("vehicle: {mass_kg: }"); }), HasSubstr("null"));
+  EXPECT_THAT(MessageOf([&] { load("vehicle: {detector: 3}"); }), HasSubstr("must be a map"));
   const TestParams params = load("vehicle: {enabled: true, mass_kg: 1e-1, rotors: -2}");
   EXPECT_TRUE(params.enabled);
   EXPECT_EQ(params.mass_kg, 0.1);
@@ -209,17 +200,17 @@ TEST_F(ConfigFileTest, ScalarTypesAreStrict) {
 
 TEST_F(ConfigFileTest, MalformedSetItemsNameTheItem) {
   ConfigTree tree;
-  EXPECT_THAT(ErrorOf([&] { tree.ApplySet("gap.roll_deg"); }),
+  EXPECT_THAT(MessageOf([&] { tree.ApplySet("gap.roll_deg"); }),
               AllOf(HasSubstr("gap.roll_deg"), HasSubstr("key=value")));
-  EXPECT_THAT(ErrorOf([&] { tree.ApplySet("=3"); }), HasSubstr("'=3'"));
-  EXPECT_THAT(ErrorOf([&] { tree.ApplySet("gap..roll=3"); }), HasSubstr("gap..roll=3"));
-  EXPECT_THAT(ErrorOf([&] { tree.ApplySet("gap.roll=[1,2"); }), HasSubstr("gap.roll=[1,2"));
+  EXPECT_THAT(MessageOf([&] { tree.ApplySet("=3"); }), HasSubstr("'=3'"));
+  EXPECT_THAT(MessageOf([&] { tree.ApplySet("gap..roll=3"); }), HasSubstr("gap..roll=3"));
+  EXPECT_THAT(MessageOf([&] { tree.ApplySet("gap.roll=[1,2"); }), HasSubstr("gap.roll=[1,2"));
 }
 
 TEST_F(ConfigFileTest, InvalidYamlFileNamesFileAndLine) {
   const std::string file = WriteFile("broken.yaml", "vehicle:\n  mass_kg: [1, 2\n");
   ConfigTree tree;
-  EXPECT_THAT(ErrorOf([&] { tree.MergeFile(file); }), HasSubstr(file + ":"));
+  EXPECT_THAT(MessageOf([&] { tree.MergeFile(file); }), HasSubstr(file + ":"));
   EXPECT_THROW(tree.MergeFile((directory_ / "missing.yaml").string()), std::runtime_error);
 }
 
@@ -243,9 +234,9 @@ TEST_F(ConfigFileTest, VectorsMatricesAndSequencesFromFileAndSet) {
   EXPECT_EQ(from_set.inertia_kgm2, flat);
 
   EXPECT_THAT(
-      ErrorOf([&] { LoadVehicle(ConfigTree::FromCommandLine("", {}, {"vehicle.p_BC=[1,2]"})); }),
+      MessageOf([&] { LoadVehicle(ConfigTree::FromCommandLine("", {}, {"vehicle.p_BC=[1,2]"})); }),
       AllOf(HasSubstr("vehicle.p_BC"), HasSubstr("3 numbers")));
-  EXPECT_THAT(ErrorOf([&] {
+  EXPECT_THAT(MessageOf([&] {
                 LoadVehicle(ConfigTree::FromCommandLine("", {}, {"vehicle.leds=[[0,0,x]]"}));
               }),
               HasSubstr("vehicle.leds[0][2]"));
@@ -255,7 +246,7 @@ TEST_F(ConfigFileTest, EnumsMapNamesAndListAllowedValues) {
   EXPECT_EQ(LoadVehicle(ConfigTree::FromCommandLine("", {}, {"vehicle.body_rate=lqr"})).body_rate,
             BodyRateController::kLqr);
   const std::string file = WriteFile("enum.yaml", "vehicle:\n  body_rate: pid\n");
-  EXPECT_THAT(ErrorOf([&] { LoadVehicle(ConfigTree::FromCommandLine("", {file}, {})); }),
+  EXPECT_THAT(MessageOf([&] { LoadVehicle(ConfigTree::FromCommandLine("", {file}, {})); }),
               AllOf(HasSubstr(file + ":2:14"), HasSubstr("'pid'"), HasSubstr("proportional, lqr")));
 }
 
@@ -279,7 +270,7 @@ TEST_F(ConfigFileTest, UnsignedAndFloatFields) {
   EXPECT_EQ(count, 12u);
   EXPECT_EQ(gain, 0.25f);
   std::size_t bad = 0;
-  EXPECT_THAT(ErrorOf([&] { reader.Read("bad", &bad); }), HasSubstr("non-negative integer"));
+  EXPECT_THAT(MessageOf([&] { reader.Read("bad", &bad); }), HasSubstr("non-negative integer"));
 }
 
 TEST_F(ConfigFileTest, ToJsonTypesScalarsAndKeepsQuotedStrings) {
@@ -295,7 +286,7 @@ TEST_F(ConfigFileTest, StandaloneReaderNamesItsSource) {
   TestParams params;
   reader.Read("mass_kg", &params.mass_kg);
   EXPECT_EQ(params.mass_kg, 1.0);
-  EXPECT_THAT(ErrorOf([&] { reader.RejectUnknownKeys(); }),
+  EXPECT_THAT(MessageOf([&] { reader.RejectUnknownKeys(); }),
               AllOf(HasSubstr("inline.yaml:2:1"), HasSubstr("'extra'")));
 }
 

@@ -21,6 +21,7 @@
 #include "perception/graph/serial_executor.h"
 #include "perception/graph/timing_stats.h"
 #include "perception/sensor_data.h"
+#include "tests/support/message_of.h"
 
 namespace aperture::perception {
 namespace {
@@ -74,13 +75,7 @@ std::vector<std::unique_ptr<Node>> MakeNodes(Nodes... nodes) {
 
 // Returns the message of the std::invalid_argument that building the graph throws.
 std::string BuildError(std::vector<std::unique_ptr<Node>> nodes) {
-  try {
-    FrameGraph graph(std::move(nodes));
-  } catch (const std::invalid_argument& error) {
-    return error.what();
-  }
-  ADD_FAILURE() << "FrameGraph accepted an invalid graph";
-  return "";
+  return test_support::MessageOf([&] { FrameGraph graph(std::move(nodes)); });
 }
 
 TEST(FrameGraphValidation, MissingProducerNamesConsumerAndSlot) {

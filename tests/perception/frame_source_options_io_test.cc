@@ -6,6 +6,8 @@
 
 #include <stdexcept>
 
+#include "tests/support/message_of.h"
+
 namespace aperture::perception {
 namespace {
 
@@ -19,13 +21,7 @@ FrameSourceOptions Load(const std::string& yaml) {
 }
 
 std::string ErrorOf(const std::string& yaml) {
-  try {
-    Load(yaml);
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "accepted: " << yaml;
-  return "";
+  return test_support::MessageOf([&] { Load(yaml); });
 }
 
 TEST(FrameSourceOptionsIo, ReadsEveryFieldAndKeepsDefaultsForAbsentKeys) {

@@ -16,9 +16,12 @@
 #include "perception/io/open_frame_source.h"
 #include "perception/io/video_file_source.h"
 #include "tests/perception/temp_directory.h"
+#include "tests/support/message_of.h"
 
 namespace aperture::perception {
 namespace {
+
+using test_support::MessageOf;
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
@@ -47,21 +50,6 @@ std::vector<Frame> ReadAll(FrameSource& source) {
   std::vector<Frame> frames;
   while (std::optional<Frame> frame = source.Next()) frames.push_back(std::move(*frame));
   return frames;
-}
-
-// Runs `action`, expects exception type E, returns its message.
-template <typename E, typename Action>
-std::string MessageOf(Action action) {
-  try {
-    action();
-  } catch (const E& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "wrong exception type: " << e.what();
-    return "";
-  }
-  ADD_FAILURE() << "expected an exception";
-  return "";
 }
 
 FrameSourceOptions Options(double fps, bool skip = false, ColorMode mode = ColorMode::kGray) {

@@ -7,6 +7,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "tests/perception/temp_directory.h"
+#include "tests/support/message_of.h"
 
 namespace aperture::perception {
 namespace {
@@ -37,13 +38,8 @@ std::vector<unsigned char> Encode(const std::string& extension, int channels) {
 
 // ReadImageFile's std::runtime_error message for `file` (empty and a test failure if it succeeds).
 std::string MessageOfRead(const std::filesystem::path& file) {
-  try {
-    ReadImageFile(file, ColorMode::kGray);
-  } catch (const std::runtime_error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << file << " was accepted";
-  return "";
+  return test_support::MessageOf<std::runtime_error>(
+      [&] { ReadImageFile(file, ColorMode::kGray); });
 }
 
 struct FormatCase {

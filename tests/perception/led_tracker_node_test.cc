@@ -14,9 +14,12 @@
 #include "perception/led/se3_twist.h"
 #include "perception/sensor_data.h"
 #include "temp_directory.h"
+#include "tests/support/message_of.h"
 
 namespace aperture::perception {
 namespace {
+
+using test_support::MessageOf;
 
 using ::testing::HasSubstr;
 
@@ -27,15 +30,6 @@ FrontEndResources Resources() {
       std::make_shared<PinholeCamera>(752, 480, PinholeIntrinsics{420.0, 420.0, 375.5, 239.5});
   resources.calibration = calibration;
   return resources;
-}
-
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "no error";
 }
 
 TEST(LedTrackerNodeTest, ReportsThePoseStreamWithCovarianceMetricsAndOverlay) {
@@ -87,19 +81,19 @@ TEST(LedTrackerNodeTest, ReportsThePoseStreamWithCovarianceMetricsAndOverlay) {
 TEST(LedTrackerNodeTest, NeedsACalibrationAndAValidConfiguration) {
   FrontEndRegistry registry;
   RegisterBuiltinFrontEnds(registry);
-  EXPECT_THAT(ErrorOf([&] { registry.Create("led"); }), HasSubstr("--calib"));
+  EXPECT_THAT(MessageOf([&] { registry.Create("led"); }), HasSubstr("--calib"));
   test_support::TempDirectory dir;
   const std::string path = (dir.path() / "square.yaml").string();
   std::ofstream(path) << "leds: [[0.1, 0, 0], [0, 0.1, 0], [-0.1, 0, 0], [0, -0.1, 0]]\n";
   config::ConfigTree tree;
   tree.ApplySet("config=" + path);
   config::ParamReader params = tree.Reader();
-  EXPECT_THAT(ErrorOf([&] { registry.Create("led", params, Resources()); }),
+  EXPECT_THAT(MessageOf([&] { registry.Create("led", params, Resources()); }),
               ::testing::AllOf(HasSubstr("square.yaml"), HasSubstr("coplanar")));
   config::ConfigTree bad_method;
   bad_method.ApplySet("p3p=epnp");
   config::ParamReader bad_params = bad_method.Reader();
-  EXPECT_THAT(ErrorOf([&] { registry.Create("led", bad_params, Resources()); }),
+  EXPECT_THAT(MessageOf([&] { registry.Create("led", bad_params, Resources()); }),
               HasSubstr("epnp"));
 }
 

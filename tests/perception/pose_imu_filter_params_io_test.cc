@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "tests/support/message_of.h"
+
 namespace aperture::perception {
 namespace {
 
@@ -18,12 +20,7 @@ PoseImuFilterParams Load(const std::string& yaml) {
 }
 
 std::string ErrorOf(const std::string& yaml) {
-  try {
-    Load(yaml);
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "";
+  return test_support::MessageOf([&] { Load(yaml); });
 }
 
 TEST(PoseImuFilterParamsIoTest, LoadsGivenKeysAndKeepsDefaults) {

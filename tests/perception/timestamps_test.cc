@@ -6,8 +6,12 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "tests/support/message_of.h"
+
 namespace aperture::perception {
 namespace {
+
+using test_support::MessageOf;
 
 using ::testing::HasSubstr;
 
@@ -19,18 +23,6 @@ TimestampTable ParseTimes(const std::string& text) {
 TimestampTable ParseCsv(const std::string& text) {
   std::istringstream in(text);
   return ParseEurocDataCsv(in, "cam0/data.csv");
-}
-
-// Runs `parse` expecting std::invalid_argument and returns its message.
-template <typename Parse>
-std::string ErrorOf(Parse parse) {
-  try {
-    parse();
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected std::invalid_argument";
-  return "";
 }
 
 TEST(TimesTxt, SingleColumnIsPositionalSecondsSkippingCommentsAndBlankLines) {
@@ -50,16 +42,16 @@ TEST(TimesTxt, PairFormAcceptsNameFirstTimeFirstAndCommas) {
 }
 
 TEST(TimesTxt, MalformedLinesNameTheFileAndLine) {
-  EXPECT_THAT(ErrorOf([] { ParseTimes("0.1\nzero point two\n"); }),
+  EXPECT_THAT(MessageOf([] { ParseTimes("0.1\nzero point two\n"); }),
               HasSubstr("seq/times.txt line 2"));
-  EXPECT_THAT(ErrorOf([] { ParseTimes("0.1\nabc\n"); }), HasSubstr("'abc' is not a number"));
-  EXPECT_THAT(ErrorOf([] { ParseTimes("a.png b.png\n"); }), HasSubstr("line 1"));
-  EXPECT_THAT(ErrorOf([] { ParseTimes("0.1 0.2\n"); }), HasSubstr("exactly one file name"));
-  EXPECT_THAT(ErrorOf([] { ParseTimes("nan\n"); }), HasSubstr("not a number"));
-  EXPECT_THAT(ErrorOf([] { ParseTimes("0.1\na.png 0.2\n"); }), HasSubstr("mixes"));
+  EXPECT_THAT(MessageOf([] { ParseTimes("0.1\nabc\n"); }), HasSubstr("'abc' is not a number"));
+  EXPECT_THAT(MessageOf([] { ParseTimes("a.png b.png\n"); }), HasSubstr("line 1"));
+  EXPECT_THAT(MessageOf([] { ParseTimes("0.1 0.2\n"); }), HasSubstr("exactly one file name"));
+  EXPECT_THAT(MessageOf([] { ParseTimes("nan\n"); }), HasSubstr("not a number"));
+  EXPECT_THAT(MessageOf([] { ParseTimes("0.1\na.png 0.2\n"); }), HasSubstr("mixes"));
   // Nanoseconds or milliseconds written where seconds belong.
-  EXPECT_THAT(ErrorOf([] { ParseTimes("1403636579763555584\n"); }), HasSubstr("too large"));
-  EXPECT_THAT(ErrorOf([] { ParseTimes("a.png 1403636579763\n"); }), HasSubstr("too large"));
+  EXPECT_THAT(MessageOf([] { ParseTimes("1403636579763555584\n"); }), HasSubstr("too large"));
+  EXPECT_THAT(MessageOf([] { ParseTimes("a.png 1403636579763\n"); }), HasSubstr("too large"));
   EXPECT_EQ(ParseTimes("1403636579.763555\n").t_s.size(), 1u);  // Unix seconds are fine
 }
 
@@ -79,14 +71,15 @@ TEST(EurocCsv, ParsesNanosecondsToSecondsExactlyInTheIntegerPart) {
 
 TEST(EurocCsv, MalformedLinesNameTheFileLineAndContent) {
   const std::string header = "#timestamp [ns],filename\n";
-  std::string message = ErrorOf([&] { ParseCsv(header + "1403636579763555584,a.png\nabc,b.png\n"); });
+  std::string message =
+      MessageOf([&] { ParseCsv(header + "1403636579763555584,a.png\nabc,b.png\n"); });
   EXPECT_THAT(message, HasSubstr("cam0/data.csv line 3"));
   EXPECT_THAT(message, HasSubstr("'abc' is not an integer nanosecond timestamp"));
-  EXPECT_THAT(ErrorOf([&] { ParseCsv(header + "1.5,a.png\n"); }), HasSubstr("'1.5'"));
-  EXPECT_THAT(ErrorOf([&] { ParseCsv(header + "123\n"); }), HasSubstr("two comma-separated"));
-  EXPECT_THAT(ErrorOf([&] { ParseCsv(header + "1,a.png,x\n"); }), HasSubstr("two comma"));
-  EXPECT_THAT(ErrorOf([&] { ParseCsv(header + "1,\n"); }), HasSubstr("empty file name"));
-  EXPECT_THAT(ErrorOf([&] { ParseCsv(header + "99999999999999999999,a.png\n"); }),
+  EXPECT_THAT(MessageOf([&] { ParseCsv(header + "1.5,a.png\n"); }), HasSubstr("'1.5'"));
+  EXPECT_THAT(MessageOf([&] { ParseCsv(header + "123\n"); }), HasSubstr("two comma-separated"));
+  EXPECT_THAT(MessageOf([&] { ParseCsv(header + "1,a.png,x\n"); }), HasSubstr("two comma"));
+  EXPECT_THAT(MessageOf([&] { ParseCsv(header + "1,\n"); }), HasSubstr("empty file name"));
+  EXPECT_THAT(MessageOf([&] { ParseCsv(header + "99999999999999999999,a.png\n"); }),
               HasSubstr("not an integer nanosecond"));
 }
 
@@ -117,12 +110,14 @@ TEST(NanosecondsToSeconds, SplitsSecondsAndFraction) {
 TEST(CheckStrictlyIncreasing, AcceptsIncreasingAndNamesTheOffendingPair) {
   const std::vector<std::string> labels = {"'a.png'", "'b.png'", "'c.png'"};
   EXPECT_NO_THROW(CheckStrictlyIncreasing({0.0, 0.1, 0.2}, labels, "seq"));
-  const std::string backwards =
-      ErrorOf([&] { CheckStrictlyIncreasing({0.0, 0.2, 0.1}, labels, "seq"); });
+  const std::string backwards = MessageOf([&] {
+    CheckStrictlyIncreasing({0.0, 0.2, 0.1}, labels, "seq");
+  });
   EXPECT_THAT(backwards, HasSubstr("'c.png'"));
   EXPECT_THAT(backwards, HasSubstr("is before that of 'b.png'"));
-  const std::string duplicate =
-      ErrorOf([&] { CheckStrictlyIncreasing({0.0, 0.1, 0.1}, labels, "seq"); });
+  const std::string duplicate = MessageOf([&] {
+    CheckStrictlyIncreasing({0.0, 0.1, 0.1}, labels, "seq");
+  });
   EXPECT_THAT(duplicate, HasSubstr("duplicates that of 'b.png'"));
 }
 

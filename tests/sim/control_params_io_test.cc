@@ -7,23 +7,18 @@
 #include <stdexcept>
 #include <string>
 
+#include "tests/support/message_of.h"
+
 namespace aperture::sim {
 namespace {
+
+using test_support::MessageOf;
 
 ControlStackParams Load(const std::string& yaml) {
   config::ParamReader reader(YAML::Load(yaml), "control.yaml");
   ControlStackParams params;
   LoadParams(reader, &params);
   return params;
-}
-
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "";
 }
 
 using BodyRateLaw = control::LowLevelControllerParameters::BodyRateLaw;
@@ -70,29 +65,29 @@ lqr: {state_weights: [1, 2, 3, 4, 5, 6]}
 }
 
 TEST(ControlParamsIoTest, UnknownKeyIsNamedWithTheKnownKeys) {
-  const std::string error = ErrorOf([] { Load("drag_compensaton: true"); });
+  const std::string error = MessageOf([] { Load("drag_compensaton: true"); });
   EXPECT_NE(error.find("drag_compensaton"), std::string::npos) << error;
   EXPECT_NE(error.find("drag_compensation"), std::string::npos) << error;
-  const std::string nested = ErrorOf([] { Load("position: {p_xy: 3}"); });
+  const std::string nested = MessageOf([] { Load("position: {p_xy: 3}"); });
   EXPECT_NE(nested.find("position.p_xy"), std::string::npos) << nested;
 }
 
 TEST(ControlParamsIoTest, BadEnumValueListsTheAllowedValues) {
-  const std::string error = ErrorOf([] { Load("body_rate: pid"); });
+  const std::string error = MessageOf([] { Load("body_rate: pid"); });
   EXPECT_NE(error.find("body_rate"), std::string::npos) << error;
   EXPECT_NE(error.find("lqr, p_low, p_high"), std::string::npos) << error;
-  const std::string mixer = ErrorOf([] { Load("mixer: fancy"); });
+  const std::string mixer = MessageOf([] { Load("mixer: fancy"); });
   EXPECT_NE(mixer.find("iterative, one_shot"), std::string::npos) << mixer;
-  const std::string saturation = ErrorOf([] { Load("saturation: none"); });
+  const std::string saturation = MessageOf([] { Load("saturation: none"); });
   EXPECT_NE(saturation.find("prioritized, clipping"), std::string::npos) << saturation;
 }
 
 TEST(ControlParamsIoTest, NonPhysicalValuesAreRejectedWithTheirName) {
-  EXPECT_NE(ErrorOf([] { Load("lqr: {input_weights: [1, 0, 1]}"); }).find("input_weights"),
+  EXPECT_NE(MessageOf([] { Load("lqr: {input_weights: [1, 0, 1]}"); }).find("input_weights"),
             std::string::npos);
-  EXPECT_NE(ErrorOf([] { Load("position: {p_xy_per_s2: -1}"); }).find("control.yaml"),
+  EXPECT_NE(MessageOf([] { Load("position: {p_xy_per_s2: -1}"); }).find("control.yaml"),
             std::string::npos);
-  EXPECT_NE(ErrorOf([] { Load("assured_yaw_torque_Nm: -1"); }).find("assured_yaw_torque_Nm"),
+  EXPECT_NE(MessageOf([] { Load("assured_yaw_torque_Nm: -1"); }).find("assured_yaw_torque_Nm"),
             std::string::npos);
 }
 

@@ -1,14 +1,18 @@
 #include "sim/sim_params_io.h"
 
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
 #include <functional>
 #include <stdexcept>
 #include <string>
 
-#include <gtest/gtest.h>
-#include <yaml-cpp/yaml.h>
+#include "tests/support/message_of.h"
 
 namespace aperture::sim {
 namespace {
+
+using test_support::MessageOf;
 
 template <typename Params>
 Params Load(const std::string& yaml) {
@@ -16,15 +20,6 @@ Params Load(const std::string& yaml) {
   Params params;
   LoadParams(reader, &params);
   return params;
-}
-
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "";
 }
 
 TEST(SimParamsIoTest, LoadsVehicleAndDynamicsKeepingDefaultsForAbsentKeys) {
@@ -75,18 +70,21 @@ TEST(SimParamsIoTest, LoadsSensors) {
 }
 
 TEST(SimParamsIoTest, RejectsUnknownKeysMalformedRowsAndInvalidValuesNamingThem) {
-  EXPECT_NE(ErrorOf([] { Load<QuadrotorDynamicsParams>("vehicle: {rotor: {tau_up: 0.01}}"); })
-                .find("tau_up"),
+  EXPECT_NE(MessageOf([] {
+              Load<QuadrotorDynamicsParams>("vehicle: {rotor: {tau_up: 0.01}}");
+            }).find("tau_up"),
             std::string::npos);
-  const std::string push_error = ErrorOf([] { Load<DisturbanceParams>("pushes: [[1.0, 0.5, 0]]"); });
+  const std::string push_error =
+      MessageOf([] { Load<DisturbanceParams>("pushes: [[1.0, 0.5, 0]]"); });
   EXPECT_NE(push_error.find("pushes[0]"), std::string::npos) << push_error;
-  const std::string imu_error = ErrorOf([] { Load<ImuSensorParams>("{latency_s: -1}"); });
+  const std::string imu_error = MessageOf([] { Load<ImuSensorParams>("{latency_s: -1}"); });
   EXPECT_NE(imu_error.find("test.yaml"), std::string::npos) << imu_error;
   EXPECT_NE(imu_error.find("latency_s"), std::string::npos) << imu_error;
   const std::string mass_error =
-      ErrorOf([] { Load<QuadrotorDynamicsParams>("vehicle: {mass_kg: 0}"); });
+      MessageOf([] { Load<QuadrotorDynamicsParams>("vehicle: {mass_kg: 0}"); });
   EXPECT_NE(mass_error.find("mass_kg"), std::string::npos) << mass_error;
-  EXPECT_NE(ErrorOf([] { Load<RangeSensorParams>("{seed: -3}"); }).find("seed"), std::string::npos);
+  EXPECT_NE(MessageOf([] { Load<RangeSensorParams>("{seed: -3}"); }).find("seed"),
+            std::string::npos);
 }
 
 }  // namespace
