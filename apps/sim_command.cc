@@ -22,6 +22,7 @@
 #include <opencv2/imgproc.hpp>
 #include <optional>
 
+#include "apps/chase_view.h"
 #include "apps/command_support.h"
 #include "apps/commands.h"
 #include "apps/sim_gap_mission.h"
@@ -30,8 +31,7 @@
 #include "output/html_report.h"
 #include "output/progress_bar.h"
 #include "output/svg_plot.h"
-#include "output/video_writer.h"
-#include "perception/camera/pinhole_camera.h"
+#include "output/background_video_writer.h"
 #include "sim/scenario/scenario.h"
 #include "sim/scenario/scenario_sitl.h"
 #include "sim/sitl/ground_truth_autopilot.h"
@@ -45,36 +45,9 @@ struct SimOptions {
   std::string scenario;
   std::optional<std::uint64_t> seed;
   double duration_s = 10.0;
+  int video_every = 2;  // camera frames per video frame (30 Hz camera: 15 frames/s video)
+  ChaseViewParams chase;
 };
-
-// Name of the marker box drawn for the vehicle in the third-person view; it is parked far below
-// the ground otherwise, and ignored by the collision check.
-constexpr const char* kVehicleMarker = "sitl_vehicle_marker";
-const Eigen::Vector3d kMarkerParking_W(0.0, 0.0, -1000.0);
-
-Eigen::Isometry3d PoseOf(const control::QuadState& state) {
-  Eigen::Isometry3d T_WB = Eigen::Isometry3d::Identity();
-  T_WB.linear() = state.q_WB.toRotationMatrix();
-  T_WB.translation() = state.p_WB;
-  return T_WB;
-}
-
-// Chase view: 1.6 m behind and 0.7 m above the vehicle in its heading frame (no roll/pitch, so the
-// horizon stays level), looking forward and 15 deg down.
-Eigen::Isometry3d ChaseCameraPose(const control::QuadState& state) {
-  const Eigen::Vector3d x_B = state.q_WB * Eigen::Vector3d::UnitX();
-  const double yaw = std::atan2(x_B.y(), x_B.x());
-  const Eigen::Matrix3d R_WH = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  // C (x right, y down, z forward) in the heading frame H (x forward, y left, z up), pitched down.
-  Eigen::Matrix3d R_HC;
-  R_HC << 0, 0, 1, -1, 0, 0, 0, -1, 0;
-  const double pitch = 15.0 * M_PI / 180.0;
-  R_HC = Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()).toRotationMatrix() * R_HC;
-  Eigen::Isometry3d T_WC = Eigen::Isometry3d::Identity();
-  T_WC.linear() = R_WH * R_HC;
-  T_WC.translation() = state.p_WB + R_WH * Eigen::Vector3d(-1.6, 0.0, 0.7);
-  return T_WC;
-}
 
 cv::Mat ToBgr(const cv::Mat& image) {
   cv::Mat bgr;
@@ -127,7 +100,9 @@ void WriteReport(const sim::SitlResult& result, const std::vector<cv::Mat>& key_
   AddSitlCommandPlots(result, &report);
   if (!key_frames.empty()) {
     report.AddSection("Key frames (onboard | third person)");
-    for (const cv::Mat& frame : key_frames) report.AddImage(frame);
+    for (const cv::Mat& frame : key_frames) {
+      report.AddImage(frame, "", output::HtmlReport::ImageEncoding::kJpeg);
+    }
   }
   report.Write(out.Path("report.html"));
 }
@@ -150,13 +125,15 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
   for (sim::SitlCamera& camera : params.cameras) camera.render.ground_truth = false;
   const Eigen::Isometry3d T_WB_start = scenario.T_WB_start();
   params.SetSeed(scenario_params.seed);
-  params.collision.ignored_objects.push_back(kVehicleMarker);
-  sim::Material marker_material;
-  marker_material.color = sim::Rgb(0.9f, 0.1f, 0.1f);  // red
-  Eigen::Isometry3d T_parking = Eigen::Isometry3d::Identity();
-  T_parking.translation() = kMarkerParking_W;
-  const int marker_id = scenario.scene().AddObject(
-      {kVehicleMarker, sim::Box{Eigen::Vector3d(0.36, 0.36, 0.06)}, marker_material, T_parking});
+  // The video shows the first body-mounted camera (else the first camera) beside a third-person
+  // view of the same height.
+  int primary = 0;
+  for (int i = static_cast<int>(params.cameras.size()) - 1; i >= 0; --i) {
+    if (!params.cameras[i].T_WC_fixed) primary = i;
+  }
+  const int view_height = params.cameras.empty() ? 480 : params.cameras[primary].model->height();
+  ChaseView chase(options.chase, view_height, &scenario.scene());
+  params.collision.ignored_objects.push_back(ChaseView::kMarkerName);
 
   sim::SitlRunner runner(params, &scenario.scene());
   sim::GroundTruthAutopilotParams autopilot_params;
@@ -177,56 +154,43 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
       : led_flight ? led_flight->autopilot()
                    : static_cast<perception::Autopilot&>(ground_truth_autopilot);
 
-  // The video shows the first body-mounted camera (else the first camera) beside a third-person
-  // view of the same height, 4:3, colour.
-  int primary = 0;
-  for (int i = static_cast<int>(params.cameras.size()) - 1; i >= 0; --i) {
-    if (!params.cameras[i].T_WC_fixed) primary = i;
-  }
-  const int view_height = params.cameras.empty() ? 480 : params.cameras[primary].model->height();
-  const int view_width = view_height * 4 / 3;
-  const double focal_px = 0.5 * view_width / std::tan(35.0 * M_PI / 180.0);  // 70 deg FOV
-  const perception::PinholeCamera chase_camera(
-      view_width, view_height,
-      perception::PinholeIntrinsics{focal_px, focal_px, 0.5 * (view_width - 1),
-                                    0.5 * (view_height - 1)});
-  sim::RayCaster chase_caster;
-  sim::RenderOptions chase_options;
-  chase_options.color = true;
-  chase_options.ground_truth = false;
-  const sim::CameraEffects chase_effects(sim::CameraEffectsParams{});
-
-  std::unique_ptr<output::VideoWriter> video;
+  std::unique_ptr<output::BackgroundVideoWriter> video;
   std::vector<cv::Mat> key_frames;
   const int frames_expected =
-      params.cameras.empty() ? 0 : static_cast<int>(options.duration_s * params.cameras[0].rate_hz);
+      params.cameras.empty() ? 0
+                             : static_cast<int>(options.duration_s * params.cameras[primary].rate_hz);
+  // The video takes every video_every-th camera frame (the others cost nothing here); at most
+  // ~kMaxKeyFrames evenly spaced video frames go into the report (JPEG), whatever the duration.
+  const int video_frames_expected = frames_expected / options.video_every;
+  constexpr int kMaxKeyFrames = 8;
+  const int key_frame_every =
+      std::max(1, (video_frames_expected + kMaxKeyFrames - 1) / kMaxKeyFrames);
   output::ProgressBar progress("frames", static_cast<std::size_t>(frames_expected));
-  int frames_seen = 0;
+  int frames_seen = 0, video_frames = 0;
   sim::SitlHooks hooks = sim::MakeScenarioHooks(&scenario);
   hooks.on_frame = [&](int camera_index, const sim::CapturedFrame& captured,
                        const control::QuadState& state) {
     if (camera_index != primary) return;
+    progress.Update(static_cast<std::size_t>(++frames_seen));
+    if ((frames_seen - 1) % options.video_every != 0) return;
     cv::Mat onboard = ToBgr(captured.frame.image);
     PutLines(&onboard,
              {params.cameras[primary].name + Format("  t = %.2f s", state.t_s),
               Format("p = [%.2f %.2f %.2f] m", state.p_WB.x(), state.p_WB.y(), state.p_WB.z()),
               Format("|v| = %.2f m/s", state.v_W.norm()), autopilot.status()});
     if (mission) mission->DrawOverlay(&onboard);
-    scenario.scene().SetPose(marker_id, PoseOf(state));
-    const sim::RenderOutput chase =
-        chase_caster.Render(scenario.scene(), chase_camera, ChaseCameraPose(state), chase_options);
-    scenario.scene().SetPose(marker_id, T_parking);
-    cv::Mat third_person = chase_effects.ToImage8U(chase.radiance, captured.frame.index);
-    PutLines(&third_person, {"third person"});
+    const bool key_frame = video_frames % key_frame_every == 0;
     cv::Mat composite;
-    cv::hconcat(onboard, third_person, composite);
+    cv::hconcat(onboard, chase.Update(video_frames, state, key_frame), composite);
+    cv::Mat third_person = composite.colRange(onboard.cols, composite.cols);
+    PutLines(&third_person, {"third person"});
     if (!video) {
-      video =
-          std::make_unique<output::VideoWriter>(out.Path("sim"), params.cameras[primary].rate_hz);
+      video = std::make_unique<output::BackgroundVideoWriter>(
+          out.Path("sim"), params.cameras[primary].rate_hz / options.video_every);
     }
     video->Write(composite);
-    if (frames_seen == 0 || frames_seen % 90 == 0) key_frames.push_back(composite);
-    progress.Update(static_cast<std::size_t>(++frames_seen));
+    if (key_frame) key_frames.push_back(composite);
+    ++video_frames;
   };
   const sim::SitlResult result = runner.Run(autopilot, hooks);
   progress.Finish();
@@ -239,6 +203,12 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
                        {"autopilot", result.autopilot_name}};
   summary["config"] = nlohmann::json::parse(tree.ToJson());
   AddSitlRunSummary(result, &summary);
+  summary["timing"]["chase_render_s"] = chase.render_s();  // part of hooks_s
+  summary["video"] = {{"frames", video_frames},
+                      {"rate_hz", params.cameras.empty()
+                                      ? 0.0
+                                      : params.cameras[primary].rate_hz / options.video_every},
+                      {"chase_renders", chase.renders()}};
   if (result.collision) {
     summary["collision"] = {{"object", result.collision->object_name},
                             {"part", result.collision->part},
@@ -300,6 +270,16 @@ void AddSimCommand(CLI::App& app, int* exit_code) {
   command->add_option("--seed", options->seed, "Seed of the scenario and every sensor stream");
   command->add_option("--duration", options->duration_s, "Simulated time [s]")
       ->check(CLI::PositiveNumber);
+  command->add_option("--video-every", options->video_every,
+                      "Put every N-th camera frame into the video (default 2; the video's frame "
+                      "rate is the camera's / N)")
+      ->check(CLI::PositiveNumber);
+  command->add_option("--chase-every", options->chase.render_every,
+                      "Render the video's third-person view every N-th video frame, repeat it "
+                      "in between (default 2)");
+  command->add_option("--chase-height", options->chase.render_height,
+                      "Rows the third-person view is rendered at, scaled to the video "
+                      "(default 240 px)");
   AddCommonOptions(command, &options->common);
   // Flows with their own options (apps/sim_<flow>_command.cc); a scenario run needs NAME and --out.
   command->get_option("--out")->required(false);

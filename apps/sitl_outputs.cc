@@ -82,7 +82,8 @@ void AddSitlRunSummary(const sim::SitlResult& result, nlohmann::json* summary) {
                           {"dynamics_s", result.timing.dynamics_s},
                           {"render_s", result.timing.render_s},
                           {"autopilot_s", result.timing.autopilot_s},
-                          {"collision_s", result.timing.collision_s}};
+                          {"collision_s", result.timing.collision_s},
+                          {"hooks_s", result.timing.hooks_s}};
 }
 
 }  // namespace aperture::apps

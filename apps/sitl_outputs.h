@@ -13,7 +13,8 @@ void WriteSitlTimeSeries(const sim::SitlResult& result, output::OutputFolder& ou
 // A "Commands" section: collective thrust and body-rate commands, rotor thrusts.
 void AddSitlCommandPlots(const sim::SitlResult& result, output::HtmlReport* report);
 
-// summary["sim_time_s"], ["real_time_factor"], ["timing"], ["outcome"], ["reason"].
+// summary["sim_time_s"], ["real_time_factor"], ["timing"] (SitlTiming: wall_time_s, dynamics_s,
+// render_s, autopilot_s, collision_s, hooks_s), ["outcome"], ["reason"].
 void AddSitlRunSummary(const sim::SitlResult& result, nlohmann::json* summary);
 
 }  // namespace aperture::apps

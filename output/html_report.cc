@@ -116,20 +116,28 @@ void HtmlReport::AddSvg(const std::string& svg, const std::string& caption) {
   blocks_.push_back(Figure(svg, caption));
 }
 
-void HtmlReport::AddImage(const cv::Mat& image, const std::string& caption) {
+void HtmlReport::AddImage(const cv::Mat& image, const std::string& caption,
+                          ImageEncoding encoding) {
+  const bool jpeg = encoding == ImageEncoding::kJpeg;
   if (image.empty() || image.depth() != CV_8U ||
-      (image.channels() != 1 && image.channels() != 3 && image.channels() != 4)) {
+      (image.channels() != 1 && image.channels() != 3 && (image.channels() != 4 || jpeg))) {
     throw std::invalid_argument("report image '" + caption +
-                                "' must be a non-empty 8-bit image with 1, 3 or 4 channels");
+                                "' must be a non-empty 8-bit image with 1 or 3 channels (4 for "
+                                "PNG)");
   }
-  std::vector<std::uint8_t> png;
-  if (!cv::imencode(".png", image, png)) {
-    throw std::runtime_error("PNG encoding failed for report image '" + caption + "'");
+  constexpr int kJpegQuality = 85;  // no visible artefacts on rendered frames and overlay text
+  std::vector<std::uint8_t> encoded;
+  const bool ok = jpeg ? cv::imencode(".jpg", image, encoded, {cv::IMWRITE_JPEG_QUALITY, kJpegQuality})
+                       : cv::imencode(".png", image, encoded);
+  if (!ok) {
+    throw std::runtime_error(std::string(jpeg ? "JPEG" : "PNG") +
+                             " encoding failed for report image '" + caption + "'");
   }
   blocks_.push_back(Figure("<img alt=\"" + EscapeXml(caption) + "\" width=\"" +
                                std::to_string(image.cols) + "\" height=\"" +
-                               std::to_string(image.rows) + "\" src=\"data:image/png;base64," +
-                               Base64Encode(png) + "\"/>",
+                               std::to_string(image.rows) + "\" src=\"data:image/" +
+                               (jpeg ? "jpeg" : "png") + ";base64," + Base64Encode(encoded) +
+                               "\"/>",
                            caption));
 }
 

@@ -1,6 +1,6 @@
 #pragma once
-// HtmlReport: one self-contained report.html (inline CSS, inline SVG, images as base64 PNG data
-// URIs) that opens offline in any browser. Blocks appear in the order they are added.
+// HtmlReport: one self-contained report.html (inline CSS, inline SVG, images as base64 PNG or
+// JPEG data URIs) that opens offline in any browser. Blocks appear in the order they are added.
 //
 //   HtmlReport report("aperture run: gap sequence");
 //   report.AddSection("Summary");
@@ -27,9 +27,13 @@ class HtmlReport {
   void AddTable(const nlohmann::json& data, const std::string& caption = "");
   // `svg` is inserted verbatim (trusted: produced by SvgPlot).
   void AddSvg(const std::string& svg, const std::string& caption = "");
-  // PNG-encodes `image` (8-bit 1/3/4 channels, BGR order as elsewhere in OpenCV) and embeds it.
+  // kPng: lossless (for images read back or measured); kJpeg: quality 85, ~10x smaller on
+  // rendered frames (for video key frames; 4-channel images are not JPEG-encoded: use kPng).
+  enum class ImageEncoding { kPng, kJpeg };
+  // Encodes `image` (8-bit 1/3/4 channels, BGR order as elsewhere in OpenCV) and embeds it.
   // std::invalid_argument naming `caption` for an empty image or an unsupported type.
-  void AddImage(const cv::Mat& image, const std::string& caption = "");
+  void AddImage(const cv::Mat& image, const std::string& caption = "",
+                ImageEncoding encoding = ImageEncoding::kPng);
 
   std::string ToHtml() const;
   // Writes ToHtml() atomically to `path`.

@@ -5,6 +5,8 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <variant>
+#include <vector>
 
 namespace aperture::sim {
 namespace {
@@ -38,7 +40,11 @@ CollisionChecker::CollisionChecker(const control::VehicleParameters& vehicle,
                                    const CollisionParams& params)
     : params_(params) {
   params_.Validate();
-  for (int i = 0; i < 4; ++i) rotor_positions_B_.push_back(vehicle.RotorPosition_B(i));
+  reach_m_ = params_.body_radius_m;
+  for (int i = 0; i < 4; ++i) {
+    rotor_positions_B_.push_back(vehicle.RotorPosition_B(i));
+    reach_m_ = std::max(reach_m_, rotor_positions_B_.back().norm() + params_.propeller_radius_m);
+  }
   // Fibonacci sphere: near-uniform directions, the golden-angle spiral in z.
   const double golden_angle = M_PI * (3.0 - std::sqrt(5.0));
   for (int i = 0; i < params_.sphere_rays; ++i) {
@@ -79,39 +85,68 @@ std::optional<Collision> CollisionChecker::Check(const Scene* scene,
   }
   if (scene == nullptr || scene->objects().empty()) return std::nullopt;
 
-  const auto IsIgnored = [this](const std::string& name) {
-    return std::find(params_.ignored_objects.begin(), params_.ignored_objects.end(), name) !=
-           params_.ignored_objects.end();
+  // Broad phase: every ray below lies within reach_m_ of the segment previous_p_WB -> p, so an
+  // object whose bounding sphere is farther than that cannot be hit (nor an ignored one, nor an
+  // LED: IntersectPrimitive never hits those).
+  struct Candidate {
+    const SceneObject* object;
+    Eigen::Isometry3d T_OW;
   };
+  std::vector<Candidate> candidates;
+  const Eigen::Vector3d sweep_W = p - previous_p_WB;
+  for (const SceneObject& object : scene->objects()) {
+    if (std::holds_alternative<Led>(object.primitive) ||
+        std::find(params_.ignored_objects.begin(), params_.ignored_objects.end(), object.name) !=
+            params_.ignored_objects.end()) {
+      continue;
+    }
+    const double radius_m = BoundingRadius(object.primitive);
+    if (std::isfinite(radius_m)) {
+      const Eigen::Vector3d c_W = object.T_WO * BoundingCenter(object.primitive);
+      const double s = sweep_W.squaredNorm() > 0.0
+                           ? std::clamp((c_W - previous_p_WB).dot(sweep_W) / sweep_W.squaredNorm(),
+                                        0.0, 1.0)
+                           : 1.0;
+      if ((c_W - (previous_p_WB + s * sweep_W)).norm() > radius_m + reach_m_) continue;
+    }
+    candidates.push_back({&object, object.T_WO.inverse()});
+  }
+  if (candidates.empty()) return std::nullopt;
+
   std::optional<Collision> nearest;
   double nearest_fraction = std::numeric_limits<double>::infinity();
-  // Keeps the hit reached after the smallest fraction of its ray's length.
+  // Keeps the hit reached after the smallest fraction of its ray's length; the part's name is
+  // built for a new nearest hit only.
   const auto cast = [&](const Eigen::Vector3d& o_W, const Eigen::Vector3d& d_W, double length_m,
-                        const std::string& part) {
-    double t_start_m = 0.0;
-    std::optional<Hit> hit = scene->Intersect(o_W, d_W, t_start_m, length_m);
-    while (hit && IsIgnored(scene->object(hit->object_id).name)) {
-      t_start_m = hit->t_m;  // Intersect's interval is open: the next surface along the ray
-      hit = scene->Intersect(o_W, d_W, t_start_m, length_m);
+                        const char* part, int index) {
+    const Eigen::Vector3d d = d_W.normalized();
+    double best_t = length_m;
+    const SceneObject* hit_object = nullptr;
+    for (const Candidate& candidate : candidates) {
+      LocalHit local;
+      if (IntersectPrimitive(candidate.object->primitive, candidate.T_OW * o_W,
+                             candidate.T_OW.linear() * d, 0.0, best_t, &local)) {
+        best_t = local.t_m;
+        hit_object = candidate.object;
+      }
     }
-    if (!hit) return;
-    const double fraction = hit->t_m / length_m;
+    if (hit_object == nullptr) return;
+    const double fraction = best_t / length_m;
     if (fraction < nearest_fraction) {
       nearest_fraction = fraction;
-      nearest = Collision{scene->object(hit->object_id).name, part, hit->p_W};
+      nearest = Collision{hit_object->name,
+                          index > 0 ? std::string(part) + " " + std::to_string(index) : part,
+                          o_W + best_t * d};
     }
   };
-  const Eigen::Vector3d sweep_W = p - previous_p_WB;
-  if (sweep_W.norm() > 1e-9) cast(previous_p_WB, sweep_W.normalized(), sweep_W.norm(), "sweep");
+  if (sweep_W.norm() > 1e-9) cast(previous_p_WB, sweep_W, sweep_W.norm(), "sweep", 0);
   if (nearest) return nearest;
-  for (const Eigen::Vector3d& d : sphere_directions_) cast(p, d, params_.body_radius_m, "body");
+  for (const Eigen::Vector3d& d : sphere_directions_) cast(p, d, params_.body_radius_m, "body", 0);
   for (int i = 0; i < 4; ++i) {
     const Eigen::Vector3d arm_W = R_WB * rotor_positions_B_[i];
-    const std::string index = std::to_string(i + 1);
-    cast(p, arm_W.normalized(), arm_W.norm(), "arm " + index);
-    const std::string propeller = "propeller " + index;
+    cast(p, arm_W, arm_W.norm(), "arm", i + 1);
     for (const Eigen::Vector3d& d_B : disk_directions_B_) {
-      cast(p + arm_W, R_WB * d_B, params_.propeller_radius_m, propeller);
+      cast(p + arm_W, R_WB * d_B, params_.propeller_radius_m, "propeller", i + 1);
     }
   }
   return nearest;

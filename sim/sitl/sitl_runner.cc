@@ -214,6 +214,7 @@ SitlResult SitlRunner::Run(perception::Autopilot& autopilot, const SitlHooks& ho
     }
     result.timing.dynamics_s += SecondsSince(section);
     section = Clock::now();
+    double hooks_s = 0.0;  // inside this section, booked apart from rendering
     for (size_t c = 0; c < cameras.size(); ++c) {
       CameraRuntime& runtime = cameras[c];
       if (!runtime.schedule.Due(t_s)) continue;
@@ -224,7 +225,11 @@ SitlResult SitlRunner::Run(perception::Autopilot& autopilot, const SitlHooks& ho
         ++runtime.stats.frames_dropped;
         continue;
       }
-      if (hooks.before_render) hooks.before_render(t_s, state);
+      if (hooks.before_render) {
+        const Clock::time_point hook_start = Clock::now();
+        hooks.before_render(t_s, state);
+        hooks_s += SecondsSince(hook_start);
+      }
       const Eigen::Isometry3d T_BC = camera.T_BC;
       const std::optional<Eigen::Isometry3d>& T_WC_fixed = camera.T_WC_fixed;
       CapturedFrame captured = runtime.effects.Capture(
@@ -234,10 +239,15 @@ SitlResult SitlRunner::Run(perception::Autopilot& autopilot, const SitlHooks& ho
           },
           t_s - 0.5 * camera.effects.exposure_s, slot, camera.render);
       captured.frame.camera_id = static_cast<int>(c);
-      if (hooks.on_frame) hooks.on_frame(static_cast<int>(c), captured, state);
+      if (hooks.on_frame) {
+        const Clock::time_point hook_start = Clock::now();
+        hooks.on_frame(static_cast<int>(c), captured, state);
+        hooks_s += SecondsSince(hook_start);
+      }
       runtime.in_flight.emplace_back(t_s + camera.latency_s, captured.frame);
     }
-    result.timing.render_s += SecondsSince(section);
+    result.timing.render_s += SecondsSince(section) - hooks_s;
+    result.timing.hooks_s += hooks_s;
 
     // 2. deliveries.
     section = Clock::now();

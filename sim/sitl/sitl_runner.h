@@ -110,9 +110,10 @@ struct SitlCameraStats {
 struct SitlTiming {
   double wall_time_s = 0.0;
   double dynamics_s = 0.0;   // vehicle, disturbances, sensors, flight controller
-  double render_s = 0.0;     // ray casting + camera effects
+  double render_s = 0.0;     // ray casting + camera effects of the onboard cameras
   double autopilot_s = 0.0;  // every Autopilot call
   double collision_s = 0.0;
+  double hooks_s = 0.0;      // SitlHooks callbacks (the caller's scene updates, videos, views)
 };
 
 struct SitlResult {

@@ -43,6 +43,40 @@ TEST(SimCommand, HoverInTheGapScenarioWritesEveryOutput) {
   EXPECT_GT(fs::file_size(out / summary["outputs"]["video"].get<std::string>()), 0u);
 }
 
+TEST(SimCommand, VideoAndThirdPersonViewTakeEveryNthFrameAndKeyFrames) {
+  TempFolder temp("sim_chase");
+  const fs::path out = fs::path(temp.path()) / "out";
+  const CommandResult result = RunAperture(
+      "sim gapflyt --duration 1 --set cameras.front.width=80 --set cameras.front.height=60 "
+      "--set cameras.front.rate_hz=30 --video-every 2 --chase-every 3 --chase-height 30 --out " +
+      out.string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const nlohmann::json summary = ReadJson(out / "summary.json");
+  // 30 Hz over [0, 1] s: camera frames 0..30; every 2nd: 16 video frames 0..15 at 15 Hz. Chase
+  // every 3rd: 0, 3, ..., 15 (6); key frames every ceil((30 / 2) / 8) = 2nd video frame:
+  // 0, 2, ..., 14 (8), rendered afresh too; both: 0, 6, 12.
+  EXPECT_EQ(summary["cameras"][0]["frames_delivered"], 31);
+  EXPECT_EQ(summary["video"]["frames"], 16);
+  EXPECT_DOUBLE_EQ(summary["video"]["rate_hz"].get<double>(), 15.0);
+  EXPECT_EQ(summary["video"]["chase_renders"], 6 + 8 - 3);
+  const nlohmann::json& timing = summary["timing"];
+  EXPECT_GT(timing["chase_render_s"].get<double>(), 0.0);
+  EXPECT_GE(timing["hooks_s"].get<double>(), timing["chase_render_s"].get<double>());
+  std::ifstream report(out / "report.html");
+  const std::string html((std::istreambuf_iterator<char>(report)), {});
+  int jpeg_images = 0;
+  for (size_t at = html.find("data:image/jpeg;base64,"); at != std::string::npos;
+       at = html.find("data:image/jpeg;base64,", at + 1)) {
+    ++jpeg_images;
+  }
+  EXPECT_EQ(jpeg_images, 8);
+
+  const CommandResult bad = RunAperture("sim gapflyt --duration 0.1 --chase-every 0 --out " +
+                                        (fs::path(temp.path()) / "bad").string());
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.output.find("--chase-every"), std::string::npos) << bad.output;
+}
+
 TEST(SimCommand, UnknownMissionKeyIsRejectedByName) {
   TempFolder temp("sim_mission_key");
   const fs::path out = fs::path(temp.path()) / "out";

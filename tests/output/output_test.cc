@@ -25,6 +25,7 @@
 #include "output/progress_bar.h"
 #include "output/svg_plot.h"
 #include "output/tum_trajectory_writer.h"
+#include "output/background_video_writer.h"
 #include "output/video_writer.h"
 
 namespace aperture::output {
@@ -476,6 +477,15 @@ TEST_F(OutputTest, Base64MatchesRfc4648Vectors) {
   EXPECT_THROW(Base64Decode("Zm9*"), std::invalid_argument);
 }
 
+// The first image embedded as a data URI with `prefix` ("data:image/png;base64,"); empty if none.
+cv::Mat DecodeFirstImage(const std::string& html, const std::string& prefix) {
+  const std::size_t begin = html.find(prefix);
+  if (begin == std::string::npos) return cv::Mat();
+  const std::size_t data_begin = begin + prefix.size();
+  const std::string encoded = html.substr(data_begin, html.find('"', data_begin) - data_begin);
+  return cv::imdecode(Base64Decode(encoded), cv::IMREAD_UNCHANGED);
+}
+
 TEST_F(OutputTest, HtmlReportEmbedsPngThatDecodesToTheSameImage) {
   fs::create_directories(directory_);
   cv::Mat image(37, 53, CV_8UC3);
@@ -504,18 +514,36 @@ TEST_F(OutputTest, HtmlReportEmbedsPngThatDecodesToTheSameImage) {
   EXPECT_EQ(html.find("<script"), std::string::npos);  // self-contained, no JS
   EXPECT_EQ(html.find("http://www.w3.org/2000/svg"), html.find("xmlns=") + 7);  // only the SVG ns
 
-  const std::string prefix = "data:image/png;base64,";
-  const std::size_t begin = html.find(prefix);
-  ASSERT_NE(begin, std::string::npos);
-  const std::size_t data_begin = begin + prefix.size();
-  const std::string encoded = html.substr(data_begin, html.find('"', data_begin) - data_begin);
-  const cv::Mat decoded = cv::imdecode(Base64Decode(encoded), cv::IMREAD_UNCHANGED);
+  const cv::Mat decoded = DecodeFirstImage(html, "data:image/png;base64,");
   ASSERT_FALSE(decoded.empty());
   ASSERT_EQ(decoded.size(), image.size());
   ASSERT_EQ(decoded.type(), image.type());
   EXPECT_EQ(cv::norm(decoded, image, cv::NORM_INF), 0.0);  // PNG is lossless
 
   EXPECT_THROW(report.AddImage(cv::Mat(), "missing frame"), std::invalid_argument);
+}
+
+TEST_F(OutputTest, HtmlReportEmbedsJpegKeyFramesCloseToTheImage) {
+  // A smooth frame with an edge, like a rendered view: JPEG at quality 85 stays within a few
+  // grey levels on average (its 8x8 DCT quantization), at a fraction of the PNG's size.
+  cv::Mat image(120, 160, CV_8UC3);
+  for (int y = 0; y < image.rows; ++y) {
+    for (int x = 0; x < image.cols; ++x) {
+      image.at<cv::Vec3b>(y, x) = x < 80 ? cv::Vec3b(x, y, 100) : cv::Vec3b(200, 2 * y, x);
+    }
+  }
+  HtmlReport jpeg_report("jpeg");
+  jpeg_report.AddImage(image, "key frame", HtmlReport::ImageEncoding::kJpeg);
+  HtmlReport png_report("png");
+  png_report.AddImage(image, "key frame");
+  const std::string html = jpeg_report.ToHtml();
+  const cv::Mat decoded = DecodeFirstImage(html, "data:image/jpeg;base64,");
+  ASSERT_EQ(decoded.size(), image.size());
+  ASSERT_EQ(decoded.type(), image.type());
+  EXPECT_LT(cv::norm(decoded, image, cv::NORM_L1) / image.total() / 3, 2.0);
+  EXPECT_LT(html.size(), png_report.ToHtml().size());
+  EXPECT_THROW(jpeg_report.AddImage(cv::Mat(8, 8, CV_8UC4), "alpha", HtmlReport::ImageEncoding::kJpeg),
+               std::invalid_argument);
 }
 
 // ---- Progress bar
@@ -601,6 +629,42 @@ TEST_P(VideoWriterTest, WritesReadableFileAndRenamesIt) {
 
 INSTANTIATE_TEST_SUITE_P(Formats, VideoWriterTest,
                          ::testing::Values(VideoFormat::kMp4OrAvi, VideoFormat::kAvi));
+
+TEST_F(OutputTest, BackgroundVideoWriterEncodesEveryFrameInOrder) {
+  fs::create_directories(directory_);
+  const cv::Size size(64, 48);
+  // More frames than the queue holds, so Write has to wait for the encoder at times.
+  const int frame_count = 3 * static_cast<int>(BackgroundVideoWriter::kMaxQueuedFrames);
+  std::optional<std::string> written;
+  {
+    BackgroundVideoWriter video((directory_ / "overlay").string(), 10.0, VideoFormat::kAvi);
+    for (int i = 0; i < frame_count; ++i) {
+      video.Write(cv::Mat(size, CV_8UC3, cv::Scalar(10 * i, 100, 200)));
+    }
+    written = video.Close();
+    EXPECT_EQ(video.Close(), written);  // idempotent
+    EXPECT_THROW(video.Write(cv::Mat(size, CV_8UC3)), std::logic_error);
+  }
+  ASSERT_TRUE(written.has_value());
+  cv::VideoCapture capture(*written);
+  ASSERT_TRUE(capture.isOpened());
+  int frames = 0;
+  cv::Mat frame;
+  while (capture.read(frame)) {
+    // MJPG: a flat colour comes back within a few levels; 10 levels apart tells the order.
+    EXPECT_NEAR(cv::mean(frame)[0], 10.0 * frames, 4.0) << "frame " << frames;
+    ++frames;
+  }
+  EXPECT_EQ(frames, frame_count);
+}
+
+TEST_F(OutputTest, BackgroundVideoWriterReportsEncoderErrors) {
+  fs::create_directories(directory_);
+  BackgroundVideoWriter video((directory_ / "bad").string(), 10.0, VideoFormat::kAvi);
+  video.Write(cv::Mat(48, 64, CV_8UC3, cv::Scalar::all(0)));
+  video.Write(cv::Mat(10, 10, CV_8UC3, cv::Scalar::all(0)));  // size differs: the encoder fails
+  EXPECT_THROW(video.Close(), std::invalid_argument);
+}
 
 TEST_F(OutputTest, VideoWriterWithoutFramesWritesNothing) {
   fs::create_directories(directory_);

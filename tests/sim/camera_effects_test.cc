@@ -53,6 +53,48 @@ TEST(CameraEffectsTest, NoiseStatisticsFollowReadAndShotNoise) {
   EXPECT_THROW(CameraEffects(CameraEffectsParams{0.0}), std::invalid_argument);
 }
 
+// Sample correlation of a[i] and b[i] over all values of two equally sized 8-bit images.
+double Correlation(const cv::Mat& a, const cv::Mat& b) {
+  cv::Mat x, y;
+  a.clone().reshape(1, 1).convertTo(x, CV_64F);
+  b.clone().reshape(1, 1).convertTo(y, CV_64F);
+  x -= cv::mean(x)[0];
+  y -= cv::mean(y)[0];
+  return x.dot(y) / std::sqrt(x.dot(x) * y.dot(y));
+}
+
+TEST(CameraEffectsTest, NoiseIsGaussianAndIndependentBetweenValues) {
+  // BGR at mid-grey with read noise only: sigma = 0.05 * 255 = 12.75 levels, no clipping within
+  // the noise table's +-3.7 sigma.
+  CameraEffectsParams params;
+  params.read_noise_sigma = 0.05;
+  const CameraEffects effects(params);
+  const cv::Mat image = effects.ToImage8U(cv::Mat(240, 320, CV_32FC3, cv::Scalar::all(0.5)), 7);
+  cv::Mat noise;
+  image.reshape(1).convertTo(noise, CV_64F, 1.0 / 255.0, -0.5);
+  cv::Mat squared, fourth;
+  cv::multiply(noise, noise, squared);
+  cv::multiply(squared, squared, fourth);
+  const double variance = cv::mean(squared)[0];
+  // 230400 values: the sample variance has a relative std of sqrt(2 / N) = 0.3 % (1.5 % is 5
+  // sigma); quantization adds
+  // (1/255)^2 / 12 (0.05 %). The kurtosis of a Gaussian is 3 (a uniform 1.8, a Laplacian 6);
+  // its sample std is sqrt(24 / 230400) = 0.01, the table's tail cut lowers it to 2.99.
+  EXPECT_NEAR(variance, 0.05 * 0.05, 0.015 * 0.05 * 0.05);
+  EXPECT_NEAR(cv::mean(fourth)[0] / (variance * variance), 3.0, 0.06);
+  // Neighbours along a row (channels interleaved: B-G, G-R, R-next B), across rows and between
+  // the hashes' value groups: the sample correlation of independent values has std
+  // 1 / sqrt(N) ~ 0.002; 0.01 is 5 sigma.
+  const cv::Mat values = image.reshape(1);
+  const int n = values.cols;
+  for (const int shift : {1, 2, 3, 4, 5, 6}) {
+    EXPECT_LT(std::abs(Correlation(values.colRange(0, n - shift), values.colRange(shift, n))),
+              0.01)
+        << "shift " << shift;
+  }
+  EXPECT_LT(std::abs(Correlation(values.rowRange(0, 239), values.rowRange(1, 240))), 0.01);
+}
+
 TEST(CameraEffectsTest, MotionBlurSmearsAnEdgeOverTheImageMotion) {
   // A black/white vertical edge 2 m in front; the camera slides along x_C during the exposure.
   const auto camera = testing::MakeTestPinhole();

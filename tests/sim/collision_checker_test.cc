@@ -96,6 +96,38 @@ TEST_F(CollisionCheckerTest, SweepCatchesTunnellingThroughAThinPlate) {
   EXPECT_NEAR(hit->contact_p_W.x(), 1.0, 1e-9);
 }
 
+TEST_F(CollisionCheckerTest, BroadPhaseKeepsFarCentredWallsAndSweptSmallPlates) {
+  // Objects are ray-tested only when their bounding sphere comes within the vehicle's reach of the
+  // swept segment; these two are hit although their centres are far from both end positions.
+  Scene scene;
+  Eigen::Isometry3d T_WO = Eigen::Isometry3d::Identity();
+  T_WO.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  // A 3 x 20 m wall in the plane x_W = 1 spanning y_W in [-0.1, 19.9]: centre 9.9 m away.
+  T_WO.translation() = Eigen::Vector3d(1.0, 9.9, 2.0);
+  Rectangle wall;
+  wall.size_m = Eigen::Vector2d(3.0, 20.0);
+  scene.AddObject({"wall", wall, Material{}, T_WO});
+  // A 0.2 m plate in the plane x_W = -1 (the end positions below are 1 m from it).
+  T_WO.translation() = Eigen::Vector3d(-1.0, 0.0, 2.0);
+  Rectangle plate;
+  plate.size_m = Eigen::Vector2d(0.2, 0.2);
+  scene.AddObject({"plate", plate, Material{}, T_WO});
+  params_.ground_enabled = false;
+  const CollisionChecker checker(vehicle_, params_);
+  const Eigen::Vector3d near_wall(1.0 - 0.9 * params_.body_radius_m, 0.0, 2.0);
+  const std::optional<Collision> wall_hit = checker.Check(&scene, StateAt(near_wall), near_wall);
+  ASSERT_TRUE(wall_hit.has_value());
+  EXPECT_EQ(wall_hit->object_name, "wall");
+  EXPECT_NEAR(wall_hit->contact_p_W.x(), 1.0, 1e-9);
+  const Eigen::Vector3d before(-2.0, 0.0, 2.0), after(0.0, 0.0, 2.0);
+  EXPECT_FALSE(checker.Check(&scene, StateAt(after), after).has_value());
+  const std::optional<Collision> plate_hit = checker.Check(&scene, StateAt(after), before);
+  ASSERT_TRUE(plate_hit.has_value());
+  EXPECT_EQ(plate_hit->object_name, "plate");
+  EXPECT_EQ(plate_hit->part, "sweep");
+  EXPECT_NEAR(plate_hit->contact_p_W.x(), -1.0, 1e-9);
+}
+
 TEST_F(CollisionCheckerTest, RejectsNonPositiveRadius) {
   params_.body_radius_m = 0.0;
   EXPECT_THROW(CollisionChecker(vehicle_, params_), std::invalid_argument);
