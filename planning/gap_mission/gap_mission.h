@@ -198,6 +198,8 @@ class GapMission : public perception::Autopilot {
   }
   // The approach as planned before the transfer (first primitive), empty before planning.
   const std::optional<ApproachCandidate>& approach_plan() const { return approach_; }
+  // The transfer from the hover to the approach start (valid once planned, i.e. from kTransfer).
+  const MotionPrimitive& transfer_plan() const { return transfer_; }
   // Time of the approach start (end of transfer and hold); NaN before.
   double approach_start_time_s() const { return approach_start_t_s_; }
   // Latest processed detection of the forward camera and its frame time (NaN before any).

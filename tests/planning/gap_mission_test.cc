@@ -13,6 +13,7 @@
 #include "config/config_tree.h"
 #include "perception/camera/pinhole_camera.h"
 #include "planning/gap_mission/gap_mission_params_io.h"
+#include "planning/primitive_feasibility.h"
 #include "tests/perception/gap_test_images.h"
 
 namespace aperture::planning {
@@ -144,6 +145,29 @@ TEST_F(GapMissionTest, DetectsHoversAndPlansInTheGapAnchoredFrame) {
   EXPECT_TRUE(std::isnan(mission_.traverse_start_time_s()));
   // Transfer starts at hover: the command's thrust is close to hover, the vehicle upright.
   EXPECT_NEAR(last_command_.thrust_rates.collective_thrust_mps2, kGravity, 1.0);
+}
+
+// With a range reading the approach and the transfer to its start stay min_ground_clearance_m
+// above the ground measured while hovering. The range says 1 m, so the floor is 0.5 m below the
+// hover (z_W = 0): without it the cheapest approach through the 30 deg gap dips 1.1 m below the
+// gap centre, and a transfer that descended below its end points would fail too.
+TEST_F(GapMissionTest, TransferAndApproachStayAboveTheFloor) {
+  constexpr double kRangeM = 1.0;
+  Run(5.0, true, [&] {
+    mission_.OnRange({step_ * 1e-3, kRangeM, true});
+    return mission_.phase() != GapMissionPhase::kDetect && mission_.phase() != GapMissionPhase::kHover;
+  });
+  ASSERT_EQ(mission_.phase(), GapMissionPhase::kTransfer) << mission_.reason();
+  const double floor_m =
+      mission_.estimate().p_WB.z() - kRangeM + GapMissionParams{}.min_ground_clearance_m;
+  const double transfer_min_m = MinimumProjection(mission_.transfer_plan(), Eigen::Vector3d::UnitZ());
+  EXPECT_GE(transfer_min_m, floor_m);
+  ASSERT_TRUE(mission_.approach_plan().has_value());
+  EXPECT_GE(MinimumProjection(mission_.approach_plan()->primitive, Eigen::Vector3d::UnitZ()), floor_m);
+  // The transfer ends where the approach starts.
+  EXPECT_TRUE(mission_.transfer_plan()
+                  .Position(mission_.transfer_plan().duration_s())
+                  .isApprox(mission_.approach_plan()->primitive.initial_position_W(), 1e-9));
 }
 
 // The hover ends at the first control step after hover_s at which the filter's position sigma is
