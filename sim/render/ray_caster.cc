@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 namespace aperture::sim {
@@ -33,6 +34,9 @@ constexpr double kPlaneRejectAbsolute_m = 1e-9;
 constexpr int kTileSize = 16;
 // Widening of each tile's ray cone [rad]: covers the float rounding of the stored rays.
 constexpr double kTileConeMargin_rad = 1e-5;
+// Relative shrink of each tile's lower bounds on the hit distance: covers the stored rays' norm
+// (float rounding, |d| = 1 +- 1e-7, and t is in units of |d|) and the rounding of the bound.
+constexpr double kTileLowerDistanceRelative = 1e-6;
 
 float Luminance(const Rgb& c) { return 0.299f * c.x() + 0.587f * c.y() + 0.114f * c.z(); }
 
@@ -55,29 +59,44 @@ struct FrameObject {
   double radius_sq;
 };
 
+// A candidate object of an image tile with a lower bound on the distance t at which any ray of
+// the tile can hit it (0 when unknown).
+struct TileCandidate {
+  int index;  // into FrameContext::objects
+  double t_lower_m;
+};
+
 struct FrameContext {
   std::vector<FrameObject> objects;
   Eigen::Matrix3d R_WC;
-  // Candidate object indices per image tile: tile_objects[tile_begin[t] .. tile_begin[t + 1]).
-  std::vector<int> tile_objects;
+  // Candidates per image tile, each list sorted by t_lower_m:
+  // tile_candidates[tile_begin[t] .. tile_begin[t + 1]).
+  std::vector<TileCandidate> tile_candidates;
   std::vector<size_t> tile_begin;
-  std::vector<int> all_objects;  // 0 .. objects.size() - 1
+  std::vector<TileCandidate> all_objects;  // every object, t_lower_m = 0
 
   // Candidate list of tile t.
-  std::pair<const int*, const int*> Candidates(size_t t) const {
-    return {tile_objects.data() + tile_begin[t], tile_objects.data() + tile_begin[t + 1]};
+  std::pair<const TileCandidate*, const TileCandidate*> Candidates(size_t t) const {
+    return {tile_candidates.data() + tile_begin[t], tile_candidates.data() + tile_begin[t + 1]};
   }
 };
 
-// Nearest hit along the unit ray d_C from the camera centre with t < t_max among the candidate
-// objects [first, last) (indices into objects); returns the object index (or -1) and fills *hit.
-// Tries `hint` first so its hit tightens t for the early-outs.
-int TraceRay(const Eigen::Vector3d& d_C, const std::vector<FrameObject>& objects,
-             std::pair<const int*, const int*> candidates, int hint, double t_max,
-             LocalHit* hit) {
-  int best = -1;
+// The nearest hit of a ray: object index (-1: none, sky), the hit in the object's frame and the
+// ray direction in that frame.
+struct RayHit {
+  int index = -1;
+  LocalHit local;
+  Eigen::Vector3d d_O;
+};
+
+// Nearest hit along the unit ray d_C from the camera centre with t < t_max among the candidates
+// [first, last) (sorted by t_lower_m). Tries `hint` first so its hit tightens t for the
+// early-outs, and stops at the first candidate whose lower bound is not below the nearest hit.
+RayHit TraceRay(const Eigen::Vector3d& d_C, const std::vector<FrameObject>& objects,
+                std::pair<const TileCandidate*, const TileCandidate*> candidates, int hint,
+                double t_max) {
+  RayHit best;
   double best_t = t_max;
-  LocalHit candidate;
   auto test = [&](int i) {
     const FrameObject& f = objects[static_cast<size_t>(i)];
     if (f.bounded) {
@@ -96,15 +115,18 @@ int TraceRay(const Eigen::Vector3d& d_C, const std::vector<FrameObject>& objects
         return;
       }
     }
-    if (IntersectPrimitive(*f.primitive, f.p_OC, f.R_OC * d_C, kMinT, best_t, &candidate)) {
-      best_t = candidate.t_m;
-      best = i;
-      *hit = candidate;
+    const Eigen::Vector3d direction_O = f.R_OC * d_C;
+    // Written in place (IntersectPrimitive leaves *hit alone on a miss): no copy of the hit.
+    if (IntersectPrimitive(*f.primitive, f.p_OC, direction_O, kMinT, best_t, &best.local)) {
+      best_t = best.local.t_m;
+      best.index = i;
+      best.d_O = direction_O;
     }
   };
   if (hint >= 0) test(hint);
-  for (const int* i = candidates.first; i != candidates.second; ++i) {
-    if (*i != hint) test(*i);
+  for (const TileCandidate* c = candidates.first; c != candidates.second; ++c) {
+    if (c->t_lower_m >= best_t) break;
+    if (c->index != hint) test(c->index);
   }
   return best;
 }
@@ -112,16 +134,17 @@ int TraceRay(const Eigen::Vector3d& d_C, const std::vector<FrameObject>& objects
 // sample_angle_rad: angular size of the sample (pixel angle / supersampling) for the texture
 // footprint: distance * angle, stretched by 1 / sqrt(cos incidence) (geometric mean of the
 // footprint's two axes). *albedo (optional) receives the surface albedo (sky: its radiance).
-Rgb Shade(const Scene& scene, const FrameContext& frame, const Eigen::Vector3d& d_C, int index,
-          const LocalHit& hit, double sample_angle_rad, Rgb* albedo = nullptr) {
-  if (index < 0) {
+Rgb Shade(const Scene& scene, const FrameContext& frame, const Eigen::Vector3d& d_C,
+          const RayHit& ray_hit, double sample_angle_rad, Rgb* albedo = nullptr) {
+  if (ray_hit.index < 0) {
     const Rgb sky = scene.sky.Radiance(frame.R_WC * d_C);
     if (albedo) *albedo = sky;
     return sky;
   }
-  const FrameObject& f = frame.objects[static_cast<size_t>(index)];
+  const FrameObject& f = frame.objects[static_cast<size_t>(ray_hit.index)];
+  const LocalHit& hit = ray_hit.local;
   Eigen::Vector3d n_O = hit.n_O;
-  double cos_incidence = n_O.dot(f.R_OC * d_C);
+  double cos_incidence = n_O.dot(ray_hit.d_O);
   if (cos_incidence > 0.0) {
     n_O = -n_O;  // two-sided: the side facing the camera
   } else {
@@ -176,30 +199,34 @@ struct RayCaster::RayTable {
 
 namespace {
 
-// Whether a ray within the cone (unit axis_C, half_angle) can hit the frame object: its bounding
-// sphere must overlap the cone and, for planes, some direction must reach the plane at t > 0.
-// Conservative: true whenever unsure.
-bool ConeMayHit(const FrameObject& f, const Eigen::Vector3d& axis_C, double half_angle) {
+// For rays within the cone (unit axis_C, half_angle): std::nullopt when none can hit the frame
+// object (its bounding sphere outside the cone, or a plane only behind), else a lower bound on
+// the hit distance t (bounding sphere: |centre| - radius; plane: |offset| over the largest
+// cosine between the cone and the normal facing the plane). Conservative: when unsure, a hit is
+// possible and the bound is lower.
+std::optional<double> ConeLowerDistance(const FrameObject& f, const Eigen::Vector3d& axis_C,
+                                        double half_angle) {
   const auto angle_to = [&](const Eigen::Vector3d& v) {
     return std::acos(std::clamp(axis_C.dot(v) / v.norm(), -1.0, 1.0));
   };
+  double t_lower = 0.0;
   if (f.bounded) {
     const double distance = std::sqrt(f.center_sq);
-    if (distance > f.radius &&
-        angle_to(f.center_C) > half_angle + std::asin(f.radius / distance)) {
-      return false;
+    if (distance > f.radius) {
+      if (angle_to(f.center_C) > half_angle + std::asin(f.radius / distance)) return std::nullopt;
+      t_lower = distance - f.radius;
     }
   }
   if (f.planar && f.plane_offset_m != 0.0) {
-    // t = offset / n.d > 0 needs n.d of the offset's sign: the angle between n and d below
-    // 90 deg (offset > 0) or above (offset < 0) for some d in the cone.
+    // t = offset / n.d > 0 needs n.d of the offset's sign: the angle between the cone's rays
+    // and the normal facing the plane (n for offset > 0, -n for offset < 0) below 90 deg.
     const double normal_angle = angle_to(f.n_C);
-    if (f.plane_offset_m > 0.0 ? normal_angle - half_angle >= M_PI / 2
-                               : normal_angle + half_angle <= M_PI / 2) {
-      return false;
-    }
+    const double facing_angle = f.plane_offset_m > 0.0 ? normal_angle : M_PI - normal_angle;
+    const double closest_angle = std::max(0.0, facing_angle - half_angle);
+    if (closest_angle >= M_PI / 2) return std::nullopt;
+    t_lower = std::max(t_lower, std::abs(f.plane_offset_m) / std::cos(closest_angle));
   }
-  return true;
+  return t_lower * (1.0 - kTileLowerDistanceRelative);
 }
 
 }  // namespace
@@ -381,18 +408,26 @@ void RayCaster::Render(const Scene& scene, const perception::CameraModel& camera
     f.radius_sq = f.radius * f.radius;
     frame.objects.push_back(f);
   }
-  for (int i = 0; i < static_cast<int>(frame.objects.size()); ++i) frame.all_objects.push_back(i);
+  for (int i = 0; i < static_cast<int>(frame.objects.size()); ++i) {
+    frame.all_objects.push_back({i, 0.0});
+  }
   const size_t tiles = rays.tile_axis.size();
   frame.tile_begin.reserve(tiles + 1);
   frame.tile_begin.push_back(0);
   for (size_t t = 0; t < tiles; ++t) {
     for (int i = 0; i < static_cast<int>(frame.objects.size()); ++i) {
-      if (ConeMayHit(frame.objects[static_cast<size_t>(i)], rays.tile_axis[t],
-                     rays.tile_half_angle_rad[t])) {
-        frame.tile_objects.push_back(i);
+      if (const std::optional<double> t_lower =
+              ConeLowerDistance(frame.objects[static_cast<size_t>(i)], rays.tile_axis[t],
+                                rays.tile_half_angle_rad[t])) {
+        frame.tile_candidates.push_back({i, *t_lower});
       }
     }
-    frame.tile_begin.push_back(frame.tile_objects.size());
+    // Nearest first (ties by index, so the order is deterministic).
+    std::sort(frame.tile_candidates.begin() + static_cast<std::ptrdiff_t>(frame.tile_begin.back()),
+              frame.tile_candidates.end(), [](const TileCandidate& a, const TileCandidate& b) {
+                return a.t_lower_m != b.t_lower_m ? a.t_lower_m < b.t_lower_m : a.index < b.index;
+              });
+    frame.tile_begin.push_back(frame.tile_candidates.size());
   }
 
   const int image_type = options.color ? CV_32FC3 : CV_32FC1;
@@ -418,12 +453,11 @@ void RayCaster::Render(const Scene& scene, const perception::CameraModel& camera
     const auto candidates = frame.Candidates(rays.Tile(x, y));
     const double sample_angle = rays.pixel_angle_rad[p] / k;
     Rgb sum = Rgb::Zero();
-    LocalHit hit;
     for (int s = 0; s < k * k; ++s) {
       const Eigen::Vector3d d = rays.sub[p * k * k + static_cast<size_t>(s)].cast<double>();
-      const int index = TraceRay(d, frame.objects, candidates, hint, kInf, &hit);
-      sum += Shade(scene, frame, d, index, hit, sample_angle);
-      hint = index;
+      const RayHit hit = TraceRay(d, frame.objects, candidates, hint, kInf);
+      sum += Shade(scene, frame, d, hit, sample_angle);
+      hint = hit.index;
     }
     return Rgb(sum * inv_samples);
   };
@@ -442,24 +476,23 @@ void RayCaster::Render(const Scene& scene, const perception::CameraModel& camera
       int hint = -1;  // per row, so results never depend on how rows are split among threads
       float* depth = options.ground_truth ? output->depth_C.ptr<float>(y) : nullptr;
       int32_t* ids = options.ground_truth ? output->object_id.ptr<int32_t>(y) : nullptr;
-      LocalHit hit;
       for (int x = 0; x < w; ++x) {
         const size_t p = static_cast<size_t>(y) * w + x;
         const Eigen::Vector3d d = rays.center[p].cast<double>();
-        const int index =
-            TraceRay(d, frame.objects, frame.Candidates(rays.Tile(x, y)), hint, kInf, &hit);
+        const RayHit hit = TraceRay(d, frame.objects, frame.Candidates(rays.Tile(x, y)), hint, kInf);
+        const int index = hit.index;
         if (depth) {
           depth[x] = index < 0 ? std::numeric_limits<float>::infinity()
-                               : static_cast<float>(hit.t_m * d.z());
+                               : static_cast<float>(hit.local.t_m * d.z());
           ids[x] = index < 0 ? 0 : frame.objects[static_cast<size_t>(index)].id;
         }
         if (k == 1 || adaptive) {
           Rgb albedo;
-          store(y, x, Shade(scene, frame, d, index, hit, rays.pixel_angle_rad[p], &albedo));
+          store(y, x, Shade(scene, frame, d, hit, rays.pixel_angle_rad[p], &albedo));
           if (adaptive) {
             center_samples_[p] = CenterSample{
                 index, index >= 0 && frame.objects[static_cast<size_t>(index)].hard_edged,
-                Luminance(albedo), index < 0 ? Eigen::Vector3f(Eigen::Vector3f::Zero()) : Eigen::Vector3f(hit.n_O.cast<float>())};
+                Luminance(albedo), index < 0 ? Eigen::Vector3f(Eigen::Vector3f::Zero()) : Eigen::Vector3f(hit.local.n_O.cast<float>())};
           }
         } else {
           store(y, x, supersample(x, y, index));
@@ -518,10 +551,9 @@ void RayCaster::Render(const Scene& scene, const perception::CameraModel& camera
     if (!camera.Project(p_C, &px)) continue;
     const double distance = p_C.norm();
     if (!(distance > led.radius_m)) continue;  // camera inside the emitter
-    LocalHit occluder;
-    const std::pair<const int*, const int*> all(frame.all_objects.data(),
-                                                frame.all_objects.data() + frame.all_objects.size());
-    if (TraceRay(p_C / distance, frame.objects, all, -1, distance - led.radius_m, &occluder) >= 0) {
+    const std::pair<const TileCandidate*, const TileCandidate*> all(
+        frame.all_objects.data(), frame.all_objects.data() + frame.all_objects.size());
+    if (TraceRay(p_C / distance, frame.objects, all, -1, distance - led.radius_m).index >= 0) {
       continue;
     }
     double projected_radius_px = 0.0;

@@ -32,8 +32,10 @@
 // Speed: per-pixel rays are computed once per camera (cached, keyed by the model's name, size
 // and a fingerprint of its rays), per frame each object gets its transform into the camera frame
 // and a bounding sphere, and every 16 x 16 pixel tile a list of the objects its cone of rays
-// can reach (bounding sphere in the cone, plane in front); rows run in parallel (oneTBB) and
-// each row first tries the object hit by its previous pixel. Output is independent of the thread count (rows are independent).
+// can reach (bounding sphere in the cone, plane in front), sorted by a lower bound on their
+// distance over the cone; a ray stops at the first candidate whose bound is not nearer than its
+// hit so far. Rows run in parallel (oneTBB) and each row first tries the object hit by its
+// previous pixel. Output is independent of the thread count (rows are independent).
 // A RayCaster is not safe for concurrent Render calls (the ray cache); use one per thread.
 #include <Eigen/Geometry>
 #include <cstdint>

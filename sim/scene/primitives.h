@@ -70,7 +70,8 @@ struct LocalHit {
 };
 
 // Nearest intersection of the ray o_O + t d_O with t in (t_min, t_max). d_O need not be unit
-// (t is then in units of |d_O|). Returns false on a miss; Led never hits. Throws nothing.
+// (t is then in units of |d_O|). Returns false on a miss, leaving *hit unchanged; Led never
+// hits. Throws nothing.
 bool IntersectPrimitive(const Primitive& primitive, const Eigen::Vector3d& o_O,
                         const Eigen::Vector3d& d_O, double t_min, double t_max, LocalHit* hit);
 

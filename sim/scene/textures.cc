@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 #include <string>
@@ -107,7 +108,13 @@ Texture::Texture(const cv::Mat& image_rgb, double texel_size_m, Filter filter, W
 }
 
 void Texture::BuildMipLevels() {
-  levels_ = {image_};
+  // Gray images (R = G = B in every texel, e.g. value noise between gray colours) keep one
+  // channel: a third of the memory a frame streams through, and the same samples.
+  std::vector<cv::Mat> rgb;
+  cv::split(image_, rgb);
+  const bool gray = cv::countNonZero(rgb[0] != rgb[1]) == 0 && cv::countNonZero(rgb[0] != rgb[2]) == 0;
+  channels_ = gray ? 1 : 3;
+  levels_ = {gray ? rgb[0] : image_};
   // Nearest textures (tags) stay exact: level 0 only.
   while (filter_ == Filter::kBilinear && levels_.back().cols >= 2 && levels_.back().rows >= 2 && levels_.back().cols % 2 == 0 &&
          levels_.back().rows % 2 == 0) {
@@ -201,21 +208,35 @@ Rgb Texture::Sample(double u_m, double v_m, double footprint_m) const {
   // Texel centres sit at (i + 0.5) * texel.
   const double x = u_m * mip.inv_texel_m - 0.5;
   const double y = v_m * mip.inv_texel_m - 0.5;
+  return channels_ == 1 ? SampleLevel<1>(mip, x, y, repeat) : SampleLevel<3>(mip, x, y, repeat);
+}
+
+template <int kChannels>
+Rgb Texture::SampleLevel(const MipLevel& mip, double x, double y, bool repeat) const {
+  // Gray levels hold one float per texel, the same value in R, G and B.
+  const auto texel = [](const float* t) {
+    return kChannels == 1 ? Rgb(Rgb::Constant(t[0])) : Rgb(t[0], t[1], t[2]);
+  };
   if (filter_ == Filter::kNearest) {
     const TexelSpan sx = Span(FastFloor(x + 0.5), mip.cols, mip.inv_cols, repeat);
     const TexelSpan sy = Span(FastFloor(y + 0.5), mip.rows, mip.inv_rows, repeat);
-    const float* t = mip.data + sy.i0 * mip.row_floats + 3 * sx.i0;
-    return {t[0], t[1], t[2]};
+    return texel(mip.data + sy.i0 * mip.row_floats + kChannels * sx.i0);
   }
   const TexelSpan sx = Span(x, mip.cols, mip.inv_cols, repeat);
   const TexelSpan sy = Span(y, mip.rows, mip.inv_rows, repeat);
   const float* row0 = mip.data + sy.i0 * mip.row_floats;
   const float* row1 = mip.data + sy.i1 * mip.row_floats;
-  const Eigen::Map<const Rgb> t00(row0 + 3 * sx.i0), t01(row0 + 3 * sx.i1);
-  const Eigen::Map<const Rgb> t10(row1 + 3 * sx.i0), t11(row1 + 3 * sx.i1);
-  const Rgb top = t00 + (t01 - t00) * sx.w1;
-  const Rgb bottom = t10 + (t11 - t10) * sx.w1;
-  return top + (bottom - top) * sy.w1;
+  if constexpr (kChannels == 1) {
+    const float top = row0[sx.i0] + (row0[sx.i1] - row0[sx.i0]) * sx.w1;
+    const float bottom = row1[sx.i0] + (row1[sx.i1] - row1[sx.i0]) * sx.w1;
+    return Rgb::Constant(top + (bottom - top) * sy.w1);
+  } else {
+    const Eigen::Map<const Rgb> t00(row0 + 3 * sx.i0), t01(row0 + 3 * sx.i1);
+    const Eigen::Map<const Rgb> t10(row1 + 3 * sx.i0), t11(row1 + 3 * sx.i1);
+    const Rgb top = t00 + (t01 - t00) * sx.w1;
+    const Rgb bottom = t10 + (t11 - t10) * sx.w1;
+    return top + (bottom - top) * sy.w1;
+  }
 }
 
 std::shared_ptr<const Texture> MakeValueNoiseTexture(const ProceduralTextureParams& params,

@@ -56,7 +56,7 @@ class Texture {
 
   // One mip level as Sample reads it (the pixels stay owned by levels_).
   struct MipLevel {
-    const float* data;  // RGB rows
+    const float* data;  // rows of channels_ floats per texel (RGB or gray)
     size_t row_floats;  // floats per row (step)
     int cols;
     int rows;
@@ -66,8 +66,15 @@ class Texture {
     double inv_texel_m;
   };
 
+  // Bilinear or nearest sample of one mip level at texel coordinates (x, y) (centres at
+  // integers); kChannels = channels_.
+  template <int kChannels>
+  Rgb SampleLevel(const MipLevel& mip, double x, double y, bool repeat) const;
+
   cv::Mat image_;
-  std::vector<cv::Mat> levels_;  // levels_[0] = image_, each next one half the size
+  // levels_[0] = image_ (or its one channel when gray), each next one half the size.
+  std::vector<cv::Mat> levels_;
+  int channels_ = 3;             // floats per texel in levels_: 1 for a gray image, else 3
   std::vector<MipLevel> mips_;   // one per levels_ entry; empty for a checkerboard
   double texel_size_m_ = 1.0;
   Filter filter_ = Filter::kBilinear;

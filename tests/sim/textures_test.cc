@@ -64,6 +64,33 @@ TEST(TexturesTest, LargeFootprintsReadTheAveragedMipLevel) {
   for (const double u : {0.005, 0.013, 0.2371}) EXPECT_NEAR(t.Sample(u, 0.31, 0.08).x(), 0.5f, kTol);
 }
 
+TEST(TexturesTest, GrayImagesSampleLikeTheirColourTwin) {
+  // A gray image (R = G = B) is stored with one channel; its samples must equal those of the
+  // same texels in a colour image (stored RGB; blue differs, red and green are the gray texels)
+  // at every mip level and for both filters.
+  cv::Mat gray(32, 32, CV_32FC3), colour;
+  cv::randu(gray, 0.0, 1.0);
+  cv::Mat channels[3];
+  cv::split(gray, channels);
+  channels[1] = channels[0].clone();
+  channels[2] = channels[0].clone();
+  cv::merge(channels, 3, gray);
+  channels[2] = 1.0f - channels[0];
+  cv::merge(channels, 3, colour);
+  for (const Texture::Filter filter : {Texture::Filter::kBilinear, Texture::Filter::kNearest}) {
+    const Texture g(gray, 0.01, filter), c(colour, 0.01, filter);
+    for (const double footprint : {0.0, 0.021, 0.05, 0.2}) {
+      for (double u = -0.1; u < 0.4; u += 0.0137) {
+        const double v = 0.31 - 0.7 * u;
+        const Rgb a = g.Sample(u, v, footprint), b = c.Sample(u, v, footprint);
+        EXPECT_NEAR(a.x(), b.x(), kTol) << u << " " << footprint;
+        EXPECT_NEAR(a.y(), b.y(), kTol);
+        EXPECT_EQ(a.z(), a.x());
+      }
+    }
+  }
+}
+
 using Generator = std::shared_ptr<const Texture> (*)(const ProceduralTextureParams&);
 
 std::shared_ptr<const Texture> Noise(const ProceduralTextureParams& p) { return MakeValueNoiseTexture(p); }
