@@ -131,6 +131,17 @@ CapturedFrame CameraEffects::Capture(RayCaster& ray_caster, const Scene& scene,
                                      const std::function<Eigen::Isometry3d(double)>& T_WC_at,
                                      double t_mid_s, int frame_index,
                                      const RenderOptions& options) const {
+  return Capture(
+      [&](const Eigen::Isometry3d& T_WC, const RenderOptions& render_options, RenderOutput* out) {
+        ray_caster.Render(scene, camera, T_WC, render_options, out);
+      },
+      T_WC_at, t_mid_s, frame_index, options);
+}
+
+CapturedFrame CameraEffects::Capture(const RenderFunction& render,
+                                     const std::function<Eigen::Isometry3d(double)>& T_WC_at,
+                                     double t_mid_s, int frame_index,
+                                     const RenderOptions& options) const {
   RenderOptions render_options = options;
   if (params_.infrared) render_options.reflectance_scale = params_.infrared_reflectance_scale;
   const int n = params_.motion_blur_subframes;
@@ -141,7 +152,7 @@ CapturedFrame CameraEffects::Capture(RayCaster& ray_caster, const Scene& scene,
     const double t = t_mid_s + params_.exposure_s * ((i + 0.5) / n - 0.5);
     RenderOptions sub_options = render_options;
     sub_options.ground_truth = options.ground_truth && i == ground_truth_subframe;
-    ray_caster.Render(scene, camera, T_WC_at(t), sub_options, &sub);
+    render(T_WC_at(t), sub_options, &sub);
     // Render reuses sub's buffers: copies only while another subframe follows.
     const bool last = i == n - 1;
     if (i == 0) {

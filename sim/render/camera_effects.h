@@ -55,6 +55,14 @@ class CameraEffects {
                         const std::function<Eigen::Isometry3d(double t_s)>& T_WC_at,
                         double t_mid_s, int frame_index, const RenderOptions& options = {}) const;
 
+  // The same with any renderer in place of RayCaster::Render (e.g. sim/sitl/
+  // fixed_camera_renderer.h): render(T_WC, options, output) fills *output like RayCaster::Render.
+  using RenderFunction =
+      std::function<void(const Eigen::Isometry3d& T_WC, const RenderOptions&, RenderOutput*)>;
+  CapturedFrame Capture(const RenderFunction& render,
+                        const std::function<Eigen::Isometry3d(double t_s)>& T_WC_at,
+                        double t_mid_s, int frame_index, const RenderOptions& options = {}) const;
+
   // Noise + gain + quantization of a linear radiance image (CV_32FC1 or CV_32FC3).
   cv::Mat ToImage8U(const cv::Mat& radiance, int frame_index) const;
 

@@ -199,32 +199,48 @@ struct RayCaster::RayTable {
 
 namespace {
 
-// For rays within the cone (unit axis_C, half_angle): std::nullopt when none can hit the frame
-// object (its bounding sphere outside the cone, or a plane only behind), else a lower bound on
-// the hit distance t (bounding sphere: |centre| - radius; plane: |offset| over the largest
-// cosine between the cone and the normal facing the plane). Conservative: when unsure, a hit is
-// possible and the bound is lower.
-std::optional<double> ConeLowerDistance(const FrameObject& f, const Eigen::Vector3d& axis_C,
-                                        double half_angle) {
-  const auto angle_to = [&](const Eigen::Vector3d& v) {
-    return std::acos(std::clamp(axis_C.dot(v) / v.norm(), -1.0, 1.0));
-  };
+// A tile's cone of rays: unit axis and the cosine and sine of its half angle.
+struct RayCone {
+  Eigen::Vector3d axis_C;
+  double cos_half;
+  double sin_half;
+};
+
+// For rays within the cone: std::nullopt when none can hit the frame object (its bounding
+// sphere outside the cone, or a plane only behind), else a lower bound on the hit distance t
+// (bounding sphere: |centre| - radius; plane: |offset| over the largest cosine between the
+// cone's rays and the normal facing the plane). Angles are compared through their cosines
+// (cos(a +- b) expanded), no inverse trigonometry. Conservative: when unsure, a hit is possible
+// and the bound is lower. Valid for any half angle below 180 deg.
+std::optional<double> ConeLowerDistance(const FrameObject& f, const RayCone& cone) {
   double t_lower = 0.0;
   if (f.bounded) {
     const double distance = std::sqrt(f.center_sq);
     if (distance > f.radius) {
-      if (angle_to(f.center_C) > half_angle + std::asin(f.radius / distance)) return std::nullopt;
+      // Outside when the angle to the centre exceeds half angle + the sphere's angular radius.
+      const double sin_radius = f.radius / distance;
+      const double cos_radius = std::sqrt(1.0 - sin_radius * sin_radius);
+      const double sin_sum = cone.sin_half * cos_radius + cone.cos_half * sin_radius;
+      const double cos_sum = cone.cos_half * cos_radius - cone.sin_half * sin_radius;
+      const double cos_center = cone.axis_C.dot(f.center_C) / distance;
+      if (sin_sum > 0.0 && cos_center < cos_sum) return std::nullopt;
       t_lower = distance - f.radius;
     }
   }
   if (f.planar && f.plane_offset_m != 0.0) {
     // t = offset / n.d > 0 needs n.d of the offset's sign: the angle between the cone's rays
     // and the normal facing the plane (n for offset > 0, -n for offset < 0) below 90 deg.
-    const double normal_angle = angle_to(f.n_C);
-    const double facing_angle = f.plane_offset_m > 0.0 ? normal_angle : M_PI - normal_angle;
-    const double closest_angle = std::max(0.0, facing_angle - half_angle);
-    if (closest_angle >= M_PI / 2) return std::nullopt;
-    t_lower = std::max(t_lower, std::abs(f.plane_offset_m) / std::cos(closest_angle));
+    const double cos_facing = std::clamp(
+        std::copysign(1.0, f.plane_offset_m) * cone.axis_C.dot(f.n_C) / f.n_C.norm(), -1.0, 1.0);
+    // Largest cosine over the cone: 1 when the facing normal is inside it, else the cosine of
+    // (facing angle - half angle).
+    const double cos_closest =
+        cos_facing >= cone.cos_half
+            ? 1.0
+            : cos_facing * cone.cos_half +
+                  std::sqrt(1.0 - cos_facing * cos_facing) * cone.sin_half;
+    if (cos_closest <= 0.0) return std::nullopt;
+    t_lower = std::max(t_lower, std::abs(f.plane_offset_m) / cos_closest);
   }
   return t_lower * (1.0 - kTileLowerDistanceRelative);
 }
@@ -415,10 +431,11 @@ void RayCaster::Render(const Scene& scene, const perception::CameraModel& camera
   frame.tile_begin.reserve(tiles + 1);
   frame.tile_begin.push_back(0);
   for (size_t t = 0; t < tiles; ++t) {
+    const RayCone cone{rays.tile_axis[t], std::cos(rays.tile_half_angle_rad[t]),
+                       std::sin(rays.tile_half_angle_rad[t])};
     for (int i = 0; i < static_cast<int>(frame.objects.size()); ++i) {
       if (const std::optional<double> t_lower =
-              ConeLowerDistance(frame.objects[static_cast<size_t>(i)], rays.tile_axis[t],
-                                rays.tile_half_angle_rad[t])) {
+              ConeLowerDistance(frame.objects[static_cast<size_t>(i)], cone)) {
         frame.tile_candidates.push_back({i, *t_lower});
       }
     }

@@ -31,17 +31,4 @@ inline double NormalFromHash(std::uint64_t h) {
   return std::sqrt(-2.0 * std::log(u1)) * std::cos(6.283185307179586 * u2);
 }
 
-// Two independent standard normal samples from one hash in single precision (both Box-Muller
-// outputs from two 24-bit uniforms: |sample| <= 5.8, i.e. tails beyond 1e-8 are cut), for
-// per-pixel image noise where the double-precision libm calls would dominate.
-inline void NormalPairFromHashF(std::uint64_t h, float* a, float* b) {
-  constexpr float kInv24 = 1.0f / 16777216.0f;
-  const float u1 = static_cast<float>((h >> 40) + 1) * kInv24;  // (0, 1]
-  const float u2 = static_cast<float>((h >> 8) & 0xFFFFFF) * kInv24;
-  const float radius = std::sqrt(-2.0f * std::log(u1));
-  const float angle = 6.2831853f * u2;
-  *a = radius * std::cos(angle);
-  *b = radius * std::sin(angle);
-}
-
 }  // namespace aperture::sim

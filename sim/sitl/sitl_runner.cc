@@ -67,6 +67,7 @@ class PoseHistory {
 struct CameraRuntime {
   const SitlCamera* camera;
   CameraEffects effects;
+  std::unique_ptr<FixedCameraRenderer> fixed;  // world-fixed cameras with reuse_background
   SampleSchedule schedule;
   std::deque<std::pair<double, perception::Frame>> in_flight;  // (delivery time, frame)
   int slot = 0;
@@ -185,8 +186,11 @@ SitlResult SitlRunner::Run(perception::Autopilot& autopilot, const SitlHooks& ho
   std::vector<CameraRuntime> cameras;
   double max_exposure_s = 0.0;
   for (const SitlCamera& camera : p.cameras) {
-    cameras.push_back(CameraRuntime{
-        &camera, CameraEffects(camera.effects), SampleSchedule(camera.rate_hz), {}, 0, {}});
+    cameras.push_back(CameraRuntime{&camera, CameraEffects(camera.effects), nullptr,
+                                    SampleSchedule(camera.rate_hz), {}, 0, {}});
+    if (camera.T_WC_fixed && p.reuse_fixed_camera_background) {
+      cameras.back().fixed = std::make_unique<FixedCameraRenderer>(*camera.model, *camera.T_WC_fixed);
+    }
     cameras.back().stats.name = camera.name;
     max_exposure_s = std::max(max_exposure_s, camera.effects.exposure_s);
   }
@@ -232,12 +236,19 @@ SitlResult SitlRunner::Run(perception::Autopilot& autopilot, const SitlHooks& ho
       }
       const Eigen::Isometry3d T_BC = camera.T_BC;
       const std::optional<Eigen::Isometry3d>& T_WC_fixed = camera.T_WC_fixed;
-      CapturedFrame captured = runtime.effects.Capture(
-          ray_caster_, *scene_, *camera.model,
-          [&history, &T_BC, &T_WC_fixed](double t) {
-            return T_WC_fixed ? *T_WC_fixed : Eigen::Isometry3d(history.T_WB(t) * T_BC);
-          },
-          t_s - 0.5 * camera.effects.exposure_s, slot, camera.render);
+      const auto T_WC_at = [&history, &T_BC, &T_WC_fixed](double t) {
+        return T_WC_fixed ? *T_WC_fixed : Eigen::Isometry3d(history.T_WB(t) * T_BC);
+      };
+      const double t_mid_s = t_s - 0.5 * camera.effects.exposure_s;
+      CapturedFrame captured =
+          runtime.fixed
+              ? runtime.effects.Capture(
+                    [&](const Eigen::Isometry3d&, const RenderOptions& options, RenderOutput* out) {
+                      runtime.fixed->Render(*scene_, options, out);
+                    },
+                    T_WC_at, t_mid_s, slot, camera.render)
+              : runtime.effects.Capture(ray_caster_, *scene_, *camera.model, T_WC_at, t_mid_s,
+                                        slot, camera.render);
       captured.frame.camera_id = static_cast<int>(c);
       if (hooks.on_frame) {
         const Clock::time_point hook_start = Clock::now();

@@ -45,6 +45,7 @@
 #include "sim/sensors/imu_sensor.h"
 #include "sim/sensors/range_sensor.h"
 #include "sim/sitl/collision_checker.h"
+#include "sim/sitl/fixed_camera_renderer.h"
 #include "sim/sitl/simulated_flight_controller.h"
 #include "sim/vehicle/disturbances.h"
 #include "sim/vehicle/quadrotor_dynamics.h"
@@ -84,6 +85,10 @@ struct SitlRunnerParams {
   std::vector<SitlCamera> cameras;
   CollisionParams collision;
   std::uint64_t drop_seed = 3;  // frame-drop stream
+  // World-fixed cameras (SitlCamera::T_WC_fixed) re-render per frame only where objects that
+  // moved can appear (sim/sitl/fixed_camera_renderer.h: same images; valid while the hooks change
+  // only object poses between frames, not materials, lighting or sky).
+  bool reuse_fixed_camera_background = true;
   // Records every n-th dynamics step in SitlResult::trajectory (1 = all).
   int trajectory_decimation = 1;
   // Sets every random stream from one seed: IMU, range, camera noise (per camera) and drops.
