@@ -16,8 +16,7 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kMinT = 1e-9;  // ignore hits at the ray origin [m]
 constexpr size_t kMaxCachedCameras = 4;
-// LED blob: window half-width and ground-truth mask radius in sigmas.
-constexpr double kLedWindowSigmas = 4.5;
+// LED blob: ground-truth mask radius in sigmas (the window: kLedWindowSigmas, ray_caster.h).
 constexpr double kLedMaskSigmas = 2.0;
 // Adaptive supersampling: neighbouring centre samples on one object differ at an edge when their
 // normals turn by more than acos(0.99) = 8.1 deg (box edges; a 0.5 m sphere 3 m away turns by
@@ -273,6 +272,13 @@ std::array<Eigen::Vector3d, 5> Fingerprint(const perception::CameraModel& camera
 }
 
 }  // namespace
+
+bool operator==(const RenderOptions& a, const RenderOptions& b) {
+  return a.color == b.color && a.supersampling == b.supersampling &&
+         a.adaptive_supersampling == b.adaptive_supersampling &&
+         a.ground_truth == b.ground_truth && a.reflectance_scale == b.reflectance_scale &&
+         a.min_led_sigma_px == b.min_led_sigma_px;
+}
 
 RayCaster::RayCaster() = default;
 RayCaster::~RayCaster() = default;

@@ -61,6 +61,13 @@ struct RenderOptions {
   double min_led_sigma_px = 0.6;  // floor of the LED blob sigma (optics blur of a point source)
 };
 
+// Field-by-field equality (renderers that cache output per option set compare with it).
+bool operator==(const RenderOptions& a, const RenderOptions& b);
+inline bool operator!=(const RenderOptions& a, const RenderOptions& b) { return !(a == b); }
+
+// An LED's blob is drawn over +-kLedWindowSigmas sigma around its projection.
+constexpr double kLedWindowSigmas = 4.5;
+
 struct RenderOutput {
   cv::Mat radiance;
   cv::Mat depth_C;

@@ -11,17 +11,9 @@
 namespace aperture::sim {
 namespace {
 
-// RayCaster draws an LED blob over +-4.5 sigma of its projection (ray_caster.cc kLedWindowSigmas);
-// adaptive supersampling looks one pixel further, texture footprints one pixel too.
-constexpr double kLedWindowSigmas = 4.5;
+// Beyond an object's projection (and an LED's blob window, kLedWindowSigmas): adaptive
+// supersampling looks one pixel further, texture footprints one pixel too.
 constexpr int kNeighbourMarginPx = 2;
-
-bool SameOptions(const RenderOptions& a, const RenderOptions& b) {
-  return a.color == b.color && a.supersampling == b.supersampling &&
-         a.adaptive_supersampling == b.adaptive_supersampling &&
-         a.ground_truth == b.ground_truth && a.reflectance_scale == b.reflectance_scale &&
-         a.min_led_sigma_px == b.min_led_sigma_px;
-}
 
 void CopyRegion(const RenderOutput& from, const cv::Rect& from_region, const cv::Rect& to_region,
                 RenderOutput* to) {
@@ -41,7 +33,7 @@ FixedCameraRenderer::FixedCameraRenderer(const perception::CameraModel& camera,
 bool FixedCameraRenderer::UpdateBackground(const Scene& scene, const RenderOptions& options) {
   const std::vector<SceneObject>& objects = scene.objects();
   const bool restart = background_.radiance.empty() || objects.size() != background_poses_.size() ||
-                       !SameOptions(options, background_options_);
+                       options != background_options_;
   if (restart) moved_.assign(objects.size(), false);
   bool stale = restart;
   for (size_t i = 0; i < objects.size() && !restart; ++i) {
