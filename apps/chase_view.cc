@@ -67,8 +67,8 @@ ChaseView::ChaseView(const ChaseViewParams& params, int view_height, sim::Scene*
       camera_(MakeCamera(ValidatedHeight(params))) {
   sim::Material marker_material;
   marker_material.color = sim::Rgb(0.9f, 0.1f, 0.1f);  // red
-  marker_id_ = scene_->AddObject({kMarkerName, sim::Box{Eigen::Vector3d(0.36, 0.36, 0.06)},
-                                  marker_material, ParkingPose()});
+  marker_id_ = scene_->AddObject(
+      {kMarkerName, sim::Box{Eigen::Vector3d(0.36, 0.36, 0.06)}, marker_material, ParkingPose()});
 }
 
 const cv::Mat& ChaseView::Update(int frame_index, const control::QuadState& state,

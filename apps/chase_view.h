@@ -5,8 +5,9 @@
 //
 // For the video it is rendered at render_height (a quarter of the pixels of the 480-row onboard
 // view by default) on every render_every-th video frame and shown scaled to the onboard view's
-// height; frames in between repeat the last view (a 15 frames/s video: a 7.5 Hz chase view). Its cost is booked in render_s(), apart from the onboard cameras.
-// Usage (before the SitlRunner is built, so the collision check can ignore the marker):
+// height; frames in between repeat the last view (a 15 frames/s video: a 7.5 Hz chase view). Its
+// cost is booked in render_s(), apart from the onboard cameras. Usage (before the SitlRunner is
+// built, so the collision check can ignore the marker):
 //   ChaseView chase(ChaseViewParams{}, 480, &scenario.scene());
 //   params.collision.ignored_objects.push_back(ChaseView::kMarkerName);
 //   ... per video frame: cv::hconcat(onboard, chase.Update(index, state, false), composite);
@@ -21,8 +22,8 @@
 namespace aperture::apps {
 
 struct ChaseViewParams {
-  int render_every = 2;      // video frames per chase render (>= 1)
-  int render_height = 240;   // rendered rows (width 4/3 of it) before scaling to the video [px]
+  int render_every = 2;     // video frames per chase render (>= 1)
+  int render_height = 240;  // rendered rows (width 4/3 of it) before scaling to the video [px]
   // Throws std::invalid_argument naming the option (--chase-every, --chase-height) when out of
   // range: render_every < 1, render_height outside [16, 2160].
   void Validate() const;

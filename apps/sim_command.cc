@@ -28,10 +28,10 @@
 #include "apps/sim_gap_mission.h"
 #include "apps/sitl_outputs.h"
 #include "experiments/led/led_hover_flight.h"
+#include "output/background_video_writer.h"
 #include "output/html_report.h"
 #include "output/progress_bar.h"
 #include "output/svg_plot.h"
-#include "output/background_video_writer.h"
 #include "sim/scenario/scenario.h"
 #include "sim/scenario/scenario_sitl.h"
 #include "sim/sitl/ground_truth_autopilot.h"
@@ -157,8 +157,9 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
   std::unique_ptr<output::BackgroundVideoWriter> video;
   std::vector<cv::Mat> key_frames;
   const int frames_expected =
-      params.cameras.empty() ? 0
-                             : static_cast<int>(options.duration_s * params.cameras[primary].rate_hz);
+      params.cameras.empty()
+          ? 0
+          : static_cast<int>(options.duration_s * params.cameras[primary].rate_hz);
   // The video takes every video_every-th camera frame (the others cost nothing here); at most
   // ~kMaxKeyFrames evenly spaced video frames go into the report (JPEG), whatever the duration.
   const int video_frames_expected = frames_expected / options.video_every;
@@ -204,11 +205,11 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
   summary["config"] = nlohmann::json::parse(tree.ToJson());
   AddSitlRunSummary(result, &summary);
   summary["timing"]["chase_render_s"] = chase.render_s();  // part of hooks_s
-  summary["video"] = {{"frames", video_frames},
-                      {"rate_hz", params.cameras.empty()
-                                      ? 0.0
-                                      : params.cameras[primary].rate_hz / options.video_every},
-                      {"chase_renders", chase.renders()}};
+  summary["video"] = {
+      {"frames", video_frames},
+      {"rate_hz",
+       params.cameras.empty() ? 0.0 : params.cameras[primary].rate_hz / options.video_every},
+      {"chase_renders", chase.renders()}};
   if (result.collision) {
     summary["collision"] = {{"object", result.collision->object_name},
                             {"part", result.collision->part},
@@ -270,9 +271,10 @@ void AddSimCommand(CLI::App& app, int* exit_code) {
   command->add_option("--seed", options->seed, "Seed of the scenario and every sensor stream");
   command->add_option("--duration", options->duration_s, "Simulated time [s]")
       ->check(CLI::PositiveNumber);
-  command->add_option("--video-every", options->video_every,
-                      "Put every N-th camera frame into the video (default 2; the video's frame "
-                      "rate is the camera's / N)")
+  command
+      ->add_option("--video-every", options->video_every,
+                   "Put every N-th camera frame into the video (default 2; the video's frame "
+                   "rate is the camera's / N)")
       ->check(CLI::PositiveNumber);
   command->add_option("--chase-every", options->chase.render_every,
                       "Render the video's third-person view every N-th video frame, repeat it "

@@ -78,12 +78,10 @@ void AddSitlRunSummary(const sim::SitlResult& result, nlohmann::json* summary) {
   (*summary)["reason"] = result.reason;
   (*summary)["sim_time_s"] = result.sim_time_s;
   (*summary)["real_time_factor"] = result.real_time_factor;
-  (*summary)["timing"] = {{"wall_time_s", result.timing.wall_time_s},
-                          {"dynamics_s", result.timing.dynamics_s},
-                          {"render_s", result.timing.render_s},
-                          {"autopilot_s", result.timing.autopilot_s},
-                          {"collision_s", result.timing.collision_s},
-                          {"hooks_s", result.timing.hooks_s}};
+  (*summary)["timing"] = {
+      {"wall_time_s", result.timing.wall_time_s}, {"dynamics_s", result.timing.dynamics_s},
+      {"render_s", result.timing.render_s},       {"autopilot_s", result.timing.autopilot_s},
+      {"collision_s", result.timing.collision_s}, {"hooks_s", result.timing.hooks_s}};
 }
 
 }  // namespace aperture::apps

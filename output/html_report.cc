@@ -127,18 +127,18 @@ void HtmlReport::AddImage(const cv::Mat& image, const std::string& caption,
   }
   constexpr int kJpegQuality = 85;  // no visible artefacts on rendered frames and overlay text
   std::vector<std::uint8_t> encoded;
-  const bool ok = jpeg ? cv::imencode(".jpg", image, encoded, {cv::IMWRITE_JPEG_QUALITY, kJpegQuality})
-                       : cv::imencode(".png", image, encoded);
+  const bool ok =
+      jpeg ? cv::imencode(".jpg", image, encoded, {cv::IMWRITE_JPEG_QUALITY, kJpegQuality})
+           : cv::imencode(".png", image, encoded);
   if (!ok) {
     throw std::runtime_error(std::string(jpeg ? "JPEG" : "PNG") +
                              " encoding failed for report image '" + caption + "'");
   }
-  blocks_.push_back(Figure("<img alt=\"" + EscapeXml(caption) + "\" width=\"" +
-                               std::to_string(image.cols) + "\" height=\"" +
-                               std::to_string(image.rows) + "\" src=\"data:image/" +
-                               (jpeg ? "jpeg" : "png") + ";base64," + Base64Encode(encoded) +
-                               "\"/>",
-                           caption));
+  blocks_.push_back(
+      Figure("<img alt=\"" + EscapeXml(caption) + "\" width=\"" + std::to_string(image.cols) +
+                 "\" height=\"" + std::to_string(image.rows) + "\" src=\"data:image/" +
+                 (jpeg ? "jpeg" : "png") + ";base64," + Base64Encode(encoded) + "\"/>",
+             caption));
 }
 
 std::string HtmlReport::ToHtml() const {

@@ -1,9 +1,10 @@
 #include "experiments/led/led_bench.h"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <chrono>
-#include <functional>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <map>
 #include <memory>
@@ -13,8 +14,6 @@
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <Eigen/Eigenvalues>
 
 #include "experiments/led/led_pose_error.h"
 #include "experiments/led/led_target_renderer.h"

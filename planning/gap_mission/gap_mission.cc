@@ -253,10 +253,10 @@ control::QuadState GapMission::estimate() const {
 double GapMission::position_sigma_m() const {
   if (!filter_) return std::numeric_limits<double>::quiet_NaN();
   const perception::Matrix15d P = filter_->Estimate().covariance;
-  return std::sqrt(P.block<3, 3>(perception::ErrorStateIndex::kPosition,
-                                 perception::ErrorStateIndex::kPosition)
-                       .diagonal()
-                       .maxCoeff());
+  return std::sqrt(
+      P.block<3, 3>(perception::ErrorStateIndex::kPosition, perception::ErrorStateIndex::kPosition)
+          .diagonal()
+          .maxCoeff());
 }
 
 void GapMission::Plan(double t_s) {

@@ -26,8 +26,9 @@ void Require(bool ok, const char* field, double value, const char* rule) {
 // Standard normal samples for sensor noise: a table of kNormalTableSize values at the
 // stratified quantiles Phi^-1((i + 0.5) / kNormalTableSize), rescaled to unit variance (the
 // stratification cuts the tails at |x| = 3.67 sigma and would leave the variance 0.03 % short;
-// kurtosis 2.99 instead of 3). Each 64-bit hash yields kIndicesPerHash independent uniform 12-bit indices, so a value
-// costs a fifth of a hash and one L1 load instead of a log, a sqrt and a sincos (Box-Muller).
+// kurtosis 2.99 instead of 3). Each 64-bit hash yields kIndicesPerHash independent uniform 12-bit
+// indices, so a value costs a fifth of a hash and one L1 load instead of a log, a sqrt and a sincos
+// (Box-Muller).
 constexpr int kNormalTableBits = 12;
 constexpr int kNormalTableSize = 1 << kNormalTableBits;
 constexpr int kIndicesPerHash = 64 / kNormalTableBits;
@@ -101,28 +102,32 @@ cv::Mat CameraEffects::ToImage8U(const cv::Mat& radiance, int frame_index) const
   // Single precision throughout: 8-bit output needs ~1e-3 relative, and Eigen's packet sqrt
   // handles several values per instruction.
   const float scale = static_cast<float>(params_.gain * 255.0);
-  const float read_variance = static_cast<float>(params_.read_noise_sigma * params_.read_noise_sigma);
-  const float inv_full_well =
-      params_.full_well_electrons > 0.0 ? static_cast<float>(1.0 / params_.full_well_electrons) : 0.0f;
+  const float read_variance =
+      static_cast<float>(params_.read_noise_sigma * params_.read_noise_sigma);
+  const float inv_full_well = params_.full_well_electrons > 0.0
+                                  ? static_cast<float>(1.0 / params_.full_well_electrons)
+                                  : 0.0f;
   const std::array<float, kNormalTableSize>& normal_table = StandardNormalTable();
-  tbb::parallel_for(tbb::blocked_range<int>(0, radiance.rows), [&](const tbb::blocked_range<int>& rows) {
-    Eigen::ArrayXf normals(values_per_row);
-    Eigen::ArrayXf scaled(values_per_row);
-    for (int y = rows.begin(); y < rows.end(); ++y) {
-      const Eigen::Map<const Eigen::ArrayXf> v(radiance.ptr<float>(y), values_per_row);
-      if (noisy) {
-        FillNormals(HashCounters(frame_seed, static_cast<std::uint64_t>(y)), normal_table, &normals);
-        // signal + sqrt(read^2 + signal / full_well) * N(0, 1), in 8-bit units.
-        scaled = (v + (v.max(0.0f) * inv_full_well + read_variance).sqrt() * normals) * scale;
-      } else {
-        scaled = v * scale;
-      }
-      // Clamped to [0, 255]: + 0.5 and truncation round to nearest like lround.
-      scaled = scaled.max(0.0f).min(255.0f) + 0.5f;
-      std::uint8_t* out = image.ptr<std::uint8_t>(y);
-      for (int i = 0; i < values_per_row; ++i) out[i] = static_cast<std::uint8_t>(scaled[i]);
-    }
-  });
+  tbb::parallel_for(
+      tbb::blocked_range<int>(0, radiance.rows), [&](const tbb::blocked_range<int>& rows) {
+        Eigen::ArrayXf normals(values_per_row);
+        Eigen::ArrayXf scaled(values_per_row);
+        for (int y = rows.begin(); y < rows.end(); ++y) {
+          const Eigen::Map<const Eigen::ArrayXf> v(radiance.ptr<float>(y), values_per_row);
+          if (noisy) {
+            FillNormals(HashCounters(frame_seed, static_cast<std::uint64_t>(y)), normal_table,
+                        &normals);
+            // signal + sqrt(read^2 + signal / full_well) * N(0, 1), in 8-bit units.
+            scaled = (v + (v.max(0.0f) * inv_full_well + read_variance).sqrt() * normals) * scale;
+          } else {
+            scaled = v * scale;
+          }
+          // Clamped to [0, 255]: + 0.5 and truncation round to nearest like lround.
+          scaled = scaled.max(0.0f).min(255.0f) + 0.5f;
+          std::uint8_t* out = image.ptr<std::uint8_t>(y);
+          for (int i = 0; i < values_per_row; ++i) out[i] = static_cast<std::uint8_t>(scaled[i]);
+        }
+      });
   return image;
 }
 

@@ -60,8 +60,8 @@ class CameraEffects {
   using RenderFunction =
       std::function<void(const Eigen::Isometry3d& T_WC, const RenderOptions&, RenderOutput*)>;
   CapturedFrame Capture(const RenderFunction& render,
-                        const std::function<Eigen::Isometry3d(double t_s)>& T_WC_at,
-                        double t_mid_s, int frame_index, const RenderOptions& options = {}) const;
+                        const std::function<Eigen::Isometry3d(double t_s)>& T_WC_at, double t_mid_s,
+                        int frame_index, const RenderOptions& options = {}) const;
 
   // Noise + gain + quantization of a linear radiance image (CV_32FC1 or CV_32FC3).
   cv::Mat ToImage8U(const cv::Mat& radiance, int frame_index) const;

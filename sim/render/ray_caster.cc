@@ -236,8 +236,7 @@ std::optional<double> ConeLowerDistance(const FrameObject& f, const RayCone& con
     const double cos_closest =
         cos_facing >= cone.cos_half
             ? 1.0
-            : cos_facing * cone.cos_half +
-                  std::sqrt(1.0 - cos_facing * cos_facing) * cone.sin_half;
+            : cos_facing * cone.cos_half + std::sqrt(1.0 - cos_facing * cos_facing) * cone.sin_half;
     if (cos_closest <= 0.0) return std::nullopt;
     t_lower = std::max(t_lower, std::abs(f.plane_offset_m) / cos_closest);
   }
@@ -275,9 +274,8 @@ std::array<Eigen::Vector3d, 5> Fingerprint(const perception::CameraModel& camera
 
 bool operator==(const RenderOptions& a, const RenderOptions& b) {
   return a.color == b.color && a.supersampling == b.supersampling &&
-         a.adaptive_supersampling == b.adaptive_supersampling &&
-         a.ground_truth == b.ground_truth && a.reflectance_scale == b.reflectance_scale &&
-         a.min_led_sigma_px == b.min_led_sigma_px;
+         a.adaptive_supersampling == b.adaptive_supersampling && a.ground_truth == b.ground_truth &&
+         a.reflectance_scale == b.reflectance_scale && a.min_led_sigma_px == b.min_led_sigma_px;
 }
 
 RayCaster::RayCaster() = default;
@@ -502,7 +500,8 @@ void RayCaster::Render(const Scene& scene, const perception::CameraModel& camera
       for (int x = 0; x < w; ++x) {
         const size_t p = static_cast<size_t>(y) * w + x;
         const Eigen::Vector3d d = rays.center[p].cast<double>();
-        const RayHit hit = TraceRay(d, frame.objects, frame.Candidates(rays.Tile(x, y)), hint, kInf);
+        const RayHit hit =
+            TraceRay(d, frame.objects, frame.Candidates(rays.Tile(x, y)), hint, kInf);
         const int index = hit.index;
         if (depth) {
           depth[x] = index < 0 ? std::numeric_limits<float>::infinity()
@@ -515,7 +514,9 @@ void RayCaster::Render(const Scene& scene, const perception::CameraModel& camera
           if (adaptive) {
             center_samples_[p] = CenterSample{
                 index, index >= 0 && frame.objects[static_cast<size_t>(index)].hard_edged,
-                Luminance(albedo), index < 0 ? Eigen::Vector3f(Eigen::Vector3f::Zero()) : Eigen::Vector3f(hit.local.n_O.cast<float>())};
+                Luminance(albedo),
+                index < 0 ? Eigen::Vector3f(Eigen::Vector3f::Zero())
+                          : Eigen::Vector3f(hit.local.n_O.cast<float>())};
           }
         } else {
           store(y, x, supersample(x, y, index));

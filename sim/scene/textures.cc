@@ -112,7 +112,8 @@ void Texture::BuildMipLevels() {
   // channel: a third of the memory a frame streams through, and the same samples.
   std::vector<cv::Mat> rgb;
   cv::split(image_, rgb);
-  const bool gray = cv::countNonZero(rgb[0] != rgb[1]) == 0 && cv::countNonZero(rgb[0] != rgb[2]) == 0;
+  const bool gray =
+      cv::countNonZero(rgb[0] != rgb[1]) == 0 && cv::countNonZero(rgb[0] != rgb[2]) == 0;
   channels_ = gray ? 1 : 3;
   levels_ = {gray ? rgb[0] : image_};
   // Nearest textures (tags) stay exact: level 0 only.

@@ -103,10 +103,10 @@ std::optional<Collision> CollisionChecker::Check(const Scene* scene,
     const double radius_m = BoundingRadius(object.primitive);
     if (std::isfinite(radius_m)) {
       const Eigen::Vector3d c_W = object.T_WO * BoundingCenter(object.primitive);
-      const double s = sweep_W.squaredNorm() > 0.0
-                           ? std::clamp((c_W - previous_p_WB).dot(sweep_W) / sweep_W.squaredNorm(),
-                                        0.0, 1.0)
-                           : 1.0;
+      const double s =
+          sweep_W.squaredNorm() > 0.0
+              ? std::clamp((c_W - previous_p_WB).dot(sweep_W) / sweep_W.squaredNorm(), 0.0, 1.0)
+              : 1.0;
       if ((c_W - (previous_p_WB + s * sweep_W)).norm() > radius_m + reach_m_) continue;
     }
     candidates.push_back({&object, object.T_WO.inverse()});

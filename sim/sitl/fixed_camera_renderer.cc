@@ -74,8 +74,8 @@ bool FixedCameraRenderer::MovedRegion(const Scene& scene, const RenderOptions& o
     double ox0 = std::numeric_limits<double>::infinity(), oy0 = ox0, ox1 = -ox0, oy1 = -ox0;
     for (int corner = 0; corner < 8; ++corner) {
       const Eigen::Vector3d p_C =
-          c_C + radius_m * Eigen::Vector3d(corner & 1 ? 1 : -1, corner & 2 ? 1 : -1,
-                                           corner & 4 ? 1 : -1);
+          c_C +
+          radius_m * Eigen::Vector3d(corner & 1 ? 1 : -1, corner & 2 ? 1 : -1, corner & 4 ? 1 : -1);
       Eigen::Vector2d px;
       if (!camera_->Project(p_C, &px)) return false;
       ox0 = std::min(ox0, px.x());
@@ -102,7 +102,8 @@ bool FixedCameraRenderer::MovedRegion(const Scene& scene, const RenderOptions& o
   const auto clamp = [](double v, int lo, int hi) {
     return static_cast<int>(std::clamp(v, static_cast<double>(lo), static_cast<double>(hi)));
   };
-  const int left = clamp(std::floor(x0), 0, image.width), top = clamp(std::floor(y0), 0, image.height);
+  const int left = clamp(std::floor(x0), 0, image.width),
+            top = clamp(std::floor(y0), 0, image.height);
   const int right = clamp(std::ceil(x1) + 1, 0, image.width);
   const int bottom = clamp(std::ceil(y1) + 1, 0, image.height);
   *region = cv::Rect(left, top, std::max(0, right - left), std::max(0, bottom - top));
@@ -120,10 +121,10 @@ void FixedCameraRenderer::Render(const Scene& scene, const RenderOptions& option
   UpdateBackground(scene, options);
   cv::Rect core;
   if (!MovedRegion(scene, options, &core)) return full_render();
-  const cv::Rect cast = cv::Rect(core.x - kNeighbourMarginPx, core.y - kNeighbourMarginPx,
-                                 core.width + 2 * kNeighbourMarginPx,
-                                 core.height + 2 * kNeighbourMarginPx) &
-                        image;
+  const cv::Rect cast =
+      cv::Rect(core.x - kNeighbourMarginPx, core.y - kNeighbourMarginPx,
+               core.width + 2 * kNeighbourMarginPx, core.height + 2 * kNeighbourMarginPx) &
+      image;
   if (core.area() > 0 && cast.area() > image.area() / 2) return full_render();
   output->radiance = background_.radiance.clone();
   output->depth_C = background_.depth_C.empty() ? cv::Mat() : background_.depth_C.clone();

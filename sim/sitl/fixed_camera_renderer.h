@@ -51,7 +51,7 @@ class FixedCameraRenderer {
   RenderOutput background_;
   RenderOptions background_options_;
   std::vector<Eigen::Isometry3d> background_poses_;  // per object, at the background render
-  std::vector<bool> moved_;                           // per object: left out of the background
+  std::vector<bool> moved_;                          // per object: left out of the background
   int background_renders_ = 0;
   double last_render_fraction_ = 1.0;
 };

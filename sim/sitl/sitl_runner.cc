@@ -186,10 +186,16 @@ SitlResult SitlRunner::Run(perception::Autopilot& autopilot, const SitlHooks& ho
   std::vector<CameraRuntime> cameras;
   double max_exposure_s = 0.0;
   for (const SitlCamera& camera : p.cameras) {
-    cameras.push_back(CameraRuntime{&camera, CameraEffects(camera.effects), nullptr,
-                                    SampleSchedule(camera.rate_hz), {}, 0, {}});
+    cameras.push_back(CameraRuntime{&camera,
+                                    CameraEffects(camera.effects),
+                                    nullptr,
+                                    SampleSchedule(camera.rate_hz),
+                                    {},
+                                    0,
+                                    {}});
     if (camera.T_WC_fixed && p.reuse_fixed_camera_background) {
-      cameras.back().fixed = std::make_unique<FixedCameraRenderer>(*camera.model, *camera.T_WC_fixed);
+      cameras.back().fixed =
+          std::make_unique<FixedCameraRenderer>(*camera.model, *camera.T_WC_fixed);
     }
     cameras.back().stats.name = camera.name;
     max_exposure_s = std::max(max_exposure_s, camera.effects.exposure_s);
@@ -247,8 +253,8 @@ SitlResult SitlRunner::Run(perception::Autopilot& autopilot, const SitlHooks& ho
                       runtime.fixed->Render(*scene_, options, out);
                     },
                     T_WC_at, t_mid_s, slot, camera.render)
-              : runtime.effects.Capture(ray_caster_, *scene_, *camera.model, T_WC_at, t_mid_s,
-                                        slot, camera.render);
+              : runtime.effects.Capture(ray_caster_, *scene_, *camera.model, T_WC_at, t_mid_s, slot,
+                                        camera.render);
       captured.frame.camera_id = static_cast<int>(c);
       if (hooks.on_frame) {
         const Clock::time_point hook_start = Clock::now();

@@ -118,7 +118,7 @@ struct SitlTiming {
   double render_s = 0.0;     // ray casting + camera effects of the onboard cameras
   double autopilot_s = 0.0;  // every Autopilot call
   double collision_s = 0.0;
-  double hooks_s = 0.0;      // SitlHooks callbacks (the caller's scene updates, videos, views)
+  double hooks_s = 0.0;  // SitlHooks callbacks (the caller's scene updates, videos, views)
 };
 
 struct SitlResult {

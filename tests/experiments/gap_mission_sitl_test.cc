@@ -79,9 +79,8 @@ Flight FlyGap(const std::vector<std::string>& set_items, double duration_s) {
 // supersampling of 2, see README). 14 s: the mission crosses at ~9.5 s, and the recovery needs
 // ~1-2 s to reach its position stage plus the mission's recovered_hold_s (2 s) there.
 TEST(GapMissionSitlTest, FliesThroughThe30DegreeGapAndRecovers) {
-  const Flight flight = FlyGap({"gap.roll_deg=30", "cameras.front.supersampling=1",
-                                "cameras.front.rate_hz=30"},
-                               14.0);
+  const Flight flight = FlyGap(
+      {"gap.roll_deg=30", "cameras.front.supersampling=1", "cameras.front.rate_hz=30"}, 14.0);
   EXPECT_NE(flight.result.outcome, sim::SitlResult::Outcome::kCollision) << flight.result.reason;
   ASSERT_TRUE(flight.crossed);
   // Inside the opening with the vehicle's half thickness (body sphere 8 cm) to spare along the

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "output/atomic_file.h"
+#include "output/background_video_writer.h"
 #include "output/base64.h"
 #include "output/csv_writer.h"
 #include "output/html_report.h"
@@ -25,7 +26,6 @@
 #include "output/progress_bar.h"
 #include "output/svg_plot.h"
 #include "output/tum_trajectory_writer.h"
-#include "output/background_video_writer.h"
 #include "output/video_writer.h"
 
 namespace aperture::output {
@@ -542,8 +542,9 @@ TEST_F(OutputTest, HtmlReportEmbedsJpegKeyFramesCloseToTheImage) {
   ASSERT_EQ(decoded.type(), image.type());
   EXPECT_LT(cv::norm(decoded, image, cv::NORM_L1) / image.total() / 3, 2.0);
   EXPECT_LT(html.size(), png_report.ToHtml().size());
-  EXPECT_THROW(jpeg_report.AddImage(cv::Mat(8, 8, CV_8UC4), "alpha", HtmlReport::ImageEncoding::kJpeg),
-               std::invalid_argument);
+  EXPECT_THROW(
+      jpeg_report.AddImage(cv::Mat(8, 8, CV_8UC4), "alpha", HtmlReport::ImageEncoding::kJpeg),
+      std::invalid_argument);
 }
 
 // ---- Progress bar

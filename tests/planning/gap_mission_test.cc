@@ -155,15 +155,18 @@ TEST_F(GapMissionTest, TransferAndApproachStayAboveTheFloor) {
   constexpr double kRangeM = 1.0;
   Run(5.0, true, [&] {
     mission_.OnRange({step_ * 1e-3, kRangeM, true});
-    return mission_.phase() != GapMissionPhase::kDetect && mission_.phase() != GapMissionPhase::kHover;
+    return mission_.phase() != GapMissionPhase::kDetect &&
+           mission_.phase() != GapMissionPhase::kHover;
   });
   ASSERT_EQ(mission_.phase(), GapMissionPhase::kTransfer) << mission_.reason();
   const double floor_m =
       mission_.estimate().p_WB.z() - kRangeM + GapMissionParams{}.min_ground_clearance_m;
-  const double transfer_min_m = MinimumProjection(mission_.transfer_plan(), Eigen::Vector3d::UnitZ());
+  const double transfer_min_m =
+      MinimumProjection(mission_.transfer_plan(), Eigen::Vector3d::UnitZ());
   EXPECT_GE(transfer_min_m, floor_m);
   ASSERT_TRUE(mission_.approach_plan().has_value());
-  EXPECT_GE(MinimumProjection(mission_.approach_plan()->primitive, Eigen::Vector3d::UnitZ()), floor_m);
+  EXPECT_GE(MinimumProjection(mission_.approach_plan()->primitive, Eigen::Vector3d::UnitZ()),
+            floor_m);
   // The transfer ends where the approach starts.
   EXPECT_TRUE(mission_.transfer_plan()
                   .Position(mission_.transfer_plan().duration_s())
@@ -181,7 +184,8 @@ void ExpectHoverEndsWhenSigmaIsSmallRelativeToTheDistance(
       last_hover_t_s = mission.phase_changes().back().t_s;
       last_hover_ratio = mission.position_sigma_m() / mission.estimate().p_WB.norm();
     }
-    return mission.phase() != GapMissionPhase::kDetect && mission.phase() != GapMissionPhase::kHover;
+    return mission.phase() != GapMissionPhase::kDetect &&
+           mission.phase() != GapMissionPhase::kHover;
   });
   ASSERT_EQ(mission.phase(), GapMissionPhase::kTransfer) << mission.reason();
   const auto& changes = mission.phase_changes();

@@ -88,8 +88,7 @@ TEST(CameraEffectsTest, NoiseIsGaussianAndIndependentBetweenValues) {
   const cv::Mat values = image.reshape(1);
   const int n = values.cols;
   for (const int shift : {1, 2, 3, 4, 5, 6}) {
-    EXPECT_LT(std::abs(Correlation(values.colRange(0, n - shift), values.colRange(shift, n))),
-              0.01)
+    EXPECT_LT(std::abs(Correlation(values.colRange(0, n - shift), values.colRange(shift, n))), 0.01)
         << "shift " << shift;
   }
   EXPECT_LT(std::abs(Correlation(values.rowRange(0, 239), values.rowRange(1, 240))), 0.01);

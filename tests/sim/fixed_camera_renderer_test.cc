@@ -36,10 +36,10 @@ TEST_P(FixedCameraRendererTest, EqualsTheFullRenderWhileTheVehicleMoves) {
   FixedCameraRenderer fixed(*camera.model, T_WC);
   RayCaster full_caster;
   // Start, then moves and tilts across the view, then a pose with LEDs near the image border.
-  const Eigen::Isometry3d poses[] = {
-      scenario.T_WB_start(), VehiclePose({0.1, 0.0, 2.0}, 0.1, 0.3),
-      VehiclePose({-0.3, 0.2, 1.6}, -0.4, 1.0), VehiclePose({0.5, -0.3, 2.4}, 0.2, -2.0),
-      VehiclePose({1.4, 0.6, 1.5}, 0.3, 0.5)};
+  const Eigen::Isometry3d poses[] = {scenario.T_WB_start(), VehiclePose({0.1, 0.0, 2.0}, 0.1, 0.3),
+                                     VehiclePose({-0.3, 0.2, 1.6}, -0.4, 1.0),
+                                     VehiclePose({0.5, -0.3, 2.4}, 0.2, -2.0),
+                                     VehiclePose({1.4, 0.6, 1.5}, 0.3, 0.5)};
   double largest_fraction = 0.0;
   for (size_t i = 0; i < std::size(poses); ++i) {
     scenario.SetVehiclePose(poses[i]);
@@ -69,7 +69,8 @@ TEST(FixedCameraRendererStaticTest, AnObjectThatStartsMovingLeavesTheBackground)
   Eigen::Isometry3d T_WO = Eigen::Isometry3d::Identity();
   T_WO.translation() = Eigen::Vector3d(0.0, 0.0, 0.5);
   const int box = scene.AddObject({"box", Box{Eigen::Vector3d(0.3, 0.3, 0.3)}, Material{}, T_WO});
-  const perception::PinholeCamera camera(160, 120, perception::PinholeIntrinsics{100, 100, 79.5, 59.5});
+  const perception::PinholeCamera camera(160, 120,
+                                         perception::PinholeIntrinsics{100, 100, 79.5, 59.5});
   Eigen::Isometry3d T_WC = Eigen::Isometry3d::Identity();  // looking down from 3 m
   T_WC.linear() = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix();
   T_WC.translation() = Eigen::Vector3d(0.0, 0.0, 3.0);

@@ -288,12 +288,21 @@ TEST(RayCasterTest, IdsAndDepthsMatchBruteForceIntersectionInClutter) {
   Scene scene = TexturedScene();
   for (int i = 0; i < 6; ++i) {
     const double x = 1.5 + 0.6 * i;
-    scene.AddObject({"post" + std::to_string(i), Cylinder{0.12, 2.5}, {}, Pose({0, 0, 0}, {x, -0.8 + 0.25 * i, -1.5})});
-    scene.AddObject({"cube" + std::to_string(i), Box{{0.3, 0.3, 0.3}}, {}, Pose({0.2 * i, 0, 0.1}, {x, 0.4 - 0.2 * i, 0.1 * i})});
-    scene.AddObject({"orb" + std::to_string(i), Sphere{0.15}, {}, Pose({0, 0, 0}, {x + 0.3, 0.1 * i, 0.6})});
+    scene.AddObject({"post" + std::to_string(i),
+                     Cylinder{0.12, 2.5},
+                     {},
+                     Pose({0, 0, 0}, {x, -0.8 + 0.25 * i, -1.5})});
+    scene.AddObject({"cube" + std::to_string(i),
+                     Box{{0.3, 0.3, 0.3}},
+                     {},
+                     Pose({0.2 * i, 0, 0.1}, {x, 0.4 - 0.2 * i, 0.1 * i})});
+    scene.AddObject(
+        {"orb" + std::to_string(i), Sphere{0.15}, {}, Pose({0, 0, 0}, {x + 0.3, 0.1 * i, 0.6})});
   }
-  scene.AddObject({"behind", Rectangle{{4.0, 4.0}, {}, {}}, {}, Pose({0.0, M_PI / 2, 0.0}, {-2.0, 0.0, 0.0})});
-  scene.AddObject({"edge_on", Rectangle{{2.0, 2.0}, {}, {}}, {}, Pose({M_PI / 2, 0.0, 0.0}, {2.0, 0.0, 0.0})});
+  scene.AddObject(
+      {"behind", Rectangle{{4.0, 4.0}, {}, {}}, {}, Pose({0.0, M_PI / 2, 0.0}, {-2.0, 0.0, 0.0})});
+  scene.AddObject(
+      {"edge_on", Rectangle{{2.0, 2.0}, {}, {}}, {}, Pose({M_PI / 2, 0.0, 0.0}, {2.0, 0.0, 0.0})});
   const auto camera = testing::MakeTestFisheye()->Scaled(376, 240);
   const Eigen::Isometry3d T_WC = LookAt({0, 0, 0}, {1.0, 0.05, -0.1});
   const RenderOutput out = RayCaster().Render(scene, *camera, T_WC);
@@ -317,15 +326,16 @@ TEST(RayCasterTest, IdsAndDepthsMatchBruteForceIntersectionInClutter) {
         // incidence (grazing rays amplify rounding).
         const double cos_incidence = std::abs(hit->n_W.dot(T_WC.linear() * u_C));
         const double tolerance = 1e-6 / cos_incidence;
-        worst_depth = std::max(
-            worst_depth, std::abs(out.depth_C.at<float>(y, x) - z) / std::abs(z) / tolerance);
+        worst_depth = std::max(worst_depth,
+                               std::abs(out.depth_C.at<float>(y, x) - z) / std::abs(z) / tolerance);
       }
       ++compared;
     }
   }
-  std::printf("brute force vs renderer: %d of %d pixels differ, worst depth error %.2g "
-              "tolerances\n",
-              mismatches, compared, worst_depth);
+  std::printf(
+      "brute force vs renderer: %d of %d pixels differ, worst depth error %.2g "
+      "tolerances\n",
+      mismatches, compared, worst_depth);
   // Both sides evaluate the same ray, but in differently rounded object frames (T_OC vs T_OW):
   // a ray grazing a silhouette within ~1e-15 m may go either way; a culling error would lose
   // whole tiles (256 px).
