@@ -2,7 +2,9 @@
 // Physical parameters of the quadrotor shared by the control stack (which models the vehicle)
 // and the simulator (which is the vehicle). Defaults follow the thesis platforms: mass, inertia,
 // arm length and rotor torque coefficient from Table A.2; motor time constants from G.6.1;
-// rotor-drag coefficients of the F.7 experiments. Units SI.
+// rotor-drag coefficients of the F.7.3 identification. The thesis gives no coefficients of the
+// thrust and torque polynomials (G.3, G.4): those below are synthetic, chosen to match Table A.2
+// at hover (see RotorParameters). Units SI.
 //
 // Rotor numbering and geometry follow thesis (G.1): X configuration, rotor i at
 // (x, y) = l/sqrt(2) * {(+,+), (+,-), (-,-), (-,+)} in B; rotors 1 and 3 produce positive yaw
@@ -42,8 +44,9 @@ struct VehicleParameters {
   Eigen::Vector3d inertia_diag_kgm2{0.001, 0.001, 0.002};               // Table A.2
   double arm_length_m = 0.178;                                          // Table A.2
   double gravity_mps2 = 9.81;
-  // Mass-normalized rotor-drag coefficients D = diag(dx, dy, dz) of (F.2) [1/s]. The F.7
-  // vehicle identified dx ~ 0.5, dy ~ 0.35 (aperture bench control uses these); dz ~ 0.
+  // Mass-normalized rotor-drag coefficients D = diag(dx, dy, dz) of (F.2) [1/s]. F.7.3
+  // identified dx = 0.544, dy = 0.386 on the circle and 0.491, 0.236 on the lemniscate; the
+  // defaults are rounded values in that range (aperture bench control uses them); dz = 0 as there.
   Eigen::Vector3d rotor_drag_D_per_s{0.5, 0.35, 0.0};
   // Drag-induced torque terms of (F.4) [N m s/m] and [N m s/rad]; zero by default as in F.7.
   Eigen::Matrix3d rotor_drag_A = Eigen::Matrix3d::Zero();
