@@ -199,10 +199,12 @@ void LoadParams(config::ParamReader& reader, GapParams* params) {
 void LoadParams(config::ParamReader& reader, GapFlytParams* params) {
   reader.Read("foreground_x_m", &params->foreground_x_m);
   reader.Read("background_x_m", &params->background_x_m);
-  ReadChoice(reader, "shape", &params->shape, {"polygon", "ellipse", "star"});
+  ReadChoice(reader, "shape", &params->shape,
+             {"ellipse", "polygon", "triangle", "notched", "star"});
   reader.Read("center_m", &params->center_m);
   reader.Read("size_m", &params->size_m);
   reader.Read("vertices_m", &params->vertices_m);
+  reader.Read("notch_depth_ratio", &params->notch_depth_ratio);
   reader.Read("star_points", &params->star_points);
   reader.Read("star_inner_ratio", &params->star_inner_ratio);
   reader.Read("foreground_wall_m", &params->foreground_wall_m);
@@ -217,6 +219,13 @@ void LoadParams(config::ParamReader& reader, GapFlytParams* params) {
   }
   if (!params->vertices_m.empty() && params->vertices_m.size() < 3) {
     ThrowAt(reader, "vertices_m", "needs at least 3 vertices (or none for the default)");
+  }
+  if (!params->vertices_m.empty() && params->shape != "polygon") {
+    ThrowAt(reader, "vertices_m", "is only for shape: polygon, not '" + params->shape + "'");
+  }
+  if (!(params->notch_depth_ratio > 0.0) || !(params->notch_depth_ratio < 1.0)) {
+    ThrowAt(reader, "notch_depth_ratio",
+            "must be in (0, 1), got " + std::to_string(params->notch_depth_ratio));
   }
 }
 
@@ -241,13 +250,23 @@ void LoadParams(config::ParamReader& reader, TagsSceneParams* params) {
   reader.Read("area_m", &params->area_m);
   reader.Read("family", &params->family);
   reader.Read("tag_size_m", &params->tag_size_m);
-  reader.Read("obstacles", &params->obstacles);
-  reader.Read("obstacle_size_m", &params->obstacle_size_m);
+  reader.Read("movable_obstacles", &params->movable_obstacles);
+  reader.Read("movable_size_m", &params->movable_size_m);
+  reader.Read("movable_tag_size_m", &params->movable_tag_size_m);
+  reader.Read("fixed_obstacles", &params->fixed_obstacles);
+  reader.Read("fixed_size_m", &params->fixed_size_m);
   reader.Read("robot_size_m", &params->robot_size_m);
   reader.Read("goal_xy_m", &params->goal_xy_m);
+  reader.Read("goal_size_m", &params->goal_size_m);
   RequirePositive(reader, "area_m", params->area_m);
   RequirePositive(reader, "tag_size_m", params->tag_size_m);
-  if (params->obstacles < 0) ThrowAt(reader, "obstacles", "must be >= 0");
+  RequirePositive(reader, "movable_size_m", params->movable_size_m);
+  RequirePositive(reader, "movable_tag_size_m", params->movable_tag_size_m);
+  RequirePositive(reader, "fixed_size_m", params->fixed_size_m);
+  RequirePositive(reader, "robot_size_m", params->robot_size_m);
+  RequirePositive(reader, "goal_size_m", params->goal_size_m);
+  if (params->movable_obstacles < 0) ThrowAt(reader, "movable_obstacles", "must be >= 0");
+  if (params->fixed_obstacles < 0) ThrowAt(reader, "fixed_obstacles", "must be >= 0");
 }
 
 void LoadParams(config::ParamReader& reader, ForestParams* params) {
