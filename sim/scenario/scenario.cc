@@ -350,7 +350,7 @@ class Builder {
     for (const auto& [name, o] : params_.objects) {
       Primitive primitive;
       if (o.shape == "rectangle") {
-        primitive = Rectangle{o.size_m.head<2>(), o.polygon_holes, {}};
+        primitive = Rectangle{o.size_m.head<2>(), o.polygon_holes, o.ellipse_holes};
       } else if (o.shape == "box") {
         primitive = Box{o.size_m};
       } else if (o.shape == "cylinder") {

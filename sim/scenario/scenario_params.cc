@@ -101,6 +101,19 @@ void LoadParams(config::ParamReader& reader, ObjectParams* params) {
   reader.Read("height_m", &params->height_m);
   reader.Read("intensity", &params->intensity);
   reader.Read("polygon_holes", &params->polygon_holes);
+  std::vector<Eigen::Matrix<double, 5, 1>> ellipse_rows;  // [x, y, semi_x, semi_y, angle_deg]
+  reader.Read("ellipse_holes", &ellipse_rows);
+  if (!ellipse_rows.empty()) {
+    params->ellipse_holes.clear();
+    for (const Eigen::Matrix<double, 5, 1>& row : ellipse_rows) {
+      params->ellipse_holes.push_back({row.head<2>(), row.segment<2>(2), row[4] * M_PI / 180.0});
+    }
+  }
+  if (params->shape != "rectangle" &&
+      (!params->polygon_holes.empty() || !params->ellipse_holes.empty())) {
+    ThrowAt(reader, params->polygon_holes.empty() ? "ellipse_holes" : "polygon_holes",
+            "is only for shape: rectangle, not '" + params->shape + "'");
+  }
   reader.ReadSection("pose", &params->pose);
   reader.Read("attach_to_body", &params->attach_to_body);
   reader.Read("randomize_pose", &params->randomize_pose);

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "config/param_reader.h"
+#include "sim/scene/primitives.h"
 #include "sim/vehicle/disturbances.h"
 
 namespace aperture::sim {
@@ -56,7 +57,10 @@ struct ObjectParams {
   double radius_m = 0.15;                                   // cylinder, sphere, led
   double height_m = 1.0;                                    // cylinder
   double intensity = 400.0;                                 // led: blob energy at 1 m
-  std::vector<std::vector<Eigen::Vector2d>> polygon_holes;  // rectangle: holes in (x_O, y_O) [m]
+  // rectangle only: holes in (x_O, y_O) [m]. YAML polygon_holes: [[[x, y], ...], ...];
+  // ellipse_holes: [[x, y, semi_x, semi_y, angle_deg], ...] (angle from x_O towards y_O).
+  std::vector<std::vector<Eigen::Vector2d>> polygon_holes;
+  std::vector<EllipseHole> ellipse_holes;
   PoseParams pose;
   bool attach_to_body = false;  // true: pose is T_BO and the object moves with the vehicle
   bool randomize_pose = false;  // jittered by randomize.position_sigma_m / yaw_sigma_deg
@@ -69,7 +73,9 @@ struct LightingParams {
   Eigen::Vector3d direction_W = Eigen::Vector3d(0.3, 0.2, -1.0);  // direction the light travels
 };
 
-// Seeded perturbations (all 0 = off). Textures always derive from `seed`.
+// Seeded perturbations (all 0 = off) of the randomizable objects: the gap panel, the gapflyt
+// wall, forest trees and boxes, and `objects` with randomize_pose. Textures always derive from
+// `seed`.
 struct RandomizationParams {
   double position_sigma_m = 0.0;  // per randomizable object, each axis
   double yaw_sigma_deg = 0.0;     // per randomizable object, about z_W

@@ -465,12 +465,60 @@ TEST(ScenarioLoadTest, LedFalseSpotsAreSeededEmittersInTheArea) {
   EXPECT_EQ(a.scene().FindId("false_spot3"), -1);
 }
 
-// Image hash of a captured (noisy) frame at a small resolution.
-std::size_t FrameHash(const std::string& name, int seed) {
+// objects.<name>.ellipse_holes: [x, y, semi_x, semi_y, angle_deg] cuts a rotated elliptic hole in
+// a rectangle: rays through the centre and along the major axis pass, rays beyond the minor axis
+// hit the rectangle.
+TEST(ScenarioLoadTest, ObjectEllipseHolesAreCut) {
+  // A 1 x 1 m rectangle 1 m in front of the start's camera, z_O along +x_W (like T_BC's z_C).
+  const TempFile file("ellipse_object",
+                      "objects:\n"
+                      "  plate:\n"
+                      "    shape: rectangle\n"
+                      "    size_m: [1.0, 1.0, 0]\n"
+                      "    pose: {p_m: [1.1, 0.0, 1.5], rpy_deg: [-90, 0, -90]}\n"
+                      "    ellipse_holes: [[0.2, 0.0, 0.15, 0.06, 30]]\n");
+  ScenarioParams params = Load("gap", {}, {file.path()});
+  params.cameras.front().second.width = 376;
+  params.cameras.front().second.height = 240;
+  Scenario scenario = BuildScenario(params);
+  const SceneObject& plate = scenario.scene().object("plate");
+  const Rectangle& rectangle = std::get<Rectangle>(plate.primitive);
+  ASSERT_EQ(rectangle.ellipse_holes.size(), 1u);
+  EXPECT_NEAR(rectangle.ellipse_holes[0].angle_rad, 30.0 * M_PI / 180.0, 1e-12);
+  const RenderOutput out = RenderAt(scenario, scenario.T_WB_start());
+  const ScenarioCamera& camera = scenario.render_camera();
+  const Eigen::Isometry3d T_CO = camera.T_WC(scenario.T_WB_start()).inverse() * plate.T_WO;
+  const int plate_id = scenario.scene().FindId("plate");
+  const auto id_at = [&](const Eigen::Vector2d& xy_O) {
+    Eigen::Vector2d px;
+    EXPECT_TRUE(camera.model->Project(T_CO * Eigen::Vector3d(xy_O.x(), xy_O.y(), 0.0), &px));
+    return out.object_id.at<int>(
+        cv::Point(static_cast<int>(std::lround(px.x())), static_cast<int>(std::lround(px.y()))));
+  };
+  const Eigen::Vector2d centre(0.2, 0.0);
+  const Eigen::Vector2d major(std::cos(M_PI / 6), std::sin(M_PI / 6));
+  const Eigen::Vector2d minor(-major.y(), major.x());
+  EXPECT_NE(id_at(centre), plate_id);
+  EXPECT_NE(id_at(centre + 0.11 * major), plate_id);  // inside: semi-major 0.15
+  EXPECT_EQ(id_at(centre + 0.11 * minor), plate_id);  // outside: semi-minor 0.06
+  EXPECT_EQ(id_at(Eigen::Vector2d(-0.2, 0.0)), plate_id);
+  EXPECT_THROW(
+      Load("gap", {"objects.crate.shape=box", "objects.crate.ellipse_holes=[[0, 0, 0.1, 0.1, 0]]"}),
+      std::invalid_argument);
+}
+
+// Image hash of a captured frame at a small resolution; `noise` false: no read or shot noise, so
+// the image depends only on the scene.
+std::size_t FrameHash(const std::string& name, int seed, bool noise = true) {
   ScenarioParams params = Load(name, {"seed=" + std::to_string(seed)});
-  params.cameras.front().second.width = 188;
-  params.cameras.front().second.height = 120;
-  params.cameras.front().second.supersampling = 1;
+  CameraParams& c = params.cameras.front().second;
+  c.width = 188;
+  c.height = 120;
+  c.supersampling = 1;
+  if (!noise) {
+    c.read_noise_sigma = 0.0;
+    c.full_well_electrons = 0.0;
+  }
   Scenario scenario = BuildScenario(params);
   const ScenarioCamera& camera = scenario.render_camera();
   RayCaster caster;
@@ -487,6 +535,62 @@ TEST(ScenarioSeedTest, SameSeedSameImageOtherSeedOtherImage) {
     EXPECT_EQ(FrameHash(name, 7), FrameHash(name, 7)) << name;
     EXPECT_NE(FrameHash(name, 7), FrameHash(name, 8)) << name;
   }
+}
+
+// With the sensor noise off and no pose or light jitter, the seed reaches the image only through
+// the procedural textures: another seed gives another image, the same seed the same one.
+TEST(ScenarioSeedTest, SeedChangesTexturesWithNoiseOff) {
+  for (const std::string name : {"gap", "forest"}) {
+    EXPECT_EQ(FrameHash(name, 7, false), FrameHash(name, 7, false)) << name;
+    EXPECT_NE(FrameHash(name, 7, false), FrameHash(name, 8, false)) << name;
+  }
+}
+
+TEST(ScenarioSeedTest, LightSigmaJittersTheLightingPerSeed) {
+  const auto lighting = [](int seed, double sigma) {
+    return BuildScenario(Load("gap", {"seed=" + std::to_string(seed),
+                                      "randomize.light_sigma=" + std::to_string(sigma)}))
+        .scene()
+        .lighting;
+  };
+  const auto same = [](const Lighting& a, const Lighting& b) {
+    return a.ambient == b.ambient && a.directional == b.directional &&
+           a.direction_W == b.direction_W;
+  };
+  // sigma 0: the configured lighting (built-in gap: ambient 0.45, directional 0.55).
+  const Lighting nominal = lighting(5, 0.0);
+  EXPECT_FLOAT_EQ(nominal.ambient, 0.45f);
+  EXPECT_FLOAT_EQ(nominal.directional, 0.55f);
+  EXPECT_TRUE(same(nominal, lighting(6, 0.0)));
+  const Lighting a = lighting(5, 0.2);
+  EXPECT_TRUE(same(a, lighting(5, 0.2)));
+  EXPECT_FALSE(same(a, lighting(6, 0.2)));
+  EXPECT_NE(a.ambient, nominal.ambient);
+  EXPECT_NE(a.directional, nominal.directional);
+  EXPECT_GT(std::acos(std::clamp(a.direction_W.normalized().dot(nominal.direction_W.normalized()),
+                                 -1.0, 1.0)),
+            1e-4);
+}
+
+// randomize.yaw_sigma_deg turns a randomizable object about z_W only (its position is kept when
+// position_sigma_m is 0), reproducibly per seed.
+TEST(ScenarioSeedTest, YawSigmaTurnsObjectsAboutZWorld) {
+  const std::vector<std::string> sets{"randomize.yaw_sigma_deg=5", "seed=5"};
+  const Eigen::Isometry3d T_a = BuildScenario(Load("gap", sets)).scene().object("gap").T_WO;
+  const Eigen::Isometry3d T_b = BuildScenario(Load("gap", sets)).scene().object("gap").T_WO;
+  const Eigen::Isometry3d T_nominal = BuildScenario(Load("gap")).scene().object("gap").T_WO;
+  EXPECT_EQ(T_a.matrix(), T_b.matrix());
+  EXPECT_TRUE(T_a.translation().isApprox(T_nominal.translation(), 1e-12));
+  const Eigen::AngleAxisd delta(T_a.linear() * T_nominal.linear().transpose());
+  EXPECT_GT(delta.angle(), 1e-6);
+  EXPECT_LT(delta.angle(), 5.0 * 5.0 * M_PI / 180.0);  // within 5 sigma
+  EXPECT_NEAR(std::abs(delta.axis().z()), 1.0, 1e-9);
+  const Eigen::Isometry3d T_other =
+      BuildScenario(Load("gap", {"randomize.yaw_sigma_deg=5", "seed=6"}))
+          .scene()
+          .object("gap")
+          .T_WO;
+  EXPECT_FALSE(T_other.isApprox(T_a, 1e-9));
 }
 
 TEST(ScenarioSeedTest, RandomizationMovesObjectsReproducibly) {
