@@ -34,7 +34,8 @@ gap:
   panel_m: [1.8, 1.2]
 )";
 
-// Seed 002: foreground wall ~2.6 m, background ~5.7 m, lateral motion for parallax.
+// Seed 002: foreground wall ~2.6 m, background ~5.7 m, lateral motion for parallax; `shape`
+// picks one of the five opening kinds (ellipse | polygon | triangle | notched | star).
 constexpr const char* kGapFlytYaml = R"(scenario: gapflyt
 seed: 0
 vehicle: {start: {p_m: [0.0, 0.0, 1.5], rpy_deg: [0, 0, 0]}}
@@ -88,7 +89,8 @@ disturbances:
   pushes: [[6, 0.45, 0, 0]]
 )";
 
-// Seed 001 paper D: 4 x 6 m tagged area seen by a downward camera.
+// Seed 001 paper D (D.3.3): 4 x 6 m tagged area with fixed and movable obstacles, a goal and the
+// ground robot, seen by a downward camera.
 constexpr const char* kTagsYaml = R"(scenario: tags
 seed: 0
 vehicle: {start: {p_m: [2.0, 1.0, 2.5], rpy_deg: [0, 0, 90]}}
@@ -105,7 +107,9 @@ tags:
   area_m: [4.0, 6.0]
   family: tag36h11
   tag_size_m: 0.25
-  obstacles: 4
+  goal_xy_m: [3.5, 5.5]
+  fixed_obstacles: 3
+  movable_obstacles: 3
 )";
 
 // Seed 003: trunks, boxes and grass; flight along x_W through a corridor.

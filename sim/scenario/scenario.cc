@@ -13,6 +13,8 @@ namespace aperture::sim {
 namespace {
 
 constexpr double kDegToRad = M_PI / 180.0;
+// Tags float this far above the surface they lie on so the surface never wins the depth test.
+constexpr double kTagLift_m = 0.001;
 
 // Independent random streams (one per purpose) so adding e.g. a tree does not change textures.
 enum Stream : std::uint64_t {
@@ -140,11 +142,22 @@ class Builder {
          MakePose({cx, 0.0, room.z()}, {180, 0, 0})});
   }
 
+  // The opening's polygon in (x_G right, y_G down) about its centre (GapFlytParams lists the
+  // kinds); not used for the ellipse.
   std::vector<Eigen::Vector2d> GapFlytPolygon() {
     const GapFlytParams& g = params_.gapflyt;
     if (!g.vertices_m.empty()) return g.vertices_m;
-    std::vector<Eigen::Vector2d> vertices;
     const Eigen::Vector2d half = g.size_m / 2.0;
+    if (g.shape == "triangle") {
+      return {{0.0, -half.y()}, {half.x(), half.y()}, {-half.x(), half.y()}};
+    }
+    if (g.shape == "notched") {
+      const double notch_tip_y = -half.y() + g.notch_depth_ratio * g.size_m.y();
+      return {{-half.x(), -half.y()},    {-half.x() / 2, -half.y()}, {0.0, notch_tip_y},
+              {half.x() / 2, -half.y()}, {half.x(), -half.y()},      {half.x(), half.y()},
+              {-half.x(), half.y()}};
+    }
+    std::vector<Eigen::Vector2d> vertices;
     if (g.shape == "star") {
       for (int i = 0; i < 2 * g.star_points; ++i) {
         const double angle = -M_PI / 2 + M_PI * i / g.star_points;
@@ -153,7 +166,8 @@ class Builder {
       }
       return vertices;
     }
-    // Seeded irregular quadrilateral: corners near 45 + 90 k deg, radii 75..100 % of the box.
+    // polygon: seeded irregular quadrilateral, corners near 45 + 90 k deg, radii 75..100 % of the
+    // box.
     for (int k = 0; k < 4; ++k) {
       const double angle = (45.0 + 90.0 * k + shapes_.Uniform(-15.0, 15.0)) * kDegToRad;
       const double r = shapes_.Uniform(0.75, 1.0);
@@ -216,49 +230,77 @@ class Builder {
     }
   }
 
-  // A free spot in the tag area at least `clearance` from every taken spot.
-  Eigen::Vector2d FreeSpot(const Eigen::Vector2d& area, double clearance,
-                           std::vector<Eigen::Vector2d>* taken) {
-    for (int attempt = 0; attempt < 1000; ++attempt) {
-      const Eigen::Vector2d p(placement_.Uniform(0.3, area.x() - 0.3),
-                              placement_.Uniform(0.3, area.y() - 0.3));
+  // A seeded spot for a footprint of bounding radius `radius` inside the tag area whose circle
+  // clears every taken circle (so footprints never overlap, whatever their yaw).
+  Eigen::Vector2d FreeSpot(const Eigen::Vector2d& area, double radius,
+                           std::vector<std::pair<Eigen::Vector2d, double>>* taken) {
+    constexpr double kGap = 0.05;  // [m] between footprint circles
+    for (int attempt = 0; attempt < 1000 && 2.0 * radius < area.minCoeff(); ++attempt) {
+      const Eigen::Vector2d p(placement_.Uniform(radius, area.x() - radius),
+                              placement_.Uniform(radius, area.y() - radius));
       bool free = true;
-      for (const Eigen::Vector2d& q : *taken) free = free && (p - q).norm() >= clearance;
+      for (const auto& [q, r] : *taken) free = free && (p - q).norm() >= radius + r + kGap;
       if (free) {
-        taken->push_back(p);
+        taken->emplace_back(p, radius);
         return p;
       }
     }
-    throw std::invalid_argument("tags: no free spot left for " + std::to_string(taken->size()) +
-                                " objects in area_m [" + std::to_string(area.x()) + ", " +
-                                std::to_string(area.y()) + "]; reduce tags.obstacles");
+    throw std::invalid_argument("tags: no free spot left for object " +
+                                std::to_string(taken->size()) + " in area_m [" +
+                                std::to_string(area.x()) + ", " + std::to_string(area.y()) +
+                                "]; reduce tags.fixed_obstacles / tags.movable_obstacles or "
+                                "their sizes");
+  }
+
+  // Tag `id` of edge tag_size_m lying on the top face of the box (size, T_WO at its centre),
+  // centred, x_Tag along x_O, z_Tag pointing down into the box (seen by a downward camera).
+  void AddTopTag(const std::string& owner, const Eigen::Vector3d& size,
+                 const Eigen::Isometry3d& T_WO, int id, double tag_size_m) {
+    const std::string& family = params_.tags.family;
+    const double pattern_m = AprilTagPatternSize(family, tag_size_m);
+    if (pattern_m > size.head<2>().minCoeff()) {
+      throw std::invalid_argument("tags: the tag of '" + owner + "' (" + std::to_string(pattern_m) +
+                                  " m pattern for " + std::to_string(tag_size_m) + " m " + family +
+                                  ") does not fit on its " + std::to_string(size.x()) + " x " +
+                                  std::to_string(size.y()) +
+                                  " m top; use a smaller tag size or a larger object");
+    }
+    Add(MakeAprilTagObject(family, id, tag_size_m,
+                           T_WO * MakePose({0, 0, size.z() / 2 + kTagLift_m}, {180, 0, 0})));
   }
 
   void BuildTags() {
     const TagsSceneParams& t = params_.tags;
     Add({"ground", GroundPlane{}, Textured("noise", {0.5, 0.5, 0.5}),
          Eigen::Isometry3d::Identity()});
-    // Ground tags face up: z_O = -z_W (seen by a downward camera along +z_O), x_O = x_W.
-    const Eigen::Vector3d face_up_rpy(180, 0, 0);
-    const auto tag = [&](int id, const Eigen::Vector3d& p_W, double yaw_deg) {
-      Add(MakeAprilTagObject(t.family, id, t.tag_size_m,
-                             MakePose(p_W, face_up_rpy + Eigen::Vector3d(0, 0, yaw_deg))));
-    };
-    tag(0, {0.0, 0.0, 0.001}, 0.0);  // the map origin
-    tag(1, {t.goal_xy_m.x(), t.goal_xy_m.y(), 0.001}, 0.0);
-    std::vector<Eigen::Vector2d> taken{Eigen::Vector2d::Zero(), t.goal_xy_m};
-    const double clearance = 0.9;  // > an obstacle diagonal: boxes never overlap
-    const auto tagged_box = [&](const std::string& name, int id, const Eigen::Vector3d& size) {
-      const Eigen::Vector2d xy = FreeSpot(t.area_m, clearance, &taken);
+    // The origin tag lies on the ground (z_O = -z_W, x_O = x_W): the map origin.
+    Add(MakeAprilTagObject(t.family, 0, t.tag_size_m,
+                           MakePose({0.0, 0.0, kTagLift_m}, {180, 0, 0})));
+    const double origin_radius = AprilTagPatternSize(t.family, t.tag_size_m) / std::sqrt(2.0);
+    std::vector<std::pair<Eigen::Vector2d, double>> taken{{Eigen::Vector2d::Zero(), origin_radius}};
+    // Goal: a flat victim mat (red) carrying tag 1.
+    const Eigen::Isometry3d T_W_goal = MakePose(
+        {t.goal_xy_m.x(), t.goal_xy_m.y(), t.goal_size_m.z() / 2}, Eigen::Vector3d::Zero());
+    Add({"goal", Box{t.goal_size_m}, Textured("none", {0.8, 0.15, 0.1}), T_W_goal});
+    AddTopTag("goal", t.goal_size_m, T_W_goal, 1, t.tag_size_m);
+    taken.emplace_back(t.goal_xy_m, t.goal_size_m.head<2>().norm() / 2);
+    const auto tagged_box = [&](const std::string& name, const Eigen::Vector3d& size,
+                                const Eigen::Vector3d& color, int id, double tag_size_m) {
+      const Eigen::Vector2d xy = FreeSpot(t.area_m, size.head<2>().norm() / 2, &taken);
       const double yaw = placement_.Uniform(-180.0, 180.0);
-      const Eigen::Isometry3d T_WO = Jitter(MakePose({xy.x(), xy.y(), size.z() / 2}, {0, 0, yaw}));
-      Add({name, Box{size}, Textured("none", {0.6, 0.35, 0.2}), T_WO});
-      Eigen::Isometry3d T_OT = MakePose({0, 0, size.z() / 2 + 0.001}, face_up_rpy);
-      Add(MakeAprilTagObject(t.family, id, t.tag_size_m, T_WO * T_OT));
+      // Not jittered: the placement is already seeded, and jitter could make footprints overlap.
+      const Eigen::Isometry3d T_WO = MakePose({xy.x(), xy.y(), size.z() / 2}, {0, 0, yaw});
+      Add({name, Box{size}, Textured("none", color), T_WO});
+      AddTopTag(name, size, T_WO, id, tag_size_m);
     };
-    tagged_box("robot", 2, t.robot_size_m);
-    for (int k = 0; k < t.obstacles; ++k) {
-      tagged_box("obstacle" + std::to_string(k), 3 + k, t.obstacle_size_m);
+    tagged_box("robot", t.robot_size_m, {0.9, 0.55, 0.1}, 2, t.tag_size_m);  // youBot orange
+    for (int k = 0; k < t.fixed_obstacles; ++k) {  // grey concrete-like blocks
+      tagged_box("fixed" + std::to_string(k), t.fixed_size_m, {0.45, 0.45, 0.5}, 3 + k,
+                 t.tag_size_m);
+    }
+    for (int k = 0; k < t.movable_obstacles; ++k) {  // light blue cubes the gripper lifts
+      tagged_box("movable" + std::to_string(k), t.movable_size_m, {0.2, 0.45, 0.85},
+                 3 + t.fixed_obstacles + k, t.movable_tag_size_m);
     }
   }
 
@@ -308,7 +350,7 @@ class Builder {
     for (const auto& [name, o] : params_.objects) {
       Primitive primitive;
       if (o.shape == "rectangle") {
-        primitive = Rectangle{o.size_m.head<2>(), o.polygon_holes, {}};
+        primitive = Rectangle{o.size_m.head<2>(), o.polygon_holes, o.ellipse_holes};
       } else if (o.shape == "box") {
         primitive = Box{o.size_m};
       } else if (o.shape == "cylinder") {

@@ -14,8 +14,9 @@
 //                         [&](double) { return camera.T_WC(T_WB); }, t_s, index, camera.render);
 //
 // Object names: the gap panel is "gap" (T_WO = T_WG, origin at the opening centre), the LED
-// target "led_target" (T_WO = T_WB), tags "tag<id>" (AprilTag object frame), the ground robot
-// "robot", obstacles "obstacle<k>", the goal "tag1"; walls/ground/trees have descriptive names.
+// target "led_target" (T_WO = T_WB), tags "tag<id>" (AprilTag object frame), in `tags` the
+// ground robot "robot", the goal "goal", obstacles "fixed<k>" and "movable<k>" (tag ids:
+// TagsSceneParams); walls/ground/trees have descriptive names.
 #include <Eigen/Geometry>
 #include <memory>
 #include <string>

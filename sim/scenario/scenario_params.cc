@@ -101,6 +101,19 @@ void LoadParams(config::ParamReader& reader, ObjectParams* params) {
   reader.Read("height_m", &params->height_m);
   reader.Read("intensity", &params->intensity);
   reader.Read("polygon_holes", &params->polygon_holes);
+  std::vector<Eigen::Matrix<double, 5, 1>> ellipse_rows;  // [x, y, semi_x, semi_y, angle_deg]
+  reader.Read("ellipse_holes", &ellipse_rows);
+  if (!ellipse_rows.empty()) {
+    params->ellipse_holes.clear();
+    for (const Eigen::Matrix<double, 5, 1>& row : ellipse_rows) {
+      params->ellipse_holes.push_back({row.head<2>(), row.segment<2>(2), row[4] * M_PI / 180.0});
+    }
+  }
+  if (params->shape != "rectangle" &&
+      (!params->polygon_holes.empty() || !params->ellipse_holes.empty())) {
+    ThrowAt(reader, params->polygon_holes.empty() ? "ellipse_holes" : "polygon_holes",
+            "is only for shape: rectangle, not '" + params->shape + "'");
+  }
   reader.ReadSection("pose", &params->pose);
   reader.Read("attach_to_body", &params->attach_to_body);
   reader.Read("randomize_pose", &params->randomize_pose);
@@ -199,10 +212,12 @@ void LoadParams(config::ParamReader& reader, GapParams* params) {
 void LoadParams(config::ParamReader& reader, GapFlytParams* params) {
   reader.Read("foreground_x_m", &params->foreground_x_m);
   reader.Read("background_x_m", &params->background_x_m);
-  ReadChoice(reader, "shape", &params->shape, {"polygon", "ellipse", "star"});
+  ReadChoice(reader, "shape", &params->shape,
+             {"ellipse", "polygon", "triangle", "notched", "star"});
   reader.Read("center_m", &params->center_m);
   reader.Read("size_m", &params->size_m);
   reader.Read("vertices_m", &params->vertices_m);
+  reader.Read("notch_depth_ratio", &params->notch_depth_ratio);
   reader.Read("star_points", &params->star_points);
   reader.Read("star_inner_ratio", &params->star_inner_ratio);
   reader.Read("foreground_wall_m", &params->foreground_wall_m);
@@ -217,6 +232,13 @@ void LoadParams(config::ParamReader& reader, GapFlytParams* params) {
   }
   if (!params->vertices_m.empty() && params->vertices_m.size() < 3) {
     ThrowAt(reader, "vertices_m", "needs at least 3 vertices (or none for the default)");
+  }
+  if (!params->vertices_m.empty() && params->shape != "polygon") {
+    ThrowAt(reader, "vertices_m", "is only for shape: polygon, not '" + params->shape + "'");
+  }
+  if (!(params->notch_depth_ratio > 0.0) || !(params->notch_depth_ratio < 1.0)) {
+    ThrowAt(reader, "notch_depth_ratio",
+            "must be in (0, 1), got " + std::to_string(params->notch_depth_ratio));
   }
 }
 
@@ -241,13 +263,23 @@ void LoadParams(config::ParamReader& reader, TagsSceneParams* params) {
   reader.Read("area_m", &params->area_m);
   reader.Read("family", &params->family);
   reader.Read("tag_size_m", &params->tag_size_m);
-  reader.Read("obstacles", &params->obstacles);
-  reader.Read("obstacle_size_m", &params->obstacle_size_m);
+  reader.Read("movable_obstacles", &params->movable_obstacles);
+  reader.Read("movable_size_m", &params->movable_size_m);
+  reader.Read("movable_tag_size_m", &params->movable_tag_size_m);
+  reader.Read("fixed_obstacles", &params->fixed_obstacles);
+  reader.Read("fixed_size_m", &params->fixed_size_m);
   reader.Read("robot_size_m", &params->robot_size_m);
   reader.Read("goal_xy_m", &params->goal_xy_m);
+  reader.Read("goal_size_m", &params->goal_size_m);
   RequirePositive(reader, "area_m", params->area_m);
   RequirePositive(reader, "tag_size_m", params->tag_size_m);
-  if (params->obstacles < 0) ThrowAt(reader, "obstacles", "must be >= 0");
+  RequirePositive(reader, "movable_size_m", params->movable_size_m);
+  RequirePositive(reader, "movable_tag_size_m", params->movable_tag_size_m);
+  RequirePositive(reader, "fixed_size_m", params->fixed_size_m);
+  RequirePositive(reader, "robot_size_m", params->robot_size_m);
+  RequirePositive(reader, "goal_size_m", params->goal_size_m);
+  if (params->movable_obstacles < 0) ThrowAt(reader, "movable_obstacles", "must be >= 0");
+  if (params->fixed_obstacles < 0) ThrowAt(reader, "fixed_obstacles", "must be >= 0");
 }
 
 void LoadParams(config::ParamReader& reader, ForestParams* params) {

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "config/param_reader.h"
+#include "sim/scene/primitives.h"
 #include "sim/vehicle/disturbances.h"
 
 namespace aperture::sim {
@@ -56,7 +57,10 @@ struct ObjectParams {
   double radius_m = 0.15;                                   // cylinder, sphere, led
   double height_m = 1.0;                                    // cylinder
   double intensity = 400.0;                                 // led: blob energy at 1 m
-  std::vector<std::vector<Eigen::Vector2d>> polygon_holes;  // rectangle: holes in (x_O, y_O) [m]
+  // rectangle only: holes in (x_O, y_O) [m]. YAML polygon_holes: [[[x, y], ...], ...];
+  // ellipse_holes: [[x, y, semi_x, semi_y, angle_deg], ...] (angle from x_O towards y_O).
+  std::vector<std::vector<Eigen::Vector2d>> polygon_holes;
+  std::vector<EllipseHole> ellipse_holes;
   PoseParams pose;
   bool attach_to_body = false;  // true: pose is T_BO and the object moves with the vehicle
   bool randomize_pose = false;  // jittered by randomize.position_sigma_m / yaw_sigma_deg
@@ -69,7 +73,9 @@ struct LightingParams {
   Eigen::Vector3d direction_W = Eigen::Vector3d(0.3, 0.2, -1.0);  // direction the light travels
 };
 
-// Seeded perturbations (all 0 = off). Textures always derive from `seed`.
+// Seeded perturbations (all 0 = off) of the randomizable objects: the gap panel, the gapflyt
+// wall, forest trees and boxes, and `objects` with randomize_pose. Textures always derive from
+// `seed`.
 struct RandomizationParams {
   double position_sigma_m = 0.0;  // per randomizable object, each axis
   double yaw_sigma_deg = 0.0;     // per randomizable object, about z_W
@@ -133,21 +139,32 @@ struct GapParams {
   Eigen::Vector2d pattern_inner_m = Eigen::Vector2d(0.9, 0.38);  // white margin inside the band
   Eigen::Vector2d pattern_outer_m = Eigen::Vector2d(1.3, 0.78);  // outer edge of the black band
   Eigen::Vector2d panel_m = Eigen::Vector2d(1.7, 1.2);           // white panel
-  double texel_size_m = 0.002;                                   // pattern texture resolution
   Eigen::Vector3d room_m = Eigen::Vector3d(14.0, 8.0, 4.0);      // textured room (x from -3 m)
 };
 
 // GapFlyt (seed 002): textured foreground wall with an arbitrarily shaped opening and a textured
-// background wall, both facing the start (planes x_W = const).
+// background wall, both facing the start (planes x_W = const). Sec. IV: "five different
+// arbitrarily shaped gaps as shown in Fig. 8 ... chosen to have a diversity in the geometrical
+// sharpness of the corners, convexity of the shape and the size", each "large enough to go
+// through" and "near-convex". The seed's text does not give Fig. 8's exact shapes; the five
+// `shape` kinds span those axes within the bounding box size_m (w x h; the size axis is size_m):
+//   ellipse   no corners, convex; area pi w h / 4
+//   polygon   seeded irregular convex quadrilateral, corners 90 +- ~30 deg (or vertices_m)
+//   triangle  isosceles, apex up: the sharpest convex corners (apex 2 atan(w / 2h)); area w h / 2
+//   notched   the box with a V notch notch_depth_ratio * h deep and w / 2 wide in its top edge:
+//             near-convex (area w h (1 - notch_depth_ratio / 4), one reflex corner)
+//   star      star_points spikes: sharp tips and strongly non-convex, beyond the paper's
+//             near-convex windows (a stress case for the convex-hull / median safe point)
 struct GapFlytParams {
   double foreground_x_m = 2.6;
   double background_x_m = 5.7;
-  std::string shape = "polygon";                         // polygon | ellipse | star
+  std::string shape = "polygon";  // ellipse | polygon | triangle | notched | star
   Eigen::Vector2d center_m = Eigen::Vector2d(0.0, 1.5);  // (y_W, z_W) of the opening centre
   Eigen::Vector2d size_m = Eigen::Vector2d(1.0, 0.8);    // bounding box (width, height)
-  // polygon vertices in (x_G right, y_G down) [m] about the centre; empty: a seeded irregular
-  // quadrilateral within size_m
+  // polygon only: vertices in (x_G right, y_G down) [m] about the centre; empty: a seeded
+  // irregular quadrilateral within size_m
   std::vector<Eigen::Vector2d> vertices_m;
+  double notch_depth_ratio = 0.2;  // notched: notch depth / height, in (0, 1)
   int star_points = 5;
   double star_inner_ratio = 0.5;
   Eigen::Vector2d foreground_wall_m = Eigen::Vector2d(6.0, 4.0);
@@ -165,15 +182,36 @@ struct LedSceneParams {
   double false_spot_height_m = 3.5;
 };
 
-// AprilTag mission area (seed 001 paper D): origin tag, goal, ground robot, obstacles, all tagged.
+// AprilTag mission area (seed 001 paper D, D.3.3): a 4 x 6 m area "with different types of
+// obstacles: some of them can be removed by the ground robot ('movable obstacles') and some can
+// only be avoided ('fixed obstacles')", a goal representing a victim, the ground robot; "all
+// obstacles, the goal, and the ground robot are marked with an AprilTag", plus an origin tag.
+// Objects (names, tag ids; every tag lies on the object's top face, z_Tag down into it):
+//   origin tag      "tag0" on the ground at the world origin (the map origin)
+//   goal            "goal": a flat victim mat of goal_size_m at goal_xy_m, tag 1
+//   ground robot    "robot": a box of robot_size_m, tag 2
+//   fixed<k>        k = 0 .. fixed_obstacles - 1: boxes of fixed_size_m, tag 3 + k
+//   movable<k>      k = 0 .. movable_obstacles - 1: boxes of movable_size_m, tag
+//                   3 + fixed_obstacles + k, with the smaller movable_tag_size_m
+// Robot and obstacles get seeded positions and yaws inside the area with non-overlapping
+// footprints (also clear of the origin tag and the goal); randomize.* does not move them (the
+// placement is already seeded; jitter could make footprints overlap). The robot does not drive:
+// objects move only with the vehicle (attach_to_body), not on scripted paths.
 struct TagsSceneParams {
   Eigen::Vector2d area_m = Eigen::Vector2d(4.0, 6.0);  // x, y extent from the origin tag
   std::string family = "tag36h11";
-  double tag_size_m = 0.25;
-  int obstacles = 4;
-  Eigen::Vector3d obstacle_size_m = Eigen::Vector3d(0.5, 0.5, 0.4);
-  Eigen::Vector3d robot_size_m = Eigen::Vector3d(0.35, 0.3, 0.2);
+  double tag_size_m = 0.25;  // origin, goal, robot and fixed obstacles (black border edge)
+  // D.3.2: the youBot "is able to lift up to 0.5 kg with its gripper": light 18 cm cubes.
+  int movable_obstacles = 3;
+  Eigen::Vector3d movable_size_m = Eigen::Vector3d(0.18, 0.18, 0.18);
+  double movable_tag_size_m = 0.1;  // its whole pattern (1.25x for tag36h11) fits on the top
+  // Fixed obstacles: too large and heavy to lift.
+  int fixed_obstacles = 3;
+  Eigen::Vector3d fixed_size_m = Eigen::Vector3d(0.5, 0.5, 0.4);
+  // D.3.2's KUKA youBot: its base's footprint (data sheet 0.58 x 0.38 m), 15 cm high.
+  Eigen::Vector3d robot_size_m = Eigen::Vector3d(0.58, 0.38, 0.15);
   Eigen::Vector2d goal_xy_m = Eigen::Vector2d(3.5, 5.5);
+  Eigen::Vector3d goal_size_m = Eigen::Vector3d(0.6, 0.6, 0.01);
 };
 
 // Natural environment (seed 003): bark-textured tree trunks, boxes, grass ground.

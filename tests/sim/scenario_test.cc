@@ -1,22 +1,27 @@
 // Scenarios: every built-in loads and renders a non-degenerate view, the gap pattern appears where
-// its known geometry projects, strict loading names file:line and key, seeds are reproducible,
-// kinematic trajectories and body-attached objects follow their definitions, and the 16-bit
-// ground-truth encodings round as documented.
+// its known geometry projects, every gapflyt opening kind is cut with its analytic area, the tags
+// area holds every tagged object kind without overlaps, strict loading names file:line and key,
+// seeds and randomization are reproducible, kinematic trajectories and body-attached objects
+// follow their definitions, and the 16-bit ground-truth encodings round as documented.
 #include "sim/scenario/scenario.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <opencv2/core.hpp>
 #include <set>
+#include <variant>
 
 #include "perception/gap/gap_detector.h"
 #include "sim/render/ray_caster.h"
 #include "sim/scenario/ground_truth_images.h"
 #include "sim/scenario/kinematic_trajectory.h"
+#include "sim/scene/apriltag_object.h"
 
 namespace aperture::sim {
 namespace {
@@ -162,6 +167,207 @@ TEST_P(GapPatternTest, PatternAppearsWhereItProjects) {
 
 INSTANTIATE_TEST_SUITE_P(Rolls, GapPatternTest, ::testing::Values(0.0, 30.0));
 
+// gap.pitch_deg rotates the panel about y_W (scenario_params.h): R_WG = Ry(pitch) * R_WG(0),
+// centre unchanged, so the part above the opening leans away from the approach (+x_W).
+TEST(GapScenarioTest, PitchRotatesThePanelAboutYWorld) {
+  const Scenario level = BuildScenario(Load("gap"));
+  const Scenario pitched = BuildScenario(Load("gap", {"gap.pitch_deg=25"}));
+  const Eigen::Isometry3d& T_WG0 = level.scene().object("gap").T_WO;
+  const Eigen::Isometry3d& T_WG = pitched.scene().object("gap").T_WO;
+  const double pitch = 25.0 * M_PI / 180.0;
+  EXPECT_TRUE(T_WG.linear().isApprox(
+      Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()).toRotationMatrix() * T_WG0.linear(),
+      1e-12));
+  EXPECT_TRUE(T_WG.translation().isApprox(T_WG0.translation(), 1e-12));
+  const Eigen::Vector3d above_W = T_WG * Eigen::Vector3d(0.0, -0.5, 0.0);  // y_G points down
+  EXPECT_NEAR(above_W.x() - T_WG.translation().x(), 0.5 * std::sin(pitch), 1e-12);
+  EXPECT_NEAR(above_W.z() - T_WG.translation().z(), 0.5 * std::cos(pitch), 1e-12);
+}
+
+// Seed 002 Sec. IV: five opening kinds (GapFlytParams). From the start pose the opening's centre
+// shows the background wall, the foreground wall surrounds it, and the hole's area in the id mask
+// (background pixels * (Z / f)^2 on the fronto-parallel wall) matches the kind's analytic area.
+class GapFlytShapeTest : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(GapFlytShapeTest, OpeningIsCutWithItsAnalyticArea) {
+  ScenarioParams params = Load("gapflyt", {"gapflyt.shape=" + GetParam()});
+  params.cameras.front().second.width = 320;
+  params.cameras.front().second.height = 240;
+  Scenario scenario = BuildScenario(params);
+  const GapFlytParams& g = scenario.params().gapflyt;
+  const RenderOutput out = RenderAt(scenario, scenario.T_WB_start());
+  const ScenarioCamera& camera = scenario.render_camera();
+  const SceneObject& wall = scenario.scene().object("gap");
+  const Eigen::Isometry3d T_CG = camera.T_WC(scenario.T_WB_start()).inverse() * wall.T_WO;
+  const int wall_id = scenario.scene().FindId("gap");
+  const int background_id = scenario.scene().FindId("background");
+  const auto id_at = [&](const Eigen::Vector2d& xy_G) {
+    Eigen::Vector2d px;
+    EXPECT_TRUE(camera.model->Project(T_CG * Eigen::Vector3d(xy_G.x(), xy_G.y(), 0.0), &px));
+    return out.object_id.at<int>(
+        cv::Point(static_cast<int>(std::lround(px.x())), static_cast<int>(std::lround(px.y()))));
+  };
+  EXPECT_EQ(id_at(Eigen::Vector2d::Zero()), background_id);
+  const Eigen::Vector2d outside = g.size_m / 2.0 + Eigen::Vector2d::Constant(0.15);
+  for (const Eigen::Vector2d& xy :
+       {Eigen::Vector2d(outside.x(), 0.0), Eigen::Vector2d(-outside.x(), 0.0),
+        Eigen::Vector2d(0.0, outside.y()), Eigen::Vector2d(0.0, -outside.y())}) {
+    EXPECT_EQ(id_at(xy), wall_id) << xy.transpose();
+  }
+  const double w = g.size_m.x(), h = g.size_m.y();
+  double expected_m2 = 0.0;
+  if (GetParam() == "ellipse") expected_m2 = M_PI * w * h / 4.0;
+  if (GetParam() == "triangle") expected_m2 = w * h / 2.0;
+  if (GetParam() == "notched") expected_m2 = w * h * (1.0 - g.notch_depth_ratio / 4.0);
+  if (GetParam() == "star") {  // 2n triangles between outer radius 1 and inner ratio, scaled
+    const int n = g.star_points;
+    expected_m2 = n * g.star_inner_ratio * std::sin(M_PI / n) * w * h / 4.0;
+  }
+  if (GetParam() == "polygon") {  // seeded: shoelace of the wall's hole
+    const std::vector<Eigen::Vector2d>& v = std::get<Rectangle>(wall.primitive).polygon_holes.at(0);
+    ASSERT_EQ(v.size(), 4u);
+    for (size_t i = 0; i < v.size(); ++i) {
+      const Eigen::Vector2d& a = v[i];
+      const Eigen::Vector2d& b = v[(i + 1) % v.size()];
+      expected_m2 += 0.5 * (a.x() * b.y() - a.y() * b.x());
+    }
+    expected_m2 = std::abs(expected_m2);
+    EXPECT_GT(expected_m2, 0.5 * w * h);  // corners at 75..100 % of the box
+  }
+  const Eigen::Vector4d intrinsics = camera.model->intrinsics();  // fx, fy, cx, cy
+  const double z_m = T_CG.translation().z();
+  const double hole_m2 = cv::countNonZero(out.object_id == background_id) * (z_m / intrinsics[0]) *
+                         (z_m / intrinsics[1]);
+  // The hole spans ~1700-4500 px; pixel quantization along the outline (worst when an edge runs
+  // along a row of pixel centres) gave 0.02 % (ellipse) to 1.9 % (triangle).
+  EXPECT_NEAR(hole_m2, expected_m2, 0.05 * expected_m2) << GetParam();
+}
+
+INSTANTIATE_TEST_SUITE_P(FiveKinds, GapFlytShapeTest,
+                         ::testing::Values("ellipse", "polygon", "triangle", "notched", "star"));
+
+// Footprint of a box on the ground: centre, yaw-only rotation, half extents.
+struct Footprint {
+  std::string name;
+  Eigen::Vector2d center;
+  Eigen::Matrix2d R;
+  Eigen::Vector2d half;
+};
+
+// Separating-axis test of two oriented rectangles.
+bool Overlap(const Footprint& a, const Footprint& b) {
+  for (const Footprint* f : {&a, &b}) {
+    for (int axis = 0; axis < 2; ++axis) {
+      const Eigen::Vector2d n = f->R.col(axis);
+      const auto reach = [&](const Footprint& g) {
+        return g.half.x() * std::abs(n.dot(g.R.col(0))) + g.half.y() * std::abs(n.dot(g.R.col(1)));
+      };
+      if (std::abs(n.dot(b.center - a.center)) > reach(a) + reach(b)) return false;
+    }
+  }
+  return true;
+}
+
+// Seed 001 D.3.3: origin tag, goal, ground robot, fixed and movable obstacles in their configured
+// counts, each with its own tag centred on its top face, inside the area without overlaps, and
+// visible where they project in a downward frame from 4 m above the area's centre.
+TEST(TagsScenarioTest, AreaHoldsEveryTaggedObjectKind) {
+  for (const int seed : {0, 1, 2}) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    Scenario scenario =
+        BuildScenario(Load("tags", {"seed=" + std::to_string(seed), "tags.fixed_obstacles=2",
+                                    "tags.movable_obstacles=4"}));
+    const TagsSceneParams& t = scenario.params().tags;
+    const Scene& scene = scenario.scene();
+    struct Tagged {
+      std::string name;
+      int tag_id;
+      Eigen::Vector3d size_m;
+      double tag_size_m;
+    };
+    std::vector<Tagged> tagged{{"goal", 1, t.goal_size_m, t.tag_size_m},
+                               {"robot", 2, t.robot_size_m, t.tag_size_m}};
+    for (int k = 0; k < 2; ++k) {
+      tagged.push_back({"fixed" + std::to_string(k), 3 + k, t.fixed_size_m, t.tag_size_m});
+    }
+    for (int k = 0; k < 4; ++k) {
+      tagged.push_back(
+          {"movable" + std::to_string(k), 5 + k, t.movable_size_m, t.movable_tag_size_m});
+    }
+    EXPECT_EQ(scene.FindId("fixed2"), -1);
+    EXPECT_EQ(scene.FindId("movable4"), -1);
+    EXPECT_EQ(scene.FindId("tag9"), -1);
+    const Eigen::Vector3d p_origin = scene.object("tag0").T_WO.translation();
+    EXPECT_LT(p_origin.norm(), 0.002);  // on the ground at the world origin
+    // The movable cubes are light enough for the youBot gripper (D.3.2) and smaller than the
+    // fixed obstacles; the kinds have different colours.
+    EXPECT_LT(t.movable_size_m.prod(), t.fixed_size_m.prod());
+    EXPECT_NE(scene.object("fixed0").material.color, scene.object("movable0").material.color);
+
+    const double origin_half = std::get<Rectangle>(scene.object("tag0").primitive).size_m.x() / 2;
+    std::vector<Footprint> footprints{{"tag0", Eigen::Vector2d::Zero(), Eigen::Matrix2d::Identity(),
+                                       Eigen::Vector2d::Constant(origin_half)}};
+    for (const Tagged& object : tagged) {
+      SCOPED_TRACE(object.name);
+      const SceneObject& box = scene.object(object.name);
+      ASSERT_TRUE(std::holds_alternative<Box>(box.primitive));
+      EXPECT_EQ(std::get<Box>(box.primitive).size_m, object.size_m);
+      const Eigen::Vector3d p_WO = box.T_WO.translation();
+      EXPECT_NEAR(p_WO.z(), object.size_m.z() / 2, 1e-12);  // resting on the ground
+      const SceneObject& tag = scene.object("tag" + std::to_string(object.tag_id));
+      const Eigen::Vector3d p_WT = tag.T_WO.translation();
+      EXPECT_NEAR(p_WT.z(), object.size_m.z(), 0.002);  // on the top face (1 mm lift)
+      EXPECT_LT((p_WT - p_WO).head<2>().norm(), 1e-9);  // centred
+      EXPECT_TRUE(tag.T_WO.linear().col(2).isApprox(-Eigen::Vector3d::UnitZ(), 1e-12));
+      const double pattern_m = std::get<Rectangle>(tag.primitive).size_m.x();
+      EXPECT_NEAR(pattern_m, AprilTagPatternSize(t.family, object.tag_size_m), 1e-12);
+      EXPECT_LE(pattern_m, object.size_m.head<2>().minCoeff());  // the tag fits on the top
+      Footprint footprint{object.name, p_WO.head<2>(), box.T_WO.linear().topLeftCorner<2, 2>(),
+                          object.size_m.head<2>() / 2};
+      for (int corner = 0; corner < 4; ++corner) {
+        const Eigen::Vector2d sign(corner % 2 ? 1 : -1, corner / 2 ? 1 : -1);
+        const Eigen::Vector2d c =
+            footprint.center + footprint.R * footprint.half.cwiseProduct(sign);
+        EXPECT_TRUE((c.array() >= 0.0).all() && (c.array() <= t.area_m.array()).all())
+            << c.transpose();
+      }
+      footprints.push_back(footprint);
+    }
+    for (size_t i = 0; i < footprints.size(); ++i) {
+      for (size_t j = i + 1; j < footprints.size(); ++j) {
+        EXPECT_FALSE(Overlap(footprints[i], footprints[j]))
+            << footprints[i].name << " overlaps " << footprints[j].name;
+      }
+    }
+
+    // Downward frame (640 x 480, 90 deg) from 4 m above the centre sees the whole area: each tag
+    // at its centre, each object on its top face's margin beside the tag.
+    Eigen::Isometry3d T_WB = Eigen::Isometry3d::Identity();
+    T_WB.translation() << t.area_m.x() / 2, t.area_m.y() / 2, 4.0;
+    const RenderOutput out = RenderAt(scenario, T_WB);
+    const ScenarioCamera& camera = scenario.render_camera();
+    const Eigen::Isometry3d T_CW = camera.T_WC(T_WB).inverse();
+    const auto name_at = [&](const Eigen::Vector3d& p_W) -> std::string {
+      Eigen::Vector2d px;
+      if (!camera.model->Project(T_CW * p_W, &px) || !camera.model->IsInImage(px, 1.0)) return "";
+      const int id = out.object_id.at<int>(
+          cv::Point(static_cast<int>(std::lround(px.x())), static_cast<int>(std::lround(px.y()))));
+      return id > 0 ? scene.object(id).name : "sky";
+    };
+    EXPECT_EQ(name_at(p_origin), "tag0");
+    for (const Tagged& object : tagged) {
+      const SceneObject& box = scene.object(object.name);
+      const std::string tag_name = "tag" + std::to_string(object.tag_id);
+      EXPECT_EQ(name_at(scene.object(tag_name).T_WO.translation()), tag_name);
+      // Mid-way between the tag pattern's edge and the box's edge along x_O, on the top face.
+      const double half_pattern = AprilTagPatternSize(t.family, object.tag_size_m) / 2;
+      const double margin_x = 0.5 * (half_pattern + object.size_m.x() / 2);
+      EXPECT_EQ(name_at(box.T_WO * Eigen::Vector3d(margin_x, 0.0, object.size_m.z() / 2)),
+                object.name);
+    }
+  }
+}
+
 // The gap scenario is what the seed-000 detector is built for: along the default approach the
 // detector (default parameters = the scenario's default pattern) finds the gap in the captured,
 // noisy frames and its pose matches the scene's ground truth T_CG = T_WC^-1 * T_WG.
@@ -259,12 +465,60 @@ TEST(ScenarioLoadTest, LedFalseSpotsAreSeededEmittersInTheArea) {
   EXPECT_EQ(a.scene().FindId("false_spot3"), -1);
 }
 
-// Image hash of a captured (noisy) frame at a small resolution.
-std::size_t FrameHash(const std::string& name, int seed) {
+// objects.<name>.ellipse_holes: [x, y, semi_x, semi_y, angle_deg] cuts a rotated elliptic hole in
+// a rectangle: rays through the centre and along the major axis pass, rays beyond the minor axis
+// hit the rectangle.
+TEST(ScenarioLoadTest, ObjectEllipseHolesAreCut) {
+  // A 1 x 1 m rectangle 1 m in front of the start's camera, z_O along +x_W (like T_BC's z_C).
+  const TempFile file("ellipse_object",
+                      "objects:\n"
+                      "  plate:\n"
+                      "    shape: rectangle\n"
+                      "    size_m: [1.0, 1.0, 0]\n"
+                      "    pose: {p_m: [1.1, 0.0, 1.5], rpy_deg: [-90, 0, -90]}\n"
+                      "    ellipse_holes: [[0.2, 0.0, 0.15, 0.06, 30]]\n");
+  ScenarioParams params = Load("gap", {}, {file.path()});
+  params.cameras.front().second.width = 376;
+  params.cameras.front().second.height = 240;
+  Scenario scenario = BuildScenario(params);
+  const SceneObject& plate = scenario.scene().object("plate");
+  const Rectangle& rectangle = std::get<Rectangle>(plate.primitive);
+  ASSERT_EQ(rectangle.ellipse_holes.size(), 1u);
+  EXPECT_NEAR(rectangle.ellipse_holes[0].angle_rad, 30.0 * M_PI / 180.0, 1e-12);
+  const RenderOutput out = RenderAt(scenario, scenario.T_WB_start());
+  const ScenarioCamera& camera = scenario.render_camera();
+  const Eigen::Isometry3d T_CO = camera.T_WC(scenario.T_WB_start()).inverse() * plate.T_WO;
+  const int plate_id = scenario.scene().FindId("plate");
+  const auto id_at = [&](const Eigen::Vector2d& xy_O) {
+    Eigen::Vector2d px;
+    EXPECT_TRUE(camera.model->Project(T_CO * Eigen::Vector3d(xy_O.x(), xy_O.y(), 0.0), &px));
+    return out.object_id.at<int>(
+        cv::Point(static_cast<int>(std::lround(px.x())), static_cast<int>(std::lround(px.y()))));
+  };
+  const Eigen::Vector2d centre(0.2, 0.0);
+  const Eigen::Vector2d major(std::cos(M_PI / 6), std::sin(M_PI / 6));
+  const Eigen::Vector2d minor(-major.y(), major.x());
+  EXPECT_NE(id_at(centre), plate_id);
+  EXPECT_NE(id_at(centre + 0.11 * major), plate_id);  // inside: semi-major 0.15
+  EXPECT_EQ(id_at(centre + 0.11 * minor), plate_id);  // outside: semi-minor 0.06
+  EXPECT_EQ(id_at(Eigen::Vector2d(-0.2, 0.0)), plate_id);
+  EXPECT_THROW(
+      Load("gap", {"objects.crate.shape=box", "objects.crate.ellipse_holes=[[0, 0, 0.1, 0.1, 0]]"}),
+      std::invalid_argument);
+}
+
+// Image hash of a captured frame at a small resolution; `noise` false: no read or shot noise, so
+// the image depends only on the scene.
+std::size_t FrameHash(const std::string& name, int seed, bool noise = true) {
   ScenarioParams params = Load(name, {"seed=" + std::to_string(seed)});
-  params.cameras.front().second.width = 188;
-  params.cameras.front().second.height = 120;
-  params.cameras.front().second.supersampling = 1;
+  CameraParams& c = params.cameras.front().second;
+  c.width = 188;
+  c.height = 120;
+  c.supersampling = 1;
+  if (!noise) {
+    c.read_noise_sigma = 0.0;
+    c.full_well_electrons = 0.0;
+  }
   Scenario scenario = BuildScenario(params);
   const ScenarioCamera& camera = scenario.render_camera();
   RayCaster caster;
@@ -281,6 +535,60 @@ TEST(ScenarioSeedTest, SameSeedSameImageOtherSeedOtherImage) {
     EXPECT_EQ(FrameHash(name, 7), FrameHash(name, 7)) << name;
     EXPECT_NE(FrameHash(name, 7), FrameHash(name, 8)) << name;
   }
+}
+
+// With the sensor noise off and no pose or light jitter, the seed reaches the image only through
+// the procedural textures: another seed gives another image, the same seed the same one.
+TEST(ScenarioSeedTest, SeedChangesTexturesWithNoiseOff) {
+  EXPECT_EQ(FrameHash("gap", 7, false), FrameHash("gap", 7, false));
+  EXPECT_NE(FrameHash("gap", 7, false), FrameHash("gap", 8, false));
+}
+
+TEST(ScenarioSeedTest, LightSigmaJittersTheLightingPerSeed) {
+  const auto lighting = [](int seed, double sigma) {
+    return BuildScenario(Load("gap", {"seed=" + std::to_string(seed),
+                                      "randomize.light_sigma=" + std::to_string(sigma)}))
+        .scene()
+        .lighting;
+  };
+  const auto same = [](const Lighting& a, const Lighting& b) {
+    return a.ambient == b.ambient && a.directional == b.directional &&
+           a.direction_W == b.direction_W;
+  };
+  // sigma 0: the configured lighting (built-in gap: ambient 0.45, directional 0.55).
+  const Lighting nominal = lighting(5, 0.0);
+  EXPECT_FLOAT_EQ(nominal.ambient, 0.45f);
+  EXPECT_FLOAT_EQ(nominal.directional, 0.55f);
+  EXPECT_TRUE(same(nominal, lighting(6, 0.0)));
+  const Lighting a = lighting(5, 0.2);
+  EXPECT_TRUE(same(a, lighting(5, 0.2)));
+  EXPECT_FALSE(same(a, lighting(6, 0.2)));
+  EXPECT_NE(a.ambient, nominal.ambient);
+  EXPECT_NE(a.directional, nominal.directional);
+  EXPECT_GT(std::acos(std::clamp(a.direction_W.normalized().dot(nominal.direction_W.normalized()),
+                                 -1.0, 1.0)),
+            1e-4);
+}
+
+// randomize.yaw_sigma_deg turns a randomizable object about z_W only (its position is kept when
+// position_sigma_m is 0), reproducibly per seed.
+TEST(ScenarioSeedTest, YawSigmaTurnsObjectsAboutZWorld) {
+  const std::vector<std::string> sets{"randomize.yaw_sigma_deg=5", "seed=5"};
+  const Eigen::Isometry3d T_a = BuildScenario(Load("gap", sets)).scene().object("gap").T_WO;
+  const Eigen::Isometry3d T_b = BuildScenario(Load("gap", sets)).scene().object("gap").T_WO;
+  const Eigen::Isometry3d T_nominal = BuildScenario(Load("gap")).scene().object("gap").T_WO;
+  EXPECT_EQ(T_a.matrix(), T_b.matrix());
+  EXPECT_TRUE(T_a.translation().isApprox(T_nominal.translation(), 1e-12));
+  const Eigen::AngleAxisd delta(T_a.linear() * T_nominal.linear().transpose());
+  EXPECT_GT(delta.angle(), 1e-6);
+  EXPECT_LT(delta.angle(), 5.0 * 5.0 * M_PI / 180.0);  // within 5 sigma
+  EXPECT_NEAR(std::abs(delta.axis().z()), 1.0, 1e-9);
+  const Eigen::Isometry3d T_other =
+      BuildScenario(Load("gap", {"randomize.yaw_sigma_deg=5", "seed=6"}))
+          .scene()
+          .object("gap")
+          .T_WO;
+  EXPECT_FALSE(T_other.isApprox(T_a, 1e-9));
 }
 
 TEST(ScenarioSeedTest, RandomizationMovesObjectsReproducibly) {
