@@ -19,21 +19,27 @@ function(aperture_add_module name)
   add_library(aperture::${name} ALIAS ${target})
 endfunction()
 
-# aperture_add_test_suite(<folder> DEPS <targets...>)
-# tests/<folder>/*_test.cc become one GoogleTest executable registered with ctest.
+# aperture_add_test_suite(<folder> DEPS <targets...> [SOURCES <files...>] [LABELS <labels...>])
+# tests/<folder>/*_test.cc (plus SOURCES, relative to tests/) become one GoogleTest executable
+# registered with ctest; LABELS tag its tests (`ctest -LE <label>` leaves them out).
 function(aperture_add_test_suite name)
-  cmake_parse_arguments(ARG "" "" "DEPS" ${ARGN})
+  cmake_parse_arguments(ARG "" "" "DEPS;SOURCES;LABELS" ${ARGN})
   file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/${name}/*.cc)
   if(NOT sources)
     return()
   endif()
+  list(TRANSFORM ARG_SOURCES PREPEND ${CMAKE_CURRENT_SOURCE_DIR}/)
   set(target aperture_${name}_tests)
-  add_executable(${target} ${sources})
+  add_executable(${target} ${sources} ${ARG_SOURCES})
   target_link_libraries(${target} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gmock GTest::gtest_main)
   target_compile_options(${target} PRIVATE -Wall -Wextra)
   target_compile_definitions(${target} PRIVATE
       APERTURE_TEST_DATA_DIR="${CMAKE_CURRENT_SOURCE_DIR}/data"
       APERTURE_BINARY="$<TARGET_FILE:aperture>"
       APERTURE_VERSION_FOR_TEST="${PROJECT_VERSION}")
-  gtest_discover_tests(${target} DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 600)
+  set(properties TIMEOUT 600)
+  if(ARG_LABELS)
+    list(APPEND properties LABELS "${ARG_LABELS}")
+  endif()
+  gtest_discover_tests(${target} DISCOVERY_TIMEOUT 60 PROPERTIES ${properties})
 endfunction()

@@ -11,4 +11,7 @@ out=${2:?usage: demo.sh APERTURE_BINARY OUT_DIR}
 
 "$aperture" sim gap --duration 14 --set gap.roll_deg=30 --set cameras.front.rate_hz=30 \
   --set cameras.front.supersampling=1 --out "$out"
-echo "demo: open $out/report.html (video: $out/sim.mp4)"
+# The video writer falls back from .mp4 to .avi where no MP4 encoder is available: name the file
+# summary.json lists (its "outputs" holds the only string-valued "video" key).
+video=$(sed -n 's/^ *"video": *"\([^"]*\)".*/\1/p' "$out/summary.json" | head -n 1)
+echo "demo: open $out/report.html (video: ${video:+$out/}${video:-none written})"

@@ -11,8 +11,8 @@
 
 namespace aperture::apps::testing {
 
-CommandResult RunAperture(const std::string& arguments) {
-  const std::string command = std::string(APERTURE_BINARY) + " " + arguments + " 2>&1";
+CommandResult RunShellCommand(const std::string& command_line) {
+  const std::string command = command_line + " 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr) throw std::runtime_error("cannot run: " + command);
   CommandResult result;
@@ -22,6 +22,10 @@ CommandResult RunAperture(const std::string& arguments) {
   const int status = pclose(pipe);
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
+}
+
+CommandResult RunAperture(const std::string& arguments) {
+  return RunShellCommand(std::string(APERTURE_BINARY) + " " + arguments);
 }
 
 nlohmann::json ReadJson(const std::string& path) {

@@ -10,6 +10,9 @@ struct CommandResult {
   std::string output;  // stdout and stderr, interleaved
 };
 
+// Runs `command_line` through the shell (e.g. a script given the aperture binary).
+CommandResult RunShellCommand(const std::string& command_line);
+
 // Runs `aperture <arguments>` through the shell (arguments are passed verbatim).
 CommandResult RunAperture(const std::string& arguments);
 
