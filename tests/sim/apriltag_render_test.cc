@@ -10,6 +10,7 @@
 #include <apriltag/tagStandard52h13.h>
 #include <gtest/gtest.h>
 
+#include <Eigen/Core>  // before OpenCV's Eigen adapter, which needs it
 #include <cstdlib>
 #include <map>
 #include <opencv2/calib3d.hpp>
