@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <utility>
 
 namespace aperture::sim {
@@ -77,6 +78,38 @@ TEST_F(CollisionCheckerTest, DetectsAWallWithinTheBodyRadiusOnly) {
   params_.ignored_objects = {"ceiling"};
   const CollisionChecker ignoring(dynamics_, params_);
   EXPECT_FALSE(ignoring.Check(&scene, StateAt(near), near).has_value());
+}
+
+TEST_F(CollisionCheckerTest, PropellerDiskHitsASceneObjectBeyondTheBodyAndArm) {
+  // A wall face 4 cm outside the rotor in the +x+y quadrant, covering y >= 0.1 m only: out of
+  // reach of the body sphere (0.19 m away) and of the arms (they end at the rotor centre), but
+  // inside that rotor's 6.35 cm disk. Level vehicle, so the disk ray along +x_B hits it first.
+  int rotor = -1;
+  for (int i = 0; i < 4; ++i) {
+    const Eigen::Vector3d r = dynamics_.vehicle.RotorPosition_B(i);
+    if (r.x() > 0.0 && r.y() > 0.0) rotor = i;
+  }
+  ASSERT_GE(rotor, 0);
+  const Eigen::Vector3d r_B = dynamics_.vehicle.RotorPosition_B(rotor);
+  const double face_x = r_B.x() + 0.04;
+  Scene scene;
+  Eigen::Isometry3d T_WO = Eigen::Isometry3d::Identity();
+  T_WO.translation() = Eigen::Vector3d(face_x + 0.1, 0.6, 2.0);
+  scene.AddObject({"wall", Box{Eigen::Vector3d(0.2, 1.0, 1.0)}, Material{}, T_WO});
+  params_.ground_enabled = false;
+  const CollisionChecker checker(dynamics_, params_);
+  const Eigen::Vector3d p(0.0, 0.0, 2.0);
+  const std::optional<Collision> hit = checker.Check(&scene, StateAt(p), p);
+  ASSERT_TRUE(hit.has_value());
+  EXPECT_EQ(hit->object_name, "wall");
+  EXPECT_EQ(hit->part, "propeller " + std::to_string(rotor + 1));
+  EXPECT_TRUE(hit->contact_p_W.isApprox(Eigen::Vector3d(face_x, r_B.y(), 2.0), 1e-9))
+      << hit->contact_p_W.transpose();
+  // 3 cm further out the disk (radius 6.35 cm) no longer reaches it.
+  T_WO.translation().x() += 0.03;
+  Scene farther;
+  farther.AddObject({"wall", Box{Eigen::Vector3d(0.2, 1.0, 1.0)}, Material{}, T_WO});
+  EXPECT_FALSE(checker.Check(&farther, StateAt(p), p).has_value());
 }
 
 TEST_F(CollisionCheckerTest, SweepCatchesTunnellingThroughAThinPlate) {

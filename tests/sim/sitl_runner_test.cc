@@ -253,6 +253,51 @@ TEST(SitlRunner, FramesAreDroppedAtTheConfiguredRate) {
   EXPECT_EQ(gaps, stats.frames_dropped);
 }
 
+TEST(SitlRunner, TwoCamerasDeliverAtTheirOwnRatesTheirOwnViews) {
+  // A forward camera at 30 Hz sees the box ahead; a downward one at 20 Hz sees only the ground.
+  const Scene scene = TexturedScene();
+  SitlRunnerParams params = QuietParams(1.0);
+  params.initial_state.p_WB = Eigen::Vector3d(0.0, 0.0, 1.0);
+  SitlCamera front = ForwardCamera(30.0);
+  front.model = std::make_shared<perception::PinholeCamera>(
+      40, 30, perception::PinholeIntrinsics{20.0, 20.0, 19.5, 14.5});
+  front.render.ground_truth = true;
+  SitlCamera down = front;
+  down.name = "down";
+  down.rate_hz = 20.0;
+  // C looking along -z_B: x_C = -y_B, y_C = -x_B, z_C = -z_B.
+  down.T_BC.linear() << 0, -1, 0, -1, 0, 0, 0, 0, -1;
+  params.cameras = {front, down};
+  SitlRunner runner(params, &scene);
+  RecordingAutopilot autopilot(params.dynamics.vehicle, HoverAt(params.initial_state.p_WB));
+  std::vector<std::vector<double>> stamps(2);
+  std::vector<cv::Mat> ids(2);
+  SitlHooks hooks;
+  hooks.on_frame = [&](int camera_index, const CapturedFrame& frame, const control::QuadState&) {
+    EXPECT_EQ(frame.frame.camera_id, camera_index);
+    stamps[camera_index].push_back(frame.frame.t_s);
+    if (ids[camera_index].empty()) ids[camera_index] = frame.object_id.clone();
+  };
+  const SitlResult result = runner.Run(autopilot, hooks);
+  ASSERT_EQ(result.cameras.size(), 2u);
+  EXPECT_EQ(result.cameras[0].frames_delivered, 31);  // 30 Hz over [0, 1] s inclusive
+  EXPECT_EQ(result.cameras[1].frames_delivered, 21);  // 20 Hz
+  ASSERT_EQ(stamps[0].size(), 31u);
+  ASSERT_EQ(stamps[1].size(), 21u);
+  for (size_t i = 1; i < stamps[0].size(); ++i) {
+    EXPECT_NEAR(stamps[0][i] - stamps[0][i - 1], 1.0 / 30.0, 1e-3);  // on the 1 ms step grid
+  }
+  for (size_t i = 1; i < stamps[1].size(); ++i) {
+    EXPECT_NEAR(stamps[1][i] - stamps[1][i - 1], 1.0 / 20.0, 1e-9);
+  }
+  EXPECT_EQ(static_cast<int>(autopilot.frames.size()), 31 + 21);
+  // Each camera renders its own view: the box fills the forward view's centre, the downward
+  // view is all ground.
+  const int box = scene.FindId("box"), ground = scene.FindId("ground");
+  EXPECT_EQ(ids[0].at<int>(15, 20), box);
+  EXPECT_EQ(cv::countNonZero(ids[1] == ground), ids[1].rows * ids[1].cols);
+}
+
 TEST(SitlRunner, LatencyDelaysDeliveryByTheConfiguredAmount) {
   const Scene scene = TexturedScene();
   SitlRunnerParams params = QuietParams(1.0);
