@@ -55,6 +55,7 @@ void LoadParams(config::ParamReader& reader, QuadrotorDynamicsParams* params) {
   reader.Read("rotor_lag_enabled", &params->rotor_lag_enabled);
   reader.Read("ground_contact_enabled", &params->ground_contact_enabled);
   reader.Read("ground_height_m", &params->ground_height_m);
+  reader.Read("landing_gear_height_m", &params->landing_gear_height_m);
   reader.RejectUnknownKeys();
   reader.Validate(*params);
 }
@@ -113,6 +114,31 @@ void LoadParams(config::ParamReader& reader, RangeSensorParams* params) {
   ReadSeed(reader, &params->seed);
   reader.RejectUnknownKeys();
   reader.Validate(*params);
+}
+
+void LoadParams(config::ParamReader& reader, CollisionParams* params) {
+  reader.Read("body_radius_m", &params->body_radius_m);
+  reader.Read("propeller_radius_m", &params->propeller_radius_m);
+  reader.Read("ground_enabled", &params->ground_enabled);
+  reader.Read("max_touchdown_speed_mps", &params->max_touchdown_speed_mps);
+  reader.Read("max_touchdown_tilt_rad", &params->max_touchdown_tilt_rad);
+  reader.Read("ignored_objects", &params->ignored_objects);
+  reader.Read("sphere_rays", &params->sphere_rays);
+  reader.Read("disk_rays", &params->disk_rays);
+  reader.RejectUnknownKeys();
+  reader.Validate(*params);
+}
+
+void LoadParams(config::ParamReader& reader, SitlRunnerParams* params) {
+  reader.Read("dynamics_rate_hz", &params->dynamics_rate_hz);
+  reader.Read("control_rate_hz", &params->control_rate_hz);
+  reader.Read("command_latency_s", &params->command_latency_s);
+  reader.Read("range_latency_s", &params->range_latency_s);
+  reader.Read("range_enabled", &params->range_enabled);
+  reader.Read("start_hovering", &params->start_hovering);
+  reader.RejectUnknownKeys();
+  // No Validate() here: the rate checks compare against the IMU, range and flight-controller
+  // rates, which other sections set; SitlRunner validates the assembled struct.
 }
 
 }  // namespace aperture::sim

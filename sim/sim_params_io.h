@@ -14,7 +14,8 @@
 //   max_integration_step_s: 0.001   # QuadrotorDynamicsParams (the map above is its `vehicle`)
 //   rotor_lag_enabled: true
 //   ground_contact_enabled: false
-//   ground_height_m: 0.0
+//   ground_height_m: 0.0            # in the SITL also the collision checker's ground
+//   landing_gear_height_m: 0.0      # origin of B above the ground when resting on the gear
 //
 //   disturbances:
 //     steady_wind_W_mps: [0, 0, 0]
@@ -23,12 +24,19 @@
 //
 //   imu: {rate_hz: 500, latency_s: 0.002, accel_noise_density: 3.9e-3, seed: 1, ...}
 //   range: {rate_hz: 100, max_range_m: 14, max_tilt_rad: 0.52, p_BS: [0, 0, 0], seed: 2, ...}
+//   collision: {body_radius_m: 0.08, propeller_radius_m: 0.0635, ground_enabled: true,
+//               max_touchdown_speed_mps: 1.0, max_touchdown_tilt_rad: 0.5,
+//               ignored_objects: [name, ...], sphere_rays: 64, disk_rays: 12}
+//   sitl: {dynamics_rate_hz: 1000, control_rate_hz: 100, command_latency_s: 0,     # the loop
+//          range_latency_s: 0, range_enabled: true, start_hovering: true}        # fields only
 //
 // All throw std::invalid_argument naming where the bad value is and what is expected.
 #include "config/param_reader.h"
 #include "control/vehicle_parameters.h"
 #include "sim/sensors/imu_sensor.h"
 #include "sim/sensors/range_sensor.h"
+#include "sim/sitl/collision_checker.h"
+#include "sim/sitl/sitl_runner.h"
 #include "sim/vehicle/disturbances.h"
 #include "sim/vehicle/quadrotor_dynamics.h"
 
@@ -42,5 +50,10 @@ void LoadParams(config::ParamReader& reader, QuadrotorDynamicsParams* params);
 void LoadParams(config::ParamReader& reader, DisturbanceParams* params);
 void LoadParams(config::ParamReader& reader, ImuSensorParams* params);
 void LoadParams(config::ParamReader& reader, RangeSensorParams* params);
+void LoadParams(config::ParamReader& reader, CollisionParams* params);
+// The loop fields of SitlRunnerParams only (rates, latencies, range_enabled, start_hovering); its
+// components have their own loaders above. Not validated here (the rate checks need the other
+// sections): the SitlRunner constructor validates the assembled struct.
+void LoadParams(config::ParamReader& reader, SitlRunnerParams* params);
 
 }  // namespace aperture::sim

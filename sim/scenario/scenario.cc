@@ -435,6 +435,7 @@ ScenarioCamera BuildCamera(const std::string& name, const CameraParams& c, std::
   camera.T_mount = c.pose.ToIsometry();
   camera.rate_hz = c.rate_hz;
   camera.latency_s = c.latency_s;
+  camera.drop_probability = c.drop_probability;
   camera.render.color = c.color;
   camera.render.supersampling = c.supersampling;
   return camera;

@@ -38,7 +38,8 @@ struct ScenarioCamera {
   // Body mount: T_BC (p_B = T_BC * p_C). World mount: T_WC.
   Eigen::Isometry3d T_mount = Eigen::Isometry3d::Identity();
   double rate_hz = 30.0;
-  double latency_s = 0.0;  // SITL delivery latency [s]
+  double latency_s = 0.0;         // SITL delivery latency [s]
+  double drop_probability = 0.0;  // SITL frame drops, in [0, 1)
   CameraEffects effects{CameraEffectsParams{}};
   RenderOptions render;
 

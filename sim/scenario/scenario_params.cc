@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "sim/sim_params_io.h"
 
@@ -34,6 +35,16 @@ void RequirePositive(const config::ParamReader& reader, const std::string& key, 
 void RequirePositive(const config::ParamReader& reader, const std::string& key,
                      const Eigen::VectorXd& values) {
   for (Eigen::Index i = 0; i < values.size(); ++i) RequirePositive(reader, key, values[i]);
+}
+
+// A SITL block that replaces the caller's part of SitlRunnerParams only when present.
+template <typename T>
+void ReadOptionalSection(config::ParamReader& reader, const std::string& key,
+                         std::optional<T>* value) {
+  if (!reader.Has(key)) return;
+  T loaded;
+  reader.ReadSection(key, &loaded);
+  *value = std::move(loaded);
 }
 
 std::vector<Eigen::Vector3d> ReadLedFile(const std::string& path) {
@@ -158,12 +169,17 @@ void LoadParams(config::ParamReader& reader, CameraParams* params) {
   reader.Read("color", &params->color);
   reader.Read("infrared", &params->infrared);
   reader.Read("supersampling", &params->supersampling);
+  reader.Read("drop_probability", &params->drop_probability);
   RequirePositive(reader, "width", params->width);
   RequirePositive(reader, "height", params->height);
   RequirePositive(reader, "rate_hz", params->rate_hz);
   RequirePositive(reader, "supersampling", params->supersampling);
   if (!(params->latency_s >= 0.0) || !std::isfinite(params->latency_s)) {
     ThrowAt(reader, "latency_s", "must be finite and >= 0, got " + std::to_string(params->latency_s));
+  }
+  if (!(params->drop_probability >= 0.0 && params->drop_probability < 1.0)) {
+    ThrowAt(reader, "drop_probability",
+            "must be in [0, 1), got " + std::to_string(params->drop_probability));
   }
   if (params->intrinsics.size() == 0 &&
       (!(params->fov_deg > 0.0) || (params->model != "equidistant" && !(params->fov_deg < 180.0)) ||
@@ -333,6 +349,11 @@ void LoadParams(config::ParamReader& reader, ScenarioParams* params) {
     }
   }
   reader.ReadSection("disturbances", &params->disturbances);
+  ReadOptionalSection(reader, "dynamics", &params->dynamics);
+  ReadOptionalSection(reader, "imu", &params->imu);
+  ReadOptionalSection(reader, "range", &params->range);
+  ReadOptionalSection(reader, "collision", &params->collision);
+  ReadOptionalSection(reader, "sitl", &params->sitl);
   const auto& trajectory_camera = params->trajectory.camera;
   if (!trajectory_camera.empty()) {
     bool found = false;

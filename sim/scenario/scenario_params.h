@@ -17,6 +17,15 @@
 //   disturbances:            # SITL only: gusts and pushes (sim/sim_params_io.h)
 //     gusts: [[t_start_s, duration_s, wind_x, wind_y, wind_z]]
 //     pushes: [[t_s, J_x, J_y, J_z]]
+//   # SITL only, formats in sim/sim_params_io.h; each block present replaces that part of the
+//   # caller's SitlRunnerParams (its absent keys: the in-class defaults), absent blocks leave it:
+//   dynamics: {vehicle: {mass_kg: 0.45, rotor: {time_constant_up_s: 0.011}}, ...}
+//   imu: {rate_hz: 500, accel_noise_density: 3.9e-3, ...}
+//   range: {rate_hz: 100, noise_sigma_m: 0.01, ...}
+//   collision: {body_radius_m: 0.08, propeller_radius_m: 0.0635, ...}
+//   sitl: {dynamics_rate_hz: 1000, control_rate_hz: 100, command_latency_s: 0.01,
+//          range_latency_s: 0, range_enabled: true, start_hovering: true}
+//   (cameras.<name>.drop_probability: SITL frame drops, see CameraParams.)
 //
 // Poses: p_m [m] and rpy_deg [deg] with R = Rz(yaw) * Ry(pitch) * Rx(roll) (rpy = [roll, pitch,
 // yaw]). World W: z up. Body B: x forward, y left, z up. Camera C: OpenCV (z forward, y down).
@@ -24,13 +33,19 @@
 // along +z_O (primitives.h).
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "config/param_reader.h"
 #include "sim/scene/primitives.h"
+#include "sim/sensors/imu_sensor.h"
+#include "sim/sensors/range_sensor.h"
+#include "sim/sitl/collision_checker.h"
+#include "sim/sitl/sitl_runner.h"
 #include "sim/vehicle/disturbances.h"
+#include "sim/vehicle/quadrotor_dynamics.h"
 
 namespace aperture::sim {
 
@@ -104,6 +119,7 @@ struct CameraParams {
   bool color = false;
   bool infrared = false;  // IR mode: dark scene, bright LEDs
   int supersampling = 1;  // k x k rays per pixel; 2 for sub-pixel-accurate edges (4x the cost)
+  double drop_probability = 0.0;  // SITL: fraction of frames lost (seeded), in [0, 1)
 };
 
 struct TrajectoryParams {
@@ -240,6 +256,12 @@ struct ScenarioParams {
   std::vector<std::pair<std::string, ObjectParams>> objects;  // in document order
   // SITL only: wind, gusts and pushes (key `disturbances`, format in sim/sim_params_io.h).
   DisturbanceParams disturbances;
+  // SITL only (ConfigureSitlFromScenario): set when the scenario has the block of that key.
+  std::optional<QuadrotorDynamicsParams> dynamics;
+  std::optional<ImuSensorParams> imu;
+  std::optional<RangeSensorParams> range;
+  std::optional<CollisionParams> collision;
+  std::optional<SitlRunnerParams> sitl;  // only its loop fields (sim_params_io.h) are read
 };
 
 void LoadParams(config::ParamReader& reader, PoseParams* params);

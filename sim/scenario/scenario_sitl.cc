@@ -13,12 +13,26 @@ SitlCamera MakeSitlCamera(const ScenarioCamera& camera) {
   }
   sitl.rate_hz = camera.rate_hz;
   sitl.latency_s = camera.latency_s;
+  sitl.drop_probability = camera.drop_probability;
   sitl.effects = camera.effects.params();
   sitl.render = camera.render;
   return sitl;
 }
 
 void ConfigureSitlFromScenario(const Scenario& scenario, SitlRunnerParams* params) {
+  const ScenarioParams& scenario_params = scenario.params();
+  if (scenario_params.dynamics) params->dynamics = *scenario_params.dynamics;
+  if (scenario_params.imu) params->imu = *scenario_params.imu;
+  if (scenario_params.range) params->range = *scenario_params.range;
+  if (scenario_params.collision) params->collision = *scenario_params.collision;
+  if (const std::optional<SitlRunnerParams>& loop = scenario_params.sitl) {
+    params->dynamics_rate_hz = loop->dynamics_rate_hz;
+    params->control_rate_hz = loop->control_rate_hz;
+    params->command_latency_s = loop->command_latency_s;
+    params->range_latency_s = loop->range_latency_s;
+    params->range_enabled = loop->range_enabled;
+    params->start_hovering = loop->start_hovering;
+  }
   params->cameras.clear();
   for (const ScenarioCamera& camera : scenario.cameras()) {
     params->cameras.push_back(MakeSitlCamera(camera));
@@ -31,7 +45,7 @@ void ConfigureSitlFromScenario(const Scenario& scenario, SitlRunnerParams* param
   params->initial_state.q_WB = Eigen::Quaterniond(T_WB.linear());
   params->initial_state.v_W.setZero();
   params->initial_state.omega_B.setZero();
-  params->disturbances = scenario.params().disturbances;
+  params->disturbances = scenario_params.disturbances;
 }
 
 SitlHooks MakeScenarioHooks(Scenario* scenario) {

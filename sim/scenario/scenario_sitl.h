@@ -18,9 +18,12 @@ namespace aperture::sim {
 SitlCamera MakeSitlCamera(const ScenarioCamera& camera);
 
 // Replaces params->cameras with the scenario's (in order: index = Frame::camera_id, with their
-// rates and latencies), sets the initial position and attitude to the scenario's start pose
-// (velocity and rates zero) and the disturbances to the scenario's, and adds the body-attached
-// objects to params->collision.ignored_objects.
+// rates, latencies and drop probabilities), sets the initial position and attitude to the
+// scenario's start pose (velocity and rates zero) and the disturbances to the scenario's, replaces
+// params->dynamics / imu / range / collision and the loop fields (rates, latencies, range_enabled,
+// start_hovering) with the scenario's blocks of those keys where it has them (scenario_params.h),
+// and adds the body-attached objects to params->collision.ignored_objects. Call SetSeed() after
+// this: it replaces every noise seed, including those of the imu / range blocks.
 void ConfigureSitlFromScenario(const Scenario& scenario, SitlRunnerParams* params);
 
 // Hooks whose before_render moves the scenario's body-attached objects to the vehicle pose.

@@ -23,9 +23,8 @@ void RequirePositive(double value, const char* field) {
 void CollisionParams::Validate() const {
   RequirePositive(body_radius_m, "body_radius_m");
   RequirePositive(propeller_radius_m, "propeller_radius_m");
-  if (!std::isfinite(ground_height_m)) {
-    throw std::invalid_argument("CollisionParams.ground_height_m must be finite");
-  }
+  RequirePositive(max_touchdown_speed_mps, "max_touchdown_speed_mps");
+  RequirePositive(max_touchdown_tilt_rad, "max_touchdown_tilt_rad");
   if (sphere_rays < 6) {
     throw std::invalid_argument("CollisionParams.sphere_rays = " + std::to_string(sphere_rays) +
                                 " must be >= 6 (64 recommended)");
@@ -36,10 +35,20 @@ void CollisionParams::Validate() const {
   }
 }
 
-CollisionChecker::CollisionChecker(const control::VehicleParameters& vehicle,
+CollisionChecker::CollisionChecker(const QuadrotorDynamicsParams& dynamics,
                                    const CollisionParams& params)
-    : params_(params) {
+    : params_(params), ground_height_m_(dynamics.ground_height_m) {
   params_.Validate();
+  dynamics.Validate();
+  if (dynamics.ground_contact_enabled && params_.ground_enabled &&
+      !(dynamics.landing_gear_height_m > params_.body_radius_m)) {
+    throw std::invalid_argument(
+        "QuadrotorDynamicsParams.landing_gear_height_m = " +
+        std::to_string(dynamics.landing_gear_height_m) +
+        " must exceed CollisionParams.body_radius_m = " + std::to_string(params_.body_radius_m) +
+        " with ground contact on: resting on the gear would put the body into the ground");
+  }
+  const control::VehicleParameters& vehicle = dynamics.vehicle;
   reach_m_ = params_.body_radius_m;
   for (int i = 0; i < 4; ++i) {
     rotor_positions_B_.push_back(vehicle.RotorPosition_B(i));
@@ -65,7 +74,7 @@ std::optional<Collision> CollisionChecker::Check(const Scene* scene,
   const Eigen::Matrix3d R_WB = state.q_WB.toRotationMatrix();
   const Eigen::Vector3d& p = state.p_WB;
   if (params_.ground_enabled) {
-    const double h = params_.ground_height_m;
+    const double h = ground_height_m_;
     if (p.z() - params_.body_radius_m <= h) {
       return Collision{"ground", "body", Eigen::Vector3d(p.x(), p.y(), h)};
     }
@@ -150,6 +159,15 @@ std::optional<Collision> CollisionChecker::Check(const Scene* scene,
     }
   }
   return nearest;
+}
+
+std::optional<Collision> CollisionChecker::CheckTouchdown(const Eigen::Vector3d& p_WB,
+                                                          double speed_mps, double tilt_rad) const {
+  if (!params_.ground_enabled || (speed_mps <= params_.max_touchdown_speed_mps &&
+                                  tilt_rad <= params_.max_touchdown_tilt_rad)) {
+    return std::nullopt;
+  }
+  return Collision{"ground", "landing gear", Eigen::Vector3d(p_WB.x(), p_WB.y(), ground_height_m_)};
 }
 
 }  // namespace aperture::sim

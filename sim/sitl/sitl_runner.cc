@@ -110,7 +110,7 @@ void SitlRunnerParams::Validate() const {
   flight_controller.Validate();
   imu.Validate();
   range.Validate();
-  collision.Validate();
+  CollisionChecker(dynamics, collision);  // validates both, and the landing gear against the body
   // Sensors and controllers sample once per dynamics step at most (sample_schedule.h).
   const double fastest =
       std::max({flight_controller.rate_hz, imu.rate_hz, control_rate_hz, range.rate_hz});
@@ -177,7 +177,7 @@ SitlResult SitlRunner::Run(perception::Autopilot& autopilot, const SitlHooks& ho
   Disturbances disturbances(p.disturbances);
   ImuSensor imu(p.imu);
   RangeSensor range(p.range);
-  CollisionChecker collision_checker(vehicle_params, p.collision);
+  CollisionChecker collision_checker(p.dynamics, p.collision);
   SampleSchedule control_schedule(p.control_rate_hz);
   SampleSchedule flight_controller_schedule(p.flight_controller.rate_hz);
   std::mt19937_64 drop_rng(p.drop_seed);
@@ -320,6 +320,7 @@ SitlResult SitlRunner::Run(perception::Autopilot& autopilot, const SitlHooks& ho
       vehicle.SetRotorThrustCommand(rotor_thrusts);
     }
     const Eigen::Vector3d previous_p_WB = vehicle.state().p_WB;
+    const bool was_on_ground = vehicle.on_ground();
     disturbances.StepVehicle(dt_s, &vehicle);
     if (!vehicle.state().IsValid()) {
       throw std::runtime_error("SitlRunner: the vehicle state became invalid at t = " +
@@ -331,8 +332,13 @@ SitlResult SitlRunner::Run(perception::Autopilot& autopilot, const SitlHooks& ho
 
     // 6. collisions.
     section = Clock::now();
-    const std::optional<Collision> collision =
+    std::optional<Collision> collision =
         collision_checker.Check(scene_, vehicle.state(), previous_p_WB);
+    if (!collision && vehicle.on_ground() && !was_on_ground) {
+      collision =
+          collision_checker.CheckTouchdown(vehicle.state().p_WB, vehicle.last_touchdown_speed_mps(),
+                                           vehicle.last_touchdown_tilt_rad());
+    }
     result.timing.collision_s += SecondsSince(section);
     if (collision) {
       result.outcome = SitlResult::Outcome::kCollision;

@@ -15,8 +15,18 @@
 //      Autopilot::Step(t); the command reaches the flight controller command_latency_s later;
 //   4. at the flight-controller rate: SimulatedFlightController -> rotor thrust commands;
 //   5. the vehicle advances by one step under the disturbances (sim/vehicle/disturbances.h);
-//   6. collision check (sim/sitl/collision_checker.h).
+//   6. collision check (sim/sitl/collision_checker.h), and with ground contact on
+//      (dynamics.ground_contact_enabled) the touchdown check of a step that landed.
 // The run ends at duration_s, when a command has done == true, or on the first collision.
+//
+// Ground: the plane z_W = dynamics.ground_height_m, for the dynamics and the collision checker.
+// By default it is a wall like any other (the run ends when the body sphere or a propeller
+// reaches it). With dynamics.ground_contact_enabled the vehicle has landing gear
+// (dynamics.landing_gear_height_m > collision.body_radius_m): it can start on the ground
+// (initial p_z = ground + gear height, typically with start_hovering = false) and take off, and
+// a touchdown within collision.max_touchdown_speed_mps / max_touchdown_tilt_rad leaves it resting
+// on the gear and the run going (it lifts off again when the thrust exceeds its weight); a harder
+// one ends the run as "collision: landing gear with 'ground'" at the point below B.
 //
 // Usage:
 //   SitlRunnerParams params;              // 1 kHz dynamics + flight controller, 500 Hz IMU

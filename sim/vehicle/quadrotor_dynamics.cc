@@ -30,6 +30,11 @@ void QuadrotorDynamicsParams::Validate() const {
   if (!std::isfinite(ground_height_m)) {
     throw std::invalid_argument("QuadrotorDynamicsParams.ground_height_m must be finite");
   }
+  if (!(std::isfinite(landing_gear_height_m) && landing_gear_height_m >= 0.0)) {
+    throw std::invalid_argument(
+        "QuadrotorDynamicsParams.landing_gear_height_m must be finite and >= 0, got " +
+        std::to_string(landing_gear_height_m));
+  }
   const double fastest_lag_s =
       std::min(vehicle.rotor.time_constant_up_s, vehicle.rotor.time_constant_down_s);
   if (rotor_lag_enabled && fastest_lag_s < max_integration_step_s) {
@@ -164,14 +169,18 @@ Eigen::Vector3d QuadrotorDynamics::Acceleration_W() const {
 
 void QuadrotorDynamics::ResolveGroundContact() {
   if (!params_.ground_contact_enabled) return;
-  const double ground_m = params_.ground_height_m;
-  if (state_.p_WB.z() > ground_m || state_.v_W.z() > 0.0) {
+  const double rest_z_m = params_.ground_height_m + params_.landing_gear_height_m;
+  if (state_.p_WB.z() > rest_z_m || state_.v_W.z() > 0.0) {
     on_ground_ = false;
     return;
   }
-  if (!on_ground_) last_touchdown_speed_mps_ = state_.v_W.norm();
+  if (!on_ground_) {
+    last_touchdown_speed_mps_ = state_.v_W.norm();
+    const Eigen::Vector3d z_B_W = state_.q_WB * Eigen::Vector3d::UnitZ();
+    last_touchdown_tilt_rad_ = std::acos(std::clamp(z_B_W.z(), -1.0, 1.0));
+  }
   on_ground_ = true;
-  state_.p_WB.z() = ground_m;
+  state_.p_WB.z() = rest_z_m;
   state_.v_W.setZero();
   state_.omega_B.setZero();
   // Upright on the gear: keep the heading of x_B, drop roll and pitch.

@@ -58,13 +58,19 @@ struct QuadrotorDynamicsParams {
   // same, since RK4 samples the thrust at the start of a step, before such a fast lag has moved.
   bool rotor_lag_enabled = true;
   // Ground plane z_W = ground_height_m with landing gear (off by default: the plain model F.1-F.5).
-  // After each RK4 step, a vehicle at or below the plane and not climbing is put to rest on it:
-  // p_z = ground, v = 0, omega = 0, roll and pitch removed (yaw kept) -- an inelastic touchdown on
-  // gear that keeps it upright, with static friction. It lifts off once the thrust exceeds its
-  // weight. While resting, the specific force is the ground reaction R^T g z_W. Crashes (tip-over,
-  // bounce) are not modelled; last_touchdown_speed_mps() lets a caller judge them.
+  // After each RK4 step, a vehicle whose origin of B is at or below the gear height above the
+  // plane and not climbing is put to rest on its gear: p_z = ground + landing_gear_height_m,
+  // v = 0, omega = 0, roll and pitch removed (yaw kept) -- an inelastic touchdown on gear that
+  // keeps it upright, with static friction. It lifts off once the thrust exceeds its weight.
+  // While resting, the specific force is the ground reaction R^T g z_W. Crashes (tip-over,
+  // bounce) are not modelled; last_touchdown_speed_mps() / last_touchdown_tilt_rad() let a caller
+  // judge them (the SITL does: sim/sitl/collision_checker.h). In the SITL this ground plane is
+  // also the collision checker's.
   bool ground_contact_enabled = false;
   double ground_height_m = 0.0;
+  // Height of the origin of B above the ground when resting on the gear [m]; >= 0. The SITL needs
+  // it above the collision body sphere's radius (else resting is a crash).
+  double landing_gear_height_m = 0.0;
 
   // Throws std::invalid_argument naming the field (delegates to VehicleParameters::Validate), and
   // when the lag is enabled but a rotor time constant is shorter than max_integration_step_s.
@@ -110,8 +116,11 @@ class QuadrotorDynamics {
   Eigen::Vector4d EffectiveMotorCommands() const;
   // True while resting on the ground plane (ground_contact_enabled only).
   bool on_ground() const { return on_ground_; }
-  // |v_W| at the most recent touchdown, 0 before the first [m/s].
+  // |v_W| at the most recent touchdown, 0 before the first (and for a state set on the ground)
+  // [m/s].
   double last_touchdown_speed_mps() const { return last_touchdown_speed_mps_; }
+  // Angle between z_B and z_W at the most recent touchdown, before the gear levelled it [rad].
+  double last_touchdown_tilt_rad() const { return last_touchdown_tilt_rad_; }
 
   // Mass-normalized collective thrust c of (F.5) at the current state [m/s^2].
   double CollectiveThrust_mps2() const;
@@ -163,6 +172,7 @@ class QuadrotorDynamics {
   Eigen::Matrix<double, 3, 4> rotor_positions_B_;
   bool on_ground_ = false;
   double last_touchdown_speed_mps_ = 0.0;
+  double last_touchdown_tilt_rad_ = 0.0;
 };
 
 }  // namespace aperture::sim

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <utility>
 
 namespace aperture::sim {
 namespace {
@@ -16,12 +18,12 @@ control::QuadState StateAt(const Eigen::Vector3d& p_W, double roll_rad = 0.0) {
 
 class CollisionCheckerTest : public ::testing::Test {
  protected:
-  control::VehicleParameters vehicle_;  // arm 0.178 m: rotors at +-0.1259 m in x and y
-  CollisionParams params_;              // body 0.08 m, propellers 0.0635 m
+  QuadrotorDynamicsParams dynamics_;  // arm 0.178 m: rotors at +-0.1259 m in x and y; ground z = 0
+  CollisionParams params_;            // body 0.08 m, propellers 0.0635 m
 };
 
 TEST_F(CollisionCheckerTest, LevelVehicleHitsGroundWithItsBodySphere) {
-  const CollisionChecker checker(vehicle_, params_);
+  const CollisionChecker checker(dynamics_, params_);
   const Eigen::Vector3d p(1.0, 2.0, 0.081);
   EXPECT_FALSE(checker.Check(nullptr, StateAt(p), p).has_value());
   const Eigen::Vector3d low(1.0, 2.0, 0.079);
@@ -33,11 +35,11 @@ TEST_F(CollisionCheckerTest, LevelVehicleHitsGroundWithItsBodySphere) {
 }
 
 TEST_F(CollisionCheckerTest, TiltedVehicleHitsGroundWithAPropellerFirst) {
-  const CollisionChecker checker(vehicle_, params_);
+  const CollisionChecker checker(dynamics_, params_);
   const double roll = 30.0 * M_PI / 180.0;
   // Lowest disk point: rotor centre sin(roll) * l / sqrt(2) below B, disk rim sin(roll) * R more.
-  const double drop_m =
-      std::sin(roll) * (vehicle_.arm_length_m / std::sqrt(2.0) + params_.propeller_radius_m);
+  const double drop_m = std::sin(roll) * (dynamics_.vehicle.arm_length_m / std::sqrt(2.0) +
+                                          params_.propeller_radius_m);
   ASSERT_GT(drop_m, params_.body_radius_m);  // so the propeller, not the body, is lowest
   const Eigen::Vector3d clear(0.0, 0.0, drop_m + 1e-4);
   EXPECT_FALSE(checker.Check(nullptr, StateAt(clear, roll), clear).has_value());
@@ -47,10 +49,10 @@ TEST_F(CollisionCheckerTest, TiltedVehicleHitsGroundWithAPropellerFirst) {
   EXPECT_EQ(hit->part.rfind("propeller", 0), 0u) << hit->part;
   EXPECT_DOUBLE_EQ(hit->contact_p_W.z(), 0.0);
   // Rolling by +30 deg about x lowers the -y_B side: the contact is the rim point of a -y_B rotor.
-  EXPECT_NEAR(
-      hit->contact_p_W.y(),
-      -std::cos(roll) * (vehicle_.arm_length_m / std::sqrt(2.0) + params_.propeller_radius_m),
-      1e-9);
+  EXPECT_NEAR(hit->contact_p_W.y(),
+              -std::cos(roll) *
+                  (dynamics_.vehicle.arm_length_m / std::sqrt(2.0) + params_.propeller_radius_m),
+              1e-9);
 }
 
 TEST_F(CollisionCheckerTest, DetectsAWallWithinTheBodyRadiusOnly) {
@@ -61,7 +63,7 @@ TEST_F(CollisionCheckerTest, DetectsAWallWithinTheBodyRadiusOnly) {
   // level), so the detection distance is the body radius.
   scene.AddObject({"ceiling", Box{Eigen::Vector3d(2.0, 2.0, 0.1)}, Material{}, T_WO});
   params_.ground_enabled = false;
-  const CollisionChecker checker(vehicle_, params_);
+  const CollisionChecker checker(dynamics_, params_);
   const Eigen::Vector3d far(0.0, 0.0, 4.95 - params_.body_radius_m - 0.005);
   EXPECT_FALSE(checker.Check(&scene, StateAt(far), far).has_value());
   // Fibonacci rays: the best one is within ~15 deg of the normal for 64 rays, so a surface
@@ -74,8 +76,40 @@ TEST_F(CollisionCheckerTest, DetectsAWallWithinTheBodyRadiusOnly) {
   EXPECT_NEAR(hit->contact_p_W.z(), 4.95, 1e-9);
   // An ignored object is transparent to the check.
   params_.ignored_objects = {"ceiling"};
-  const CollisionChecker ignoring(vehicle_, params_);
+  const CollisionChecker ignoring(dynamics_, params_);
   EXPECT_FALSE(ignoring.Check(&scene, StateAt(near), near).has_value());
+}
+
+TEST_F(CollisionCheckerTest, PropellerDiskHitsASceneObjectBeyondTheBodyAndArm) {
+  // A wall face 4 cm outside the rotor in the +x+y quadrant, covering y >= 0.1 m only: out of
+  // reach of the body sphere (0.19 m away) and of the arms (they end at the rotor centre), but
+  // inside that rotor's 6.35 cm disk. Level vehicle, so the disk ray along +x_B hits it first.
+  int rotor = -1;
+  for (int i = 0; i < 4; ++i) {
+    const Eigen::Vector3d r = dynamics_.vehicle.RotorPosition_B(i);
+    if (r.x() > 0.0 && r.y() > 0.0) rotor = i;
+  }
+  ASSERT_GE(rotor, 0);
+  const Eigen::Vector3d r_B = dynamics_.vehicle.RotorPosition_B(rotor);
+  const double face_x = r_B.x() + 0.04;
+  Scene scene;
+  Eigen::Isometry3d T_WO = Eigen::Isometry3d::Identity();
+  T_WO.translation() = Eigen::Vector3d(face_x + 0.1, 0.6, 2.0);
+  scene.AddObject({"wall", Box{Eigen::Vector3d(0.2, 1.0, 1.0)}, Material{}, T_WO});
+  params_.ground_enabled = false;
+  const CollisionChecker checker(dynamics_, params_);
+  const Eigen::Vector3d p(0.0, 0.0, 2.0);
+  const std::optional<Collision> hit = checker.Check(&scene, StateAt(p), p);
+  ASSERT_TRUE(hit.has_value());
+  EXPECT_EQ(hit->object_name, "wall");
+  EXPECT_EQ(hit->part, "propeller " + std::to_string(rotor + 1));
+  EXPECT_TRUE(hit->contact_p_W.isApprox(Eigen::Vector3d(face_x, r_B.y(), 2.0), 1e-9))
+      << hit->contact_p_W.transpose();
+  // 3 cm further out the disk (radius 6.35 cm) no longer reaches it.
+  T_WO.translation().x() += 0.03;
+  Scene farther;
+  farther.AddObject({"wall", Box{Eigen::Vector3d(0.2, 1.0, 1.0)}, Material{}, T_WO});
+  EXPECT_FALSE(checker.Check(&farther, StateAt(p), p).has_value());
 }
 
 TEST_F(CollisionCheckerTest, SweepCatchesTunnellingThroughAThinPlate) {
@@ -86,7 +120,7 @@ TEST_F(CollisionCheckerTest, SweepCatchesTunnellingThroughAThinPlate) {
   Rectangle plate;
   plate.size_m = Eigen::Vector2d(2.0, 2.0);
   scene.AddObject({"plate", plate, Material{}, T_WO});  // the plane x_W = 1
-  const CollisionChecker checker(vehicle_, params_);
+  const CollisionChecker checker(dynamics_, params_);
   // Both positions 0.5 m from the plate, on opposite sides: only the swept segment crosses it.
   const Eigen::Vector3d before(0.5, 0.0, 2.0), after(1.5, 0.0, 2.0);
   EXPECT_FALSE(checker.Check(&scene, StateAt(after), after).has_value());
@@ -113,7 +147,7 @@ TEST_F(CollisionCheckerTest, BroadPhaseKeepsFarCentredWallsAndSweptSmallPlates) 
   plate.size_m = Eigen::Vector2d(0.2, 0.2);
   scene.AddObject({"plate", plate, Material{}, T_WO});
   params_.ground_enabled = false;
-  const CollisionChecker checker(vehicle_, params_);
+  const CollisionChecker checker(dynamics_, params_);
   const Eigen::Vector3d near_wall(1.0 - 0.9 * params_.body_radius_m, 0.0, 2.0);
   const std::optional<Collision> wall_hit = checker.Check(&scene, StateAt(near_wall), near_wall);
   ASSERT_TRUE(wall_hit.has_value());
@@ -130,7 +164,34 @@ TEST_F(CollisionCheckerTest, BroadPhaseKeepsFarCentredWallsAndSweptSmallPlates) 
 
 TEST_F(CollisionCheckerTest, RejectsNonPositiveRadius) {
   params_.body_radius_m = 0.0;
-  EXPECT_THROW(CollisionChecker(vehicle_, params_), std::invalid_argument);
+  EXPECT_THROW(CollisionChecker(dynamics_, params_), std::invalid_argument);
+}
+
+TEST_F(CollisionCheckerTest, TouchdownBeyondTheLimitsIsAGroundCollision) {
+  dynamics_.ground_contact_enabled = true;
+  dynamics_.ground_height_m = 0.5;
+  dynamics_.landing_gear_height_m = 0.1;
+  params_.max_touchdown_speed_mps = 1.0;
+  params_.max_touchdown_tilt_rad = 0.4;
+  const CollisionChecker checker(dynamics_, params_);
+  const Eigen::Vector3d p(1.0, 2.0, 0.6);  // resting on the gear: clear of the ground
+  EXPECT_FALSE(checker.Check(nullptr, StateAt(p), p).has_value());
+  EXPECT_FALSE(checker.CheckTouchdown(p, 0.9, 0.3).has_value());
+  for (const auto& [speed, tilt] : {std::pair{1.1, 0.0}, std::pair{0.2, 0.5}}) {
+    const std::optional<Collision> hit = checker.CheckTouchdown(p, speed, tilt);
+    ASSERT_TRUE(hit.has_value()) << speed << " m/s, " << tilt << " rad";
+    EXPECT_EQ(hit->object_name, "ground");
+    EXPECT_EQ(hit->part, "landing gear");
+    EXPECT_TRUE(hit->contact_p_W.isApprox(Eigen::Vector3d(1.0, 2.0, 0.5)));
+  }
+  params_.ground_enabled = false;  // no solid ground: nothing to crash into
+  EXPECT_FALSE(CollisionChecker(dynamics_, params_).CheckTouchdown(p, 5.0, 1.0).has_value());
+}
+
+TEST_F(CollisionCheckerTest, RejectsLandingGearShorterThanTheBodyRadius) {
+  dynamics_.ground_contact_enabled = true;
+  dynamics_.landing_gear_height_m = params_.body_radius_m;
+  EXPECT_THROW(CollisionChecker(dynamics_, params_), std::invalid_argument);
 }
 
 }  // namespace

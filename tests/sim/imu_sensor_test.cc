@@ -66,6 +66,42 @@ TEST(ImuSensorTest, ReadsZeroInFreeFall) {
   EXPECT_LT(vehicle.state().v_W.z(), -9.0);  // it did fall
 }
 
+TEST(ImuSensorTest, ReadsTheRotorDragMovingThroughTheAir) {
+  // Motors off, omega = 0, a yawed and tilted attitude, moving through a steady wind: the only
+  // non-gravitational force is the rotor drag of (F.2), so the accelerometer reads
+  // -D R^T v_a. The airspeed in B follows v_aB' = -D v_aB - g R^T z_W exactly (constant R and
+  // wind), so every sample is checked against that closed form, not against the code's formula.
+  QuadrotorDynamicsParams params;
+  params.vehicle.rotor.thrust_coeffs_N = Eigen::Vector3d(0.8, 1.6, 0.8);  // f(-1) = 0
+  params.vehicle.rotor_drag_D_per_s = Eigen::Vector3d(0.6, 0.25, 0.1);
+  control::QuadState initial;
+  initial.q_WB = Eigen::AngleAxisd(0.52, Eigen::Vector3d::UnitZ()) *
+                 Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitY()) *
+                 Eigen::AngleAxisd(-0.15, Eigen::Vector3d::UnitX());
+  initial.v_W = Eigen::Vector3d(3.0, -2.0, 0.5);
+  const Eigen::Vector3d wind_W(-1.0, 1.0, 0.0);
+  QuadrotorDynamics vehicle(params, initial);
+  vehicle.SetWindVelocity_W(wind_W);
+  ImuSensor imu(NoiselessImu());
+  const Eigen::Matrix3d R_WB = initial.q_WB.toRotationMatrix();
+  const Eigen::Array3d d = params.vehicle.rotor_drag_D_per_s.array();
+  const Eigen::Array3d g_B =
+      (R_WB.transpose() * Eigen::Vector3d(0, 0, params.vehicle.gravity_mps2)).array();
+  const Eigen::Array3d va0_B = (R_WB.transpose() * (initial.v_W - wind_W)).array();
+  const auto samples = Fly(&vehicle, &imu, 0.5);
+  ASSERT_EQ(samples.size(), 250u);
+  for (const auto& s : samples) {
+    const Eigen::Array3d va_B = (va0_B + g_B / d) * (-d * s.t_s).exp() - g_B / d;
+    EXPECT_TRUE(s.specific_force_B.isApprox((-d * va_B).matrix(), 1e-9)) << "t = " << s.t_s;
+  }
+  // Airspeed ~1.8 m/s along +x_B and ~4.7 m/s along -y_B at the start: the drag pushes
+  // along -x_B and +y_B.
+  ASSERT_GT(va0_B.x(), 1.0);
+  ASSERT_LT(va0_B.y(), -1.0);
+  EXPECT_LT(samples.front().specific_force_B.x(), -0.5);
+  EXPECT_GT(samples.front().specific_force_B.y(), 0.5);
+}
+
 TEST(ImuSensorTest, WhiteNoiseStdMatchesDensityTimesSqrtRate) {
   ImuSensorParams params = NoiselessImu();
   params.rate_hz = 1000.0;

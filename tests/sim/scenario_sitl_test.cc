@@ -5,7 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <opencv2/core.hpp>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "sim/sitl/ground_truth_autopilot.h"
 
@@ -55,6 +59,111 @@ TEST(ScenarioSitlTest, LedTargetFliesWithTheVehicleInFrames) {
   EXPECT_EQ(result.outcome, SitlResult::Outcome::kDurationReached) << result.reason;
   EXPECT_GE(frames, 4);      // 40 Hz over 0.1 s
   EXPECT_GT(led_pixels, 0);  // the LED is drawn where the moving target carries it
+}
+
+// The gap scenario with a 64 x 48 camera (cheap frames) and the given --set items.
+Scenario SmallGapScenario(std::vector<std::string> set_items) {
+  set_items.insert(set_items.begin(), {"cameras.front.width=64", "cameras.front.height=48",
+                                       "cameras.front.supersampling=1"});
+  return BuildScenario(LoadScenarioParams(ScenarioConfig("gap", {}, set_items)));
+}
+
+// Standard deviation of the delivered accelerometer z readings (hovering: specific force ~ g).
+double AccelZSpread(const SitlResult& result) {
+  double sum = 0.0, sum_sq = 0.0;
+  for (const perception::ImuSample& sample : result.imu) {
+    sum += sample.specific_force_B.z();
+    sum_sq += sample.specific_force_B.z() * sample.specific_force_B.z();
+  }
+  const double n = static_cast<double>(result.imu.size());
+  return std::sqrt(std::max(0.0, sum_sq / n - (sum / n) * (sum / n)));
+}
+
+SitlResult HoverAtStart(const Scenario& scenario, SitlRunnerParams* params) {
+  params->duration_s = 0.6;
+  ConfigureSitlFromScenario(scenario, params);
+  GroundTruthAutopilotParams autopilot_params;
+  autopilot_params.waypoints.push_back({params->initial_state.p_WB});
+  GroundTruthAutopilot autopilot(params->dynamics.vehicle, autopilot_params);
+  return SitlRunner(*params, &scenario.scene()).Run(autopilot);
+}
+
+TEST(ScenarioSitlTest, DynamicsImuRangeCollisionSitlAndDropKeysReachTheRunner) {
+  const Scenario scenario = SmallGapScenario(
+      {"dynamics.vehicle.rotor.time_constant_up_s=0.03", "dynamics.vehicle.mass_kg=0.5",
+       "imu.accel_noise_density=0.2", "range.noise_sigma_m=0.05", "collision.body_radius_m=0.1",
+       "sitl.command_latency_s=0.02", "sitl.control_rate_hz=50",
+       "cameras.front.drop_probability=0.5"});
+  SitlRunnerParams params;
+  const SitlResult result = HoverAtStart(scenario, &params);
+  EXPECT_DOUBLE_EQ(params.dynamics.vehicle.rotor.time_constant_up_s, 0.03);
+  EXPECT_DOUBLE_EQ(params.dynamics.vehicle.mass_kg, 0.5);
+  EXPECT_DOUBLE_EQ(params.imu.accel_noise_density, 0.2);
+  EXPECT_DOUBLE_EQ(params.range.noise_sigma_m, 0.05);
+  EXPECT_DOUBLE_EQ(params.collision.body_radius_m, 0.1);
+  EXPECT_DOUBLE_EQ(params.command_latency_s, 0.02);
+  EXPECT_DOUBLE_EQ(params.control_rate_hz, 50.0);
+  ASSERT_EQ(params.cameras.size(), 1u);
+  EXPECT_DOUBLE_EQ(params.cameras[0].drop_probability, 0.5);
+
+  // And they act: half the frames are lost, the accelerometer is noisier, 50 Hz control.
+  SitlRunnerParams nominal_params;
+  const SitlResult nominal = HoverAtStart(SmallGapScenario({}), &nominal_params);
+  EXPECT_EQ(result.outcome, SitlResult::Outcome::kDurationReached) << result.reason;
+  EXPECT_EQ(nominal.outcome, SitlResult::Outcome::kDurationReached) << nominal.reason;
+  ASSERT_EQ(result.cameras.size(), 1u);
+  ASSERT_EQ(nominal.cameras.size(), 1u);
+  EXPECT_EQ(nominal.cameras[0].frames_dropped, 0);
+  // 31 frames due (50 Hz over 0.6 s); a fair coin drops 8..23 of them with probability > 0.99.
+  EXPECT_GE(result.cameras[0].frames_dropped, 8);
+  EXPECT_LE(result.cameras[0].frames_dropped, 23);
+  EXPECT_EQ(result.commands.size(), 31u);   // 50 Hz over [0, 0.6] s
+  EXPECT_EQ(nominal.commands.size(), 61u);  // the default 100 Hz
+  // White noise of density 0.2 vs the default 3.9e-3 at 500 Hz: sigma = density * sqrt(rate)
+  // ~ 4.5 vs 0.09 m/s^2 (imu_sensor.h), far above the hover's own accelerations.
+  EXPECT_GT(AccelZSpread(result), 2.0);
+  EXPECT_LT(AccelZSpread(nominal), 0.5);
+}
+
+TEST(ScenarioSitlTest, AbsentSitlBlocksLeaveTheCallersParams) {
+  const Scenario scenario = SmallGapScenario({});
+  SitlRunnerParams params;
+  params.imu.accel_noise_density = 0.1;
+  params.control_rate_hz = 200.0;
+  params.dynamics.vehicle.mass_kg = 0.6;
+  ConfigureSitlFromScenario(scenario, &params);
+  EXPECT_DOUBLE_EQ(params.imu.accel_noise_density, 0.1);
+  EXPECT_DOUBLE_EQ(params.control_rate_hz, 200.0);
+  EXPECT_DOUBLE_EQ(params.dynamics.vehicle.mass_kg, 0.6);
+}
+
+TEST(ScenarioSitlTest, UnknownKeysInTheSitlBlocksAreRejectedByName) {
+  for (const std::string& key :
+       {"dynamics.vehicle.rotor.time_constant_up", "dynamics.rotor_lag", "imu.noise",
+        "range.latency_s", "collision.radius_m", "sitl.duration_s", "cameras.front.drop_rate"}) {
+    try {
+      LoadScenarioParams(ScenarioConfig("gap", {}, {key + "=1"}));
+      ADD_FAILURE() << "unknown key " << key << " accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("unknown key '" + key + "'"), std::string::npos)
+          << e.what();
+    }
+  }
+}
+
+TEST(ScenarioSitlTest, InvalidSitlValuesAreRejectedNamingTheKey) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"cameras.front.drop_probability=1.5", "cameras.front.drop_probability"},
+      {"dynamics.vehicle.mass_kg=-1", "dynamics.vehicle"},
+      {"imu.rate_hz=0", "imu"}};
+  for (const auto& [item, key] : cases) {
+    try {
+      LoadScenarioParams(ScenarioConfig("gap", {}, {item}));
+      ADD_FAILURE() << item << " accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+    }
+  }
 }
 
 }  // namespace

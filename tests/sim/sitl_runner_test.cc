@@ -253,6 +253,51 @@ TEST(SitlRunner, FramesAreDroppedAtTheConfiguredRate) {
   EXPECT_EQ(gaps, stats.frames_dropped);
 }
 
+TEST(SitlRunner, TwoCamerasDeliverAtTheirOwnRatesTheirOwnViews) {
+  // A forward camera at 30 Hz sees the box ahead; a downward one at 20 Hz sees only the ground.
+  const Scene scene = TexturedScene();
+  SitlRunnerParams params = QuietParams(1.0);
+  params.initial_state.p_WB = Eigen::Vector3d(0.0, 0.0, 1.0);
+  SitlCamera front = ForwardCamera(30.0);
+  front.model = std::make_shared<perception::PinholeCamera>(
+      40, 30, perception::PinholeIntrinsics{20.0, 20.0, 19.5, 14.5});
+  front.render.ground_truth = true;
+  SitlCamera down = front;
+  down.name = "down";
+  down.rate_hz = 20.0;
+  // C looking along -z_B: x_C = -y_B, y_C = -x_B, z_C = -z_B.
+  down.T_BC.linear() << 0, -1, 0, -1, 0, 0, 0, 0, -1;
+  params.cameras = {front, down};
+  SitlRunner runner(params, &scene);
+  RecordingAutopilot autopilot(params.dynamics.vehicle, HoverAt(params.initial_state.p_WB));
+  std::vector<std::vector<double>> stamps(2);
+  std::vector<cv::Mat> ids(2);
+  SitlHooks hooks;
+  hooks.on_frame = [&](int camera_index, const CapturedFrame& frame, const control::QuadState&) {
+    EXPECT_EQ(frame.frame.camera_id, camera_index);
+    stamps[camera_index].push_back(frame.frame.t_s);
+    if (ids[camera_index].empty()) ids[camera_index] = frame.object_id.clone();
+  };
+  const SitlResult result = runner.Run(autopilot, hooks);
+  ASSERT_EQ(result.cameras.size(), 2u);
+  EXPECT_EQ(result.cameras[0].frames_delivered, 31);  // 30 Hz over [0, 1] s inclusive
+  EXPECT_EQ(result.cameras[1].frames_delivered, 21);  // 20 Hz
+  ASSERT_EQ(stamps[0].size(), 31u);
+  ASSERT_EQ(stamps[1].size(), 21u);
+  for (size_t i = 1; i < stamps[0].size(); ++i) {
+    EXPECT_NEAR(stamps[0][i] - stamps[0][i - 1], 1.0 / 30.0, 1e-3);  // on the 1 ms step grid
+  }
+  for (size_t i = 1; i < stamps[1].size(); ++i) {
+    EXPECT_NEAR(stamps[1][i] - stamps[1][i - 1], 1.0 / 20.0, 1e-9);
+  }
+  EXPECT_EQ(static_cast<int>(autopilot.frames.size()), 31 + 21);
+  // Each camera renders its own view: the box fills the forward view's centre, the downward
+  // view is all ground.
+  const int box = scene.FindId("box"), ground = scene.FindId("ground");
+  EXPECT_EQ(ids[0].at<int>(15, 20), box);
+  EXPECT_EQ(cv::countNonZero(ids[1] == ground), ids[1].rows * ids[1].cols);
+}
+
 TEST(SitlRunner, LatencyDelaysDeliveryByTheConfiguredAmount) {
   const Scene scene = TexturedScene();
   SitlRunnerParams params = QuietParams(1.0);
@@ -352,6 +397,97 @@ TEST(SitlRunner, CommandLatencyDelaysTheFlightControllerOutput) {
     // 0.5 s + latency shows in the next 100 Hz record.
     EXPECT_NEAR(first_s, 0.5 + latency_s + 0.01, 1e-6) << "latency " << latency_s;
   }
+}
+
+// Equal rotor thrusts: `before_N` until switch_s, `after_N` from then on.
+class ConstantThrustAutopilot : public perception::Autopilot {
+ public:
+  ConstantThrustAutopilot(double before_N, double after_N, double switch_s)
+      : before_N_(before_N), after_N_(after_N), switch_s_(switch_s) {}
+  std::string name() const override { return "constant_thrust"; }
+  perception::AutopilotCommand Step(double t_s) override {
+    perception::AutopilotCommand command;
+    command.kind = perception::AutopilotCommand::Kind::kRotorThrusts;
+    command.rotor_thrusts.thrust_N.setConstant(t_s < switch_s_ - 1e-9 ? before_N_ : after_N_);
+    return command;
+  }
+
+ private:
+  double before_N_, after_N_, switch_s_;
+};
+
+// Ground contact on, landing gear 0.1 m (body sphere 0.08 m), ground at z = 0.
+SitlRunnerParams GroundContactParams(double duration_s) {
+  SitlRunnerParams params = QuietParams(duration_s);
+  params.dynamics.ground_contact_enabled = true;
+  params.dynamics.landing_gear_height_m = 0.1;
+  return params;
+}
+
+double HoverRotorThrust_N(const SitlRunnerParams& params) {
+  return params.dynamics.vehicle.mass_kg * params.dynamics.vehicle.gravity_mps2 / 4.0;
+}
+
+TEST(SitlRunner, SoftLandingWithGroundContactRestsOnTheGear) {
+  SitlRunnerParams params = GroundContactParams(2.0);
+  // Hover thrust with d_z = 0: a steady 0.3 m/s descent from 0.4 m, touchdown at t = 1 s.
+  params.initial_state.p_WB = Eigen::Vector3d(0.5, -0.5, 0.4);
+  params.initial_state.v_W = Eigen::Vector3d(0.0, 0.0, -0.3);
+  const double hover_N = HoverRotorThrust_N(params);
+  ConstantThrustAutopilot autopilot(hover_N, hover_N, 0.0);
+  const SitlResult result = SitlRunner(params, nullptr).Run(autopilot);
+  ASSERT_EQ(result.outcome, SitlResult::Outcome::kDurationReached) << result.reason;
+  EXPECT_FALSE(result.collision.has_value());
+  for (const control::QuadState& state : result.trajectory) {
+    // On the gear from the touchdown on (RK4 moves a 1 ms step by 0.3 mm).
+    if (state.t_s > 1.0 + 1e-3) EXPECT_NEAR(state.p_WB.z(), 0.1, 1e-9) << "t = " << state.t_s;
+    EXPECT_GE(state.p_WB.z(), 0.1 - 1e-12);
+  }
+  EXPECT_NEAR(result.trajectory.back().v_W.norm(), 0.0, 1e-9);
+  EXPECT_TRUE(result.trajectory.back().p_WB.head<2>().isApprox(Eigen::Vector2d(0.5, -0.5)));
+  // Without ground contact the same descent is a crash of the body sphere.
+  params.dynamics.ground_contact_enabled = false;
+  const SitlResult crash = SitlRunner(params, nullptr).Run(autopilot);
+  ASSERT_EQ(crash.outcome, SitlResult::Outcome::kCollision);
+  EXPECT_EQ(crash.collision->part, "body");
+}
+
+TEST(SitlRunner, HardTouchdownWithGroundContactIsAGroundCollision) {
+  SitlRunnerParams params = GroundContactParams(2.0);
+  params.initial_state.p_WB = Eigen::Vector3d(0.5, -0.5, 1.0);
+  params.initial_state.v_W = Eigen::Vector3d(0.0, 0.0, -3.0);  // 3 m/s > the 1 m/s limit
+  const double hover_N = HoverRotorThrust_N(params);
+  ConstantThrustAutopilot autopilot(hover_N, hover_N, 0.0);
+  const SitlResult result = SitlRunner(params, nullptr).Run(autopilot);
+  ASSERT_EQ(result.outcome, SitlResult::Outcome::kCollision) << result.reason;
+  EXPECT_EQ(result.collision->object_name, "ground");
+  EXPECT_EQ(result.collision->part, "landing gear");
+  EXPECT_EQ(result.reason, "collision: landing gear with 'ground'");
+  EXPECT_TRUE(result.collision->contact_p_W.isApprox(Eigen::Vector3d(0.5, -0.5, 0.0)));
+  EXPECT_NEAR(result.sim_time_s, 0.3, 2e-3);  // 0.9 m at 3 m/s
+}
+
+TEST(SitlRunner, TakesOffFromTheGroundWithGroundContact) {
+  SitlRunnerParams params = GroundContactParams(1.5);
+  params.start_hovering = false;  // motors idle on the ground
+  params.initial_state.p_WB = Eigen::Vector3d(0.0, 0.0, 0.1);
+  const double hover_N = HoverRotorThrust_N(params);
+  // Half the weight for 0.5 s (it stays on the ground), then 30 % more than the weight.
+  ConstantThrustAutopilot autopilot(0.5 * hover_N, 1.3 * hover_N, 0.5);
+  const SitlResult result = SitlRunner(params, nullptr).Run(autopilot);
+  ASSERT_EQ(result.outcome, SitlResult::Outcome::kDurationReached) << result.reason;
+  for (const control::QuadState& state : result.trajectory) {
+    if (state.t_s <= 0.5) EXPECT_NEAR(state.p_WB.z(), 0.1, 1e-12) << "t = " << state.t_s;
+  }
+  // 0.3 g up for ~1 s (minus the rotor spin-up): ~1.4 m; at least well off the ground.
+  EXPECT_GT(result.trajectory.back().p_WB.z(), 1.0);
+  EXPECT_GT(result.trajectory.back().v_W.z(), 2.0);
+}
+
+TEST(SitlRunner, RejectsLandingGearInsideTheBodySphere) {
+  SitlRunnerParams params = GroundContactParams(1.0);
+  params.dynamics.landing_gear_height_m = 0.05;  // < body_radius_m = 0.08
+  EXPECT_THROW(SitlRunner(params, nullptr), std::invalid_argument);
 }
 
 // A push is applied through the disturbances: the hover autopilot is knocked away, then returns.
