@@ -1,5 +1,6 @@
 #include "sim/scene/scene.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace aperture::sim {
@@ -53,10 +54,19 @@ Material& Scene::material(int id) { return objects_[IndexOf(id)].material; }
 
 std::optional<Hit> Scene::Intersect(const Eigen::Vector3d& o_W, const Eigen::Vector3d& d_W,
                                     double t_min, double t_max) const {
+  return Intersect(o_W, d_W, t_min, t_max, {});
+}
+
+std::optional<Hit> Scene::Intersect(const Eigen::Vector3d& o_W, const Eigen::Vector3d& d_W,
+                                    double t_min, double t_max,
+                                    const std::vector<int>& excluded_ids) const {
   const Eigen::Vector3d d = d_W.normalized();
   std::optional<Hit> best;
   double best_t = t_max;
   for (const SceneObject& object : objects_) {
+    if (std::find(excluded_ids.begin(), excluded_ids.end(), object.id) != excluded_ids.end()) {
+      continue;
+    }
     const Eigen::Isometry3d T_OW = object.T_WO.inverse();
     LocalHit local;
     if (!IntersectPrimitive(object.primitive, T_OW * o_W, T_OW.linear() * d, t_min, best_t,

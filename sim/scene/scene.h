@@ -107,6 +107,11 @@ class Scene {
   std::optional<Hit> Intersect(const Eigen::Vector3d& o_W, const Eigen::Vector3d& d_W,
                                double t_min = 0.0,
                                double t_max = std::numeric_limits<double>::infinity()) const;
+  // The same, passing through the objects whose ids are in excluded_ids (e.g. parts of the
+  // vehicle a sensor on it looks through).
+  std::optional<Hit> Intersect(const Eigen::Vector3d& o_W, const Eigen::Vector3d& d_W,
+                               double t_min, double t_max,
+                               const std::vector<int>& excluded_ids) const;
 
   Sky sky;
   Lighting lighting;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace aperture::sim {
 namespace {
@@ -31,8 +32,15 @@ void RangeSensorParams::Validate() const {
   if (!p_BS.allFinite()) throw std::invalid_argument("RangeSensorParams.p_BS must be finite");
 }
 
-RangeSensor::RangeSensor(const RangeSensorParams& params)
-    : params_(Validated(params)), schedule_(params_.rate_hz), rng_(params_.seed) {}
+RangeSensor::RangeSensor(const RangeSensorParams& params, RangeWorld world)
+    : params_(Validated(params)),
+      world_(std::move(world)),
+      schedule_(params_.rate_hz),
+      rng_(params_.seed) {
+  if (!std::isfinite(world_.ground_height_m)) {
+    throw std::invalid_argument("RangeSensor: RangeWorld.ground_height_m must be finite");
+  }
+}
 
 perception::RangeReading RangeSensor::Measure(const control::QuadState& state) {
   if (!state.IsValid()) throw std::invalid_argument("RangeSensor::Measure: state is not valid");
@@ -43,8 +51,15 @@ perception::RangeReading RangeSensor::Measure(const control::QuadState& state) {
   const double cos_tilt = R_WB(2, 2);  // -z_B . -z_W
   // Drawn for every reading so the noise sequence does not depend on validity.
   const double noise_m = params_.noise_sigma_m * normal_(rng_);
-  if (cos_tilt < std::cos(params_.max_tilt_rad) || p_WS.z() <= 0.0) return reading;
-  const double range_m = p_WS.z() / cos_tilt;
+  const double height_m = p_WS.z() - world_.ground_height_m;
+  if (cos_tilt < std::cos(params_.max_tilt_rad) || height_m <= 0.0) return reading;
+  double range_m = height_m / cos_tilt;
+  if (world_.scene != nullptr) {
+    if (const std::optional<Hit> hit = world_.scene->Intersect(
+            p_WS, -R_WB.col(2), 0.0, range_m, world_.see_through_object_ids)) {
+      range_m = hit->t_m;
+    }
+  }
   if (range_m < params_.min_range_m || range_m > params_.max_range_m) return reading;
   reading.range_m = range_m + noise_m;
   reading.valid = true;

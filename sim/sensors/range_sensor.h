@@ -1,18 +1,22 @@
 #pragma once
 // Simulated downward range sensor (ToF / lidar altimeter) mounted at p_BS in B, measuring along
-// -z_B to the ground plane z_W = 0 (the only surface for now). For a sensor at height h above the
-// ground whose ray makes the angle theta with -z_W, the true range is h / cos(theta). The reading is
+// -z_B to the nearest surface of its RangeWorld: the ground plane z_W = ground_height_m and, when
+// a scene is given, the scene's objects (boxes, tables, a gap frame below the vehicle) except
+// those it is told to look through (parts of the vehicle itself). Over the bare ground, a sensor
+// at height h whose ray makes the angle theta with -z_W reads h / cos(theta). The reading is
 // invalid (valid == false, range_m = 0) when the tilt exceeds max_tilt_rad, the sensor is at or
 // below the ground, or the true range is outside [min_range_m, max_range_m]; valid readings carry
 // Gaussian noise. Deterministic for a given seed.
 #include <cstdint>
 #include <optional>
 #include <random>
+#include <vector>
 
 #include <Eigen/Core>
 
 #include "control/quad_state.h"
 #include "perception/sensor_data.h"
+#include "sim/scene/scene.h"
 #include "sim/sensors/sample_schedule.h"
 
 namespace aperture::sim {
@@ -33,9 +37,16 @@ struct RangeSensorParams {
   void Validate() const;
 };
 
+// What a range ray can hit. `scene` (may be null: the ground plane only) must outlive its use.
+struct RangeWorld {
+  double ground_height_m = 0.0;
+  const Scene* scene = nullptr;
+  std::vector<int> see_through_object_ids;  // e.g. objects attached to the vehicle body
+};
+
 class RangeSensor {
  public:
-  explicit RangeSensor(const RangeSensorParams& params);
+  explicit RangeSensor(const RangeSensorParams& params, RangeWorld world = {});
 
   // Reading at state.t_s regardless of the rate.
   perception::RangeReading Measure(const control::QuadState& state);
@@ -46,6 +57,7 @@ class RangeSensor {
 
  private:
   RangeSensorParams params_;
+  RangeWorld world_;
   SampleSchedule schedule_;
   std::mt19937_64 rng_;
   std::normal_distribution<double> normal_{0.0, 1.0};

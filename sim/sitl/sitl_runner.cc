@@ -176,7 +176,14 @@ SitlResult SitlRunner::Run(perception::Autopilot& autopilot, const SitlHooks& ho
   }
   Disturbances disturbances(p.disturbances);
   ImuSensor imu(p.imu);
-  RangeSensor range(p.range);
+  // The range ray sees what the vehicle can collide with: the ground and the scene's objects
+  // except the collision checker's ignored ones (the parts attached to the body).
+  RangeWorld range_world{p.dynamics.ground_height_m, scene_, {}};
+  for (const std::string& name : p.collision.ignored_objects) {
+    const int id = scene_ != nullptr ? scene_->FindId(name) : -1;
+    if (id >= 0) range_world.see_through_object_ids.push_back(id);
+  }
+  RangeSensor range(p.range, std::move(range_world));
   CollisionChecker collision_checker(p.dynamics, p.collision);
   SampleSchedule control_schedule(p.control_rate_hz);
   SampleSchedule flight_controller_schedule(p.flight_controller.rate_hz);

@@ -90,6 +90,8 @@ struct SitlRunnerParams {
   SimulatedFlightControllerParams flight_controller;
   ImuSensorParams imu;
   bool range_enabled = true;
+  // Measures to the ground (dynamics.ground_height_m) and the scene's objects except
+  // collision.ignored_objects (the parts attached to the body).
   RangeSensorParams range;
   double range_latency_s = 0.0;
   std::vector<SitlCamera> cameras;

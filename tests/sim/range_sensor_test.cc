@@ -68,6 +68,47 @@ TEST(RangeSensorTest, MountOffsetIsRotatedIntoWorld) {
   EXPECT_NEAR(reading.range_m, sensor_height / std::cos(pitch), 1e-12);
 }
 
+TEST(RangeSensorTest, GroundHeightShiftsTheReading) {
+  RangeSensor sensor(NoiselessRange(), RangeWorld{0.5, nullptr, {}});
+  const auto reading = sensor.Measure(StateAt(2.5, Eigen::Quaterniond::Identity()));
+  ASSERT_TRUE(reading.valid);
+  EXPECT_NEAR(reading.range_m, 2.0, 1e-12);
+  EXPECT_FALSE(sensor.Measure(StateAt(0.4, Eigen::Quaterniond::Identity())).valid);  // below it
+}
+
+TEST(RangeSensorTest, SeesSceneObjectsBelowExceptThoseItLooksThrough) {
+  // A 0.4 m high box under the vehicle at (3, -1) and a body part around the sensor.
+  Scene scene;
+  Eigen::Isometry3d T_WBox = Eigen::Isometry3d::Identity();
+  T_WBox.translation() = Eigen::Vector3d(3.0, -1.0, 0.2);
+  scene.AddObject({"box", Box{Eigen::Vector3d(0.5, 0.5, 0.4)}, Material{}, T_WBox});
+  Eigen::Isometry3d T_WPart = Eigen::Isometry3d::Identity();
+  T_WPart.translation() = Eigen::Vector3d(3.0, -1.0, 2.0);
+  const int part = scene.AddObject({"body", Box{Eigen::Vector3d(0.2, 0.2, 0.1)}, Material{},
+                                    T_WPart});
+  const control::QuadState above_box = StateAt(2.0, Eigen::Quaterniond::Identity());
+
+  RangeSensor sees_part(NoiselessRange(), RangeWorld{0.0, &scene, {}});
+  EXPECT_FALSE(sees_part.Measure(above_box).valid);  // 0.05 m to the part: below min_range_m
+
+  RangeSensor sensor(NoiselessRange(), RangeWorld{0.0, &scene, {part}});
+  const auto over_box = sensor.Measure(above_box);
+  ASSERT_TRUE(over_box.valid);
+  EXPECT_NEAR(over_box.range_m, 1.6, 1e-12);
+  // Tilted 0.1 rad about x_W: the ray meets the box top 1.6 tan(0.1) = 0.16 m off centre.
+  const double tilt = 0.1;
+  const auto tilted =
+      sensor.Measure(StateAt(2.0, Eigen::Quaterniond(Eigen::AngleAxisd(tilt, Eigen::Vector3d::UnitX()))));
+  ASSERT_TRUE(tilted.valid);
+  EXPECT_NEAR(tilted.range_m, 1.6 / std::cos(tilt), 1e-12);
+  // Beside the box: the ground.
+  control::QuadState beside = above_box;
+  beside.p_WB.x() += 1.0;
+  const auto ground = sensor.Measure(beside);
+  ASSERT_TRUE(ground.valid);
+  EXPECT_NEAR(ground.range_m, 2.0, 1e-12);
+}
+
 TEST(RangeSensorTest, NoiseStdMatchesSigmaAndIsDeterministic) {
   RangeSensorParams params;
   params.noise_sigma_m = 0.02;

@@ -138,7 +138,7 @@ TEST(ScenarioSitlTest, AbsentSitlBlocksLeaveTheCallersParams) {
 }
 
 TEST(ScenarioSitlTest, UnknownKeysInTheSitlBlocksAreRejectedByName) {
-  for (const std::string& key :
+  for (const std::string key :
        {"dynamics.vehicle.rotor.time_constant_up", "dynamics.rotor_lag", "imu.noise",
         "range.latency_s", "collision.radius_m", "sitl.duration_s", "cameras.front.drop_rate"}) {
     try {

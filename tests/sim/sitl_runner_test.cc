@@ -440,7 +440,9 @@ TEST(SitlRunner, SoftLandingWithGroundContactRestsOnTheGear) {
   EXPECT_FALSE(result.collision.has_value());
   for (const control::QuadState& state : result.trajectory) {
     // On the gear from the touchdown on (RK4 moves a 1 ms step by 0.3 mm).
-    if (state.t_s > 1.0 + 1e-3) EXPECT_NEAR(state.p_WB.z(), 0.1, 1e-9) << "t = " << state.t_s;
+    if (state.t_s > 1.0 + 1e-3) {
+      EXPECT_NEAR(state.p_WB.z(), 0.1, 1e-9) << "t = " << state.t_s;
+    }
     EXPECT_GE(state.p_WB.z(), 0.1 - 1e-12);
   }
   EXPECT_NEAR(result.trajectory.back().v_W.norm(), 0.0, 1e-9);
@@ -477,7 +479,9 @@ TEST(SitlRunner, TakesOffFromTheGroundWithGroundContact) {
   const SitlResult result = SitlRunner(params, nullptr).Run(autopilot);
   ASSERT_EQ(result.outcome, SitlResult::Outcome::kDurationReached) << result.reason;
   for (const control::QuadState& state : result.trajectory) {
-    if (state.t_s <= 0.5) EXPECT_NEAR(state.p_WB.z(), 0.1, 1e-12) << "t = " << state.t_s;
+    if (state.t_s <= 0.5) {
+      EXPECT_NEAR(state.p_WB.z(), 0.1, 1e-12) << "t = " << state.t_s;
+    }
   }
   // 0.3 g up for ~1 s (minus the rotor spin-up): ~1.4 m; at least well off the ground.
   EXPECT_GT(result.trajectory.back().p_WB.z(), 1.0);
