@@ -298,6 +298,27 @@ TEST(SitlRunner, TwoCamerasDeliverAtTheirOwnRatesTheirOwnViews) {
   EXPECT_EQ(cv::countNonZero(ids[1] == ground), ids[1].rows * ids[1].cols);
 }
 
+TEST(SitlRunner, RangeSensorSeesABoxBelowAndLooksThroughIgnoredParts) {
+  SitlRunnerParams params = QuietParams(0.5);
+  params.range.noise_sigma_m = 0.0;
+  Scene scene;
+  Eigen::Isometry3d T_WBox = Eigen::Isometry3d::Identity();
+  T_WBox.translation() = Eigen::Vector3d(0.0, 0.0, 0.25);  // top at 0.5 m, 1 m below the vehicle
+  scene.AddObject({"box", Box{Eigen::Vector3d(1.0, 1.0, 0.5)}, Material{}, T_WBox});
+  Eigen::Isometry3d T_WShelf = Eigen::Isometry3d::Identity();
+  T_WShelf.translation() = Eigen::Vector3d(0.0, 0.0, 1.2);  // 0.3 m below: a part to ignore
+  scene.AddObject({"shelf", Box{Eigen::Vector3d(0.3, 0.3, 0.02)}, Material{}, T_WShelf});
+  params.collision.ignored_objects = {"shelf"};
+  SitlRunner runner(params, &scene);
+  GroundTruthAutopilot autopilot(params.dynamics.vehicle, HoverAt(params.initial_state.p_WB));
+  const SitlResult result = runner.Run(autopilot);
+  ASSERT_FALSE(result.range.empty());
+  for (const perception::RangeReading& reading : result.range) {
+    ASSERT_TRUE(reading.valid) << "t = " << reading.t_s;
+    EXPECT_NEAR(reading.range_m, 1.0, 1e-3) << "t = " << reading.t_s;  // not 1.5 nor 0.29
+  }
+}
+
 TEST(SitlRunner, LatencyDelaysDeliveryByTheConfiguredAmount) {
   const Scene scene = TexturedScene();
   SitlRunnerParams params = QuietParams(1.0);
