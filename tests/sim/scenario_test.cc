@@ -65,6 +65,15 @@ RenderOutput RenderAt(Scenario& scenario, const Eigen::Isometry3d& T_WB) {
   return caster.Render(scenario.scene(), *camera.model, camera.T_WC(T_WB), options);
 }
 
+// Object id at the pixel nearest to the projection of p_C (a test failure when p_C does not
+// project).
+int IdAt(const RenderOutput& out, const ScenarioCamera& camera, const Eigen::Vector3d& p_C) {
+  Eigen::Vector2d px;
+  EXPECT_TRUE(camera.model->Project(p_C, &px)) << p_C.transpose();
+  return out.object_id.at<int>(
+      cv::Point(static_cast<int>(std::lround(px.x())), static_cast<int>(std::lround(px.y()))));
+}
+
 std::set<std::string> VisibleNames(const Scenario& scenario, const cv::Mat& object_id) {
   std::set<std::string> names;
   for (int y = 0; y < object_id.rows; ++y) {
@@ -202,10 +211,7 @@ TEST_P(GapFlytShapeTest, OpeningIsCutWithItsAnalyticArea) {
   const int wall_id = scenario.scene().FindId("gap");
   const int background_id = scenario.scene().FindId("background");
   const auto id_at = [&](const Eigen::Vector2d& xy_G) {
-    Eigen::Vector2d px;
-    EXPECT_TRUE(camera.model->Project(T_CG * Eigen::Vector3d(xy_G.x(), xy_G.y(), 0.0), &px));
-    return out.object_id.at<int>(
-        cv::Point(static_cast<int>(std::lround(px.x())), static_cast<int>(std::lround(px.y()))));
+    return IdAt(out, camera, T_CG * Eigen::Vector3d(xy_G.x(), xy_G.y(), 0.0));
   };
   EXPECT_EQ(id_at(Eigen::Vector2d::Zero()), background_id);
   const Eigen::Vector2d outside = g.size_m / 2.0 + Eigen::Vector2d::Constant(0.15);
@@ -490,10 +496,7 @@ TEST(ScenarioLoadTest, ObjectEllipseHolesAreCut) {
   const Eigen::Isometry3d T_CO = camera.T_WC(scenario.T_WB_start()).inverse() * plate.T_WO;
   const int plate_id = scenario.scene().FindId("plate");
   const auto id_at = [&](const Eigen::Vector2d& xy_O) {
-    Eigen::Vector2d px;
-    EXPECT_TRUE(camera.model->Project(T_CO * Eigen::Vector3d(xy_O.x(), xy_O.y(), 0.0), &px));
-    return out.object_id.at<int>(
-        cv::Point(static_cast<int>(std::lround(px.x())), static_cast<int>(std::lround(px.y()))));
+    return IdAt(out, camera, T_CO * Eigen::Vector3d(xy_O.x(), xy_O.y(), 0.0));
   };
   const Eigen::Vector2d centre(0.2, 0.0);
   const Eigen::Vector2d major(std::cos(M_PI / 6), std::sin(M_PI / 6));
