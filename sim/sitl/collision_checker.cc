@@ -35,19 +35,24 @@ void CollisionParams::Validate() const {
   }
 }
 
-CollisionChecker::CollisionChecker(const QuadrotorDynamicsParams& dynamics,
-                                   const CollisionParams& params)
-    : params_(params), ground_height_m_(dynamics.ground_height_m) {
-  params_.Validate();
+void CollisionChecker::Validate(const QuadrotorDynamicsParams& dynamics,
+                                const CollisionParams& params) {
+  params.Validate();
   dynamics.Validate();
-  if (dynamics.ground_contact_enabled && params_.ground_enabled &&
-      !(dynamics.landing_gear_height_m > params_.body_radius_m)) {
+  if (dynamics.ground_contact_enabled && params.ground_enabled &&
+      !(dynamics.landing_gear_height_m > params.body_radius_m)) {
     throw std::invalid_argument(
         "QuadrotorDynamicsParams.landing_gear_height_m = " +
         std::to_string(dynamics.landing_gear_height_m) +
-        " must exceed CollisionParams.body_radius_m = " + std::to_string(params_.body_radius_m) +
+        " must exceed CollisionParams.body_radius_m = " + std::to_string(params.body_radius_m) +
         " with ground contact on: resting on the gear would put the body into the ground");
   }
+}
+
+CollisionChecker::CollisionChecker(const QuadrotorDynamicsParams& dynamics,
+                                   const CollisionParams& params)
+    : params_(params), ground_height_m_(dynamics.ground_height_m) {
+  Validate(dynamics, params_);
   const control::VehicleParameters& vehicle = dynamics.vehicle;
   reach_m_ = params_.body_radius_m;
   for (int i = 0; i < 4; ++i) {

@@ -64,6 +64,8 @@ class CollisionChecker {
   // std::invalid_argument for invalid params, and when ground contact is on with the gear not
   // above the body sphere (resting would be a crash).
   CollisionChecker(const QuadrotorDynamicsParams& dynamics, const CollisionParams& params);
+  // The constructor's checks alone: throws std::invalid_argument as it would.
+  static void Validate(const QuadrotorDynamicsParams& dynamics, const CollisionParams& params);
   // First collision of the vehicle at `state`, having moved from previous_p_WB since the last
   // check (pass state.p_WB for none); std::nullopt when clear. `scene` may be null (ground only).
   std::optional<Collision> Check(const Scene* scene, const control::QuadState& state,

@@ -110,7 +110,7 @@ void SitlRunnerParams::Validate() const {
   flight_controller.Validate();
   imu.Validate();
   range.Validate();
-  CollisionChecker(dynamics, collision);  // validates both, and the landing gear against the body
+  CollisionChecker::Validate(dynamics, collision);  // both, and the landing gear against the body
   // Sensors and controllers sample once per dynamics step at most (sample_schedule.h).
   const double fastest =
       std::max({flight_controller.rate_hz, imu.rate_hz, control_rate_hz, range.rate_hz});
