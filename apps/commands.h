@@ -12,6 +12,7 @@ void AddRenderCommand(CLI::App& app, int* exit_code);
 void AddBenchCommand(CLI::App& app, int* exit_code);
 void AddBenchLedCommand(CLI::App& bench, int* exit_code);
 void AddCalibrateCommand(CLI::App& app, int* exit_code);
+void AddTrainCommand(CLI::App& app, int* exit_code);
 void AddVersionCommand(CLI::App& app, int* exit_code);
 
 // Flows under `aperture sim` (apps/sim_<flow>_command.cc).

@@ -5,7 +5,7 @@
 
 int main(int argc, char** argv) {
   CLI::App app{"aperture: perception-centric quadrotor autonomy (run | sim | render | bench | "
-               "calibrate | version)"};
+               "calibrate | train | version)"};
   app.require_subcommand(1);
   int exit_code = 0;
   aperture::apps::AddRunCommand(app, &exit_code);
@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   aperture::apps::AddRenderCommand(app, &exit_code);
   aperture::apps::AddBenchCommand(app, &exit_code);
   aperture::apps::AddCalibrateCommand(app, &exit_code);
+  aperture::apps::AddTrainCommand(app, &exit_code);
   aperture::apps::AddVersionCommand(app, &exit_code);
   try {
     app.parse(argc, argv);

@@ -24,3 +24,20 @@ if(NOT TARGET opengv::opengv)
   set_target_properties(opengv::opengv PROPERTIES IMPORTED_LOCATION "${OPENGV_LIBRARY}"
                         INTERFACE_INCLUDE_DIRECTORIES "${OPENGV_INCLUDE_DIR}")
 endif()
+
+# liblinear-dev (the linear SVM of seed 003's monocular depth) ships no CMake config either.
+find_path(LIBLINEAR_INCLUDE_DIR linear.h REQUIRED)
+find_library(LIBLINEAR_LIBRARY linear REQUIRED)
+if(NOT TARGET liblinear::liblinear)
+  add_library(liblinear::liblinear UNKNOWN IMPORTED)
+  set_target_properties(liblinear::liblinear PROPERTIES IMPORTED_LOCATION "${LIBLINEAR_LIBRARY}"
+                        INTERFACE_INCLUDE_DIRECTORIES "${LIBLINEAR_INCLUDE_DIR}")
+endif()
+
+# libpcl-dev: Euclidean clustering of seed 003's waypoint selection (planning/mono_nav only; its
+# headers are heavy, so only that .cc includes them and planning links it privately).
+# PCLConfig also looks for VTK (optional, for components we do not use), and Debian's VTK config
+# fails without MPI targets: keep VTK out of that search.
+set(CMAKE_DISABLE_FIND_PACKAGE_VTK TRUE)
+find_package(PCL 1.13 REQUIRED COMPONENTS common search segmentation kdtree)
+unset(CMAKE_DISABLE_FIND_PACKAGE_VTK)

@@ -2,6 +2,7 @@
 
 #include "perception/gap/gap_node.h"
 #include "perception/led/led_tracker_node.h"
+#include "perception/mono_depth/mono_depth_node.h"
 #include "perception/quality/image_quality_node.h"
 
 namespace aperture::perception {
@@ -16,6 +17,10 @@ void RegisterBuiltinFrontEnds(FrontEndRegistry& registry) {
   registry.Register(LedTrackerNode::kName,
                     "infrared-LED target pose T_CT with covariance (needs --calib; led.config)",
                     &LedTrackerNode::Create);
+  registry.Register(MonoDepthNode::kName,
+                    "monocular depth map per colour frame (seed 003 patch SVM; needs --color); "
+                    "Table I errors when depth/ is beside the images",
+                    &MonoDepthNode::Create);
 }
 
 }  // namespace aperture::perception

@@ -28,6 +28,12 @@ namespace aperture::perception {
 struct FrontEndResources {
   // The camera calibration (`aperture run --calib`), when one was given.
   std::optional<CameraCalibration> calibration;
+  // The frame source as given (`aperture run --source`: folder, video or camera:N), so a front end
+  // can find ground truth stored beside the images; empty when unknown.
+  std::string source;
+  // The run's output folder, where a front end may write per-frame files into a subfolder named
+  // after itself; empty when the run keeps no per-frame files.
+  std::string output_dir;
 
   // The calibration, or std::invalid_argument telling the user that `front_end` needs --calib.
   const CameraCalibration& RequireCalibration(const std::string& front_end) const;

@@ -41,7 +41,8 @@ Eigen::Isometry3d TrueGap() {
   Eigen::Matrix3d R_facing;
   R_facing << 0, 0, 1, -1, 0, 0, 0, -1, 0;
   Eigen::Isometry3d T_WG = Eigen::Isometry3d::Identity();
-  T_WG.linear() = Eigen::AngleAxisd(kRollRad, Eigen::Vector3d::UnitX()).toRotationMatrix() * R_facing;
+  T_WG.linear() =
+      Eigen::AngleAxisd(kRollRad, Eigen::Vector3d::UnitX()).toRotationMatrix() * R_facing;
   T_WG.translation() = Eigen::Vector3d(4.0, 0.0, 1.5);
   return T_WG;
 }
@@ -106,8 +107,10 @@ TEST_F(GapMissionTest, HoversOpenLoopUntilTheGapIsSeen) {
 }
 
 TEST_F(GapMissionTest, DetectsHoversAndPlansInTheGapAnchoredFrame) {
-  Run(5.0, true, [&] { return mission_.phase() != GapMissionPhase::kDetect &&
-                              mission_.phase() != GapMissionPhase::kHover; });
+  Run(5.0, true, [&] {
+    return mission_.phase() != GapMissionPhase::kDetect &&
+           mission_.phase() != GapMissionPhase::kHover;
+  });
   ASSERT_EQ(mission_.phase(), GapMissionPhase::kTransfer) << mission_.reason();
   const auto& changes = mission_.phase_changes();
   ASSERT_EQ(changes.size(), 3u);
@@ -139,9 +142,12 @@ TEST_F(GapMissionTest, DetectsHoversAndPlansInTheGapAnchoredFrame) {
   EXPECT_TRUE(traverse.Position(traverse.time_to_gap_s()).isZero(1e-9));  // through the centre
   const MotionPrimitive& approach = mission_.approach_plan()->primitive;
   const double lead_in_s = GapMissionParams{}.lead_in_s;
-  EXPECT_TRUE(approach.Position(approach.duration_s()).isApprox(traverse.Position(-lead_in_s), 1e-9));
-  EXPECT_TRUE(approach.Velocity(approach.duration_s()).isApprox(traverse.Velocity(-lead_in_s), 1e-9));
-  EXPECT_TRUE(approach.Acceleration(approach.duration_s()).isApprox(traverse.plane_gravity_W(), 1e-9));
+  EXPECT_TRUE(
+      approach.Position(approach.duration_s()).isApprox(traverse.Position(-lead_in_s), 1e-9));
+  EXPECT_TRUE(
+      approach.Velocity(approach.duration_s()).isApprox(traverse.Velocity(-lead_in_s), 1e-9));
+  EXPECT_TRUE(
+      approach.Acceleration(approach.duration_s()).isApprox(traverse.plane_gravity_W(), 1e-9));
   EXPECT_TRUE(std::isnan(mission_.traverse_start_time_s()));
   // Transfer starts at hover: the command's thrust is close to hover, the vehicle upright.
   EXPECT_NEAR(last_command_.thrust_rates.collective_thrust_mps2, kGravity, 1.0);
@@ -263,8 +269,9 @@ TEST(GapMissionParamsTest, RejectsInvalidValuesAndInputs) {
   params = GapMissionParams{};
   params.detection_timeout_s = 0.0;
   EXPECT_THROW(params.Validate(), std::invalid_argument);
-  EXPECT_THROW(GapMission(GapMissionParams{}, nullptr, ForwardCameraMount(), control::VehicleParameters{}),
-               std::invalid_argument);
+  EXPECT_THROW(
+      GapMission(GapMissionParams{}, nullptr, ForwardCameraMount(), control::VehicleParameters{}),
+      std::invalid_argument);
   Eigen::Isometry3d scaled = ForwardCameraMount();
   scaled.linear() *= 2.0;
   EXPECT_THROW(GapMission(GapMissionParams{}, Pinhole(), scaled, control::VehicleParameters{}),
@@ -273,9 +280,9 @@ TEST(GapMissionParamsTest, RejectsInvalidValuesAndInputs) {
 
 TEST(GapMissionParamsTest, LoadsTheMissionSectionStrictly) {
   const config::ConfigTree tree = config::ConfigTree::FromCommandLine(
-      "", {}, {"mission.hover_s=0.5", "mission.approach.duration_count=4",
-               "mission.detector.canny_low=30", "mission.filter.mahalanobis_gate=30",
-               "mission.fallback_limits.max_body_rate_radps=8"});
+      "", {},
+      {"mission.hover_s=0.5", "mission.approach.duration_count=4", "mission.detector.canny_low=30",
+       "mission.filter.mahalanobis_gate=30", "mission.fallback_limits.max_body_rate_radps=8"});
   config::ParamReader root = tree.Reader();
   GapMissionParams params;
   root.ReadSection("mission", &params);

@@ -1,0 +1,112 @@
+#pragma once
+// Waypoint selection over the ego-dynamic depth map (seed 003 Sec. III-C, III-D):
+//  1. every patch of the EDT map is back-projected to a point in the body frame B (x forward =
+//     the line of sight, y-z the field-of-view plane of Fig. 4) at its effective distance d_eff;
+//  2. the points are clustered into segments S_i with PCL's Euclidean clustering; each has a
+//     centroid o_i, a radius r_i (sqrt(2) times the RMS distance of its points from o_i in the
+//     y-z plane: the radius of a uniform disc with the same spread) and d_i = o_i.x;
+//  3. the cost C_i = rho_i / r_i, rho_i the distance of o_i from the line of sight to the goal:
+//     near the line of sight and wide (the paper's "nearest and maximum size free space");
+//  4. the binary program  min C^T kappa  s.t.  sum kappa = 1 (one-hot),
+//        d_i kappa_i >= alpha kappa_i,  alpha = v_t t_t      (collision threshold, (8))
+//        r_i kappa_i >= eta kappa_i,    eta = delta + max(sigma_y, sigma_z)   (expanse, (9))
+//     is solved exactly: a feasible kappa is a unit vector e_i of a segment meeting both
+//     constraints, so the optimum is the feasible segment of least cost (ties: lower index);
+//  5. a cubic Bezier path from the vehicle (tangent to its velocity) to the waypoint (o_i pulled
+//     back along its ray by the window half length in x plus the cluster tolerance) is checked with
+//     spatial
+//     windows (Sec. III-D): boxes of half size sigma + delta around samples of the path must hold
+//     no EDT point; a path that fails marks its segment non-traversable and the next best is
+//     tried (the count of such rejections is the "replanning" of Table II).
+// Frames: B body (x forward, y left, z up), C camera (OpenCV), T_BC the camera mount. Units SI.
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <opencv2/core/mat.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "perception/camera/camera_model.h"
+
+namespace aperture::planning {
+
+struct WaypointSelectorParams {
+  // PCL Euclidean cluster tolerance [m] in EDT space, where d_eff compresses depth (40 m -> ~6 m
+  // with the default EgoDynamicParams), so one tolerance serves near and far patches.
+  double cluster_tolerance_m = 0.35;
+  int min_cluster_points = 4;
+  // t_t of the collision threshold alpha = v_t t_t [s] (computation + response time).
+  double cycle_time_s = 0.3;
+  // Minimum alpha [m]: even at rest a segment closer than this is an obstacle.
+  double min_collision_threshold_m = 0.5;
+  // delta: half the vehicle's width [m] (rotor tip to centre, 0.25 m for a 450-class frame).
+  double vehicle_radius_m = 0.25;
+  // sigma_x, sigma_y, sigma_z: state-estimation standard deviations [m] (paper Table III).
+  Eigen::Vector3d state_sigma_m = Eigen::Vector3d(0.1, 0.1, 0.1);
+  int path_samples = 24;  // spatial windows along the Bezier path
+
+  void Validate() const;  // std::invalid_argument naming the field
+};
+
+struct Segment {
+  Eigen::Vector3d centroid_B = Eigen::Vector3d::Zero();  // o_i
+  double radius_m = 0.0;                                 // r_i
+  double distance_m = 0.0;                               // d_i = o_i.x
+  double rho_m = 0.0;  // distance of o_i from the line of sight to the goal
+  double cost = 0.0;   // C_i
+  bool meets_threshold = false;
+  bool meets_expanse = false;
+  std::vector<int> points;  // indices into WaypointSelection::points_B
+};
+
+struct WaypointSelection {
+  std::vector<Eigen::Vector3d> points_B;  // back-projected EDT map (one per patch with d_eff > 0)
+  std::vector<Segment> segments;
+  std::vector<int> tried;     // segments whose paths were checked, in order
+  std::optional<int> chosen;  // index into segments; nullopt: no traversable segment
+  Eigen::Vector3d waypoint_B = Eigen::Vector3d::Zero();
+  std::vector<Eigen::Vector3d> path_B;  // sampled Bezier path of the chosen segment
+  int Replans() const { return chosen ? int(tried.size()) - 1 : int(tried.size()); }
+};
+
+// Cubic Bezier q(tau) = sum_i C(3,i) tau^i (1-tau)^(3-i) p_i (Sec. III-D (14)).
+Eigen::Vector3d Bezier3(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+                        const Eigen::Vector3d& p2, const Eigen::Vector3d& p3, double tau);
+
+// Back-projects a patch grid of effective distances (CV_32FC1 rows x cols, z-depth along the
+// optical axis) through `camera` at the patch centres (patch size `patch_px` in the camera's
+// pixels) into B; patches with d_eff <= 0 are left out (imminent collisions, kept in the map).
+std::vector<Eigen::Vector3d> BackProjectGrid(const cv::Mat& d_eff_m,
+                                             const Eigen::Vector2d& patch_px,
+                                             const perception::CameraModel& camera,
+                                             const Eigen::Isometry3d& T_BC);
+
+enum class WaypointOrder { kOptimal, kRandom };
+
+class WaypointSelector {
+ public:
+  explicit WaypointSelector(const WaypointSelectorParams& params = {});
+
+  // points_B: the back-projected EDT map; v_B: the vehicle's velocity in B [m/s]; goal_B: the
+  // goal in B (its direction is the line of sight of rho_i). kOptimal tries the feasible segments
+  // by increasing cost; kRandom (Table II's baseline) tries all segments in a random order drawn
+  // from `seed`. Throws std::invalid_argument on non-finite inputs.
+  WaypointSelection Select(std::vector<Eigen::Vector3d> points_B, const Eigen::Vector3d& v_B,
+                           const Eigen::Vector3d& goal_B,
+                           WaypointOrder order = WaypointOrder::kOptimal,
+                           std::uint64_t seed = 0) const;
+
+  // Spatial-window check of one path: false when a window around a sample holds a point.
+  bool PathIsFree(const std::vector<Eigen::Vector3d>& path_B,
+                  const std::vector<Eigen::Vector3d>& points_B) const;
+
+  const WaypointSelectorParams& params() const { return params_; }
+
+ private:
+  std::vector<Segment> Cluster(const std::vector<Eigen::Vector3d>& points_B) const;
+
+  WaypointSelectorParams params_;
+};
+
+}  // namespace aperture::planning

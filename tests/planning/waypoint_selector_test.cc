@@ -1,0 +1,142 @@
+// Waypoint selection (seed 003 Sec. III-C, III-D) on synthetic EDT point sets with known answers:
+// an open wall is reached without replanning, a trunk on the line of sight forces the next-best
+// segment, the result is the exact optimum of the one-hot binary program (every cheaper feasible
+// segment was tried and failed its spatial windows), the expanse and collision-threshold
+// constraints exclude segments, and back-projection puts patches where the camera sees them.
+#include "planning/mono_nav/waypoint_selector.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "perception/camera/pinhole_camera.h"
+
+namespace aperture::planning {
+namespace {
+
+// A grid of points in the plane x = x_m over y in [y0, y1], z in [z0, z1], 0.1 m apart.
+void AddWall(double x_m, double y0, double y1, double z0, double z1,
+             std::vector<Eigen::Vector3d>* points) {
+  for (double y = y0; y <= y1 + 1e-9; y += 0.1) {
+    for (double z = z0; z <= z1 + 1e-9; z += 0.1) points->emplace_back(x_m, y, z);
+  }
+}
+
+const Eigen::Vector3d kGoalAhead(20.0, 0.0, 0.0);
+const Eigen::Vector3d kForward(1.0, 0.0, 0.0);
+
+TEST(WaypointSelector, OpenWallIsReachedWithoutReplanning) {
+  std::vector<Eigen::Vector3d> points;
+  AddWall(5.0, -2.0, 2.0, -1.0, 1.0, &points);
+  const WaypointSelector selector;
+  const WaypointSelection selection = selector.Select(points, kForward, kGoalAhead);
+  ASSERT_EQ(selection.segments.size(), 1u);
+  ASSERT_TRUE(selection.chosen.has_value());
+  EXPECT_EQ(selection.Replans(), 0);
+  const Segment& wall = selection.segments[0];
+  EXPECT_NEAR(wall.centroid_B.x(), 5.0, 1e-9);
+  EXPECT_NEAR(wall.rho_m, 0.0, 1e-9);
+  // sqrt(2) x RMS radius of a 4 x 2 m rectangle: sqrt(2 * (4^2 + 2^2) / 12) = 1.826 (grid: ~).
+  EXPECT_NEAR(wall.radius_m, std::sqrt(2.0 * 20.0 / 12.0), 0.05);
+  // The waypoint is on the line of sight, short of the wall; the path ends there.
+  EXPECT_NEAR(selection.waypoint_B.y(), 0.0, 1e-9);
+  EXPECT_LT(selection.waypoint_B.x(), 5.0 - 0.35);
+  EXPECT_TRUE(selection.path_B.back().isApprox(selection.waypoint_B));
+  EXPECT_TRUE(selection.path_B.front().isZero());
+}
+
+TEST(WaypointSelector, TrunkOnTheLineOfSightForcesTheNextBestSegmentExactly) {
+  std::vector<Eigen::Vector3d> points;
+  AddWall(2.0, -0.2, 0.2, -1.5, 1.5, &points);   // a trunk 2 m ahead, 0.4 m wide
+  AddWall(6.0, -1.2, 1.2, -1.5, 1.5, &points);   // background right behind it
+  AddWall(6.0, 2.0, 4.0, -1.5, 1.5, &points);    // background to the left
+  AddWall(6.0, -4.5, -2.0, -1.5, 1.5, &points);  // and to the right, wider
+  const WaypointSelector selector;
+  const WaypointSelection selection = selector.Select(points, kForward, kGoalAhead);
+  ASSERT_EQ(selection.segments.size(), 4u);
+  ASSERT_TRUE(selection.chosen.has_value());
+  const Segment& chosen = selection.segments[*selection.chosen];
+  EXPECT_GT(std::abs(chosen.centroid_B.y()), 1.5) << "a segment beside the trunk";
+  EXPECT_GE(selection.Replans(), 1) << "the background behind the trunk was tried first";
+  EXPECT_TRUE(selector.PathIsFree(selection.path_B, selection.points_B));
+  // Exact optimum of the binary program: every feasible segment cheaper than the chosen one was
+  // tried before it (and failed its windows); the chosen one meets both constraints.
+  EXPECT_TRUE(chosen.meets_threshold && chosen.meets_expanse);
+  for (int i = 0; i < int(selection.segments.size()); ++i) {
+    const Segment& s = selection.segments[i];
+    if (i == *selection.chosen || !s.meets_threshold || !s.meets_expanse) continue;
+    if (s.cost < chosen.cost) {
+      EXPECT_NE(std::find(selection.tried.begin(), selection.tried.end(), i),
+                selection.tried.end());
+    }
+  }
+  // The right-hand background is wider and as far off the line of sight: cheaper (C = rho / r).
+  EXPECT_LT(chosen.centroid_B.y(), 0.0);
+}
+
+TEST(WaypointSelector, ExpanseAndThresholdConstraintsExcludeSegments) {
+  std::vector<Eigen::Vector3d> points;
+  AddWall(6.0, -0.1, 0.1, -0.1, 0.1, &points);  // a tiny far gap on the line of sight: r < eta
+  AddWall(0.3, 1.0, 3.0, -1.0, 1.0, &points);   // a wide segment closer than alpha
+  AddWall(6.0, 2.0, 5.0, -1.0, 1.0, &points);   // the only feasible one
+  const WaypointSelector selector;
+  const WaypointSelection selection = selector.Select(points, kForward * 2.0, kGoalAhead);
+  ASSERT_EQ(selection.segments.size(), 3u);
+  int feasible = 0;
+  for (const Segment& s : selection.segments) feasible += s.meets_threshold && s.meets_expanse;
+  EXPECT_EQ(feasible, 1);
+  ASSERT_TRUE(selection.chosen.has_value());
+  EXPECT_NEAR(selection.segments[*selection.chosen].centroid_B.y(), 3.5, 1e-6);
+  // alpha = v t_t = 2 m/s * 0.3 s = 0.6 m > 0.3 m.
+  for (const Segment& s : selection.segments) {
+    if (s.distance_m < 0.5) {
+      EXPECT_FALSE(s.meets_threshold);
+    }
+    if (s.radius_m < 0.35) {
+      EXPECT_FALSE(s.meets_expanse);
+    }
+  }
+}
+
+TEST(WaypointSelector, RandomOrderFindsAFreePathWithMoreTries) {
+  std::vector<Eigen::Vector3d> points;
+  AddWall(2.0, -0.2, 0.2, -1.5, 1.5, &points);
+  AddWall(6.0, -1.2, 1.2, -1.5, 1.5, &points);
+  AddWall(6.0, -4.5, -2.0, -1.5, 1.5, &points);
+  const WaypointSelector selector;
+  int optimal_replans = selector.Select(points, kForward, kGoalAhead).Replans();
+  int random_replans = 0;
+  for (std::uint64_t seed = 0; seed < 20; ++seed) {
+    const WaypointSelection random =
+        selector.Select(points, kForward, kGoalAhead, WaypointOrder::kRandom, seed);
+    if (random.chosen) {
+      EXPECT_TRUE(selector.PathIsFree(random.path_B, random.points_B));
+    }
+    random_replans += random.Replans();
+  }
+  EXPECT_GT(random_replans, 20 * optimal_replans);
+}
+
+TEST(WaypointSelector, BackProjectionPutsPatchesAlongTheirRays) {
+  // 90 deg pinhole, 64 x 48 px, 8 px patches; camera looking along x_B (T_BC: z_C = x_B,
+  // x_C = -y_B, y_C = -z_B).
+  const perception::PinholeCamera camera(64, 48,
+                                         perception::PinholeIntrinsics{32.0, 32.0, 31.5, 23.5});
+  Eigen::Matrix3d R_BC;
+  R_BC << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  Eigen::Isometry3d T_BC = Eigen::Isometry3d::Identity();
+  T_BC.linear() = R_BC;
+  cv::Mat d_eff(6, 8, CV_32F, cv::Scalar(4.0f));
+  d_eff.at<float>(0, 0) = -1.0f;  // imminent: left out
+  const std::vector<Eigen::Vector3d> points =
+      BackProjectGrid(d_eff, Eigen::Vector2d(8.0, 8.0), camera, T_BC);
+  ASSERT_EQ(points.size(), 47u);
+  for (const Eigen::Vector3d& p : points) EXPECT_NEAR(p.x(), 4.0, 1e-9);  // z-depth = x_B
+  // Patch (row 3, col 4) centre is pixel (35.5, 27.5): 4 px right of and 4 px below the centre.
+  const Eigen::Vector3d& p = points[3 * 8 + 4 - 1];
+  EXPECT_NEAR(p.y(), -4.0 * 4.0 / 32.0, 1e-9);
+  EXPECT_NEAR(p.z(), -4.0 * 4.0 / 32.0, 1e-9);
+}
+
+}  // namespace
+}  // namespace aperture::planning
