@@ -82,11 +82,14 @@ std::vector<Segment> WaypointSelector::Cluster(const std::vector<Eigen::Vector3d
     std::sort(segment.points.begin(), segment.points.end());
     for (int i : segment.points) segment.centroid_B += points_B[i];
     segment.centroid_B /= double(segment.points.size());
-    double spread = 0.0;
+    Eigen::Vector2d variance_yz = Eigen::Vector2d::Zero();
     for (int i : segment.points) {
-      spread += (points_B[i] - segment.centroid_B).tail<2>().squaredNorm();
+      variance_yz += (points_B[i] - segment.centroid_B).tail<2>().cwiseAbs2();
     }
-    segment.radius_m = std::sqrt(2.0 * spread / double(segment.points.size()));
+    variance_yz /= double(segment.points.size());
+    // Half the narrower extent of a uniform rectangle with the same spread (half-width = sqrt(3)
+    // sigma): a tall thin trunk is narrow however tall it is.
+    segment.radius_m = std::sqrt(3.0 * variance_yz.minCoeff());
     segment.distance_m = segment.centroid_B.x();
     segments.push_back(segment);
   }

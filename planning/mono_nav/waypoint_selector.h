@@ -3,8 +3,9 @@
 //  1. every patch of the EDT map is back-projected to a point in the body frame B (x forward =
 //     the line of sight, y-z the field-of-view plane of Fig. 4) at its effective distance d_eff;
 //  2. the points are clustered into segments S_i with PCL's Euclidean clustering; each has a
-//     centroid o_i, a radius r_i (sqrt(2) times the RMS distance of its points from o_i in the
-//     y-z plane: the radius of a uniform disc with the same spread) and d_i = o_i.x;
+//     centroid o_i, a radius r_i (sqrt(3) times the smaller of its standard deviations along y and
+//     z: the half-width of a uniform rectangle with that spread, so a tall thin trunk counts as
+//     narrow) and d_i = o_i.x;
 //  3. the cost C_i = rho_i / r_i, rho_i the distance of o_i from the line of sight to the goal:
 //     near the line of sight and wide (the paper's "nearest and maximum size free space");
 //  4. the binary program  min C^T kappa  s.t.  sum kappa = 1 (one-hot),

@@ -81,7 +81,9 @@ Scores Score(perception::MonoDepthEstimator& estimator, const std::vector<DepthF
 }
 
 TEST(MonoDepthRender, TrainedModelBeatsTheBestConstantOnAHeldOutLayout) {
-  perception::MonoDepthTrainer trainer;
+  perception::MonoDepthTrainParams params;
+  params.patch_stride = 3;  // every 3rd patch: neighbours are alike, and the test stays fast
+  perception::MonoDepthTrainer trainer(params);
   for (int seed : {11, 12, 13}) {
     for (const DepthFrame& frame : RenderForest(seed, 5))
       trainer.AddFrame(frame.bgr, frame.depth_mm);
@@ -89,7 +91,7 @@ TEST(MonoDepthRender, TrainedModelBeatsTheBestConstantOnAHeldOutLayout) {
   perception::MonoDepthTrainingReport report;
   perception::MonoDepthEstimator estimator(trainer.Train(&report));
   EXPECT_EQ(report.frames, 15u);
-  EXPECT_EQ(report.patches, 15u * 40 * 30);
+  EXPECT_EQ(report.patches, 15u * 40 * 30 / 3);
   const Scores held_out = Score(estimator, RenderForest(21, 4));
   ASSERT_GT(held_out.model.patches, 1000);
   // Depth from the cues must beat a constant that already knows the held-out depth distribution,
