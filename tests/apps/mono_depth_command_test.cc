@@ -60,8 +60,8 @@ TEST(MonoDepthCommand, TrainsScoresAndReplaysThroughRun) {
     ASSERT_EQ(depth.type(), CV_16UC1) << name;
     EXPECT_EQ(depth.size(), cv::Size(160, 120));
   }
-  // The run scores the same frames with the same model: its per-frame E_ln (frames.csv, mean in
-  // summary.json) equals train's per-frame evaluation (eval.csv, column 3).
+  // The run scores the same frames with the same model: its per-frame E_ln (frames.csv column
+  // mono_depth.e_ln, mean in summary.json) equals train's per-frame evaluation (eval.csv, col. 3).
   std::ifstream eval_csv(model_dir + "/eval.csv");
   std::string line;
   std::getline(eval_csv, line);  // header
@@ -76,7 +76,7 @@ TEST(MonoDepthCommand, TrainsScoresAndReplaysThroughRun) {
   }
   ASSERT_EQ(rows, 3);
   const nlohmann::json run_summary = ReadJson(run + "/summary.json");
-  EXPECT_NEAR(double(run_summary["metrics"]["e_ln"]["mean"]), sum / rows, 1e-9);
+  EXPECT_NEAR(double(run_summary["metrics"]["mono_depth.e_ln"]["mean"]), sum / rows, 1e-9);
 }
 
 TEST(MonoDepthCommand, GrayFramesAndFoldersWithoutDepthAreClearErrors) {
