@@ -17,7 +17,7 @@ TEST(Cli, VersionPrintsTheProjectVersion) {
 TEST(Cli, HelpListsEverySubcommand) {
   const CommandResult result = RunAperture("--help");
   EXPECT_EQ(result.exit_code, 0);
-  for (const char* name : {"run", "sim", "render", "bench", "calibrate", "version"}) {
+  for (const char* name : {"run", "sim", "render", "bench", "calibrate", "train", "version"}) {
     EXPECT_NE(result.output.find(name), std::string::npos) << name;
   }
 }
