@@ -32,6 +32,15 @@ void RequireDepth(double depth_m, const char* what) {
 
 }  // namespace
 
+void PointServoParams::Validate() const {
+  gain.Validate();
+  if (!std::isfinite(target_motion_time_constant_s) || target_motion_time_constant_s < 0.0) {
+    throw std::invalid_argument("PointServoParams.target_motion_time_constant_s = " +
+                                std::to_string(target_motion_time_constant_s) +
+                                " must be finite and >= 0 [s]");
+  }
+}
+
 struct PointServo::Impl {
   std::array<vpFeaturePoint, 4> current;
   std::array<vpFeaturePoint, 4> desired;
@@ -69,22 +78,48 @@ void PointServo::SetDesired(const Corners& corners_n, double depth_m) {
     impl->task.addFeature(impl->current[i], impl->desired[i]);
   }
   impl_ = std::move(impl);
+  has_previous_ = false;
+  target_motion_.setZero();
 }
 
-ServoStepResult PointServo::Step(const Corners& corners_n, double depth_m) {
+ServoStepResult PointServo::Step(double t_s, const Corners& corners_n, double depth_m) {
   if (!has_desired()) {
     throw std::invalid_argument("PointServo::Step: no desired view; call SetDesired first");
   }
   RequireCorners(corners_n, "Step");
   RequireDepth(depth_m, "Step");
+  if (!std::isfinite(t_s) || (has_previous_ && t_s <= previous_t_s_)) {
+    throw std::invalid_argument("PointServo::Step: t_s = " + std::to_string(t_s) +
+                                " must be finite and after the previous step's " +
+                                std::to_string(previous_t_s_) + " [s]");
+  }
   for (int i = 0; i < 4; ++i) {
     impl_->current[i].buildFrom(corners_n[i].x(), corners_n[i].y(), depth_m);
   }
+  Eigen::VectorXd u = internal::ToEigen(impl_->task.computeControlLaw());  // -lambda J^+ e
+  const Eigen::VectorXd error = internal::ToEigen(impl_->task.getError());
+  if (params_.compensate_target_motion) {
+    const Eigen::MatrixXd J = internal::ToEigen(impl_->task.getTaskJacobian());
+    if (has_previous_) {
+      const double dt_s = t_s - previous_t_s_;
+      const Eigen::VectorXd unexplained =
+          (error - previous_error_) / dt_s - J * previous_u_;  // eq. (25)
+      const double blend = dt_s / (params_.target_motion_time_constant_s + dt_s);
+      target_motion_ += blend * (unexplained - target_motion_);
+    }
+    u -= internal::ToEigen(impl_->task.getTaskJacobianPseudoInverse()) * target_motion_;
+  }
+  has_previous_ = true;
+  previous_t_s_ = t_s;
+  previous_error_ = error;
+  previous_u_ = u;
+
   ServoStepResult result;
-  const vpColVector u = impl_->task.computeControlLaw();
-  internal::FillReference(u, T_BC_, &result.reference, &result.twist_C);
-  result.error = internal::ToEigen(impl_->task.getError());
-  result.error_norm = result.error.norm();
+  result.reference.v_B = u.head<3>();
+  result.reference.yaw_rate_radps = u[3];
+  result.twist_C = CameraTwistFromBodyVelocity(result.reference, T_BC_);
+  result.error = error;
+  result.error_norm = error.norm();
   return result;
 }
 

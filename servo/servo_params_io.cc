@@ -32,6 +32,8 @@ void LoadParams(config::ParamReader& reader, PidServoParams* params) {
 
 void LoadParams(config::ParamReader& reader, PointServoParams* params) {
   reader.ReadSection("gain", &params->gain);
+  reader.Read("compensate_target_motion", &params->compensate_target_motion);
+  reader.Read("target_motion_time_constant_s", &params->target_motion_time_constant_s);
   reader.RejectUnknownKeys();
   reader.Validate(*params);
 }

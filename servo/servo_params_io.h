@@ -18,6 +18,8 @@
 //       forward_pitch_deg: 3.0
 //   tag_servo:                      # PointServoParams
 //     gain: {at_zero_per_s: 1.5, at_infinity_per_s: 0.7, slope_at_zero_per_s: 30}
+//     compensate_target_motion: true
+//     target_motion_time_constant_s: 0.2
 //
 // All throw std::invalid_argument naming where the bad value is and what is expected.
 #include "config/param_reader.h"

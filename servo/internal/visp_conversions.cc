@@ -28,6 +28,14 @@ Eigen::VectorXd ToEigen(const vpColVector& v) {
   return result;
 }
 
+Eigen::MatrixXd ToEigen(const vpMatrix& M) {
+  Eigen::MatrixXd result(M.getRows(), M.getCols());
+  for (unsigned int r = 0; r < M.getRows(); ++r) {
+    for (unsigned int c = 0; c < M.getCols(); ++c) result(r, c) = M[r][c];
+  }
+  return result;
+}
+
 vpMatrix BodyDofJacobian(bool with_yaw_rate) {
   vpMatrix eJe(6, with_yaw_rate ? 4 : 3, 0.0);
   eJe[0][0] = eJe[1][1] = eJe[2][2] = 1.0;

@@ -18,6 +18,7 @@ namespace aperture::servo::internal {
 vpHomogeneousMatrix ToVisp(const Eigen::Isometry3d& T_AB);
 Eigen::Isometry3d FromVisp(const vpHomogeneousMatrix& aMb);
 Eigen::VectorXd ToEigen(const vpColVector& v);
+Eigen::MatrixXd ToEigen(const vpMatrix& M);
 
 // eJe of the commanded body DOFs (ViSP's drone form): columns v_x, v_y, v_z and, when
 // with_yaw_rate, omega_z of the body twist [v_B; omega_B].

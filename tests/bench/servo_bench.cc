@@ -66,7 +66,11 @@ void BM_PointServoStep(benchmark::State& state) {
   servo.SetDesired(desired, 2.0);
   PointServo::Corners current = desired;
   for (Eigen::Vector2d& corner : current) corner = 0.8 * corner + Eigen::Vector2d(0.05, 0.02);
-  for (auto _ : state) benchmark::DoNotOptimize(servo.Step(current, 2.4));
+  double t_s = 0.0;
+  for (auto _ : state) {
+    t_s += 1.0 / 30.0;
+    benchmark::DoNotOptimize(servo.Step(t_s, current, 2.4));
+  }
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_PointServoStep);

@@ -19,7 +19,7 @@ servo:
   law: pid
   moments: {yaw: orientation, gain: {at_zero_per_s: 2.0}}
   pid: {kp_mps: 1.5, forward_pitch_deg: 5.0}
-tag_servo: {gain: {at_zero_per_s: 1.0, at_infinity_per_s: 1.0}}
+tag_servo: {gain: {at_zero_per_s: 1.0, at_infinity_per_s: 1.0}, compensate_target_motion: false}
 )"),
                              "servo.yaml");
   GapServoParams gap;
@@ -35,6 +35,7 @@ tag_servo: {gain: {at_zero_per_s: 1.0, at_infinity_per_s: 1.0}}
   EXPECT_EQ(gap.pid.forward_pitch_deg, 5.0);
   EXPECT_EQ(gap.pid.ki_mps2, PidServoParams().ki_mps2);
   EXPECT_EQ(tag.gain.at_infinity_per_s, 1.0);  // equal gains: a constant lambda
+  EXPECT_FALSE(tag.compensate_target_motion);
 }
 
 TEST(ServoParamsIo, SetSelectsTheLaw) {
