@@ -2,9 +2,11 @@
 // The servo laws model a level vehicle: their camera twists carry no roll or pitch rate, and the
 // image-moment law assumes the target plane keeps its orientation to the camera. A flying
 // quadrotor tilts to accelerate, which moves every image point although the position has not
-// changed. Re-projecting the points into the camera of the level body B' (same position and
-// heading as B, z_B' = z_W) with the attitude estimate removes that motion, as ViSP's drone
-// examples rely on a gimbal-stabilized image for (Bebop 2 video stabilization).
+// changed. Re-projecting the points into the level camera C' (C's optical centre, the
+// orientation C would have on the level body B': same heading as B, z_B' = z_W) with the
+// attitude estimate removes that motion, as ViSP's drone examples rely on a gimbal-stabilized
+// image for (Bebop 2 video stabilization). The camera's lever arm about B is not undone (that
+// needs depth): a few mm for a 0.1 m mount at moderate tilt.
 //
 //   [x', y', 1] ~ R_C'C [x, y, 1],  R_C'C = R_BC^T R_B'B R_BC,  R_B'B = R_WB'^T R_WB,
 //   R_WB' = Rz(psi), psi the heading of x_B (the yaw of R_WB).

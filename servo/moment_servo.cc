@@ -54,10 +54,10 @@ double TwiceSignedArea(const std::vector<Eigen::Vector2d>& polygon_n) {
   return sum;
 }
 
-// ViSP's DENSE_POLYGON integrates the contour in the order it expects ("clockwise" with y up,
-// i.e. negative shoelace sum); the other order would flip the sign of every moment.
+// ViSP's DENSE_POLYGON expects the vertices clockwise as seen in the image (y down), i.e. a
+// positive shoelace sum; the other order flips the sign of every moment (m00 < 0).
 std::vector<vpPoint> ToVispContour(const std::vector<Eigen::Vector2d>& polygon_n) {
-  const bool reverse = TwiceSignedArea(polygon_n) > 0.0;
+  const bool reverse = TwiceSignedArea(polygon_n) < 0.0;
   std::vector<vpPoint> points(polygon_n.size());
   for (std::size_t i = 0; i < polygon_n.size(); ++i) {
     const Eigen::Vector2d& p = reverse ? polygon_n[polygon_n.size() - 1 - i] : polygon_n[i];

@@ -10,7 +10,8 @@
 namespace aperture::servo {
 namespace {
 
-// Truth: the level camera's own projection of the same world points.
+// Truth: the level camera's own projection of the same world points (same optical centre: a
+// rotation is all an image can undo without depth).
 TEST(LevelViewTest, TiltedViewMatchesTheLevelCameraAtTheSamePositionAndHeading) {
   const std::vector<Eigen::Vector3d> points_W = {
       {3.0, 0.4, 1.9}, {3.0, -0.5, 1.2}, {3.2, 0.1, 1.5}, {2.5, -0.2, 1.8}};
@@ -27,7 +28,9 @@ TEST(LevelViewTest, TiltedViewMatchesTheLevelCameraAtTheSamePositionAndHeading) 
                                Eigen::AngleAxisd(-0.15, Eigen::Vector3d::UnitX()))
                                   .toRotationMatrix();
     const auto tilted = testing::FreeCameraSimulation(T_WB_tilted * T_BC, 0.01).Project(points);
-    const auto level = testing::FreeCameraSimulation(T_WB_level * T_BC, 0.01).Project(points);
+    Eigen::Isometry3d T_WC_level = T_WB_level * T_BC;
+    T_WC_level.translation() = (T_WB_tilted * T_BC).translation();
+    const auto level = testing::FreeCameraSimulation(T_WC_level, 0.01).Project(points);
     const auto derotated = LevelView(tilted, T_WB_tilted.linear(), T_BC.linear());
     ASSERT_TRUE(derotated.has_value());
     for (std::size_t i = 0; i < points.size(); ++i) {
