@@ -7,7 +7,6 @@
 #include <visp3/core/vpMomentGravityCenter.h>
 #include <visp3/core/vpMomentGravityCenterNormalized.h>
 #include <visp3/core/vpMomentObject.h>
-#include <visp3/core/vpPoint.h>
 #include <visp3/visual_features/vpFeatureMomentAlpha.h>
 #include <visp3/visual_features/vpFeatureMomentAreaNormalized.h>
 #include <visp3/visual_features/vpFeatureMomentGravityCenterNormalized.h>
@@ -18,6 +17,7 @@
 #include <string>
 
 #include "servo/internal/visp_conversions.h"
+#include "servo/polygon_moments.h"
 
 namespace aperture::servo {
 namespace {
@@ -54,22 +54,15 @@ double TwiceSignedArea(const std::vector<Eigen::Vector2d>& polygon_n) {
   return sum;
 }
 
-// ViSP's DENSE_POLYGON expects the vertices clockwise as seen in the image (y down), i.e. a
-// positive shoelace sum; the other order flips the sign of every moment (m00 < 0).
-std::vector<vpPoint> ToVispContour(const std::vector<Eigen::Vector2d>& polygon_n) {
-  const bool reverse = TwiceSignedArea(polygon_n) < 0.0;
-  std::vector<vpPoint> points(polygon_n.size());
-  for (std::size_t i = 0; i < polygon_n.size(); ++i) {
-    const Eigen::Vector2d& p = reverse ? polygon_n[polygon_n.size() - 1 - i] : polygon_n[i];
-    points[i].set_x(p.x());
-    points[i].set_y(p.y());
-  }
-  return points;
-}
+// vpMomentObject whose basic moments are set from outside (ViSP 3.5 keeps set() protected).
+struct ClosedFormMomentObject : vpMomentObject {
+  explicit ClosedFormMomentObject(unsigned int max_order) : vpMomentObject(max_order) {}
+  using vpMomentObject::set;
+};
 
 // The moment primitives of one view, in a database (vpMoment* find each other by name).
 struct MomentSet {
-  vpMomentObject object{kMomentOrder};
+  ClosedFormMomentObject object{kMomentOrder};
   vpMomentDatabase database;
   vpMomentGravityCenter gravity;
   vpMomentCentered centered;
@@ -94,8 +87,12 @@ struct MomentSet {
   // the normalized area (uses a*, Z*), the normalized centre (uses a_n) and alpha.
   void Compute(const std::vector<Eigen::Vector2d>& polygon_n, double desired_area_n2,
                double desired_depth_m) {
-    std::vector<vpPoint> contour = ToVispContour(polygon_n);
-    object.fromVector(contour);
+    // Closed-form moments (servo/polygon_moments.h) instead of object.fromVector: the same
+    // values (checked in tests/servo/polygon_moments_test.cc) at a fraction of the cost.
+    const Eigen::Matrix4d m = PolygonMoments(polygon_n);
+    for (unsigned int p = 0; p <= kMomentOrder; ++p) {
+      for (unsigned int q = 0; p + q <= kMomentOrder; ++q) object.set(p, q, m(p, q));
+    }
     database.updateAll(object);
     gravity.compute();
     centered.compute();
