@@ -23,7 +23,7 @@ namespace aperture::servo {
 namespace {
 
 // Highest moment order used: alpha's reference needs the third-order centred moments (mu30 ..
-// mu03), and so does its interaction matrix (T-RO 2005 eq. (22)).
+// mu03), and so does its interaction matrix (vpFeatureMomentAlpha).
 constexpr unsigned int kMomentOrder = 3;
 // A forward camera's optical axis is ~90 deg off z_B, a downward one ~0 (or 180) deg: 60 deg
 // separates them with margin for a tilted mount.

@@ -4,7 +4,7 @@
 // objects", IEEE T-RO 2005, in the 4-DOF form ViSP uses for drones (vpServo
 // EYEINHAND_L_cVe_eJe, as in its Bebop 2 and Pixhawk servo examples):
 //
-//   features  s = [x_n, y_n, a_n (, alpha)]   (T-RO 2005 eq. (37)-(39), vpFeatureMoment*):
+//   features  s = [x_n, y_n, a_n (, alpha)]   (T-RO 2005; vpFeatureMoment* in ViSP):
 //             a_n = Z* sqrt(a*/a)  normalized area (a image area, a*, Z* of the desired view),
 //             x_n = a_n x_g, y_n = a_n y_g  normalized centre of gravity,
 //             alpha = 1/2 atan2(2 mu11, mu20 - mu02)  orientation (third-order moments of the
@@ -15,10 +15,11 @@
 //             matrix of T_CB (ViSP's cMe), eJe the selection of the commanded body DOFs.
 //
 // For a target parallel to the image plane the translational rows of x_n, y_n, a_n are -I: the
-// error decays exponentially in translation, independently of the depth (Sec. V of the paper).
-// alpha is the rotation about the optical axis, so it observes yaw only when the optical axis is
-// along z_B (a downward camera); for a forward camera the yaw DOF is held (YawMode::kHold) and
-// x_n, y_n, a_n drive v_B alone. Choosing kOrientation with a forward camera is rejected.
+// error decays exponentially in translation, independently of the depth (the point of the
+// normalization in the paper). alpha is the rotation about the optical axis, so it observes yaw
+// only when the optical axis is along z_B (a downward camera); for a forward camera the yaw DOF is
+// held (YawMode::kHold) and x_n, y_n, a_n drive v_B alone. Choosing kOrientation with a forward
+// camera is rejected.
 //
 // Input: the polygon's vertices in normalized image coordinates (x = X/Z, y = Y/Z in C: x right,
 // y down), in order around the contour (either direction). ViSP types stay in the .cc file.

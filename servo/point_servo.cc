@@ -103,7 +103,7 @@ ServoStepResult PointServo::Step(double t_s, const Corners& corners_n, double de
     if (has_previous_) {
       const double dt_s = t_s - previous_t_s_;
       const Eigen::VectorXd unexplained =
-          (error - previous_error_) / dt_s - J * previous_u_;  // eq. (25)
+          (error - previous_error_) / dt_s - J * previous_u_;  // de/dt - J u: target's share
       const double blend = dt_s / (params_.target_motion_time_constant_s + dt_s);
       target_motion_ += blend * (unexplained - target_motion_);
     }

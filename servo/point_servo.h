@@ -1,21 +1,22 @@
 #pragma once
 // Image-based visual servo on four points (the corners of a tag), the classical IBVS law of
-// Chaumette & Hutchinson, IEEE RAM 2006, eq. (11)-(12) (vpFeaturePoint with vpServo), in the
-// 4-DOF drone form of MomentServo (servo/moment_servo.h):
+// Chaumette & Hutchinson, "Visual servo control, Part I", IEEE RAM 2006, Sec. "Image-based
+// visual servo" (vpFeaturePoint with vpServo), in the 4-DOF drone form of MomentServo
+// (servo/moment_servo.h):
 //
 //   s = [x_1, y_1, .., x_4, y_4] (normalized image coordinates, x right, y down),
-//   L_i = [-1/Z, 0, x/Z, xy, -(1+x^2), y; 0, -1/Z, y/Z, 1+y^2, -xy, -x]   (eq. (11)),
+//   L_i = [-1/Z, 0, x/Z, xy, -(1+x^2), y; 0, -1/Z, y/Z, 1+y^2, -xy, -x]   (the paper's L_x),
 //   u = [v_B; yaw rate] = -lambda (L_s cVe eJe)^+ (s - s*),
 //
 // with Z the current depth of the points (the tag plane's distance along the optical axis; an
-// estimate such as the range sensor's height is enough, the law tolerates depth errors, Sec.
-// IV-B of the paper). The four corners fix all four DOFs for any mount; with a downward camera
-// above a tag on the ground (issue 16's tag servo) x/y move the vehicle horizontally, the
-// corners' rotation turns it and their spread sets the height.
+// estimate such as the range sensor's height is enough, the law tolerates depth errors, as the
+// paper discusses for approximate interaction matrices). The four corners fix all four DOFs for any
+// mount; with a downward camera above a tag on the ground (issue 16's tag servo) x/y move the
+// vehicle horizontally, the corners' rotation turns it and their spread sets the height.
 //
 // A moving target (issue 16: the ground robot drives at 0.3 m/s) leaves the proportional law a
 // steady lag e = -lambda^-1 de/dt|_target. With compensate_target_motion the law adds the
-// feed-forward of Chaumette & Hutchinson 2006 eq. (24)-(25):
+// feed-forward of Chaumette & Hutchinson 2006 (Part I, Sec. "Target tracking"):
 //   u = -lambda J^+ e - J^+ (de/dt)^,  J = L_s cVe eJe,
 //   (de/dt)^ = low-pass[(e_k - e_k-1) / dt - J u_k-1]   (the feature motion the own motion did
 //                                                          not explain), time constant

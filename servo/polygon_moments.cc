@@ -14,7 +14,8 @@ double Binomial(int n, int k) {
 }  // namespace
 
 Eigen::Matrix4d PolygonMoments(const std::vector<Eigen::Vector2d>& polygon) {
-  // Powers x^0..x^3 of each edge's end points, then the double sum of eq. (7) per (p, q).
+  // Powers x^0..x^3 of each edge's end points, then the double sum of the formula in the header per
+  // (p, q).
   Eigen::Matrix4d m = Eigen::Matrix4d::Zero();
   const std::size_t n = polygon.size();
   for (std::size_t k = 0; k < n; ++k) {

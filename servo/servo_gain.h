@@ -1,6 +1,6 @@
 #pragma once
 // Gain lambda of the visual-servo law v = -lambda (L J)^+ (s - s*) (Chaumette & Hutchinson, IEEE
-// RAM 2006, eq. (3)), adaptive as ViSP's vpAdaptiveGain:
+// RAM 2006, the exponential decrease of the error), adaptive as ViSP's vpAdaptiveGain:
 //   lambda(x) = (at_zero - at_infinity) exp(-slope_at_zero / (at_zero - at_infinity) * x)
 //               + at_infinity,   x = |s - s*|_inf,
 // high near convergence (fast final approach), low for large errors (no violent first step).
