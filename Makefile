@@ -6,7 +6,7 @@ JOBS ?= $(shell nproc)
 DEMO_OUT ?= out/demo
 APERTURE := $(BUILD_DIR)/apps/aperture
 
-.PHONY: all deps configure build test demo bench clean
+.PHONY: all deps configure build test demo python bench clean
 
 all: build
 
@@ -25,6 +25,11 @@ test: build
 demo: configure
 	@cmake --build $(BUILD_DIR) -j $(JOBS) --target aperture
 	@scripts/demo.sh $(APERTURE) $(DEMO_OUT)
+
+# The `aperture` Python module in $(BUILD_DIR)/python/ (python/CMakeLists.txt).
+python: configure
+	@cmake --build $(BUILD_DIR) -j $(JOBS) --target aperture_python
+	@echo "python: PYTHONPATH=$(BUILD_DIR)/python python3 -c 'import aperture; print(aperture.__version__)'"
 
 bench: configure
 	@cmake --build $(BUILD_DIR) -j $(JOBS) --target bench

@@ -25,6 +25,7 @@
 #include "apps/chase_view.h"
 #include "apps/command_support.h"
 #include "apps/commands.h"
+#include "apps/path_views.h"
 #include "apps/sim_gap_mission.h"
 #include "apps/sitl_outputs.h"
 #include "experiments/led/led_hover_flight.h"
@@ -77,12 +78,49 @@ std::string Format(const char* format, double a, double b = 0.0, double c = 0.0)
 
 nlohmann::json Vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
+// The verdict a reader looks for: the gap mission passed or not (ground truth), other flights
+// "done" unless they collided; the headline figures.
+output::ReportOutcome SimOutcome(const sim::SitlResult& result, const nlohmann::json& summary,
+                                 const SimGapMission* mission) {
+  output::ReportOutcome outcome;
+  if (mission) {
+    const nlohmann::json& m = summary["mission"];
+    outcome.verdict = m.value("passed", false) ? "passed" : "failed";
+    outcome.headline = mission->OutcomeLine(m) + ".";
+    if (m.contains("error_at_gap")) {
+      const nlohmann::json& p = m["error_at_gap"]["position_m"];
+      outcome.figures.push_back({"position error at the gap (x, y, z)",
+                                 Format("%.1f, %.1f, %.1f cm", 100 * p[0].get<double>(),
+                                        100 * p[1].get<double>(), 100 * p[2].get<double>()),
+                                 "seed 000 Table I: mean |error| 4, 4, 3 cm"});
+    }
+  } else {
+    outcome.verdict = result.collision ? "failed" : "done";
+    outcome.headline = "The flight ended: " + sim::ToString(result.outcome) + " (" + result.reason +
+                       ")" + Format(" after %.2f s simulated.", result.sim_time_s);
+    outcome.figures.push_back(
+        {"hover error (RMS / max)",
+         Format("%.1f / %.1f cm", 100 * summary["hover_error_m"]["rms"].get<double>(),
+                100 * summary["hover_error_m"]["max"].get<double>()),
+         ""});
+  }
+  if (result.collision) {
+    outcome.figures.push_back({"collision", result.collision->object_name, "none"});
+  }
+  outcome.figures.push_back({"real-time factor", Format("%.2f", result.real_time_factor), ""});
+  return outcome;
+}
+
 void WriteReport(const sim::SitlResult& result, const std::vector<cv::Mat>& key_frames,
-                 const std::string& title, output::OutputFolder& out,
+                 const std::string& title, const output::ReportOutcome& outcome,
+                 const sim::Scenario& scenario, output::OutputFolder& out,
                  const std::function<void(output::HtmlReport*)>& add_flight_sections) {
   output::HtmlReport report(title);
-  report.AddSection("Summary");
-  report.AddTable(out.summary());
+  report.AddOutcome(outcome);
+  report.AddRunDescription(out.summary(), out.ElapsedSeconds());
+  std::vector<std::string> riding_on_vehicle = scenario.AttachedObjectNames();
+  riding_on_vehicle.push_back(ChaseView::kMarkerName);
+  AddPathViews(result.trajectory, scenario.scene(), riding_on_vehicle, &report);
   if (add_flight_sections) add_flight_sections(&report);
   std::vector<double> t, x, y, z;
   for (const control::QuadState& s : result.trajectory) {
@@ -104,6 +142,7 @@ void WriteReport(const sim::SitlResult& result, const std::vector<cv::Mat>& key_
       report.AddImage(frame, "", output::HtmlReport::ImageEncoding::kJpeg);
     }
   }
+  report.AddCollapsedTable(out.summary(), "Every figure of summary.json");
   report.Write(out.Path("report.html"));
 }
 
@@ -253,7 +292,8 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
       experiments::AddLedHoverReport(led, report);
     };
   }
-  WriteReport(result, key_frames, "aperture sim: " + options.scenario, out, add_flight_sections);
+  WriteReport(result, key_frames, "aperture sim: " + options.scenario,
+              SimOutcome(result, summary, mission.get()), scenario, out, add_flight_sections);
   std::cout << "aperture sim " << options.scenario << ": " << sim::ToString(result.outcome) << " ("
             << result.reason << ") after " << result.sim_time_s << " s, real-time factor "
             << result.real_time_factor << "\n";
