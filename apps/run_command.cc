@@ -28,6 +28,7 @@
 #include "perception/graph/parallel_executor.h"
 #include "perception/graph/serial_executor.h"
 #include "perception/io/open_frame_source.h"
+#include "perception/io/rosbag_source.h"
 
 namespace aperture::apps {
 namespace {

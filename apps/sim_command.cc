@@ -96,7 +96,8 @@ output::ReportOutcome SimOutcome(const sim::SitlResult& result, const nlohmann::
     }
   } else {
     outcome.verdict = result.collision ? "failed" : "done";
-    outcome.headline = "The flight ended: " + sim::ToString(result.outcome) + " (" + result.reason +
+    outcome.headline = std::string("The flight ended: ") + sim::ToString(result.outcome) + " (" +
+                       result.reason +
                        ")" + Format(" after %.2f s simulated.", result.sim_time_s);
     outcome.figures.push_back(
         {"hover error (RMS / max)",

@@ -16,17 +16,18 @@ case "$kind" in
     "$aperture" render gap --frames 3 --out "$work/dataset" > /dev/null
     "$aperture" run --source "$work/dataset" --calib "$work/dataset/calib.yaml" \
       --frontends gap,image_quality --out "$work/out" > /dev/null
-    expected=("Outcome" "aperture run" "gap" "Configuration" "wall time")
+    expected=("Outcome: done" "aperture run" "gap poses" "Configuration" "wall time")
     ;;
   sim)
-    "$aperture" sim gap --duration 1 --set cameras.front.supersampling=1 --out "$work/out" > /dev/null
-    expected=("Outcome" "aperture sim" "Path seen from above" "Path seen from the side" "gap"
+    # `tags` hovers on ground truth among the robot and the tagged obstacles (drawn in the views).
+    "$aperture" sim tags --duration 1 --out "$work/out" > /dev/null
+    expected=("Outcome: done" "aperture sim" "Path seen from above" "Path seen from the side"
               "Configuration" "wall time")
     ;;
   bench)
     "$aperture" bench gap --trials 2 --seed 4 --autopilot ground_truth --duration 6 \
       --out "$work/out" > /dev/null
-    expected=("Outcome" "aperture bench" "success" "Configuration" "wall time")
+    expected=("Outcome: passed" "aperture bench gap" "success rate" "Configuration" "wall time")
     ;;
   *)
     echo "report_test: unknown kind '$kind' (run, sim or bench)" >&2
