@@ -41,7 +41,7 @@ endif()
 run_step("configure the consumer" ${CMAKE_COMMAND} ${configure_args})
 # The consumer must have found the staged package, not a source or build tree.
 file(STRINGS ${build}/CMakeCache.txt aperture_dir REGEX "^aperture_DIR:")
-if(NOT aperture_DIR MATCHES "${prefix}/")
+if(NOT aperture_dir MATCHES "=${prefix}/")
   message(FATAL_ERROR "the consumer found aperture outside the staged install: ${aperture_dir}")
 endif()
 run_step("build the consumer" ${CMAKE_COMMAND} --build ${build})

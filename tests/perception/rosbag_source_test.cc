@@ -90,14 +90,15 @@ TEST(RosbagSourceTest, CompressedPngFramesDecodeExactlyAndImuSamplesArriveBetwee
   const std::string path = (dir.path() / "compressed.bag").string();
   {
     TestBagWriter bag(path);
-    // IMU at 200 Hz from t = 0.0, frames at 20 Hz from t = 0.0125: 3 samples before frame 0,
-    // 10 between consecutive frames.
+    // IMU at 200 Hz from t = 1 s (rosbag refuses times before ros::TIME_MIN), frames at 20 Hz
+    // from t = 1.0125 s: 3 samples before frame 0, 10 between consecutive frames.
     for (int k = 0; k < 40; ++k) {
-      bag.WriteImu("/imu0", 0.005 * k, Eigen::Vector3d(0.1 * k, 0.0, 9.81),
+      bag.WriteImu("/imu0", 1.0 + 0.005 * k, Eigen::Vector3d(0.1 * k, 0.0, 9.81),
                    Eigen::Vector3d(0, 0, k));
     }
     for (int i = 0; i < 3; ++i) {
-      bag.WriteCompressedImage("/cam0/image_raw/compressed", 0.0125 + 0.05 * i, Pattern(i), ".png");
+      bag.WriteCompressedImage("/cam0/image_raw/compressed", 1.0125 + 0.05 * i, Pattern(i),
+                               ".png");
     }
   }
   RosbagSource source(path, Options("/cam0/image_raw/compressed", ColorMode::kColor, "/imu0"));
@@ -115,7 +116,7 @@ TEST(RosbagSourceTest, CompressedPngFramesDecodeExactlyAndImuSamplesArriveBetwee
   const std::vector<ImuSample> rest = source.TakeImuSamples();  // after the last frame
   EXPECT_EQ(all.size() + rest.size(), 40u);
   for (size_t k = 0; k < all.size(); ++k) {
-    EXPECT_DOUBLE_EQ(all[k].t_s, ros::Time(0.005 * k).toSec());
+    EXPECT_DOUBLE_EQ(all[k].t_s, ros::Time(1.0 + 0.005 * k).toSec());
     EXPECT_DOUBLE_EQ(all[k].specific_force_B.x(), 0.1 * k);
     EXPECT_DOUBLE_EQ(all[k].omega_B.z(), double(k));
   }
@@ -142,8 +143,9 @@ TEST(RosbagSourceTest, BadInputNamesTheTopicTheEncodingOrTheTime) {
   const std::string path = (dir.path() / "bad.bag").string();
   {
     TestBagWriter bag(path);
-    bag.WriteImage("/cam0/image_raw", 2.0, Pattern(0), "bgr8");
-    bag.WriteImage("/cam0/image_raw", 1.0, Pattern(1), "bgr8");  // time goes back
+    // Received in this order, stamped going back in time.
+    bag.WriteImage("/cam0/image_raw", 2.0, Pattern(0), "bgr8", 1.0);
+    bag.WriteImage("/cam0/image_raw", 1.0, Pattern(1), "bgr8", 1.5);
     cv::Mat depth(24, 32, CV_16UC1, cv::Scalar(1000));
     bag.WriteImage("/depth", 1.0, depth, "16UC1");
     bag.WriteImu("/imu0", 1.0, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());

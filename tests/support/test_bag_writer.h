@@ -21,9 +21,10 @@ class TestBagWriter {
   explicit TestBagWriter(const std::string& path) : bag_(path, rosbag::bagmode::Write) {}
 
   // `image` (8-bit, 1 or 3 channels, row-major) as `encoding` (e.g. mono8, bgr8); the bytes are
-  // written as they are, so the caller passes RGB data for rgb8.
+  // written as they are, so the caller passes RGB data for rgb8. Stamped t_s, recorded at
+  // received_t_s (the bag's order; < 0: at t_s).
   void WriteImage(const std::string& topic, double t_s, const cv::Mat& image,
-                  const std::string& encoding) {
+                  const std::string& encoding, double received_t_s = -1.0) {
     sensor_msgs::Image message;
     message.header.stamp = ros::Time(t_s);
     message.header.frame_id = "cam0";
@@ -33,7 +34,7 @@ class TestBagWriter {
     message.step = static_cast<uint32_t>(image.cols * image.elemSize());
     const cv::Mat continuous = image.isContinuous() ? image : image.clone();
     message.data.assign(continuous.data, continuous.data + image.total() * image.elemSize());
-    bag_.write(topic, message.header.stamp, message);
+    bag_.write(topic, received_t_s < 0.0 ? message.header.stamp : ros::Time(received_t_s), message);
   }
 
   // `image` encoded as `extension` (".png", ".jpg").
