@@ -19,6 +19,11 @@ aperture_find_package(TBB)
 aperture_find_package(yaml-cpp)
 aperture_find_package(nlohmann_json 3)
 aperture_find_package(NLopt)
+# libvisp-dev 3.5 (visual servoing): imported targets per module; servo/ links them PRIVATE (a
+# consumer of the installed servo library links them too) and the servo tests add visp_robot for
+# the vpSimulatorCamera free-camera simulation.
+aperture_find_package(VISP 3.5 COMPONENTS visp_core visp_visual_features visp_vs visp_robot)
+set(APERTURE_VISP visp_vs visp_visual_features visp_core)
 # libapriltag-dev ships a CMake config (target apriltag::apriltag, includes <apriltag/...>).
 aperture_find_package(apriltag)
 

@@ -2,7 +2,8 @@
 # One library per top-level folder (STYLE.md 5): sources are the folder's *.cc files, the include
 # root is the project root (#include "perception/camera/pinhole_camera.h"), the alias is
 # aperture::<folder>. A folder without sources yet is an INTERFACE target so the layering holds.
-# PRIVATE_DEPS are used by the sources only (their headers stay out of the module's interface).
+# PRIVATE_DEPS are linked privately: their headers must not appear in the folder's public headers
+# (servo's ViSP), so its dependents neither see nor link them directly.
 # Every module is installed the same way (`cmake --install`): the library into lib/, its headers
 # under include/aperture/<folder>/ (consumers keep the same #include lines) and the target into
 # the `apertureTargets` export as aperture::<folder> (cmake/apertureConfig.cmake.in).

@@ -12,6 +12,7 @@ packages=(
   libapriltag-dev libopengv-dev
   librosbag-dev librosbag-storage-dev libsensor-msgs-dev
   pybind11-dev python3-dev python3-numpy python3-pytest
+  libvisp-dev
   visp-images-data
   chromium
 )
