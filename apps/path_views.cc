@@ -74,10 +74,13 @@ std::string View(const std::string& title, const std::string& vertical_label, in
     outline_x.push_back(std::numeric_limits<double>::quiet_NaN());
     outline_v.push_back(std::numeric_limits<double>::quiet_NaN());
   }
-  return output::SvgPlot({title, "x_W [m]", vertical_label})
-      .AddLine("scene objects", outline_x, outline_v)
-      .AddLine("path (ground truth)", path_x, path_v)
-      .Render();
+  output::SvgPlot plot({title, "x_W [m]", vertical_label});
+  plot.AddLine("scene objects", outline_x, outline_v)
+      .AddLine("path (ground truth)", path_x, path_v);
+  if (!path_x.empty()) {  // a hover is a dot of a path: mark where it starts and ends
+    plot.AddScatter("start, end", {path_x.front(), path_x.back()}, {path_v.front(), path_v.back()});
+  }
+  return plot.Render();
 }
 
 }  // namespace
