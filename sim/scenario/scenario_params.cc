@@ -1,13 +1,10 @@
 #include "sim/scenario/scenario_params.h"
 
-#include <yaml-cpp/yaml.h>
-
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 #include <utility>
 
+#include "perception/led/led_configuration.h"
 #include "sim/sim_params_io.h"
 
 namespace aperture::sim {
@@ -47,33 +44,6 @@ void ReadOptionalSection(config::ParamReader& reader, const std::string& key,
   *value = std::move(loaded);
 }
 
-std::vector<Eigen::Vector3d> ReadLedFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) {
-    throw std::runtime_error("cannot read LED configuration '" + path +
-                             "' (led.config); expected a YAML file with leds: [[x, y, z], ...]");
-  }
-  std::stringstream text;
-  text << in.rdbuf();
-  YAML::Node node;
-  try {
-    node = YAML::Load(text.str());
-  } catch (const YAML::Exception& e) {
-    throw std::invalid_argument(path + ": YAML syntax error: " + e.what());
-  }
-  config::ParamReader reader(node, path);
-  std::vector<Eigen::Vector3d> leds;
-  reader.Read("leds", &leds);
-  reader.RejectUnknownKeys();
-  if (leds.size() < 4) {
-    throw std::invalid_argument(path +
-                                ": 'leds' needs at least 4 positions [x, y, z] in metres "
-                                "(P3P needs 3 plus one to disambiguate), got " +
-                                std::to_string(leds.size()));
-  }
-  return leds;
-}
-
 }  // namespace
 
 Eigen::Isometry3d PoseParams::ToIsometry() const {
@@ -85,6 +55,14 @@ Eigen::Isometry3d PoseParams::ToIsometry() const {
                    .toRotationMatrix();
   T.translation() = p_m;
   return T;
+}
+
+perception::GapPattern GapParams::Pattern() const {
+  perception::GapPattern pattern;
+  pattern.opening_size_m = opening_m;
+  pattern.inner_size_m = pattern_inner_m;
+  pattern.outer_size_m = pattern_outer_m;
+  return pattern;
 }
 
 void LoadParams(config::ParamReader& reader, PoseParams* params) {
@@ -266,9 +244,13 @@ void LoadParams(config::ParamReader& reader, LedSceneParams* params) {
   reader.Read("false_spots", &params->false_spots);
   reader.Read("false_spot_area_m", &params->false_spot_area_m);
   reader.Read("false_spot_height_m", &params->false_spot_height_m);
-  if (!params->config.empty()) params->leds_B = ReadLedFile(params->config);
-  if (params->leds_B.size() < 4) {
-    ThrowAt(reader, "leds", "needs at least 4 LED positions [x, y, z] [m]");
+  // The target frame T of perception::LedConfiguration is the body frame B here. Its checks (4..8
+  // LEDs, spacing, not coplanar, no symmetry) hold for a file and for inline `leds` alike.
+  if (!params->config.empty()) {
+    params->leds_B = perception::LedConfiguration::Load(params->config).p_T();
+  } else {
+    perception::LedConfiguration(params->leds_B,
+                                 reader.Where("leds") + " '" + reader.FullKey("leds") + "'");
   }
   RequirePositive(reader, "led_radius_m", params->led_radius_m);
   RequirePositive(reader, "led_intensity", params->led_intensity);
