@@ -101,8 +101,7 @@ void ValidateGapDetectorParams(const GapDetectorParams& p) {
                    p.area_ratio_tolerance, "must be > 1");
   control::Require(p.min_contrast > 0.0, "GapDetectorParams.min_contrast", p.min_contrast,
                    "must be > 0");
-  control::Require(p.edge_search_px >= 2 && p.edge_search_px <= 16,
-                   "GapDetectorParams.edge_search_px", p.edge_search_px, "must be in [2, 16]");
+  control::RequireInRange(p.edge_search_px, 2, 16, "GapDetectorParams.edge_search_px");
   control::Require(p.edge_sample_step_px > 0.0, "GapDetectorParams.edge_sample_step_px",
                    p.edge_sample_step_px, "must be > 0");
   control::Require(p.max_samples_per_side >= 4, "GapDetectorParams.max_samples_per_side",

@@ -30,8 +30,7 @@ std::vector<cv::Rect> MergeOverlapping(std::vector<cv::Rect> rects) {
 }  // namespace
 
 LedDetector::LedDetector(const LedDetectorParams& params) : params_(params) {
-  control::Require(params.threshold >= 1 && params.threshold <= 254, "LedDetectorParams.threshold",
-                   "must be in [1, 254]");
+  control::RequireInRange(params.threshold, 1, 254, "LedDetectorParams.threshold");
   control::Require(params.smoothing_sigma_px >= 0.0, "LedDetectorParams.smoothing_sigma_px",
                    "must be >= 0");
   control::Require(params.min_area_px >= 1, "LedDetectorParams.min_area_px", "must be >= 1");

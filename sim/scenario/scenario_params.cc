@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "control/require.h"
 #include "perception/led/led_configuration.h"
 #include "sim/sim_params_io.h"
 
@@ -23,15 +24,14 @@ void ReadChoice(config::ParamReader& reader, const std::string& key, std::string
   throw std::invalid_argument(reader.Where(key) + ": '" + reader.FullKey(key) + "' " + what);
 }
 
-void RequirePositive(const config::ParamReader& reader, const std::string& key, double value) {
-  if (!(value > 0.0) || !std::isfinite(value)) {
-    ThrowAt(reader, key, "must be a positive finite number, got " + std::to_string(value));
-  }
+// control::RequirePositive with the key's location ("file:line:col: 'gap.opening_m'") as its name.
+void RequirePositiveAt(const config::ParamReader& reader, const std::string& key, double value) {
+  control::RequirePositive(value, reader.Where(key) + ": '" + reader.FullKey(key) + "'");
 }
 
-void RequirePositive(const config::ParamReader& reader, const std::string& key,
-                     const Eigen::VectorXd& values) {
-  for (Eigen::Index i = 0; i < values.size(); ++i) RequirePositive(reader, key, values[i]);
+void RequirePositiveAt(const config::ParamReader& reader, const std::string& key,
+                       const Eigen::VectorXd& values) {
+  for (Eigen::Index i = 0; i < values.size(); ++i) RequirePositiveAt(reader, key, values[i]);
 }
 
 // A SITL block that replaces the caller's part of SitlRunnerParams only when present.
@@ -77,9 +77,9 @@ void LoadParams(config::ParamReader& reader, TextureParams* params) {
   reader.Read("scale", &params->scale);
   reader.Read("texel_size_m", &params->texel_size_m);
   reader.Read("square_size_m", &params->square_size_m);
-  RequirePositive(reader, "scale", params->scale);
-  RequirePositive(reader, "texel_size_m", params->texel_size_m);
-  RequirePositive(reader, "square_size_m", params->square_size_m);
+  RequirePositiveAt(reader, "scale", params->scale);
+  RequirePositiveAt(reader, "texel_size_m", params->texel_size_m);
+  RequirePositiveAt(reader, "square_size_m", params->square_size_m);
 }
 
 void LoadParams(config::ParamReader& reader, ObjectParams* params) {
@@ -148,10 +148,10 @@ void LoadParams(config::ParamReader& reader, CameraParams* params) {
   reader.Read("infrared", &params->infrared);
   reader.Read("supersampling", &params->supersampling);
   reader.Read("drop_probability", &params->drop_probability);
-  RequirePositive(reader, "width", params->width);
-  RequirePositive(reader, "height", params->height);
-  RequirePositive(reader, "rate_hz", params->rate_hz);
-  RequirePositive(reader, "supersampling", params->supersampling);
+  RequirePositiveAt(reader, "width", params->width);
+  RequirePositiveAt(reader, "height", params->height);
+  RequirePositiveAt(reader, "rate_hz", params->rate_hz);
+  RequirePositiveAt(reader, "supersampling", params->supersampling);
   if (!(params->latency_s >= 0.0) || !std::isfinite(params->latency_s)) {
     ThrowAt(reader, "latency_s", "must be finite and >= 0, got " + std::to_string(params->latency_s));
   }
@@ -178,7 +178,7 @@ void LoadParams(config::ParamReader& reader, TrajectoryParams* params) {
   reader.Read("amplitude_m", &params->amplitude_m);
   reader.Read("cycles", &params->cycles);
   reader.Read("angle_amplitude_deg", &params->angle_amplitude_deg);
-  RequirePositive(reader, "frames", params->frames);
+  RequirePositiveAt(reader, "frames", params->frames);
 }
 
 void LoadParams(config::ParamReader& reader, GapParams* params) {
@@ -191,8 +191,8 @@ void LoadParams(config::ParamReader& reader, GapParams* params) {
   reader.Read("pattern_outer_m", &params->pattern_outer_m);
   reader.Read("panel_m", &params->panel_m);
   reader.Read("room_m", &params->room_m);
-  RequirePositive(reader, "opening_m", params->opening_m);
-  RequirePositive(reader, "room_m", params->room_m);
+  RequirePositiveAt(reader, "opening_m", params->opening_m);
+  RequirePositiveAt(reader, "room_m", params->room_m);
   const bool nested = (params->pattern_inner_m.array() > params->opening_m.array()).all() &&
                       (params->pattern_outer_m.array() > params->pattern_inner_m.array()).all() &&
                       (params->panel_m.array() > params->pattern_outer_m.array()).all();
@@ -216,7 +216,7 @@ void LoadParams(config::ParamReader& reader, GapFlytParams* params) {
   reader.Read("star_inner_ratio", &params->star_inner_ratio);
   reader.Read("foreground_wall_m", &params->foreground_wall_m);
   reader.Read("background_wall_m", &params->background_wall_m);
-  RequirePositive(reader, "size_m", params->size_m);
+  RequirePositiveAt(reader, "size_m", params->size_m);
   if (!(params->background_x_m > params->foreground_x_m)) {
     ThrowAt(reader, "background_x_m", "must be larger than foreground_x_m");
   }
@@ -252,8 +252,8 @@ void LoadParams(config::ParamReader& reader, LedSceneParams* params) {
     perception::LedConfiguration(params->leds_B,
                                  reader.Where("leds") + " '" + reader.FullKey("leds") + "'");
   }
-  RequirePositive(reader, "led_radius_m", params->led_radius_m);
-  RequirePositive(reader, "led_intensity", params->led_intensity);
+  RequirePositiveAt(reader, "led_radius_m", params->led_radius_m);
+  RequirePositiveAt(reader, "led_intensity", params->led_intensity);
   if (params->false_spots < 0) ThrowAt(reader, "false_spots", "must be >= 0");
 }
 
@@ -269,13 +269,13 @@ void LoadParams(config::ParamReader& reader, TagsSceneParams* params) {
   reader.Read("robot_size_m", &params->robot_size_m);
   reader.Read("goal_xy_m", &params->goal_xy_m);
   reader.Read("goal_size_m", &params->goal_size_m);
-  RequirePositive(reader, "area_m", params->area_m);
-  RequirePositive(reader, "tag_size_m", params->tag_size_m);
-  RequirePositive(reader, "movable_size_m", params->movable_size_m);
-  RequirePositive(reader, "movable_tag_size_m", params->movable_tag_size_m);
-  RequirePositive(reader, "fixed_size_m", params->fixed_size_m);
-  RequirePositive(reader, "robot_size_m", params->robot_size_m);
-  RequirePositive(reader, "goal_size_m", params->goal_size_m);
+  RequirePositiveAt(reader, "area_m", params->area_m);
+  RequirePositiveAt(reader, "tag_size_m", params->tag_size_m);
+  RequirePositiveAt(reader, "movable_size_m", params->movable_size_m);
+  RequirePositiveAt(reader, "movable_tag_size_m", params->movable_tag_size_m);
+  RequirePositiveAt(reader, "fixed_size_m", params->fixed_size_m);
+  RequirePositiveAt(reader, "robot_size_m", params->robot_size_m);
+  RequirePositiveAt(reader, "goal_size_m", params->goal_size_m);
   if (params->movable_obstacles < 0) ThrowAt(reader, "movable_obstacles", "must be >= 0");
   if (params->fixed_obstacles < 0) ThrowAt(reader, "fixed_obstacles", "must be >= 0");
 }
@@ -287,9 +287,9 @@ void LoadParams(config::ParamReader& reader, ForestParams* params) {
   reader.Read("min_spacing_m", &params->min_spacing_m);
   reader.Read("radius_range_m", &params->radius_range_m);
   reader.Read("height_range_m", &params->height_range_m);
-  RequirePositive(reader, "area_m", params->area_m);
-  RequirePositive(reader, "radius_range_m", params->radius_range_m);
-  RequirePositive(reader, "height_range_m", params->height_range_m);
+  RequirePositiveAt(reader, "area_m", params->area_m);
+  RequirePositiveAt(reader, "radius_range_m", params->radius_range_m);
+  RequirePositiveAt(reader, "height_range_m", params->height_range_m);
   if (params->trees < 0 || params->boxes < 0) ThrowAt(reader, "trees", "and boxes must be >= 0");
 }
 

@@ -20,13 +20,10 @@ void DisturbanceParams::Validate() const {
   control::RequireFinite(steady_wind_W_mps, "DisturbanceParams.steady_wind_W_mps");
   control::RequireFinite(torque_B_Nm, "DisturbanceParams.torque_B_Nm");
   for (size_t i = 0; i < gusts.size(); ++i) {
-    const std::string name = "gusts[" + std::to_string(i) + "]";
-    control::RequireFinite(gusts[i].t_start_s) &&
-        gusts[i].wind_W_mps.allFinite(, std::string("DisturbanceParams.") + name);
-    if (!(std::isfinite(gusts[i].duration_s) && gusts[i].duration_s > 0.0)) {
-      throw std::invalid_argument("DisturbanceParams." + name + ".duration_s must be > 0, got " +
-                                  std::to_string(gusts[i].duration_s));
-    }
+    const std::string name = "DisturbanceParams.gusts[" + std::to_string(i) + "]";
+    control::RequireFinite(gusts[i].t_start_s, name + ".t_start_s");
+    control::RequireFinite(gusts[i].wind_W_mps, name + ".wind_W_mps");
+    control::RequirePositive(gusts[i].duration_s, name + ".duration_s");
   }
   for (size_t i = 0; i < pushes.size(); ++i) {
     const Push& push = pushes[i];
