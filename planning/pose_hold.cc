@@ -5,14 +5,11 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "control/require.h"
 #include "control/trajectory_point.h"
 
 namespace aperture::planning {
 namespace {
-
-void RequireFinite(bool finite, const std::string& what) {
-  if (!finite) throw std::invalid_argument(what + " must be finite");
-}
 
 // T_WB = T_WX * T_BX^-1 of a pose measurement.
 Eigen::Quaterniond BodyRotation(const perception::PoseMeasurement& z) {
@@ -76,8 +73,8 @@ PoseHold::PoseHold(const control::VehicleParameters& vehicle, const PoseHoldPara
 }
 
 void PoseHold::SetSetpoint(const PoseHoldSetpoint& setpoint) {
-  RequireFinite(setpoint.p_W.allFinite(), "PoseHoldSetpoint.p_W");
-  RequireFinite(std::isfinite(setpoint.heading_rad), "PoseHoldSetpoint.heading_rad");
+  control::RequireFinite(setpoint.p_W, "PoseHoldSetpoint.p_W");
+  control::RequireFinite(setpoint.heading_rad, "PoseHoldSetpoint.heading_rad");
   setpoint_ = setpoint;
 }
 
@@ -91,9 +88,9 @@ void PoseHold::AddImu(const perception::ImuSample& sample) {
 }
 
 void PoseHold::StartFilter(const perception::PoseMeasurement& z) {
-  RequireFinite(z.p_WX.allFinite() && z.q_WX.coeffs().allFinite() && z.p_BX.allFinite() &&
-                    z.q_BX.coeffs().allFinite() && std::isfinite(z.t_s),
-                "PoseMeasurement (t_s, p_WX, q_WX, p_BX, q_BX)");
+  control::Require(z.p_WX.allFinite() && z.q_WX.coeffs().allFinite() && z.p_BX.allFinite() &&
+                       z.q_BX.coeffs().allFinite() && std::isfinite(z.t_s),
+                   "PoseMeasurement (t_s, p_WX, q_WX, p_BX, q_BX)", "must be finite");
   control::QuadState state;
   state.t_s = z.t_s;
   state.q_WB = BodyRotation(z);
@@ -152,7 +149,7 @@ Eigen::Vector3d PoseHold::integral_accel_W() const {
 }
 
 perception::AutopilotCommand PoseHold::Step(double t_s) {
-  RequireFinite(std::isfinite(t_s), "PoseHold::Step t_s");
+  control::RequireFinite(t_s, "PoseHold::Step t_s");
   perception::AutopilotCommand command;
   if (!filter_) return command;
   const perception::PoseImuEstimate estimate = filter_->Estimate();

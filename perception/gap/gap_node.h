@@ -41,10 +41,6 @@ class GapNode final : public Node {
   std::vector<PoseEstimate> Poses(const NodeContext& context) const override;
   void DrawOverlay(const NodeContext& context, cv::Mat& bgr) const override;
 
-  // Covariance of T_GC = T_CG^-1 from that of T_CG (both left perturbations [dt; dr]).
-  static Eigen::Matrix<double, 6, 6> InverseCovariance(const Eigen::Isometry3d& T_CG,
-                                                       const Eigen::Matrix<double, 6, 6>& cov_CG);
-
  private:
   GapDetector detector_;
 };

@@ -6,32 +6,11 @@
 #include <stdexcept>
 #include <utility>
 
-#include "perception/gap/gap_node.h"
-#include "perception/led/se3_twist.h"
+#include "control/require.h"
+#include "control/so3.h"
 
 namespace aperture::planning {
 namespace {
-
-void RequirePositive(double value, const char* field) {
-  if (!std::isfinite(value) || value <= 0.0) {
-    throw std::invalid_argument(std::string("GapMissionParams.") + field +
-                                " must be a positive finite number, got " + std::to_string(value));
-  }
-}
-
-void RequireNonNegative(double value, const char* field) {
-  if (!std::isfinite(value) || value < 0.0) {
-    throw std::invalid_argument(std::string("GapMissionParams.") + field +
-                                " must be finite and >= 0, got " + std::to_string(value));
-  }
-}
-
-void RequireAtLeast(int value, int minimum, const char* field) {
-  if (value < minimum) {
-    throw std::invalid_argument(std::string("GapMissionParams.") + field + " must be >= " +
-                                std::to_string(minimum) + ", got " + std::to_string(value));
-  }
-}
 
 double HeadingOf(const Eigen::Quaterniond& q_WB) {
   const Eigen::Vector3d x_B = q_WB * Eigen::Vector3d::UnitX();
@@ -48,22 +27,24 @@ void GapMissionParams::Validate() const {
   controller.Validate();
   fallback_limits.Validate();
   recovery.Validate();
-  RequireAtLeast(camera_id, 0, "camera_id");
-  RequireAtLeast(init_detections, 1, "init_detections");
-  RequireAtLeast(gravity_samples, 1, "gravity_samples");
-  RequireNonNegative(hover_s, "hover_s");
-  RequirePositive(init_max_relative_sigma, "init_max_relative_sigma");
-  RequirePositive(detection_covariance_scale, "detection_covariance_scale");
-  RequireNonNegative(min_ground_clearance_m, "min_ground_clearance_m");
-  RequireAtLeast(max_consecutive_rejections, 1, "max_consecutive_rejections");
-  RequirePositive(transfer_speed_mps, "transfer_speed_mps");
-  RequirePositive(min_transfer_s, "min_transfer_s");
-  RequireNonNegative(start_hold_s, "start_hold_s");
-  RequireNonNegative(lead_in_s, "lead_in_s");
-  RequireNonNegative(min_replan_remaining_s, "min_replan_remaining_s");
-  RequirePositive(detection_timeout_s, "detection_timeout_s");
-  RequireNonNegative(approach_commit_s, "approach_commit_s");
-  RequireNonNegative(recovered_hold_s, "recovered_hold_s");
+  control::RequireAtLeast(camera_id, 0, "GapMissionParams.camera_id");
+  control::RequireAtLeast(init_detections, 1, "GapMissionParams.init_detections");
+  control::RequireAtLeast(gravity_samples, 1, "GapMissionParams.gravity_samples");
+  control::RequireNonNegative(hover_s, "GapMissionParams.hover_s");
+  control::RequirePositive(init_max_relative_sigma, "GapMissionParams.init_max_relative_sigma");
+  control::RequirePositive(detection_covariance_scale,
+                           "GapMissionParams.detection_covariance_scale");
+  control::RequireNonNegative(min_ground_clearance_m, "GapMissionParams.min_ground_clearance_m");
+  control::RequireAtLeast(max_consecutive_rejections, 1,
+                          "GapMissionParams.max_consecutive_rejections");
+  control::RequirePositive(transfer_speed_mps, "GapMissionParams.transfer_speed_mps");
+  control::RequirePositive(min_transfer_s, "GapMissionParams.min_transfer_s");
+  control::RequireNonNegative(start_hold_s, "GapMissionParams.start_hold_s");
+  control::RequireNonNegative(lead_in_s, "GapMissionParams.lead_in_s");
+  control::RequireNonNegative(min_replan_remaining_s, "GapMissionParams.min_replan_remaining_s");
+  control::RequirePositive(detection_timeout_s, "GapMissionParams.detection_timeout_s");
+  control::RequireNonNegative(approach_commit_s, "GapMissionParams.approach_commit_s");
+  control::RequireNonNegative(recovered_hold_s, "GapMissionParams.recovered_hold_s");
 }
 
 const char* ToString(GapMissionPhase phase) {
@@ -163,10 +144,10 @@ void GapMission::OnFrame(const perception::Frame& frame) {
   const Eigen::Isometry3d T_GC = last_T_CG_.inverse();
   const Eigen::Isometry3d T_WC = T_WG_ * T_GC;
   const perception::Matrix6d cov_GC =
-      perception::GapNode::InverseCovariance(last_T_CG_, last_detection_.covariance);
+      control::InversePoseCovariance(last_T_CG_, last_detection_.covariance);
   perception::Matrix6d J = perception::Matrix6d::Zero();
   J.topLeftCorner<3, 3>() = T_WG_.linear();
-  J.topRightCorner<3, 3>() = -T_WG_.linear() * perception::Skew(T_GC.translation());
+  J.topRightCorner<3, 3>() = -T_WG_.linear() * control::Skew(T_GC.translation());
   J.bottomRightCorner<3, 3>() = T_GC.linear().transpose();
   perception::Matrix6d cov = params_.detection_covariance_scale * J * cov_GC * J.transpose();
   cov = 0.5 * (cov + cov.transpose()).eval();

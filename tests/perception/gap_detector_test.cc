@@ -87,29 +87,6 @@ TEST(GapDetectorTest, DrawnPatternGivesExactPoseWithSymmetryConvention) {
   EXPECT_GT(d.T_CG.linear().col(2).dot(d.T_CG.translation()), 0.0);
 }
 
-// The covariance of T_GC = T_CG^-1: a perturbation delta of T_CG moves T_GC by -Ad(T_GC) delta.
-TEST(GapNodeTest, InverseCovarianceMatchesPerturbedInverse) {
-  const Eigen::Isometry3d T_CG = MakePose(0.3, -0.2, 0.5, Eigen::Vector3d(0.4, -0.3, 2.0));
-  Eigen::Matrix<double, 6, 6> J;  // d(delta_GC) / d(delta_CG), numerically
-  constexpr double kStep = 1e-6;
-  for (int i = 0; i < 6; ++i) {
-    Eigen::Matrix<double, 6, 1> delta = Eigen::Matrix<double, 6, 1>::Zero();
-    delta[i] = kStep;
-    Eigen::Isometry3d E = Eigen::Isometry3d::Identity();
-    E.linear() = Eigen::AngleAxisd(kStep, Eigen::Vector3d::Unit(i >= 3 ? i - 3 : 0)).toRotationMatrix();
-    if (i < 3) E.linear().setIdentity();
-    E.translation() = delta.head<3>();
-    const Eigen::Isometry3d T_GC = T_CG.inverse();
-    const Eigen::Isometry3d D = (E * T_CG).inverse() * T_GC.inverse();  // Exp(delta_GC)
-    const Eigen::AngleAxisd aa(D.linear());
-    J.col(i) << D.translation() / kStep, aa.axis() * aa.angle() / kStep;
-  }
-  Eigen::Matrix<double, 6, 6> cov = Eigen::Matrix<double, 6, 6>::Identity();
-  cov(0, 4) = cov(4, 0) = 0.3;
-  // Finite differences with step 1e-6 are exact to ~1e-6 relative.
-  EXPECT_TRUE(GapNode::InverseCovariance(T_CG, cov).isApprox(J * cov * J.transpose(), 1e-5));
-}
-
 TEST(GapNodeTest, RegisteredAndNeedsCalibration) {
   FrontEndRegistry registry;
   RegisterBuiltinFrontEnds(registry);

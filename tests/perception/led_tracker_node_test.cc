@@ -7,11 +7,11 @@
 #include <fstream>
 
 #include "config/config_tree.h"
+#include "control/so3.h"
 #include "led_test_images.h"
 #include "perception/camera/pinhole_camera.h"
 #include "perception/graph/builtin_front_ends.h"
 #include "perception/graph/serial_executor.h"
-#include "perception/led/se3_twist.h"
 #include "perception/sensor_data.h"
 #include "temp_directory.h"
 #include "tests/support/message_of.h"
@@ -44,7 +44,7 @@ TEST(LedTrackerNodeTest, ReportsThePoseStreamWithCovarianceMetricsAndOverlay) {
 
   const LedConfiguration configuration = LedConfiguration::Default();
   const Eigen::Isometry3d T_CT =
-      ExpSe3((Vector6d() << -0.1, 0.05, 1.3, 0.3, -0.2, 0.1).finished());
+      control::ExpSe3((control::Vector6d() << -0.1, 0.05, 1.3, 0.3, -0.2, 0.1).finished());
   std::vector<Eigen::Vector2d> px;
   for (const auto& p_T : configuration.p_T()) {
     px.emplace_back();

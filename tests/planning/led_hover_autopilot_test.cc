@@ -5,21 +5,21 @@
 
 #include <random>
 
+#include "control/so3.h"
 #include "perception/camera/pinhole_camera.h"
-#include "perception/led/se3_twist.h"
 
 namespace aperture::planning {
 namespace {
 
+using control::Vector6d;
 using perception::Matrix6d;
-using perception::Vector6d;
 using ::testing::HasSubstr;
 
 Eigen::Isometry3d RandomPose(std::mt19937_64* rng) {
   std::normal_distribution<double> normal(0.0, 1.0);
   Vector6d xi;
   for (int i = 0; i < 6; ++i) xi(i) = normal(*rng);
-  return perception::ExpSe3(xi);
+  return control::ExpSe3(xi);
 }
 
 Eigen::Vector3d LogRotation(const Eigen::Matrix3d& R) {
@@ -94,7 +94,7 @@ TEST(LedTargetPoseMeasurementTest, CovarianceFollowsThePerturbationToTheFiltersC
   const Vector6d delta = (Vector6d() << 1e-4, -2e-4, 0.5e-4, 1e-4, 0.7e-4, -1.5e-4).finished();
   Eigen::Isometry3d T_CT_perturbed = T_CT;
   T_CT_perturbed.translation() += delta.head<3>();
-  T_CT_perturbed.linear() = perception::ExpSo3(delta.tail<3>()) * T_CT.linear();
+  T_CT_perturbed.linear() = control::ExpSo3(delta.tail<3>()) * T_CT.linear();
   const Eigen::Isometry3d T_WT = T_WC * T_CT;
   const Eigen::Isometry3d T_WT_perturbed = T_WC * T_CT_perturbed;
   Vector6d r;
