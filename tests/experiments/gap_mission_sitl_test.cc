@@ -72,10 +72,9 @@ TEST_P(GapMissionSitlTest, CrossesInsideTheOpeningAndRecoversToAHover) {
   }
 }
 
-// The demo's gap (30 deg roll, no supersampling), a level one, and one rolled and pitched.
+// A level gap and one rolled and pitched (the demo test flies the 30 deg roll of `make demo`).
 INSTANTIATE_TEST_SUITE_P(Inclinations, GapMissionSitlTest,
-                         ::testing::Values(GapCase{30.0, 0.0, 1}, GapCase{0.0, 0.0, 2},
-                                           GapCase{25.0, 20.0, 2}));
+                         ::testing::Values(GapCase{0.0, 0.0, 2}, GapCase{25.0, 20.0, 2}));
 
 }  // namespace
 }  // namespace aperture::experiments

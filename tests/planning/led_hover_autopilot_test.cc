@@ -3,7 +3,6 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-
 #include "perception/camera/pinhole_camera.h"
 
 namespace aperture::planning {
