@@ -34,14 +34,17 @@ std::map<std::string, double> GapNode::Metrics(const NodeContext& context) const
           {"distance_m", d.detected() ? d.T_CG.translation().norm() : kNaN}};
 }
 
-std::vector<PoseEstimate> GapNode::Poses(const NodeContext& context) const {
+std::vector<PoseObservation> GapNode::Poses(const NodeContext& context) const {
   const auto& d = context.Get<GapDetection>(kOutputSlot);
   if (!d.detected()) return {};
-  PoseEstimate estimate;
-  estimate.stream = kName;
-  estimate.T = d.T_CG.inverse();
-  estimate.covariance = control::InversePoseCovariance(d.T_CG, d.covariance);
-  return {estimate};
+  PoseObservation observation;
+  observation.stream = kName;
+  observation.target_frame = "G";
+  observation.fixed = PoseObservation::Fixed::kTarget;
+  observation.t_s = context.Get<Frame>(kFrameSlot).t_s;
+  observation.T_CX = d.T_CG;
+  observation.covariance_CX = d.covariance;
+  return {observation};
 }
 
 void GapNode::DrawOverlay(const NodeContext& context, cv::Mat& bgr) const {

@@ -97,7 +97,8 @@ TEST(GapNodeTest, RegisteredAndNeedsCalibration) {
   EXPECT_NE(registry.Create("gap", resources), nullptr);
 }
 
-// The node reports T_GC, its metrics and nothing on a miss.
+// The node reports T_CG of the fixed target G (the stream records T_GC), its metrics and nothing
+// on a miss.
 TEST(GapNodeTest, ReportsCameraPoseInGapFrame) {
   const auto camera = Pinhole();
   std::vector<std::unique_ptr<Node>> nodes;
@@ -109,11 +110,13 @@ TEST(GapNodeTest, ReportsCameraPoseInGapFrame) {
   FrameSlots slots = graph.MakeSlots(frame);
   NodeContext context = graph.ContextFor(0, slots);
   graph.node(0).Run(context);
-  const std::vector<PoseEstimate> poses = graph.CollectPoses(slots);
+  const std::vector<PoseObservation> poses = graph.CollectPoses(slots);
   ASSERT_EQ(poses.size(), 1u);
   EXPECT_EQ(poses[0].stream, "gap");
-  EXPECT_LT((poses[0].T.translation() - T_CG.inverse().translation()).norm(), 0.015);  // 0.5 % of 3 m
-  ASSERT_TRUE(poses[0].covariance.has_value());
+  EXPECT_EQ(poses[0].fixed, PoseObservation::Fixed::kTarget);
+  EXPECT_LT((poses[0].T_CX.translation() - T_CG.translation()).norm(), 0.015);  // 0.5 % of 3 m
+  EXPECT_LT((poses[0].T_fixed_moving().translation() - T_CG.inverse().translation()).norm(), 0.015);
+  ASSERT_TRUE(poses[0].covariance_CX.has_value());
   const auto metrics = graph.CollectMetrics(slots);
   EXPECT_EQ(metrics.at("gap.detected"), 1.0);
   EXPECT_NEAR(metrics.at("gap.distance_m"), T_CG.translation().norm(), 0.015);
