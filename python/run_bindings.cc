@@ -70,10 +70,10 @@ RunRecord RunFrontEnds(const std::string& source_spec, const std::vector<std::st
     for (const auto& [name, value] : graph.CollectMetrics(*slots)) {
       record.metrics[name].push_back(value);
     }
-    for (const perception::PoseEstimate& pose : graph.CollectPoses(*slots)) {
-      PoseStream& stream = record.poses[pose.stream];
+    for (const perception::PoseObservation& pose : graph.CollectPoses(*slots)) {
+      PoseStream& stream = record.poses[pose.stream];  // what <stream>.csv of `aperture run` holds
       stream.t_s.push_back(frame->t_s);
-      stream.T.push_back(pose.T.matrix());
+      stream.T.push_back(pose.T_fixed_moving().matrix());
     }
   }
   if (record.t_s.empty()) {
@@ -141,7 +141,8 @@ void BindRun(py::module_& m) {
 source: image folder, video file or camera:N; frontends: names (aperture.front_ends());
 calib: calibration file; config: YAML files; set: ["key=value", ...] overrides.
 Returns {"source", "frames", "t_s", "index", "metrics": {"<node>.<metric>": array},
-"poses": {stream: {"t_s": array, "T": array (K, 4, 4)}}, "skipped": [(item, reason)]}.
+"poses": {stream: {"t_s": array, "T": array (K, 4, 4)}} (T as in <stream>.csv: T_XC for a
+fixed target such as the gap, T_CX for a fixed camera), "skipped": [(item, reason)]}.
 Raises ValueError for bad arguments (unknown front end or key, missing calibration) and
 RuntimeError for unreadable input.)doc");
 
