@@ -89,6 +89,14 @@ void LoadParams(config::ParamReader& reader, DisturbanceParams* params) {
   reader.Validate(*params);
 }
 
+void LoadParams(config::ParamReader& reader, OdometrySensorParams* params) {
+  reader.Read("rate_hz", &params->rate_hz);
+  reader.Read("position_sigma_m", &params->position_sigma_m);
+  reader.Read("rotation_sigma_rad", &params->rotation_sigma_rad);
+  reader.RejectUnknownKeys();
+  reader.Validate(*params);
+}
+
 void LoadParams(config::ParamReader& reader, ImuSensorParams* params) {
   reader.Read("rate_hz", &params->rate_hz);
   reader.Read("latency_s", &params->latency_s);

@@ -34,6 +34,7 @@
 #include "config/param_reader.h"
 #include "control/vehicle_parameters.h"
 #include "sim/sensors/imu_sensor.h"
+#include "sim/sensors/odometry_sensor.h"
 #include "sim/sensors/range_sensor.h"
 #include "sim/sitl/collision_checker.h"
 #include "sim/sitl/sitl_runner.h"
@@ -50,6 +51,8 @@ void LoadParams(config::ParamReader& reader, QuadrotorDynamicsParams* params);
 void LoadParams(config::ParamReader& reader, DisturbanceParams* params);
 void LoadParams(config::ParamReader& reader, ImuSensorParams* params);
 void LoadParams(config::ParamReader& reader, RangeSensorParams* params);
+// OdometrySensorParams: rate_hz, position_sigma_m, rotation_sigma_rad (the seed is the caller's).
+void LoadParams(config::ParamReader& reader, OdometrySensorParams* params);
 void LoadParams(config::ParamReader& reader, CollisionParams* params);
 // The loop fields of SitlRunnerParams only (rates, latencies, range_enabled, start_hovering); its
 // components have their own loaders above. Not validated here (the rate checks need the other

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "experiments/led/led_hover_flight.h"
+#include "experiments/missions/forest_flight.h"
 #include "experiments/missions/gap_mission_flight.h"
 #include "sim/sitl/ground_truth_autopilot.h"
 
@@ -117,8 +118,12 @@ void RegisterBuiltinMissions(MissionRegistry& registry) {
       {"led"}, [](const MissionContext& context) -> std::unique_ptr<MissionFlight> {
         return std::make_unique<LedHoverMission>(context);
       });
+  registry.Register("forest",
+                    "forest navigation (seed 003): monocular depth, ego-dynamic space, waypoint, "
+                    "minimum-time B-spline, replanned every frame, to forest.goal_m",
+                    {"forest"}, MakeForestFlight);
   registry.Register("hover", "hover at the start pose on ground truth (reference flight)",
-                    {"gapflyt", "tags", "forest"},
+                    {"gapflyt", "tags"},
                     [](const MissionContext& context) -> std::unique_ptr<MissionFlight> {
                       return std::make_unique<HoverFlight>(context);
                     });

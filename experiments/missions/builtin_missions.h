@@ -5,9 +5,10 @@
 //              (experiments/missions/gap_mission_flight.h)
 //   led_hover  LED-stabilized hover (thesis C.4.3), default of scenario `led`
 //              (experiments/led/led_hover_flight.h)
+//   forest     monocular forest navigation (seed 003), default of scenario `forest`
+//              (experiments/missions/forest_flight.h)
 //   hover      ground-truth hover at the start pose (sim/sitl/ground_truth_autopilot.h), the
-//              default of the scenarios that have no mission of their own yet
-//              (gapflyt, tags, forest)
+//              default of the scenarios that have no mission of their own yet (gapflyt, tags)
 #include "experiments/missions/mission_registry.h"
 
 namespace aperture::experiments {

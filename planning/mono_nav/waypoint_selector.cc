@@ -25,6 +25,7 @@ void WaypointSelectorParams::Validate() const {
   require((state_sigma_m.array() >= 0.0).all() && state_sigma_m.allFinite(),
           "state_sigma_m must be finite and >= 0");
   require(path_samples >= 2, "path_samples must be >= 2");
+  require(max_height_from_goal_m >= 0.0, "max_height_from_goal_m must be >= 0 (inf: free)");
 }
 
 Eigen::Vector3d Bezier3(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
@@ -114,7 +115,8 @@ bool WaypointSelector::PathIsFree(const std::vector<Eigen::Vector3d>& path_B,
 WaypointSelection WaypointSelector::Select(std::vector<Eigen::Vector3d> points_B,
                                            const Eigen::Vector3d& v_B,
                                            const Eigen::Vector3d& goal_B, WaypointOrder order,
-                                           std::uint64_t seed) const {
+                                           std::uint64_t seed,
+                                           const std::vector<Eigen::Vector3d>* obstacles_B) const {
   if (!v_B.allFinite() || !goal_B.allFinite() || !(goal_B.norm() > 0.0)) {
     throw std::invalid_argument(
         "waypoint selector: velocity and goal must be finite and the goal "
@@ -165,7 +167,9 @@ WaypointSelection WaypointSelector::Select(std::vector<Eigen::Vector3d> points_B
     selection.tried.push_back(i);
     const Eigen::Vector3d& o = selection.segments[i].centroid_B;
     if (!(o.x() > 2.0 * pull_back_x)) continue;  // too near to approach at all
-    const Eigen::Vector3d waypoint = o * (1.0 - pull_back_x / o.x());
+    Eigen::Vector3d waypoint = o * (1.0 - pull_back_x / o.x());
+    waypoint.z() = std::clamp(waypoint.z(), goal_B.z() - params_.max_height_from_goal_m,
+                              goal_B.z() + params_.max_height_from_goal_m);
     const double length = waypoint.norm();
     const Eigen::Vector3d start_tangent =
         v_B.norm() > 0.1 ? Eigen::Vector3d(v_B.normalized()) : Eigen::Vector3d(waypoint / length);
@@ -176,7 +180,7 @@ WaypointSelection WaypointSelector::Select(std::vector<Eigen::Vector3d> points_B
       path.push_back(
           Bezier3(Eigen::Vector3d::Zero(), p1, p2, waypoint, double(k) / params_.path_samples));
     }
-    if (PathIsFree(path, selection.points_B)) {
+    if (PathIsFree(path, obstacles_B != nullptr ? *obstacles_B : selection.points_B)) {
       selection.chosen = i;
       selection.waypoint_B = waypoint;
       selection.path_B = std::move(path);

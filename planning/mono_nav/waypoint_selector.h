@@ -23,6 +23,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <limits>
 #include <opencv2/core/mat.hpp>
 #include <optional>
 #include <string>
@@ -46,6 +47,10 @@ struct WaypointSelectorParams {
   // sigma_x, sigma_y, sigma_z: state-estimation standard deviations [m] (paper Table III).
   Eigen::Vector3d state_sigma_m = Eigen::Vector3d(0.1, 0.1, 0.1);
   int path_samples = 24;  // spatial windows along the Bezier path
+  // The waypoint's z is clamped to goal_B.z +- this [m] (beyond the paper; inf = its free 3-D
+  // waypoint). With points in a gravity-aligned frame it keeps the flight near the goal's height
+  // instead of climbing towards the sky, whose far patches dominate the largest free segments.
+  double max_height_from_goal_m = std::numeric_limits<double>::infinity();
 
   void Validate() const;  // std::invalid_argument naming the field
 };
@@ -92,11 +97,14 @@ class WaypointSelector {
   // points_B: the back-projected EDT map; v_B: the vehicle's velocity in B [m/s]; goal_B: the
   // goal in B (its direction is the line of sight of rho_i). kOptimal tries the feasible segments
   // by increasing cost; kRandom (Table II's baseline) tries all segments in a random order drawn
-  // from `seed`. Throws std::invalid_argument on non-finite inputs.
+  // from `seed`. obstacles_B: what the spatial windows check the paths against, when not
+  // points_B — the metric obstacle points (depth, not d_eff) the path will actually fly past; the
+  // EDT map compresses distances and lateral gaps with them, but not the vehicle. Throws
+  // std::invalid_argument on non-finite inputs.
   WaypointSelection Select(std::vector<Eigen::Vector3d> points_B, const Eigen::Vector3d& v_B,
                            const Eigen::Vector3d& goal_B,
-                           WaypointOrder order = WaypointOrder::kOptimal,
-                           std::uint64_t seed = 0) const;
+                           WaypointOrder order = WaypointOrder::kOptimal, std::uint64_t seed = 0,
+                           const std::vector<Eigen::Vector3d>* obstacles_B = nullptr) const;
 
   // Spatial-window check of one path: false when a window around a sample holds a point.
   bool PathIsFree(const std::vector<Eigen::Vector3d>& path_B,

@@ -125,10 +125,12 @@ cameras:
     fov_deg: 90
     pose: {p_m: [0.1, 0.0, 0.0], rpy_deg: [-90, 0, -90]}
     rate_hz: 30
+    color: true
 trajectory: {kind: line, frames: 60, end_p_m: [20.0, 0.0, 1.5]}
 forest:
   trees: 40
   boxes: 6
+  goal_m: [22.0, 0.0, 1.5]
 )";
 
 const std::map<std::string, std::string>& Builtins() {

@@ -304,37 +304,40 @@ class Builder {
     Add({"ground", GroundPlane{}, Textured("grass"), Eigen::Isometry3d::Identity()});
     std::vector<std::shared_ptr<const Texture>> barks;
     for (int i = 0; i < 3; ++i) barks.push_back(MakeTexture({"bark", {1, 1, 1}, 1.0, 0.005, 0.2}));
-    std::vector<Eigen::Vector2d> trunks;
-    const auto place = [&](double keep_out) -> std::optional<Eigen::Vector2d> {
+    // Placed obstacles as vertical cylinders (centre, radius); boxes by their circumscribed one.
+    std::vector<std::pair<Eigen::Vector2d, double>> placed;
+    const Eigen::Vector2d start = T_WB_start_.translation().head<2>();
+    const Eigen::Vector2d goal = f.goal_m.head<2>();
+    const auto place = [&](double radius) -> std::optional<Eigen::Vector2d> {
       for (int attempt = 0; attempt < 200; ++attempt) {
         const Eigen::Vector2d p(2.0 + placement_.Uniform(0.0, f.area_m.x()),
                                 placement_.Uniform(-0.5, 0.5) * f.area_m.y());
-        if (std::abs(p.y()) < keep_out) continue;  // keep the flight corridor y = 0 free
-        bool free = true;
-        for (const Eigen::Vector2d& q : trunks) free = free && (p - q).norm() >= f.min_spacing_m;
+        bool free = (p - start).norm() - radius >= f.keep_out_m &&
+                    (p - goal).norm() - radius >= f.keep_out_m;
+        for (const auto& [q, r] : placed) free = free && (p - q).norm() - r - radius >= f.min_gap_m;
         if (free) {
-          trunks.push_back(p);
+          placed.emplace_back(p, radius);
           return p;
         }
       }
-      return std::nullopt;  // area full: fewer objects rather than overlapping ones
+      return std::nullopt;  // area full: fewer objects rather than a blocked one
     };
     for (int k = 0; k < f.trees; ++k) {
-      const auto p = place(f.min_spacing_m);
+      const double radius = placement_.Uniform(f.radius_range_m.x(), f.radius_range_m.y());
+      const double height = placement_.Uniform(f.height_range_m.x(), f.height_range_m.y());
+      const auto p = place(radius);
       if (!p) break;
       Material bark;
       bark.texture = barks[static_cast<size_t>(k) % barks.size()];
       bark.color = Rgb::Ones();
       bark.texture_offset_m = Eigen::Vector2d(placement_.Uniform(0, 2), placement_.Uniform(0, 2));
-      const Cylinder trunk{placement_.Uniform(f.radius_range_m.x(), f.radius_range_m.y()),
-                           placement_.Uniform(f.height_range_m.x(), f.height_range_m.y())};
-      Add({"tree" + std::to_string(k), trunk, bark,
+      Add({"tree" + std::to_string(k), Cylinder{radius, height}, bark,
            Jitter(MakePose({p->x(), p->y(), 0.0}, Eigen::Vector3d::Zero()))});
     }
     for (int k = 0; k < f.boxes; ++k) {
-      const auto p = place(f.min_spacing_m);
-      if (!p) break;
       const double size = placement_.Uniform(0.4, 1.2);
+      const auto p = place(size * std::sqrt(0.5));
+      if (!p) break;
       Add({"box" + std::to_string(k), Box{Eigen::Vector3d::Constant(size)},
            Textured("noise", {0.7, 0.6, 0.5}),
            Jitter(MakePose({p->x(), p->y(), size / 2}, {0, 0, placement_.Uniform(0, 90)}))});

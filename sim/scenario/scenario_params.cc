@@ -284,10 +284,15 @@ void LoadParams(config::ParamReader& reader, ForestParams* params) {
   reader.Read("trees", &params->trees);
   reader.Read("boxes", &params->boxes);
   reader.Read("area_m", &params->area_m);
-  reader.Read("min_spacing_m", &params->min_spacing_m);
+  reader.Read("min_gap_m", &params->min_gap_m);
+  reader.Read("keep_out_m", &params->keep_out_m);
   reader.Read("radius_range_m", &params->radius_range_m);
   reader.Read("height_range_m", &params->height_range_m);
+  reader.Read("goal_m", &params->goal_m);
   RequirePositiveAt(reader, "area_m", params->area_m);
+  RequirePositiveAt(reader, "min_gap_m", params->min_gap_m);
+  if (!(params->keep_out_m >= 0.0)) ThrowAt(reader, "keep_out_m", "must be >= 0");
+  if (!params->goal_m.allFinite()) ThrowAt(reader, "goal_m", "must be finite");
   RequirePositiveAt(reader, "radius_range_m", params->radius_range_m);
   RequirePositiveAt(reader, "height_range_m", params->height_range_m);
   if (params->trees < 0 || params->boxes < 0) ThrowAt(reader, "trees", "and boxes must be >= 0");

@@ -236,14 +236,29 @@ struct TagsSceneParams {
   Eigen::Vector3d goal_size_m = Eigen::Vector3d(0.6, 0.6, 0.01);
 };
 
-// Natural environment (seed 003): bark-textured tree trunks, boxes, grass ground.
+// Natural environment (seed 003): bark-textured tree trunks, boxes, grass ground, and the goal
+// the forest mission flies to from vehicle.start. Trunks and boxes are placed uniformly at random
+// per seed over the whole area, the straight line from the start to the goal included.
+// Passability: every two obstacles are at least min_gap_m apart surface to surface (a box counts
+// as its circumscribed vertical cylinder), so the obstacles inflated by min_gap_m / 2 are
+// pairwise disjoint convex sets and the plane outside them is connected: a vehicle narrower than
+// min_gap_m can always reach the goal (above the boxes or not). No obstacle comes within
+// keep_out_m of the start or the goal. randomize.position_sigma_m moves objects after the check
+// and voids the guarantee (keep it 0 for navigation).
 struct ForestParams {
+  // 40 trees in 30 m x 16 m (0.083 per m^2): a 0.5 m wide vehicle's straight 22 m line to the
+  // goal meets ~1.7 trunks on average, the paper's 74 obstacles avoided in 40 flights (Sec. IV).
   int trees = 40;
   int boxes = 6;
   Eigen::Vector2d area_m = Eigen::Vector2d(30.0, 16.0);  // x from 2 m, y centred
-  double min_spacing_m = 1.2;  // between trunk centres, and to the flight line y = 0
+  // Free space between obstacle surfaces [m]: the 0.48 m rotor-tip span of the SITL vehicle
+  // (0.178 m arms, 5 inch propellers) plus ~0.5 m of margin for estimation and tracking.
+  double min_gap_m = 1.0;
+  double keep_out_m = 1.5;  // free radius around the start and the goal [m]
   Eigen::Vector2d radius_range_m = Eigen::Vector2d(0.12, 0.35);
   Eigen::Vector2d height_range_m = Eigen::Vector2d(4.0, 9.0);
+  // The navigation goal in W [m]; 22 m from the default start (the goal >= 20 m away).
+  Eigen::Vector3d goal_m = Eigen::Vector3d(22.0, 0.0, 1.5);
 };
 
 struct ScenarioParams {

@@ -1,0 +1,156 @@
+#include "experiments/missions/forest_flight.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "output/json_eigen.h"
+#include "perception/mono_depth/mono_depth_estimator.h"
+#include "planning/mono_nav/forest_mission_params_io.h"
+#include "sim/sensors/odometry_sensor.h"
+#include "sim/sim_params_io.h"
+
+namespace aperture::experiments {
+namespace {
+
+int FrontCameraIndex(const sim::Scenario& scenario) {
+  const std::vector<sim::ScenarioCamera>& cameras = scenario.cameras();
+  for (int i = 0; i < static_cast<int>(cameras.size()); ++i) {
+    if (cameras[i].name == "front" && cameras[i].T_BC) {
+      if (!cameras[i].render.color) {
+        throw std::invalid_argument(
+            "forest mission: camera 'front' renders gray; the depth model needs colour: set "
+            "cameras.front.color=true");
+      }
+      return i;
+    }
+  }
+  throw std::invalid_argument("scenario '" + scenario.kind() +
+                              "' has no body-mounted camera 'front' for the forest mission: add "
+                              "one (cameras.front)");
+}
+
+// What the SITL flies: the mission, with the simulated odometry source fed from ground truth.
+class OdometryAdapter final : public perception::Autopilot {
+ public:
+  OdometryAdapter(planning::ForestMission* mission, const sim::OdometrySensorParams& odometry)
+      : mission_(mission), odometry_(odometry) {}
+  std::string name() const override { return mission_->name(); }
+  void OnImu(const perception::ImuSample& sample) override { mission_->OnImu(sample); }
+  void OnFrame(const perception::Frame& frame) override { mission_->OnFrame(frame); }
+  void OnRange(const perception::RangeReading& reading) override { mission_->OnRange(reading); }
+  bool UsesGroundTruth() const override { return true; }  // the odometry sensor's input only
+  void OnGroundTruth(const control::QuadState& state) override {
+    if (auto pose = odometry_.Update(state)) mission_->OnOdometry(*pose);
+  }
+  perception::AutopilotCommand Step(double t_s) override { return mission_->Step(t_s); }
+  std::string status() const override { return mission_->status(); }
+
+ private:
+  planning::ForestMission* mission_;
+  sim::OdometrySensor odometry_;
+};
+
+// Per-frame cost of a flown mission [ms of thread CPU]: {"frames", "mean", "median", "max"}.
+nlohmann::json ForestFrameTiming(const planning::ForestMission& mission, bool planning) {
+  std::vector<double> ms;
+  for (const planning::ForestFrameRecord& r : mission.frames()) {
+    ms.push_back(1e3 * (planning ? r.planning_s : r.perception_s));
+  }
+  if (ms.empty()) return {{"frames", 0}};
+  double sum = 0.0;
+  for (double v : ms) sum += v;
+  std::vector<double> sorted = ms;
+  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  return {{"frames", ms.size()},
+          {"mean", sum / ms.size()},
+          {"median", sorted[sorted.size() / 2]},
+          {"max", *std::max_element(ms.begin(), ms.end())}};
+}
+
+class ForestFlight final : public MissionFlight {
+ public:
+  explicit ForestFlight(const MissionContext& context) : scene_(context.scenario.scene()) {
+    params_.goal_W = context.scenario.params().forest.goal_m;
+    params_.camera_id = FrontCameraIndex(context.scenario);
+    const sim::ImuSensorParams& imu = context.sitl.imu;
+    params_.fusion.filter.accel_noise_density = imu.accel_noise_density;
+    params_.fusion.filter.gyro_noise_density = imu.gyro_noise_density;
+    params_.fusion.filter.accel_bias_random_walk = imu.accel_bias_random_walk;
+    params_.fusion.filter.gyro_bias_random_walk = imu.gyro_bias_random_walk;
+    sim::OdometrySensorParams odometry;
+    odometry.seed = context.scenario.params().seed * 7919 + 17;
+    context.params.ReadSection("odometry", &odometry);
+    planning::LoadParams(context.params, &params_);
+    const sim::ScenarioCamera& camera = context.scenario.cameras()[params_.camera_id];
+    mission_ = std::make_unique<planning::ForestMission>(params_, camera.model, *camera.T_BC,
+                                                         context.sitl.dynamics.vehicle,
+                                                         perception::DefaultMonoDepthModel());
+    adapter_ = std::make_unique<OdometryAdapter>(mission_.get(), odometry);
+  }
+
+  perception::Autopilot& autopilot() override { return *adapter_; }
+  void DrawOverlay(cv::Mat& onboard_bgr) const override { mission_->DrawOverlay(onboard_bgr); }
+
+  MissionEvaluation Evaluate(const sim::SitlResult& result) override {
+    std::optional<std::string> collision;
+    if (result.collision) collision = result.reason;
+    const ForestEvaluation e =
+        EvaluateForestFlight(result.trajectory, collision, params_.goal_W, scene_);
+    const planning::ForestMission& m = *mission_;
+    MissionEvaluation out;
+    out.passed = e.success;
+    nlohmann::json& f = out.figures;
+    f["success"] = e.success;
+    f["reached_goal"] = e.reached_goal;
+    f["collision"] = e.collision;
+    if (!e.success) f["failure_reason"] = e.failure_reason;
+    f["time_to_goal_s"] = e.reached_goal ? nlohmann::json(e.time_to_goal_s) : nlohmann::json();
+    f["path_length_m"] = e.path_length_m;
+    f["min_clearance_m"] = e.min_clearance_m;
+    f["nearest_obstacle"] = e.nearest_obstacle;
+    f["final_distance_m"] = e.final_distance_m;
+    f["min_distance_to_goal_m"] = e.min_distance_m;
+    f["goal_m"] = output::EigenToJson(params_.goal_W);
+    f["ego_dynamic"] = params_.ego_dynamic;
+    f["waypoint_order"] =
+        params_.waypoint_order == planning::WaypointOrder::kOptimal ? "optimal" : "random";
+    f["replans"] = m.replans();
+    f["frames"] = static_cast<int>(m.frames().size());
+    f["frames_without_path"] = m.frames_without_path();
+    f["perception_ms"] = ForestFrameTiming(m, false);
+    f["planning_ms"] = ForestFrameTiming(m, true);
+    f["odometry_fused"] = m.fusion_counts().applied;
+    f["odometry_rejected"] = m.fusion_counts().rejected_outlier;
+    f["filter_restarts"] = m.fusion_counts().restarts;
+    char line[220];
+    if (e.success) {
+      std::snprintf(line, sizeof(line),
+                    "forest: reached the goal in %.1f s, path %.1f m, %d replans, min clearance "
+                    "%.2f m",
+                    e.time_to_goal_s, e.path_length_m, m.replans(), e.min_clearance_m);
+    } else {
+      std::snprintf(line, sizeof(line),
+                    "forest: FAILED (%s), %.1f m from the goal, min clearance %.2f m",
+                    e.failure_reason.c_str(), e.final_distance_m, e.min_clearance_m);
+    }
+    out.outcome = line;
+    return out;
+  }
+
+ private:
+  const sim::Scene& scene_;
+  planning::ForestMissionParams params_;
+  std::unique_ptr<planning::ForestMission> mission_;
+  std::unique_ptr<OdometryAdapter> adapter_;
+};
+
+}  // namespace
+
+std::unique_ptr<MissionFlight> MakeForestFlight(const MissionContext& context) {
+  return std::make_unique<ForestFlight>(context);
+}
+
+}  // namespace aperture::experiments

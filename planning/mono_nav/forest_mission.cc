@@ -1,0 +1,315 @@
+#include "planning/mono_nav/forest_mission.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <opencv2/imgproc.hpp>
+#include <stdexcept>
+#include <utility>
+
+#include "perception/mono_depth/mono_depth_node.h"
+
+namespace aperture::planning {
+namespace {
+
+// CPU time of the calling thread [s]: the per-module cost on one core, whatever else the machine
+// runs (wall time would count the other processes).
+double ThreadCpuSeconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+std::vector<std::unique_ptr<perception::Node>> MonoDepthFrontEnd(perception::MonoDepthModel model) {
+  std::vector<std::unique_ptr<perception::Node>> nodes;
+  nodes.push_back(std::make_unique<perception::MonoDepthNode>(
+      std::move(model), "", std::vector<std::filesystem::path>{}));
+  return nodes;
+}
+
+// Each component of a clamped into [-limit, limit].
+Eigen::Vector3d ClampComponents(const Eigen::Vector3d& a, const Eigen::Vector3d& limit) {
+  return a.cwiseMax(-limit).cwiseMin(limit);
+}
+
+// Zeroes (BackProjectGrid then leaves out) the patches of d_eff_m whose metric point, at the
+// estimated depth D_E along the patch centre's ray, lies less than clearance_m above the ground
+// plane z_W = ground_height_m: the ground is not an obstacle to a vehicle flying above it, but
+// the EDT's compression of depth along the rays lifts it to the vehicle's height (a ground patch
+// at depth D, h below the camera, lands h d_eff / D below it), where it blocks every path.
+void MaskGround(const cv::Mat& depth_m, const Eigen::Vector2d& patch_px,
+                const perception::CameraModel& camera, const Eigen::Isometry3d& T_WC,
+                double ground_height_m, double clearance_m, cv::Mat* d_eff_m) {
+  for (int r = 0; r < depth_m.rows; ++r) {
+    for (int c = 0; c < depth_m.cols; ++c) {
+      // Patch centre as BackProjectGrid takes it (pixel centres at integers).
+      const Eigen::Vector2d px((c + 0.5) * patch_px.x() - 0.5, (r + 0.5) * patch_px.y() - 0.5);
+      const Eigen::Vector3d bearing_C = camera.Unproject(px);
+      if (!(bearing_C.z() > 1e-6)) continue;
+      const Eigen::Vector3d p_W = T_WC * (bearing_C * (depth_m.at<float>(r, c) / bearing_C.z()));
+      if (p_W.z() < ground_height_m + clearance_m) d_eff_m->at<float>(r, c) = 0.0f;
+    }
+  }
+}
+
+}  // namespace
+
+void ForestMissionParams::Validate() const {
+  const auto require = [](bool ok, const std::string& what) {
+    if (!ok) throw std::invalid_argument("ForestMissionParams: " + what);
+  };
+  require(goal_W.allFinite(), "goal_W must be finite");
+  require(spline_path_points >= 6,
+          "spline_path_points must be >= 6 (a quintic B-spline needs 6 control points)");
+  require(replan_from_estimate_m > 0.0, "replan_from_estimate_m must be > 0");
+  require(direct_goal_distance_m >= 0.0, "direct_goal_distance_m must be >= 0");
+  require(goal_reached_m > 0.0, "goal_reached_m must be > 0");
+  require(goal_speed_mps > 0.0, "goal_speed_mps must be > 0");
+  require(camera_id >= 0, "camera_id must be >= 0");
+  require(std::isfinite(ground_height_m), "ground_height_m must be finite");
+  require(ground_clearance_m >= 0.0, "ground_clearance_m must be >= 0");
+  edt.Validate();
+  waypoints.Validate();
+  limits.Validate();
+  spline.Validate();
+  fusion.Validate();
+}
+
+ForestMission::ForestMission(const ForestMissionParams& params,
+                             std::shared_ptr<const perception::CameraModel> camera,
+                             const Eigen::Isometry3d& T_BC,
+                             const control::VehicleParameters& vehicle,
+                             perception::MonoDepthModel model)
+    : params_((params.Validate(), params)),
+      camera_(std::move(camera)),
+      T_BC_(T_BC),
+      vehicle_(vehicle),
+      front_ends_(MonoDepthFrontEnd(std::move(model))),
+      selector_(params.waypoints),
+      controller_(vehicle, params.controller),
+      fusion_(params.fusion) {
+  if (!camera_) throw std::invalid_argument("ForestMission: camera is null; pass the camera model");
+  perception::RequireRigid(T_BC_, "ForestMission T_BC");
+}
+
+void ForestMission::OnImu(const perception::ImuSample& sample) { fusion_.AddImu(sample); }
+
+void ForestMission::OnOdometry(const perception::PoseMeasurement& pose_WB) {
+  fusion_.AddPose(pose_WB);
+}
+
+std::optional<control::QuadState> ForestMission::estimate() const {
+  const std::optional<perception::PoseImuEstimate> e = fusion_.estimate();
+  if (!e) return std::nullopt;
+  return e->state;
+}
+
+int ForestMission::replans() const {
+  int sum = 0;
+  for (const ForestFrameRecord& record : frames_) sum += record.replans;
+  return sum;
+}
+
+int ForestMission::frames_without_path() const {
+  int count = 0;
+  for (const ForestFrameRecord& record : frames_) count += !record.planned;
+  return count;
+}
+
+control::TrajectoryPoint ForestMission::Reference(double t_s) const {
+  control::TrajectoryPoint reference = *hold_;
+  if (spline_) {
+    const double t =
+        std::clamp(t_s - spline_start_t_s_, spline_->StartParameter(), spline_->EndParameter());
+    reference.p_W = spline_->Evaluate(t, 0);
+    reference.v_W = spline_->Evaluate(t, 1);
+    reference.a_W = spline_->Evaluate(t, 2);
+    reference.j_W = spline_->Evaluate(t, 3);
+    reference.s_W = spline_->Evaluate(t, 4);
+    if (t >= spline_->EndParameter())
+      reference.v_W = reference.a_W = reference.j_W = reference.s_W = Eigen::Vector3d::Zero();
+  }
+  reference.t_s = t_s;
+  reference.heading_rad = heading_rad_;
+  return reference;
+}
+
+void ForestMission::OnFrame(const perception::Frame& frame) {
+  if (frame.camera_id != params_.camera_id || !hold_ || goal_reached_) return;
+  ForestFrameRecord record;
+  record.t_s = frame.t_s;
+  const double t0 = ThreadCpuSeconds();
+  front_ends_.Process(frame);
+  record.perception_s = ThreadCpuSeconds() - t0;
+  const auto* depth =
+      front_ends_.Latest<perception::MonoDepthEstimate>(perception::MonoDepthNode::kOutputSlot);
+  if (depth == nullptr) return;
+  const double t1 = ThreadCpuSeconds();
+  Plan(estimate()->t_s, *depth, &record);
+  record.planning_s = ThreadCpuSeconds() - t1;
+  frames_.push_back(record);
+}
+
+void ForestMission::Plan(double t_s, const perception::MonoDepthEstimate& depth,
+                         ForestFrameRecord* record) {
+  const control::QuadState x = *estimate();
+  const Eigen::Matrix3d R_WB = x.q_WB.toRotationMatrix();
+  last_T_WB_.linear() = R_WB;
+  last_T_WB_.translation() = x.p_WB;
+
+  // Sec. III-B: d_eff = EDT{d_obs}, d_obs = D_E - avg(e_ln); Table IV's baseline: d_eff = d_obs.
+  cv::Mat d_obs_m = depth.depth_m - params_.edt.depth_error_margin_m;
+  MaskGround(depth.depth_m, depth.grid.frame_patch_px, *camera_, last_T_WB_ * T_BC_,
+             params_.ground_height_m, params_.ground_clearance_m, &d_obs_m);
+  cv::Mat d_eff_m = d_obs_m;
+  if (params_.ego_dynamic) {
+    d_eff_m = EgoDynamicTransform(depth.depth_m, params_.edt);
+    d_eff_m.setTo(0.0f, d_obs_m <= 0.0f);  // the ground mask
+  }
+  // Selection in the heading frame H (B's origin, z up, x along the fixed heading): the waypoint
+  // height is then a height (max_height_from_goal_m) whatever the vehicle's tilt.
+  const Eigen::Matrix3d R_WH = Eigen::AngleAxisd(heading_rad_, Eigen::Vector3d::UnitZ()).matrix();
+  const Eigen::Matrix3d R_HB = R_WH.transpose() * R_WB;
+  const auto to_H = [&](std::vector<Eigen::Vector3d> points_B) {
+    for (Eigen::Vector3d& p : points_B) p = R_HB * p;
+    return points_B;
+  };
+  std::vector<Eigen::Vector3d> points_H =
+      to_H(BackProjectGrid(d_eff_m, depth.grid.frame_patch_px, *camera_, T_BC_));
+  // Metric obstacles (d_obs) for the spatial windows: the path is flown in metric space.
+  const std::vector<Eigen::Vector3d> obstacles_H =
+      to_H(BackProjectGrid(d_obs_m, depth.grid.frame_patch_px, *camera_, T_BC_));
+  const Eigen::Vector3d goal_H = R_WH.transpose() * (params_.goal_W - x.p_WB);
+  const Eigen::Vector3d v_H = R_WH.transpose() * x.v_W;
+  const auto to_W = [&](const std::vector<Eigen::Vector3d>& path_H) {
+    std::vector<Eigen::Vector3d> path_W;
+    for (const Eigen::Vector3d& p : path_H) path_W.push_back(x.p_WB + R_WH * p);
+    return path_W;
+  };
+
+  // Near the goal: straight to it when its spatial windows are free.
+  if (goal_H.norm() <= params_.direct_goal_distance_m) {
+    std::vector<Eigen::Vector3d> path_H;
+    const int samples = selector_.params().path_samples;
+    for (int k = 0; k <= samples; ++k) path_H.push_back(goal_H * (double(k) / samples));
+    if (selector_.PathIsFree(path_H, obstacles_H)) {
+      record->direct = true;
+      record->planned = FollowPath(t_s, x, to_W(path_H));
+      return;
+    }
+  }
+  // Sec. III-C, III-D: the optimal (or random) segment whose Bezier path is free.
+  const WaypointSelection selection = selector_.Select(
+      std::move(points_H), v_H, goal_H, params_.waypoint_order,
+      params_.random_seed + static_cast<std::uint64_t>(frames_.size()), &obstacles_H);
+  record->segments = static_cast<int>(selection.segments.size());
+  record->replans = selection.Replans();
+  if (std::getenv("FOREST_DEBUG") && frames_.size() % 30 == 0) {  // DEBUG
+    std::fprintf(stderr, "t %.2f p %.2f %.2f %.2f points %zu segs %zu chosen %d\n", t_s, x.p_WB.x(), x.p_WB.y(), x.p_WB.z(), selection.points_B.size(), selection.segments.size(), selection.chosen ? *selection.chosen : -1);
+    for (const Segment& s : selection.segments) std::fprintf(stderr, "  o %.2f %.2f %.2f r %.2f d %.2f rho %.2f C %.2f thr %d exp %d n %zu\n", s.centroid_B.x(), s.centroid_B.y(), s.centroid_B.z(), s.radius_m, s.distance_m, s.rho_m, s.cost, s.meets_threshold, s.meets_expanse, s.points.size());
+    for (int i : selection.tried) std::fprintf(stderr, " tried %d", i);
+    std::fprintf(stderr, "\n");
+  }
+  if (selection.chosen) record->planned = FollowPath(t_s, x, to_W(selection.path_B));
+}
+
+bool ForestMission::FollowPath(double t_s, const control::QuadState& x,
+                               const std::vector<Eigen::Vector3d>& path_W) {
+  // Start state: the current reference, unless the vehicle is far from it (Sec. III-F replans
+  // the whole trajectory at every update; starting from the reference keeps the command smooth).
+  control::TrajectoryPoint start = Reference(t_s);
+  if ((start.p_W - x.p_WB).norm() > params_.replan_from_estimate_m) {
+    start.p_W = x.p_WB;
+    start.v_W = x.v_W;
+    start.a_W.setZero();
+  }
+  // The end speed must not exceed v_max and the start acceleration a_max (PlanMinTimeBSpline).
+  const double speed = start.v_W.norm();
+  const double max_speed = params_.limits.max_speed_mps * 0.999;
+  if (speed > max_speed) start.v_W *= max_speed / speed;
+  start.a_W = ClampComponents(start.a_W, 0.999 * params_.limits.max_acceleration_mps2);
+
+  // The path from the start, subsampled to spline_path_points points 1 cm or more apart.
+  std::vector<Eigen::Vector3d> points_W{start.p_W};
+  const int n = params_.spline_path_points - 1;
+  const int last = static_cast<int>(path_W.size()) - 1;
+  for (int k = 1; k <= n; ++k) {
+    const Eigen::Vector3d& p_W = path_W[static_cast<size_t>(k * last / n)];
+    if ((p_W - points_W.back()).norm() >= 0.01) points_W.push_back(p_W);
+  }
+  if (static_cast<int>(points_W.size()) < 6) return false;  // too short to be worth a spline
+  MinTimeBSplineResult result;
+  try {
+    result = PlanMinTimeBSpline(points_W, start.v_W, start.a_W, Eigen::Vector3d::Zero(),
+                                Eigen::Vector3d::Zero(), params_.limits, params_.spline);
+  } catch (const std::invalid_argument&) {
+    return false;  // degenerate path (points too close): keep the current spline
+  }
+  if (!result.ok()) return false;
+  if (std::getenv("FOREST_DEBUG") && frames_.size() % 10 == 0) {  // DEBUG
+    std::fprintf(stderr, "plan t %.2f start p %.2f %.2f %.2f v %.2f %.2f %.2f a %.2f %.2f %.2f end %.2f %.2f %.2f dur %.2f n %zu refits %d ratios %.2f %.2f %.2f\n", t_s, start.p_W.x(), start.p_W.y(), start.p_W.z(), start.v_W.x(), start.v_W.y(), start.v_W.z(), start.a_W.x(), start.a_W.y(), start.a_W.z(), points_W.back().x(), points_W.back().y(), points_W.back().z(), result.duration_s, points_W.size(), result.refits, result.speed_ratio, result.acceleration_ratio, result.jerk_ratio);
+  }
+  spline_ = std::move(result.trajectory);
+  spline_start_t_s_ = t_s;
+  last_path_W_ = path_W;
+  return true;
+}
+
+perception::AutopilotCommand ForestMission::Step(double t_s) {
+  perception::AutopilotCommand command;
+  command.kind = perception::AutopilotCommand::Kind::kThrustRates;
+  const std::optional<control::QuadState> x = estimate();
+  if (!x) {  // no odometry yet: level, hover thrust (the SITL starts hovering)
+    command.thrust_rates.collective_thrust_mps2 = vehicle_.gravity_mps2;
+    return command;
+  }
+  if (!hold_) {
+    const Eigen::Matrix3d R_WB = x->q_WB.toRotationMatrix();
+    heading_rad_ = std::atan2(R_WB(1, 0), R_WB(0, 0));
+    control::TrajectoryPoint hold;
+    hold.p_W = x->p_WB;
+    hold_ = hold;
+  }
+  if ((params_.goal_W - x->p_WB).norm() <= params_.goal_reached_m &&
+      x->v_W.norm() <= params_.goal_speed_mps) {
+    goal_reached_ = true;
+  }
+  control::TrajectoryPoint reference = Reference(t_s);
+  if (goal_reached_) {
+    reference = *hold_;
+    reference.p_W = params_.goal_W;
+    reference.t_s = t_s;
+    reference.heading_rad = heading_rad_;
+  }
+  command.thrust_rates = controller_.Compute(*x, reference).command;
+  command.done = goal_reached_;
+  return command;
+}
+
+std::string ForestMission::status() const {
+  const std::optional<control::QuadState> x = estimate();
+  if (!x) return "waiting for odometry";
+  char line[120];
+  std::snprintf(line, sizeof(line), "%s, %.1f m to the goal, %d frames, %d replans",
+                goal_reached_ ? "at the goal" : "flying", (params_.goal_W - x->p_WB).norm(),
+                static_cast<int>(frames_.size()), replans());
+  return line;
+}
+
+void ForestMission::DrawOverlay(cv::Mat& bgr) const {
+  front_ends_.DrawOverlays(bgr);
+  const Eigen::Isometry3d T_CW = (last_T_WB_ * T_BC_).inverse();
+  std::vector<cv::Point> pixels;
+  for (const Eigen::Vector3d& p_W : last_path_W_) {
+    Eigen::Vector2d px;
+    if (camera_->Project(T_CW * p_W, &px)) pixels.emplace_back(int(px.x()), int(px.y()));
+  }
+  if (pixels.size() >= 2) {
+    cv::polylines(bgr, pixels, false, cv::Scalar(0, 255, 0), 2, cv::LINE_AA);
+    cv::circle(bgr, pixels.back(), 6, cv::Scalar(0, 255, 255), 2, cv::LINE_AA);
+  }
+}
+
+}  // namespace aperture::planning

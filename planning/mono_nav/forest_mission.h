@@ -1,0 +1,165 @@
+#pragma once
+// Forest navigation of seed 003 (Bipin et al. 2015, Fig. 2) as a perception::Autopilot flown from
+// the forward colour camera, the IMU and the vehicle's odometry source:
+//
+//   frame --FrontEndRunner{mono_depth}--> D_E per patch (Sec. III-A)
+//         --EgoDynamicTransform--> d_eff (Sec. III-B; without EDT: d_obs = D_E - margin, Table IV)
+//         --ground patches left out (beyond the paper: the EDT lifts the ground into the path)
+//         --BackProjectGrid + WaypointSelector--> waypoint + Bezier path in B (Sec. III-C, III-D)
+//         --PlanMinTimeBSpline--> quintic B-spline in W under v/a/j limits (Sec. III-E)
+//   Step: the spline sampled at t, tracked by control::PositionController (flatness + attitude
+//         loop, thrust + body rates) on the PoseFusion estimate.
+//
+// Replanning (Sec. III-F): every frame plans the whole trajectory again from the reference state
+// of the current one (from the estimate when the vehicle is more than replan_from_estimate_m off
+// it). Every spline ends at rest at its waypoint, so when a frame finds no traversable segment
+// the vehicle keeps the previous spline and stops at a waypoint that was free. Within
+// direct_goal_distance_m of the goal the straight path to it is flown when its spatial windows
+// are free. Heading is fixed at the start heading (the paper's psi = 0).
+//
+// State: the odometry source's body poses (OnOdometry: a VIO or the paper's optical-flow EKF on
+// hardware; in SITL a simulated one, experiments/missions/forest_flight.h) fused with the IMU by
+// perception::PoseFusion. The mission never sees ground truth.
+//
+// Frames: W world (z up), B body (x forward), C camera (OpenCV), T_BC the camera mount. SI units;
+// times on the sensor clock.
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <memory>
+#include <opencv2/core/mat.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "control/position_controller.h"
+#include "control/quad_state.h"
+#include "control/trajectory_point.h"
+#include "control/vehicle_parameters.h"
+#include "perception/autopilot.h"
+#include "perception/camera/camera_model.h"
+#include "perception/estimation/pose_fusion.h"
+#include "perception/graph/front_end_runner.h"
+#include "perception/mono_depth/mono_depth_estimator.h"
+#include "perception/mono_depth/mono_depth_model.h"
+#include "planning/mono_nav/bspline.h"
+#include "planning/mono_nav/ego_dynamic_space.h"
+#include "planning/mono_nav/min_time_bspline.h"
+#include "planning/mono_nav/waypoint_selector.h"
+
+namespace aperture::planning {
+
+struct ForestMissionParams {
+  Eigen::Vector3d goal_W = Eigen::Vector3d::Zero();  // where to fly [m]; the flight sets it
+  // false: the Table IV baseline without the ego-dynamic transform (d_eff = D_E - margin).
+  bool ego_dynamic = true;
+  // kRandom: Table II's baseline (segments tried in a random order, seeded per frame).
+  WaypointOrder waypoint_order = WaypointOrder::kOptimal;
+  std::uint64_t random_seed = 0;
+  EgoDynamicParams edt;
+  // The waypoint stays within 0.25 m of the goal's height (trunks are vertical: climbing does
+  // not pass them; the sky's far patches would otherwise pull every waypoint up).
+  WaypointSelectorParams waypoints = [] {
+    WaypointSelectorParams p;
+    p.max_height_from_goal_m = 0.25;
+    return p;
+  }();
+  // 2 m/s and 2 m/s^2: a 22 m forest flight in ~15 s with the tilt under ~12 deg; the per-axis
+  // jerk bound is Sec. III-E d)'s f_min omega_max / sqrt(3) with f_min = 6 m/s^2 (0.6 g, the
+  // thrust at the deepest braking) and omega_max = 2 rad/s (a gentle attitude loop).
+  DynamicLimits limits = [] {
+    DynamicLimits limits;
+    limits.max_speed_mps = 2.0;
+    limits.max_acceleration_mps2 = Eigen::Vector3d::Constant(2.0);
+    limits.max_jerk_mps3 = Eigen::Vector3d::Constant(DynamicLimits::JerkBound(6.0, 2.0));
+    return limits;
+  }();
+  MinTimeBSplineParams spline;
+  control::PositionControllerParams controller;
+  perception::PoseFusionParams fusion;  // set the IMU noise of the vehicle's IMU
+  int camera_id = 0;                    // Frame::camera_id of the forward colour camera
+  // The ground plane z_W [m] of the odometry frame (a range sensor measures it on hardware), and
+  // the height above it below which a depth patch counts as ground, not obstacle [m]: 0.3 m is
+  // above the label widths' depth error at the horizon and below the flight height of 1.5 m.
+  double ground_height_m = 0.0;
+  double ground_clearance_m = 0.3;
+  // Points of the Bezier path the spline interpolates (>= 6, the quintic's control points).
+  int spline_path_points = 8;
+  // The vehicle is this far from the current spline's reference -> replan from the estimate [m].
+  double replan_from_estimate_m = 0.5;
+  // Within this distance of the goal, fly straight to it when that path is free [m].
+  double direct_goal_distance_m = 4.0;
+  // Done (AutopilotCommand::done) within this distance of the goal and below goal_speed_mps.
+  double goal_reached_m = 0.3;
+  double goal_speed_mps = 0.3;
+
+  void Validate() const;  // std::invalid_argument naming the field
+};
+
+// What one frame did (the per-frame figures of `aperture bench mononav`).
+struct ForestFrameRecord {
+  double t_s = 0.0;
+  double perception_s = 0.0;  // thread CPU time of the front end (depth estimate)
+  double planning_s = 0.0;    // thread CPU time of EDT, selection and the spline
+  int segments = 0;
+  int replans = 0;       // segments rejected by their spatial windows (Table II)
+  bool planned = false;  // a new spline was adopted
+  bool direct = false;   // straight to the goal
+};
+
+class ForestMission : public perception::Autopilot {
+ public:
+  // camera: the forward camera's model; T_BC its mount; vehicle: the controller's model; model:
+  // the depth classifier (perception::DefaultMonoDepthModel() ships). Throws
+  // std::invalid_argument for invalid params, a null camera or a non-rigid T_BC.
+  ForestMission(const ForestMissionParams& params,
+                std::shared_ptr<const perception::CameraModel> camera,
+                const Eigen::Isometry3d& T_BC, const control::VehicleParameters& vehicle,
+                perception::MonoDepthModel model);
+
+  std::string name() const override { return "forest_mission"; }
+  void OnImu(const perception::ImuSample& sample) override;
+  void OnFrame(const perception::Frame& frame) override;
+  // A body pose from the vehicle's odometry source (X = B: p_BX = 0, q_BX = identity).
+  void OnOdometry(const perception::PoseMeasurement& pose_WB);
+  perception::AutopilotCommand Step(double t_s) override;
+  std::string status() const override;
+  // Depth map and chosen path of the latest frame onto the onboard image (CV_8UC3).
+  void DrawOverlay(cv::Mat& bgr) const;
+
+  // The filter's estimate (t_s = latest IMU sample); nullopt before the first odometry pose.
+  std::optional<control::QuadState> estimate() const;
+  const std::vector<ForestFrameRecord>& frames() const { return frames_; }
+  int replans() const;              // sum of ForestFrameRecord::replans
+  int frames_without_path() const;  // frames that found no traversable segment
+  bool goal_reached() const { return goal_reached_; }
+  const perception::PoseFusionCounts& fusion_counts() const { return fusion_.counts(); }
+
+ private:
+  // The reference of the current spline at t_s (the hold point before the first one).
+  control::TrajectoryPoint Reference(double t_s) const;
+  void Plan(double t_s, const perception::MonoDepthEstimate& depth, ForestFrameRecord* record);
+  // Spline from the current reference (or estimate) along path_W; false when the solver fails.
+  bool FollowPath(double t_s, const control::QuadState& x,
+                  const std::vector<Eigen::Vector3d>& path_W);
+
+  ForestMissionParams params_;
+  std::shared_ptr<const perception::CameraModel> camera_;
+  Eigen::Isometry3d T_BC_;
+  control::VehicleParameters vehicle_;
+  perception::FrontEndRunner front_ends_;
+  WaypointSelector selector_;
+  control::PositionController controller_;
+  perception::PoseFusion fusion_;
+
+  std::optional<control::TrajectoryPoint> hold_;  // before the first spline: the start pose
+  std::optional<BSpline> spline_;
+  double spline_start_t_s_ = 0.0;
+  double heading_rad_ = 0.0;
+  bool goal_reached_ = false;
+  std::vector<Eigen::Vector3d> last_path_W_;  // drawn by DrawOverlay
+  Eigen::Isometry3d last_T_WB_ = Eigen::Isometry3d::Identity();  // estimate at the latest plan
+  std::vector<ForestFrameRecord> frames_;
+};
+
+}  // namespace aperture::planning
