@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <ctime>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
@@ -64,6 +63,7 @@ void ForestMissionParams::Validate() const {
   require(spline_path_points >= 6,
           "spline_path_points must be >= 6 (a quintic B-spline needs 6 control points)");
   require(replan_from_estimate_m > 0.0, "replan_from_estimate_m must be > 0");
+  require(extension_m >= 0.0, "extension_m must be >= 0");
   require(direct_goal_distance_m >= 0.0, "direct_goal_distance_m must be >= 0");
   require(goal_reached_m > 0.0, "goal_reached_m must be > 0");
   require(goal_speed_mps > 0.0, "goal_speed_mps must be > 0");
@@ -206,13 +206,26 @@ void ForestMission::Plan(double t_s, const perception::MonoDepthEstimate& depth,
       params_.random_seed + static_cast<std::uint64_t>(frames_.size()), &obstacles_H);
   record->segments = static_cast<int>(selection.segments.size());
   record->replans = selection.Replans();
-  if (std::getenv("FOREST_DEBUG") && frames_.size() % 30 == 0) {  // DEBUG
-    std::fprintf(stderr, "t %.2f p %.2f %.2f %.2f points %zu segs %zu chosen %d\n", t_s, x.p_WB.x(), x.p_WB.y(), x.p_WB.z(), selection.points_B.size(), selection.segments.size(), selection.chosen ? *selection.chosen : -1);
-    for (const Segment& s : selection.segments) std::fprintf(stderr, "  o %.2f %.2f %.2f r %.2f d %.2f rho %.2f C %.2f thr %d exp %d n %zu\n", s.centroid_B.x(), s.centroid_B.y(), s.centroid_B.z(), s.radius_m, s.distance_m, s.rho_m, s.cost, s.meets_threshold, s.meets_expanse, s.points.size());
-    for (int i : selection.tried) std::fprintf(stderr, " tried %d", i);
-    std::fprintf(stderr, "\n");
+  if (!selection.chosen) return;
+  std::vector<Eigen::Vector3d> path_H = selection.path_B;
+  ExtendTowardsGoal(goal_H, obstacles_H, &path_H);
+  record->planned = FollowPath(t_s, x, to_W(path_H));
+}
+
+void ForestMission::ExtendTowardsGoal(const Eigen::Vector3d& goal_H,
+                                      const std::vector<Eigen::Vector3d>& obstacles_H,
+                                      std::vector<Eigen::Vector3d>* path_H) const {
+  const Eigen::Vector3d waypoint = path_H->back();
+  const Eigen::Vector3d to_goal = goal_H - waypoint;
+  const double length = std::min(params_.extension_m, to_goal.norm());
+  if (!(length > kExtensionStepM)) return;
+  const Eigen::Vector3d step = to_goal.normalized() * kExtensionStepM;
+  for (int k = 1; k * kExtensionStepM <= length; ++k) {
+    const Eigen::Vector3d sample = waypoint + k * step;
+    // Only what the camera has seen ahead of the vehicle can be checked.
+    if (!selector_.PathIsFree({sample}, obstacles_H) || !(sample.x() > 0.0)) break;
+    path_H->push_back(sample);
   }
-  if (selection.chosen) record->planned = FollowPath(t_s, x, to_W(selection.path_B));
 }
 
 bool ForestMission::FollowPath(double t_s, const control::QuadState& x,
@@ -231,15 +244,25 @@ bool ForestMission::FollowPath(double t_s, const control::QuadState& x,
   if (speed > max_speed) start.v_W *= max_speed / speed;
   start.a_W = ClampComponents(start.a_W, 0.999 * params_.limits.max_acceleration_mps2);
 
-  // The path from the start, subsampled to spline_path_points points 1 cm or more apart.
-  std::vector<Eigen::Vector3d> points_W{start.p_W};
-  const int n = params_.spline_path_points - 1;
-  const int last = static_cast<int>(path_W.size()) - 1;
-  for (int k = 1; k <= n; ++k) {
-    const Eigen::Vector3d& p_W = path_W[static_cast<size_t>(k * last / n)];
-    if ((p_W - points_W.back()).norm() >= 0.01) points_W.push_back(p_W);
+  // The path from the start, resampled to spline_path_points points evenly spaced in arc length
+  // (chord-length interpolation of unevenly spaced points makes the quintic oscillate).
+  std::vector<Eigen::Vector3d> polyline{start.p_W};
+  polyline.insert(polyline.end(), path_W.begin() + 1, path_W.end());
+  std::vector<double> arc{0.0};
+  for (size_t k = 1; k < polyline.size(); ++k) {
+    arc.push_back(arc.back() + (polyline[k] - polyline[k - 1]).norm());
   }
-  if (static_cast<int>(points_W.size()) < 6) return false;  // too short to be worth a spline
+  const int n = params_.spline_path_points - 1;
+  if (!(arc.back() > 0.05 * n)) return false;  // too short to be worth a spline
+  std::vector<Eigen::Vector3d> points_W{start.p_W};
+  size_t segment = 1;
+  for (int k = 1; k <= n; ++k) {
+    const double s = arc.back() * k / n;
+    while (segment + 1 < arc.size() && arc[segment] < s) ++segment;
+    const double span = arc[segment] - arc[segment - 1];
+    const double f = span > 0.0 ? std::clamp((s - arc[segment - 1]) / span, 0.0, 1.0) : 1.0;
+    points_W.push_back(polyline[segment - 1] + f * (polyline[segment] - polyline[segment - 1]));
+  }
   MinTimeBSplineResult result;
   try {
     result = PlanMinTimeBSpline(points_W, start.v_W, start.a_W, Eigen::Vector3d::Zero(),
@@ -248,9 +271,6 @@ bool ForestMission::FollowPath(double t_s, const control::QuadState& x,
     return false;  // degenerate path (points too close): keep the current spline
   }
   if (!result.ok()) return false;
-  if (std::getenv("FOREST_DEBUG") && frames_.size() % 10 == 0) {  // DEBUG
-    std::fprintf(stderr, "plan t %.2f start p %.2f %.2f %.2f v %.2f %.2f %.2f a %.2f %.2f %.2f end %.2f %.2f %.2f dur %.2f n %zu refits %d ratios %.2f %.2f %.2f\n", t_s, start.p_W.x(), start.p_W.y(), start.p_W.z(), start.v_W.x(), start.v_W.y(), start.v_W.z(), start.a_W.x(), start.a_W.y(), start.a_W.z(), points_W.back().x(), points_W.back().y(), points_W.back().z(), result.duration_s, points_W.size(), result.refits, result.speed_ratio, result.acceleration_ratio, result.jerk_ratio);
-  }
   spline_ = std::move(result.trajectory);
   spline_start_t_s_ = t_s;
   last_path_W_ = path_W;

@@ -40,6 +40,7 @@ void LoadParams(config::ParamReader& reader, ForestMissionParams* params) {
   reader.Read("ground_clearance_m", &params->ground_clearance_m);
   reader.Read("spline_path_points", &params->spline_path_points);
   reader.Read("replan_from_estimate_m", &params->replan_from_estimate_m);
+  reader.Read("extension_m", &params->extension_m);
   reader.Read("direct_goal_distance_m", &params->direct_goal_distance_m);
   reader.Read("goal_reached_m", &params->goal_reached_m);
   reader.Read("goal_speed_mps", &params->goal_speed_mps);

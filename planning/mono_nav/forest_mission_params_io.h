@@ -15,6 +15,7 @@
 //     ground_clearance_m: 0.3
 //     spline_path_points: 8
 //     replan_from_estimate_m: 0.5
+//     extension_m: 4.0
 //     direct_goal_distance_m: 4.0
 //     goal_reached_m: 0.3
 //     goal_speed_mps: 0.3

@@ -126,6 +126,33 @@ TEST(WaypointSelector, RandomOrderIsSeededAndOnlyAcceptsFreePaths) {
   EXPECT_GE(first_tried.size(), 2u);
 }
 
+TEST(WaypointSelector, WaypointHeightIsClampedToTheGoalsAndWindowsCheckTheGivenObstacles) {
+  // One wide wall 5 m ahead whose centroid is 1 m above the goal's height (sky-heavy segment).
+  std::vector<Eigen::Vector3d> points;
+  AddWall(5.0, -2.0, 2.0, 0.0, 2.0, &points);
+  WaypointSelectorParams params;
+  params.max_height_from_goal_m = 0.2;
+  const WaypointSelector selector(params);
+  const WaypointSelection clamped = selector.Select(points, kForward, kGoalAhead);
+  ASSERT_TRUE(clamped.chosen.has_value());
+  EXPECT_NEAR(clamped.waypoint_B.z(), 0.2, 1e-12);  // centroid z ~1 m, goal z 0
+  const WaypointSelection free_3d = WaypointSelector().Select(points, kForward, kGoalAhead);
+  ASSERT_TRUE(free_3d.chosen.has_value());
+  EXPECT_GT(free_3d.waypoint_B.z(), 0.5);  // the paper's waypoint follows the centroid up
+  // A metric obstacle 2 m ahead on the (level) path, absent from the clustered points: the path is
+  // rejected when the windows check it, accepted when they check the clustered points only.
+  const std::vector<Eigen::Vector3d> obstacles{Eigen::Vector3d(2.0, 0.0, 0.1)};
+  EXPECT_FALSE(selector.Select(points, kForward, kGoalAhead, WaypointOrder::kOptimal, 0, &obstacles)
+                   .chosen.has_value());
+  EXPECT_THROW(
+      [] {
+        WaypointSelectorParams bad;
+        bad.max_height_from_goal_m = -1.0;
+        WaypointSelector{bad};
+      }(),
+      std::invalid_argument);
+}
+
 TEST(WaypointSelector, BackProjectionPutsPatchesAlongTheirRays) {
   // 90 deg pinhole, 64 x 48 px, 8 px patches; camera looking along x_B (T_BC: z_C = x_B,
   // x_C = -y_B, y_C = -z_B).

@@ -1,0 +1,254 @@
+#include "experiments/mononav/mononav_bench.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "config/config_tree.h"
+#include "experiments/missions/builtin_missions.h"
+#include "output/csv_writer.h"
+#include "output/progress_bar.h"
+#include "output/svg_plot.h"
+#include "sim/scenario/scenario.h"
+#include "sim/scenario/scenario_sitl.h"
+#include "sim/sitl/sitl_runner.h"
+
+namespace aperture::experiments {
+namespace {
+
+// A mission configuration flown on every layout.
+struct Configuration {
+  std::string name;
+  std::vector<std::string> mission_items;  // `mission.*` overrides
+};
+
+struct Flight {
+  std::string configuration;
+  std::uint64_t seed = 0;
+  MissionEvaluation evaluation;
+  std::string outcome;  // sim::ToString(SitlResult::Outcome)
+  double sim_time_s = 0.0;
+  double wall_time_s = 0.0;
+};
+
+// The quick course: no random obstacles, one trunk on the line to a goal 6 m away.
+const std::vector<std::string> kQuickCourse = {"forest.trees=0",
+                                               "forest.boxes=0",
+                                               "forest.goal_m=[6.0, 0.0, 1.5]",
+                                               "objects.trunk.shape=cylinder",
+                                               "objects.trunk.radius_m=0.3",
+                                               "objects.trunk.height_m=6",
+                                               "objects.trunk.pose.p_m=[2.0, 0.0, 0.0]",
+                                               "objects.trunk.texture.kind=bark"};
+
+Flight Fly(const MononavBenchOptions& options, const Configuration& configuration,
+           std::uint64_t seed) {
+  std::vector<std::string> set_items = options.set_items;
+  if (options.quick) set_items.insert(set_items.begin(), kQuickCourse.begin(), kQuickCourse.end());
+  std::vector<std::string> mission_items = TakeMissionSetItems(&set_items);
+  mission_items.insert(mission_items.end(), configuration.mission_items.begin(),
+                       configuration.mission_items.end());
+  set_items.push_back("seed=" + std::to_string(seed));
+  const sim::ScenarioParams scenario_params =
+      sim::LoadScenarioParams(sim::ScenarioConfig("forest", {}, set_items));
+  sim::Scenario scenario = sim::BuildScenario(scenario_params);
+  sim::SitlRunnerParams params;
+  params.duration_s = options.duration_s;
+  params.trajectory_decimation = 10;  // 100 Hz ground truth: 2 cm apart at 2 m/s
+  sim::ConfigureSitlFromScenario(scenario, &params);
+  for (sim::SitlCamera& camera : params.cameras) camera.render.ground_truth = false;
+  params.SetSeed(seed);
+
+  MissionRegistry missions;
+  RegisterBuiltinMissions(missions);
+  const config::ConfigTree tree = config::ConfigTree::FromCommandLine("", {}, mission_items);
+  config::ParamReader root = tree.Reader();
+  config::ParamReader mission_params = root.Section("mission");
+  const std::unique_ptr<MissionFlight> flight =
+      missions.Create("forest", {scenario, params, mission_params});
+  root.RejectUnknownKeys();
+  sim::SitlRunner runner(params, &scenario.scene());
+  const sim::SitlResult result = runner.Run(flight->autopilot(), sim::MakeScenarioHooks(&scenario));
+  Flight out;
+  out.configuration = configuration.name;
+  out.seed = seed;
+  out.evaluation = flight->Evaluate(result);
+  out.outcome = sim::ToString(result.outcome);
+  out.sim_time_s = result.sim_time_s;
+  out.wall_time_s = result.timing.wall_time_s;
+  return out;
+}
+
+double Median(std::vector<double> values) {
+  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  return values[values.size() / 2];
+}
+
+double Mean(const std::vector<double>& values) {
+  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
+  double sum = 0.0;
+  for (double v : values) sum += v;
+  return sum / values.size();
+}
+
+double Figure(const Flight& flight, const std::string& key) {
+  const nlohmann::json& value = flight.evaluation.figures[key];
+  return value.is_number() ? value.get<double>() : std::numeric_limits<double>::quiet_NaN();
+}
+
+std::vector<const Flight*> Of(const std::vector<Flight>& flights, const std::string& name) {
+  std::vector<const Flight*> out;
+  for (const Flight& f : flights) {
+    if (f.configuration == name) out.push_back(&f);
+  }
+  return out;
+}
+
+// Table IV row: success / failure counts and rate [%].
+nlohmann::json SuccessRow(const std::vector<const Flight*>& flights) {
+  int success = 0;
+  for (const Flight* f : flights) success += f->evaluation.passed;
+  const int n = static_cast<int>(flights.size());
+  return {{"flights", n},
+          {"success", success},
+          {"failure", n - success},
+          {"success_rate_percent", n > 0 ? 100.0 * success / n : 0.0}};
+}
+
+// Table II row: replans per flight (segments rejected by their spatial windows).
+nlohmann::json ReplanRow(const std::vector<const Flight*>& flights) {
+  std::vector<double> replans;
+  for (const Flight* f : flights) replans.push_back(Figure(*f, "replans"));
+  return {{"flights", flights.size()},
+          {"replans_mean", Mean(replans)},
+          {"replans_median", Median(replans)}};
+}
+
+// Per-frame timing over the flights: the median of the flights' medians and the largest max.
+nlohmann::json TimingRow(const std::vector<const Flight*>& flights, const std::string& key) {
+  std::vector<double> medians;
+  double max_ms = 0.0;
+  int frames = 0;
+  for (const Flight* f : flights) {
+    const nlohmann::json& t = f->evaluation.figures[key];
+    if (!t.contains("median")) continue;
+    medians.push_back(t["median"].get<double>());
+    max_ms = std::max(max_ms, t["max"].get<double>());
+    frames += t["frames"].get<int>();
+  }
+  return {{"median_ms", Median(medians)}, {"max_ms", max_ms}, {"frames", frames}};
+}
+
+void WriteFlightsCsv(const std::vector<Flight>& flights, const std::string& path) {
+  output::CsvWriter csv(
+      path, {"configuration", "seed", "success", "reached_goal", "collision", "time_to_goal_s",
+             "path_length_m", "min_clearance_m", "final_distance_m", "replans", "frames",
+             "frames_without_path", "perception_median_ms", "planning_median_ms", "sim_time_s",
+             "wall_time_s"});
+  for (const Flight& f : flights) {
+    const nlohmann::json& m = f.evaluation.figures;
+    const auto median = [&](const char* key) {
+      return m[key].contains("median") ? m[key]["median"].get<double>()
+                                       : std::numeric_limits<double>::quiet_NaN();
+    };
+    csv.WriteCells(
+        {output::CsvCell(f.configuration), output::CsvCell(double(f.seed)),
+         output::CsvCell(double(f.evaluation.passed)),
+         output::CsvCell(double(m["reached_goal"].get<bool>())),
+         output::CsvCell(double(m["collision"].get<bool>())),
+         output::CsvCell(Figure(f, "time_to_goal_s")), output::CsvCell(Figure(f, "path_length_m")),
+         output::CsvCell(Figure(f, "min_clearance_m")),
+         output::CsvCell(Figure(f, "final_distance_m")), output::CsvCell(Figure(f, "replans")),
+         output::CsvCell(Figure(f, "frames")), output::CsvCell(Figure(f, "frames_without_path")),
+         output::CsvCell(median("perception_ms")), output::CsvCell(median("planning_ms")),
+         output::CsvCell(f.sim_time_s), output::CsvCell(f.wall_time_s)});
+  }
+  csv.Close();
+}
+
+}  // namespace
+
+void MononavBenchOptions::Validate() const {
+  if (trials < 1) throw std::invalid_argument("mononav bench: --trials must be >= 1");
+  if (!(duration_s > 0.0)) throw std::invalid_argument("mononav bench: duration_s must be > 0");
+}
+
+void RunMononavBench(const MononavBenchOptions& options, nlohmann::json* summary,
+                     output::HtmlReport* report) {
+  options.Validate();
+  std::vector<Configuration> configurations = {{"edt", {"mission.ego_dynamic=true"}}};
+  if (!options.quick) {
+    configurations.push_back({"no_edt", {"mission.ego_dynamic=false"}});
+    configurations.push_back({"random_waypoint", {"mission.waypoint_order=random"}});
+  }
+  const int trials = options.quick ? 1 : options.trials;
+  std::vector<Flight> flights;
+  output::ProgressBar progress("flights", configurations.size() * trials);
+  for (int i = 0; i < trials; ++i) {
+    const std::uint64_t seed = options.first_seed + static_cast<std::uint64_t>(i);
+    for (const Configuration& configuration : configurations) {
+      flights.push_back(Fly(options, configuration, seed));
+      progress.Update(flights.size());
+    }
+  }
+  progress.Finish();
+  if (!options.flights_csv_path.empty()) WriteFlightsCsv(flights, options.flights_csv_path);
+
+  nlohmann::json& s = *summary;
+  const std::vector<const Flight*> edt = Of(flights, "edt");
+  s["table_iv"]["with_edt"] = SuccessRow(edt);
+  s["table_ii"]["optimal"] = ReplanRow(edt);
+  if (!options.quick) {
+    s["table_iv"]["without_edt"] = SuccessRow(Of(flights, "no_edt"));
+    s["table_iv"]["improvement_percent_points"] =
+        s["table_iv"]["with_edt"]["success_rate_percent"].get<double>() -
+        s["table_iv"]["without_edt"]["success_rate_percent"].get<double>();
+    s["table_ii"]["random"] = ReplanRow(Of(flights, "random_waypoint"));
+  }
+  s["timing"] = {{"perception", TimingRow(edt, "perception_ms")},
+                 {"planning", TimingRow(edt, "planning_ms")},
+                 {"clock", "thread CPU time per frame, one core"}};
+  nlohmann::json& acceptance = s["acceptance"];
+  acceptance["success_with_edt_at_least_90_percent"] =
+      s["table_iv"]["with_edt"]["success_rate_percent"].get<double>() >= 90.0;
+  if (!options.quick) {
+    acceptance["edt_improves_success"] =
+        s["table_iv"]["improvement_percent_points"].get<double>() > 0.0;
+    acceptance["optimal_fewer_replans_than_random"] =
+        s["table_ii"]["optimal"]["replans_mean"].get<double>() <
+        s["table_ii"]["random"]["replans_mean"].get<double>();
+  }
+  acceptance["perception_at_most_50_ms"] =
+      s["timing"]["perception"]["median_ms"].get<double>() <= 50.0;
+  acceptance["planning_at_most_20_ms"] = s["timing"]["planning"]["median_ms"].get<double>() <= 20.0;
+
+  report->AddSection("Table IV: success with and without the ego-dynamic transform");
+  report->AddTable(s["table_iv"]);
+  report->AddSection("Table II: replans, optimal vs random waypoint order");
+  report->AddTable(s["table_ii"]);
+  report->AddSection("Per-frame timing (thread CPU, one core)");
+  report->AddTable(s["timing"]);
+  std::vector<output::NamedValues> replans;
+  for (const Configuration& configuration : configurations) {
+    std::vector<double> values;
+    for (const Flight* f : Of(flights, configuration.name)) values.push_back(Figure(*f, "replans"));
+    replans.push_back({configuration.name, values});
+  }
+  report->AddSvg(
+      output::SvgPlot::BoxPlot({"Replans per flight", "configuration", "replans"}, replans),
+      "Segments rejected by their spatial windows, per flight");
+  nlohmann::json rows = nlohmann::json::array();
+  for (const Flight& f : flights) {
+    rows.push_back(
+        {{"configuration", f.configuration}, {"seed", f.seed}, {"outcome", f.evaluation.outcome}});
+  }
+  report->AddCollapsedTable(rows, "Every flight");
+}
+
+}  // namespace aperture::experiments
