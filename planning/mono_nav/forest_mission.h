@@ -5,7 +5,10 @@
 //   frame --FrontEndRunner{mono_depth}--> D_E per patch (Sec. III-A)
 //         --EgoDynamicTransform--> d_eff (Sec. III-B; without EDT: d_obs = D_E - margin, Table IV)
 //         --ground patches left out (beyond the paper: the EDT lifts the ground into the path)
-//         --BackProjectGrid + WaypointSelector--> waypoint + Bezier path in B (Sec. III-C, III-D)
+//         --BackProjectGrid + WaypointSelector--> waypoint + Bezier path (Sec. III-C, III-D), in
+//           the heading frame H (z up, waypoint at the goal's height); the spatial windows check
+//           the metric points d_obs, not the EDT points (EDT compresses gaps, not the vehicle);
+//           the path continues towards the goal while the windows stay free (extension_m)
 //         --PlanMinTimeBSpline--> quintic B-spline in W under v/a/j limits (Sec. III-E)
 //   Step: the spline sampled at t, tracked by control::PositionController (flatness + attitude
 //         loop, thrust + body rates) on the PoseFusion estimate.
