@@ -3,12 +3,14 @@
 //   aperture sim NAME [--config FILE] [--set key=value ...] [--seed N] [--duration S] --out DIR
 //   aperture sim tracking ... | aperture sim recovery ...   (sim_tracking/recovery_command.cc)
 //
-// NAME is a built-in scenario (sim/scenario); --config/--set override its keys. The vehicle starts
-// at the scenario's start pose and the ground-truth autopilot holds it there, except `gap`: the
-// vision gap mission (apps/sim_gap_mission.h; parameters via --set mission.<key>=<value>, its
+// NAME is a built-in scenario (sim/scenario); --config/--set override its keys (a summary.json of
+// an earlier run as --config: its full effective configuration, the same flight). The vehicle
+// starts at the scenario's start pose and the ground-truth autopilot holds it there, except `gap`:
+// the vision gap mission (apps/sim_gap_mission.h; parameters via --set mission.<key>=<value>, its
 // outcome in summary.json "mission"), and `led`: the LED-stabilized hover (LED pose + IMU only,
-// experiments/led/led_hover_flight.h; summary key `led_hover`, report plots of position vs
-// set-point and estimate vs ground truth). Writes OUT/summary.json (outcome, crash reason and
+// experiments/led/led_hover_flight.h; parameters in `mission` too,
+// experiments/led/led_hover_flight_params_io.h; summary key `led_hover`, report plots of position
+// vs set-point and estimate vs ground truth). Writes OUT/summary.json (outcome, crash reason and
 // contact point, real_time_factor, timing, hover errors, frame statistics), OUT/trajectory.csv
 // and OUT/trajectory.tum (ground truth), OUT/commands.csv, OUT/imu.csv, OUT/sim.mp4 (or .avi: the
 // onboard camera with overlays beside a third-person view from behind the vehicle) and
@@ -28,6 +30,7 @@
 #include "apps/sim_gap_mission.h"
 #include "apps/sitl_outputs.h"
 #include "experiments/led/led_hover_flight.h"
+#include "experiments/led/led_hover_flight_params_io.h"
 #include "output/background_video_writer.h"
 #include "output/html_report.h"
 #include "output/progress_bar.h"
@@ -110,12 +113,19 @@ void WriteReport(const sim::SitlResult& result, const std::vector<cv::Mat>& key_
 void RunSim(const SimOptions& options, output::OutputFolder& out) {
   std::vector<std::string> set_items = options.common.set_items;
   const bool gap_mission = options.scenario == "gap";
-  const std::vector<std::string> mission_items =
-      gap_mission ? SimGapMission::TakeMissionSetItems(&set_items) : std::vector<std::string>{};
   if (options.seed) set_items.push_back("seed=" + std::to_string(*options.seed));
-  const config::ConfigTree tree =
+  config::ConfigTree tree =
       sim::ScenarioConfig(options.scenario, options.common.config_files, set_items);
-  const sim::ScenarioParams scenario_params = sim::LoadScenarioParams(tree);
+  config::ParamReader root = tree.Reader();
+  sim::ScenarioParams scenario_params;
+  LoadParams(root, &scenario_params);
+  // The parameters of the gap mission and the LED hover are the `mission` section; the ground-truth
+  // hover of the other scenarios has none.
+  const bool led_hover = scenario_params.scenario == "led";
+  config::ParamReader mission_config = gap_mission || led_hover
+                                           ? root.Section("mission")
+                                           : config::ParamReader(YAML::Node(), "no mission");
+  root.RejectUnknownKeys();
   sim::Scenario scenario = sim::BuildScenario(scenario_params);
 
   sim::SitlRunnerParams params;
@@ -144,10 +154,13 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
   // Scenario flights: `gap` flies the gap mission, `led` holds the start from the LED pose + IMU
   // (experiments/led); the others hover on ground truth.
   std::unique_ptr<SimGapMission> mission;
-  if (gap_mission) mission = std::make_unique<SimGapMission>(scenario, params, mission_items);
+  if (gap_mission) mission = std::make_unique<SimGapMission>(scenario, params, mission_config);
   std::unique_ptr<experiments::LedHoverFlight> led_flight;
-  if (scenario_params.scenario == "led") {
-    led_flight = std::make_unique<experiments::LedHoverFlight>(scenario, params);
+  if (led_hover) {
+    experiments::LedHoverFlightParams led_params;
+    LoadParams(mission_config, &led_params);
+    tree.PutParams("mission", led_params);
+    led_flight = std::make_unique<experiments::LedHoverFlight>(scenario, params, led_params);
   }
   perception::Autopilot& autopilot =
       mission     ? static_cast<perception::Autopilot&>(mission->mission())
@@ -202,6 +215,9 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
                        {"seed", scenario_params.seed},
                        {"duration_s", options.duration_s},
                        {"autopilot", result.autopilot_name}};
+  // The full effective configuration: `--config OUT/summary.json` flies this run again.
+  sim::PutEffectiveSitlBlocks(scenario_params, &tree);
+  if (mission) tree.PutParams("mission", mission->params());
   summary["config"] = nlohmann::json::parse(tree.ToJson());
   AddSitlRunSummary(result, &summary);
   summary["timing"]["chase_render_s"] = chase.render_s();  // part of hooks_s

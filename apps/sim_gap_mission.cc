@@ -6,7 +6,6 @@
 #include <opencv2/imgproc.hpp>
 #include <optional>
 
-#include "config/config_tree.h"
 #include "experiments/gap/gap_mission_factory.h"
 #include "planning/gap_mission/gap_mission_params_io.h"
 
@@ -52,24 +51,11 @@ control::QuadState StateAt(const std::vector<control::QuadState>& trajectory, do
 
 }  // namespace
 
-std::vector<std::string> SimGapMission::TakeMissionSetItems(std::vector<std::string>* set_items) {
-  std::vector<std::string> mission_items, rest;
-  for (const std::string& item : *set_items) {
-    (item.rfind("mission.", 0) == 0 ? mission_items : rest).push_back(item);
-  }
-  *set_items = rest;
-  return mission_items;
-}
-
 SimGapMission::SimGapMission(const sim::Scenario& scenario, const sim::SitlRunnerParams& params,
-                             const std::vector<std::string>& mission_set_items) {
-  planning::GapMissionParams mission_params =
-      experiments::GapMissionParamsFor(scenario, params.imu);
-  const config::ConfigTree tree = config::ConfigTree::FromCommandLine("", {}, mission_set_items);
-  config::ParamReader root = tree.Reader();
-  root.ReadSection("mission", &mission_params);
-  root.RejectUnknownKeys();
-  mission_ = experiments::MakeGapMission(scenario, params.dynamics.vehicle, mission_params);
+                             config::ParamReader& mission_config)
+    : params_(experiments::GapMissionParamsFor(scenario, params.imu)) {
+  LoadParams(mission_config, &params_);
+  mission_ = experiments::MakeGapMission(scenario, params.dynamics.vehicle, params_);
 }
 
 void SimGapMission::DrawOverlay(cv::Mat* onboard_bgr) const {

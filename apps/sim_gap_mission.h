@@ -2,9 +2,10 @@
 // `aperture sim gap`: the vision gap mission (planning/gap_mission/gap_mission.h, seed 000) as the
 // autopilot of the SITL run, its overlay and its ground-truth outcome in summary.json.
 //
-// Mission parameters come from `--set mission.<key>=<value>` (GapMissionParams fields, loader
-// planning/gap_mission/gap_mission_params_io.h), starting from what the scenario defines (the
-// pattern sizes, the forward camera, the IMU noise: experiments/gap/gap_mission_factory.h).
+// Mission parameters come from the `mission` section (--config, `--set mission.<key>=<value>`;
+// GapMissionParams fields, planning/gap_mission/gap_mission_params_io.h), starting from what the
+// scenario defines (the pattern sizes, the forward camera, the IMU noise:
+// experiments/gap/gap_mission_factory.h).
 //
 // Outcome on ground truth (never shown to the mission): the first crossing of the true gap plane
 // (the scene's "gap" object, z_G from the approach side to the far side), whether B's origin was
@@ -18,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "config/param_reader.h"
 #include "planning/gap_mission/gap_mission.h"
 #include "sim/scenario/scenario.h"
 #include "sim/sitl/sitl_runner.h"
@@ -26,14 +28,14 @@ namespace aperture::apps {
 
 class SimGapMission {
  public:
-  // Removes the `mission.*` items from *set_items (the scenario loader rejects unknown sections)
-  // and returns them.
-  static std::vector<std::string> TakeMissionSetItems(std::vector<std::string>* set_items);
-
-  // Throws std::invalid_argument naming the --set item for a bad mission parameter.
+  // Mission parameters: what the scenario defines (GapMissionParamsFor), then the keys of
+  // `mission_config` (the `mission` section). Throws std::invalid_argument naming the file or
+  // --set item of a bad mission parameter.
   SimGapMission(const sim::Scenario& scenario, const sim::SitlRunnerParams& params,
-                const std::vector<std::string>& mission_set_items);
+                config::ParamReader& mission_config);
 
+  // The effective mission parameters (every field; config::DumpParams writes them).
+  const planning::GapMissionParams& params() const { return params_; }
   planning::GapMission& mission() { return *mission_; }
   // The latest detection's 16 corner segments and the phase, drawn onto the onboard image.
   void DrawOverlay(cv::Mat* onboard_bgr) const;
@@ -44,6 +46,7 @@ class SimGapMission {
   std::string OutcomeLine(const nlohmann::json& summary) const;
 
  private:
+  planning::GapMissionParams params_;
   std::unique_ptr<planning::GapMission> mission_;
 };
 
