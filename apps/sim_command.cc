@@ -35,6 +35,7 @@
 #include "output/html_report.h"
 #include "output/progress_bar.h"
 #include "output/svg_plot.h"
+#include "planning/gap_mission/gap_mission_params_io.h"
 #include "sim/scenario/scenario.h"
 #include "sim/scenario/scenario_sitl.h"
 #include "sim/sitl/ground_truth_autopilot.h"
@@ -217,6 +218,8 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
                        {"autopilot", result.autopilot_name}};
   // The full effective configuration: `--config OUT/summary.json` flies this run again.
   sim::PutEffectiveSitlBlocks(scenario_params, &tree);
+  tree.PutParams("imu", params.imu);  // with the noise seeds SetSeed derived from `seed`
+  tree.PutParams("range", params.range);
   if (mission) tree.PutParams("mission", mission->params());
   summary["config"] = nlohmann::json::parse(tree.ToJson());
   AddSitlRunSummary(result, &summary);
