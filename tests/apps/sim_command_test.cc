@@ -142,15 +142,15 @@ TEST(SimCommand, SummaryConfigurationReproducesTheGapFlightByteForByte) {
   TempFolder temp("sim_reproduce");
   const auto run = [&](const std::string& name, const std::string& arguments) {
     const fs::path out = fs::path(temp.path()) / name;
-    const CommandResult result =
-        RunAperture("sim gap --duration 1.2 --video-every 100 " + arguments + " --out " +
-                    out.string());
+    const CommandResult result = RunAperture("sim gap --duration 1.2 --video-every 100 " +
+                                             arguments + " --out " + out.string());
     EXPECT_EQ(result.exit_code, 0) << result.output;
     return out;
   };
   const fs::path first =
-      run("first", "--seed 4 --set gap.roll_deg=20 --set mission.hover_s=0.3 "
-                   "--set mission.controller.p_xy_per_s2=6 --set imu.accel_noise_density=0.01");
+      run("first",
+          "--seed 4 --set gap.roll_deg=20 --set mission.hover_s=0.3 "
+          "--set mission.controller.p_xy_per_s2=6 --set imu.accel_noise_density=0.01");
   const nlohmann::json config = ReadJson(first / "summary.json")["config"];
   EXPECT_EQ(config["seed"], 4);
   EXPECT_EQ(config["gap"]["roll_deg"], 20);

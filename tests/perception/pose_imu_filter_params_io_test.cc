@@ -7,9 +7,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "perception/gap/gap_detector_params_io.h"
 #include "tests/support/message_of.h"
 #include "tests/support/param_round_trip.h"
-#include "perception/gap/gap_detector_params_io.h"
 
 namespace aperture::perception {
 namespace {

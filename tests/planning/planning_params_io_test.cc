@@ -5,8 +5,9 @@
 
 #include <stdexcept>
 #include <string>
-#include "tests/support/param_round_trip.h"
+
 #include "planning/gap_mission/gap_mission_params_io.h"
+#include "tests/support/param_round_trip.h"
 
 namespace aperture::planning {
 namespace {
