@@ -39,6 +39,7 @@
 #include "sim/scenario/scenario.h"
 #include "sim/scenario/scenario_sitl.h"
 #include "sim/sitl/ground_truth_autopilot.h"
+#include "sim/sim_params_io.h"
 #include "sim/sitl/sitl_runner.h"
 
 namespace aperture::apps {
