@@ -5,12 +5,12 @@
 //
 // NAME is a built-in scenario (sim/scenario); --config/--set override its keys (a summary.json of
 // an earlier run as --config: its full effective configuration, the same flight). The vehicle
-// starts at the scenario's start pose and the ground-truth autopilot holds it there, except `gap`:
-// the vision gap mission (apps/sim_gap_mission.h; parameters via --set mission.<key>=<value>, its
-// outcome in summary.json "mission"), and `led`: the LED-stabilized hover (LED pose + IMU only,
-// experiments/led/led_hover_flight.h; parameters in `mission` too,
-// experiments/led/led_hover_flight_params_io.h; summary key `led_hover`, report plots of position
-// vs set-point and estimate vs ground truth). Writes OUT/summary.json (outcome, crash reason and
+// starts at the scenario's start pose and flies a mission of the registry
+// (experiments/missions/builtin_missions.h): --mission (or mission.name), else the scenario's
+// default (`gap`: the vision gap mission, `led`: the LED-stabilized hover, others: a ground-truth
+// hover), with its parameters from the `mission` section (--set mission.<key>=<value>); its
+// ground-truth evaluation goes into summary.json "mission" (name, passed, its figures) and its
+// report sections into report.html. Writes OUT/summary.json (outcome, crash reason and
 // contact point, real_time_factor, timing, hover errors, frame statistics), OUT/trajectory.csv
 // and OUT/trajectory.tum (ground truth), OUT/commands.csv, OUT/imu.csv, OUT/sim.mp4 (or .avi: the
 // onboard camera with overlays beside a third-person view from behind the vehicle) and
@@ -27,18 +27,17 @@
 #include "apps/chase_view.h"
 #include "apps/command_support.h"
 #include "apps/commands.h"
-#include "apps/sim_gap_mission.h"
+#include "apps/path_views.h"
 #include "apps/sitl_outputs.h"
+#include "config/config_tree.h"
 #include "experiments/led/led_hover_flight.h"
-#include "experiments/led/led_hover_flight_params_io.h"
+#include "experiments/missions/builtin_missions.h"
 #include "output/background_video_writer.h"
 #include "output/html_report.h"
 #include "output/progress_bar.h"
 #include "output/svg_plot.h"
-#include "planning/gap_mission/gap_mission_params_io.h"
 #include "sim/scenario/scenario.h"
 #include "sim/scenario/scenario_sitl.h"
-#include "sim/sitl/ground_truth_autopilot.h"
 #include "sim/sim_params_io.h"
 #include "sim/sitl/sitl_runner.h"
 
@@ -48,6 +47,7 @@ namespace {
 struct SimOptions {
   CommonOptions common;
   std::string scenario;
+  std::string mission;  // empty: the scenario's default
   std::optional<std::uint64_t> seed;
   double duration_s = 10.0;
   int video_every = 2;  // camera frames per video frame (30 Hz camera: 15 frames/s video)
@@ -82,13 +82,44 @@ std::string Format(const char* format, double a, double b = 0.0, double c = 0.0)
 
 nlohmann::json Vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
+// The verdict a reader looks for: the mission's own ground-truth evaluation (passed the gap, held
+// the hover, ...), and the headline figures.
+output::ReportOutcome SimOutcome(const sim::SitlResult& result, const nlohmann::json& summary,
+                                 const experiments::MissionEvaluation& evaluation) {
+  output::ReportOutcome outcome;
+  outcome.verdict = evaluation.passed ? "passed" : "failed";
+  outcome.headline = evaluation.outcome + Format(" (%.2f s simulated)", result.sim_time_s);
+  const nlohmann::json& figures = evaluation.figures;
+  if (figures.contains("error_at_gap")) {
+    const nlohmann::json& p = figures["error_at_gap"]["position_m"];
+    outcome.figures.push_back({"position error at the gap (x, y, z)",
+                               Format("%.1f, %.1f, %.1f cm", 100 * p[0].get<double>(),
+                                      100 * p[1].get<double>(), 100 * p[2].get<double>()),
+                               "seed 000 Table I: mean |error| 4, 4, 3 cm"});
+  }
+  outcome.figures.push_back(
+      {"hover error from the start (RMS / max)",
+       Format("%.1f / %.1f cm", 100 * summary["hover_error_m"]["rms"].get<double>(),
+              100 * summary["hover_error_m"]["max"].get<double>()),
+       ""});
+  if (result.collision) {
+    outcome.figures.push_back({"collision", result.collision->object_name, "none"});
+  }
+  outcome.figures.push_back({"real-time factor", Format("%.2f", result.real_time_factor), ""});
+  return outcome;
+}
+
 void WriteReport(const sim::SitlResult& result, const std::vector<cv::Mat>& key_frames,
-                 const std::string& title, output::OutputFolder& out,
-                 const std::function<void(output::HtmlReport*)>& add_flight_sections) {
+                 const std::string& title, const sim::Scenario& scenario, output::OutputFolder& out,
+                 const experiments::MissionFlight& flight,
+                 const experiments::MissionEvaluation& evaluation) {
   output::HtmlReport report(title);
-  report.AddSection("Summary");
-  report.AddTable(out.summary());
-  if (add_flight_sections) add_flight_sections(&report);
+  report.AddOutcome(SimOutcome(result, out.summary(), evaluation));
+  report.AddRunDescription(out.summary(), out.ElapsedSeconds());
+  std::vector<std::string> riding_on_vehicle = scenario.AttachedObjectNames();
+  riding_on_vehicle.push_back(ChaseView::kMarkerName);
+  AddPathViews(result.trajectory, scenario.scene(), riding_on_vehicle, &report);
+  flight.AddReportSections(evaluation, result, &report);
   std::vector<double> t, x, y, z;
   for (const control::QuadState& s : result.trajectory) {
     t.push_back(s.t_s);
@@ -109,25 +140,23 @@ void WriteReport(const sim::SitlResult& result, const std::vector<cv::Mat>& key_
       report.AddImage(frame, "", output::HtmlReport::ImageEncoding::kJpeg);
     }
   }
+  report.AddCollapsedTable(out.summary(), "Every figure of summary.json");
   report.Write(out.Path("report.html"));
 }
 
 void RunSim(const SimOptions& options, output::OutputFolder& out) {
   std::vector<std::string> set_items = options.common.set_items;
-  const bool gap_mission = options.scenario == "gap";
   if (options.seed) set_items.push_back("seed=" + std::to_string(*options.seed));
   config::ConfigTree tree =
       sim::ScenarioConfig(options.scenario, options.common.config_files, set_items);
   config::ParamReader root = tree.Reader();
   sim::ScenarioParams scenario_params;
   LoadParams(root, &scenario_params);
-  // The parameters of the gap mission and the LED hover are the `mission` section; the ground-truth
-  // hover of the other scenarios has none.
-  const bool led_hover = scenario_params.scenario == "led";
-  config::ParamReader mission_config = gap_mission || led_hover
-                                           ? root.Section("mission")
-                                           : config::ParamReader(YAML::Node(), "no mission");
+  // The `mission` section: which mission (`name`; --mission wins) and its parameters.
+  config::ParamReader mission_params = root.Section("mission");
   root.RejectUnknownKeys();
+  std::string mission_name = options.mission;
+  if (mission_name.empty()) mission_params.Read("name", &mission_name);
   sim::Scenario scenario = sim::BuildScenario(scenario_params);
 
   sim::SitlRunnerParams params;
@@ -135,7 +164,6 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
   params.trajectory_decimation = 5;  // 200 Hz ground truth in the outputs
   sim::ConfigureSitlFromScenario(scenario, &params);
   for (sim::SitlCamera& camera : params.cameras) camera.render.ground_truth = false;
-  const Eigen::Isometry3d T_WB_start = scenario.T_WB_start();
   params.SetSeed(scenario_params.seed);
   // The video shows the first body-mounted camera (else the first camera) beside a third-person
   // view of the same height.
@@ -147,27 +175,13 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
   ChaseView chase(options.chase, view_height, &scenario.scene());
   params.collision.ignored_objects.push_back(ChaseView::kMarkerName);
 
+  experiments::MissionRegistry missions;
+  experiments::RegisterBuiltinMissions(missions);
+  if (mission_name.empty()) mission_name = missions.DefaultFor(scenario_params.scenario);
+  const std::unique_ptr<experiments::MissionFlight> flight =
+      missions.Create(mission_name, {scenario, params, mission_params});
+  perception::Autopilot& autopilot = flight->autopilot();
   sim::SitlRunner runner(params, &scenario.scene());
-  sim::GroundTruthAutopilotParams autopilot_params;
-  autopilot_params.waypoints.push_back(
-      sim::Waypoint{params.initial_state.p_WB,
-                    std::atan2(T_WB_start.linear()(1, 0), T_WB_start.linear()(0, 0)), 0.0});
-  sim::GroundTruthAutopilot ground_truth_autopilot(params.dynamics.vehicle, autopilot_params);
-  // Scenario flights: `gap` flies the gap mission, `led` holds the start from the LED pose + IMU
-  // (experiments/led); the others hover on ground truth.
-  std::unique_ptr<SimGapMission> mission;
-  if (gap_mission) mission = std::make_unique<SimGapMission>(scenario, params, mission_config);
-  std::unique_ptr<experiments::LedHoverFlight> led_flight;
-  if (led_hover) {
-    experiments::LedHoverFlightParams led_params;
-    LoadParams(mission_config, &led_params);
-    tree.PutParams("mission", led_params);
-    led_flight = std::make_unique<experiments::LedHoverFlight>(scenario, params, led_params);
-  }
-  perception::Autopilot& autopilot =
-      mission     ? static_cast<perception::Autopilot&>(mission->mission())
-      : led_flight ? led_flight->autopilot()
-                   : static_cast<perception::Autopilot&>(ground_truth_autopilot);
 
   std::unique_ptr<output::BackgroundVideoWriter> video;
   std::vector<cv::Mat> key_frames;
@@ -194,7 +208,7 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
              {params.cameras[primary].name + Format("  t = %.2f s", state.t_s),
               Format("p = [%.2f %.2f %.2f] m", state.p_WB.x(), state.p_WB.y(), state.p_WB.z()),
               Format("|v| = %.2f m/s", state.v_W.norm()), autopilot.status()});
-    if (mission) mission->DrawOverlay(&onboard);
+    flight->DrawOverlay(onboard);
     const bool key_frame = video_frames % key_frame_every == 0;
     cv::Mat composite;
     cv::hconcat(onboard, chase.Update(video_frames, state, key_frame), composite);
@@ -214,6 +228,7 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
   nlohmann::json& summary = out.summary();
   summary["command"] = "sim";
   summary["inputs"] = {{"scenario", options.scenario},
+                       {"mission", mission_name},
                        {"seed", scenario_params.seed},
                        {"duration_s", options.duration_s},
                        {"autopilot", result.autopilot_name}};
@@ -221,7 +236,9 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
   sim::PutEffectiveSitlBlocks(scenario_params, &tree);
   tree.PutParams("imu", params.imu);  // with the noise seeds SetSeed derived from `seed`
   tree.PutParams("range", params.range);
-  if (mission) tree.PutParams("mission", mission->params());
+  YAML::Node mission_config = flight->EffectiveParams();
+  mission_config["name"] = mission_name;
+  tree.Put("mission", mission_config, "effective configuration");
   summary["config"] = nlohmann::json::parse(tree.ToJson());
   AddSitlRunSummary(result, &summary);
   summary["timing"]["chase_render_s"] = chase.render_s();  // part of hooks_s
@@ -235,14 +252,10 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
                             {"part", result.collision->part},
                             {"contact_p_W_m", Vec(result.collision->contact_p_W)}};
   }
-  double max_error_m = 0.0, sum_squared = 0.0;
-  for (const control::QuadState& s : result.trajectory) {
-    const double e = (s.p_WB - params.initial_state.p_WB).norm();
-    max_error_m = std::max(max_error_m, e);
-    sum_squared += e * e;
-  }
-  summary["hover_error_m"] = {{"max", max_error_m},
-                              {"rms", std::sqrt(sum_squared / result.trajectory.size())}};
+  const experiments::HoverMetrics hover = experiments::ComputeHoverMetrics(
+      result.trajectory, params.initial_state.p_WB, {}, /*recovery_radius_m=*/0.1,
+      /*recovery_hold_s=*/1.0);
+  summary["hover_error_m"] = {{"max", hover.max_error_m}, {"rms", hover.rms_error_m}};
   nlohmann::json cameras = nlohmann::json::array();
   for (const sim::SitlCameraStats& c : result.cameras) {
     cameras.push_back({{"name", c.name},
@@ -251,7 +264,11 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
                        {"frames_delivered", c.frames_delivered}});
   }
   summary["cameras"] = cameras;
-  if (mission) summary["mission"] = mission->Summary(result, scenario);
+  const experiments::MissionEvaluation evaluation = flight->Evaluate(result);
+  nlohmann::json& mission_summary = summary["mission"];
+  mission_summary = evaluation.figures;
+  mission_summary["name"] = mission_name;
+  mission_summary["passed"] = evaluation.passed;
   WriteSitlTimeSeries(result, out);
   nlohmann::json outputs = {{"trajectory", "trajectory.csv"},
                             {"tum", "trajectory.tum"},
@@ -264,20 +281,12 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
     }
   }
   summary["outputs"] = outputs;
-  std::function<void(output::HtmlReport*)> add_flight_sections;
-  if (led_flight) {
-    const experiments::LedHoverFlightResult led =
-        led_flight->Finish(result, params.disturbances.pushes);
-    summary["led_hover"] = experiments::LedHoverSummary(led);
-    add_flight_sections = [led](output::HtmlReport* report) {
-      experiments::AddLedHoverReport(led, report);
-    };
-  }
-  WriteReport(result, key_frames, "aperture sim: " + options.scenario, out, add_flight_sections);
+  WriteReport(result, key_frames, "aperture sim: " + options.scenario, scenario, out, *flight,
+              evaluation);
   std::cout << "aperture sim " << options.scenario << ": " << sim::ToString(result.outcome) << " ("
             << result.reason << ") after " << result.sim_time_s << " s, real-time factor "
             << result.real_time_factor << "\n";
-  if (mission) std::cout << mission->OutcomeLine(summary["mission"]) << "\n";
+  std::cout << evaluation.outcome << "\n";
 }
 
 }  // namespace
@@ -288,6 +297,8 @@ void AddSimCommand(CLI::App& app, int* exit_code) {
       app.add_subcommand("sim", "Fly a scenario closed-loop in the rendered simulator (SITL)");
   command->add_option("scenario", options->scenario,
                       "Built-in scenario name (see aperture render); or a flow below");
+  command->add_option("--mission", options->mission,
+                      "Mission to fly (gap, led_hover, hover); default: the scenario's own");
   command->add_option("--seed", options->seed, "Seed of the scenario and every sensor stream");
   command->add_option("--duration", options->duration_s, "Simulated time [s]")
       ->check(CLI::PositiveNumber);

@@ -153,6 +153,7 @@ TEST(SimCommand, SummaryConfigurationReproducesTheGapFlightByteForByte) {
           "--set mission.controller.p_xy_per_s2=6 --set imu.accel_noise_density=0.01");
   const nlohmann::json config = ReadJson(first / "summary.json")["config"];
   EXPECT_EQ(config["seed"], 4);
+  EXPECT_EQ(config["mission"]["name"], "gap");
   EXPECT_EQ(config["gap"]["roll_deg"], 20);
   EXPECT_EQ(config["mission"]["hover_s"], 0.3);
   EXPECT_EQ(config["mission"]["controller"]["p_xy_per_s2"], 6);
@@ -171,6 +172,27 @@ TEST(SimCommand, SummaryConfigurationReproducesTheGapFlightByteForByte) {
   // The comparison sees a change: the same configuration with another seed flies differently.
   const fs::path reseeded = run("reseeded", "--config " + summary + " --seed 5");
   EXPECT_NE(ReadFile(reseeded / "trajectory.csv"), trajectory);
+}
+
+// The mission a run flew is part of its configuration: --mission is recorded as mission.name, so
+// the summary flies the same (non-default) mission again.
+TEST(SimCommand, SummaryConfigurationKeepsTheMissionChosenOnTheCommandLine) {
+  TempFolder temp("sim_mission_name");
+  const auto run = [&](const std::string& name, const std::string& arguments) {
+    const fs::path out = fs::path(temp.path()) / name;
+    const CommandResult result =
+        RunAperture("sim gap --duration 0.3 --video-every 100 --set cameras.front.width=94 "
+                    "--set cameras.front.height=60 " +
+                    arguments + " --out " + out.string());
+    EXPECT_EQ(result.exit_code, 0) << result.output;
+    return ReadJson(out / "summary.json");
+  };
+  const nlohmann::json first = run("first", "--mission hover");
+  EXPECT_EQ(first["mission"]["name"], "hover");
+  EXPECT_EQ(first["config"]["mission"]["name"], "hover");
+  const std::string summary = (fs::path(temp.path()) / "first" / "summary.json").string();
+  EXPECT_EQ(run("again", "--config " + summary)["mission"]["name"], "hover");
+  EXPECT_EQ(run("default", "")["mission"]["name"], "gap");
 }
 
 }  // namespace
