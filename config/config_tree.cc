@@ -63,9 +63,15 @@ std::string JsonScalar(const YAML::Node& node) {
   if (node.Tag() == "!") return JsonString(text);
   if (text == "true" || text == "false") return text;
   if (text.empty() || text == "null" || text == "~") return "null";
-  // Integers verbatim (a 64-bit seed does not survive a trip through double).
-  static const std::regex kInteger(R"([-+]?[0-9]{1,18})");
-  if (std::regex_match(text, kInteger)) return std::to_string(std::stoll(text));
+  // Integers exactly, up to the full 64-bit range of a seed (which a double would round); larger
+  // ones fall through to the decimal form.
+  static const std::regex kInteger(R"([-+]?[0-9]{1,20})");
+  if (std::regex_match(text, kInteger)) {
+    try {
+      return text[0] == '-' ? std::to_string(std::stoll(text)) : std::to_string(std::stoull(text));
+    } catch (const std::out_of_range&) {
+    }
+  }
   static const std::regex kDecimal(R"([-+]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][-+]?[0-9]+)?)");
   if (std::regex_match(text, kDecimal)) {
     // Re-print so YAML spellings JSON rejects ("+1", ".5", "1.") come out valid.

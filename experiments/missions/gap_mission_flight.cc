@@ -87,8 +87,8 @@ class GapMissionFlight final : public MissionFlight {
       line[0] = '\0';
     }
     out.outcome = std::string("gap mission: ") +
-                  (out.passed ? "passed the gap" : "did NOT pass the gap (" +
-                                                       evaluation.failure_reason + ")") +
+                  (out.passed ? "passed the gap"
+                              : "did NOT pass the gap (" + evaluation.failure_reason + ")") +
                   ", phase " + planning::ToString(m.phase()) + line;
     return out;
   }

@@ -12,6 +12,8 @@
 //
 // Autopilots themselves live in planning/ (flown from sensors only) or, for ground-truth
 // references, in sim/; a MissionFlight only builds one and scores its flight.
+#include <yaml-cpp/yaml.h>
+
 #include <functional>
 #include <map>
 #include <memory>
@@ -19,7 +21,6 @@
 #include <opencv2/core/mat.hpp>
 #include <string>
 #include <vector>
-#include <yaml-cpp/yaml.h>
 
 #include "config/param_reader.h"
 #include "output/html_report.h"
@@ -43,7 +44,7 @@ struct MissionContext {
 // A mission's outcome on ground truth.
 struct MissionEvaluation {
   bool passed = false;
-  std::string outcome;    // one line for the terminal, e.g. "passed the gap, error [...] m"
+  std::string outcome;     // one line for the terminal, e.g. "passed the gap, error [...] m"
   nlohmann::json figures;  // summary.json "mission" (with "passed" added by the caller)
 };
 

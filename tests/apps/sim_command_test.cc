@@ -180,10 +180,10 @@ TEST(SimCommand, SummaryConfigurationKeepsTheMissionChosenOnTheCommandLine) {
   TempFolder temp("sim_mission_name");
   const auto run = [&](const std::string& name, const std::string& arguments) {
     const fs::path out = fs::path(temp.path()) / name;
-    const CommandResult result =
-        RunAperture("sim gap --duration 0.3 --video-every 100 --set cameras.front.width=94 "
-                    "--set cameras.front.height=60 " +
-                    arguments + " --out " + out.string());
+    const CommandResult result = RunAperture(
+        "sim gap --duration 0.3 --video-every 100 --set cameras.front.width=94 "
+        "--set cameras.front.height=60 " +
+        arguments + " --out " + out.string());
     EXPECT_EQ(result.exit_code, 0) << result.output;
     return ReadJson(out / "summary.json");
   };
