@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "config/yaml_write_archive.h"
 #include "output/json_eigen.h"
 #include "perception/mono_depth/mono_depth_estimator.h"
 #include "planning/mono_nav/forest_mission_params_io.h"
@@ -80,15 +81,20 @@ class ForestFlight final : public MissionFlight {
     params_.fusion.filter.gyro_noise_density = imu.gyro_noise_density;
     params_.fusion.filter.accel_bias_random_walk = imu.accel_bias_random_walk;
     params_.fusion.filter.gyro_bias_random_walk = imu.gyro_bias_random_walk;
-    sim::OdometrySensorParams odometry;
-    odometry.seed = context.scenario.params().seed * 7919 + 17;
-    context.params.ReadSection("odometry", &odometry);
-    planning::LoadParams(context.params, &params_);
+    odometry_.seed = context.scenario.params().seed * 7919 + 17;
+    context.params.ReadSection("odometry", &odometry_);
+    LoadParams(context.params, &params_);  // config::LoadParams: reads, rejects, validates
     const sim::ScenarioCamera& camera = context.scenario.cameras()[params_.camera_id];
     mission_ = std::make_unique<planning::ForestMission>(params_, camera.model, *camera.T_BC,
                                                          context.sitl.dynamics.vehicle,
                                                          perception::DefaultMonoDepthModel());
-    adapter_ = std::make_unique<OdometryAdapter>(mission_.get(), odometry);
+    adapter_ = std::make_unique<OdometryAdapter>(mission_.get(), odometry_);
+  }
+
+  YAML::Node EffectiveParams() const override {
+    YAML::Node node = config::DumpParams(params_);
+    node["odometry"] = config::DumpParams(odometry_);
+    return node;
   }
 
   perception::Autopilot& autopilot() override { return *adapter_; }
@@ -143,6 +149,7 @@ class ForestFlight final : public MissionFlight {
  private:
   const sim::Scene& scene_;
   planning::ForestMissionParams params_;
+  sim::OdometrySensorParams odometry_;
   std::unique_ptr<planning::ForestMission> mission_;
   std::unique_ptr<OdometryAdapter> adapter_;
 };

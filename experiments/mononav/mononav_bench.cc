@@ -15,6 +15,7 @@
 #include "output/progress_bar.h"
 #include "output/svg_plot.h"
 #include "sim/scenario/scenario.h"
+#include "sim/scenario/scenario_params.h"
 #include "sim/scenario/scenario_sitl.h"
 #include "sim/sitl/sitl_runner.h"
 
@@ -48,14 +49,18 @@ const std::vector<std::string> kQuickCourse = {"forest.trees=0",
 
 Flight Fly(const MononavBenchOptions& options, const Configuration& configuration,
            std::uint64_t seed) {
-  std::vector<std::string> set_items = options.set_items;
-  if (options.quick) set_items.insert(set_items.begin(), kQuickCourse.begin(), kQuickCourse.end());
-  std::vector<std::string> mission_items = TakeMissionSetItems(&set_items);
-  mission_items.insert(mission_items.end(), configuration.mission_items.begin(),
-                       configuration.mission_items.end());
+  std::vector<std::string> set_items;
+  if (options.quick) set_items = kQuickCourse;
+  set_items.insert(set_items.end(), options.set_items.begin(), options.set_items.end());
+  set_items.insert(set_items.end(), configuration.mission_items.begin(),
+                   configuration.mission_items.end());
   set_items.push_back("seed=" + std::to_string(seed));
-  const sim::ScenarioParams scenario_params =
-      sim::LoadScenarioParams(sim::ScenarioConfig("forest", {}, set_items));
+  const config::ConfigTree tree = sim::ScenarioConfig("forest", {}, set_items);
+  config::ParamReader root = tree.Reader();
+  sim::ScenarioParams scenario_params;
+  LoadParams(root, &scenario_params);
+  config::ParamReader mission_params = root.Section("mission");
+  root.RejectUnknownKeys();
   sim::Scenario scenario = sim::BuildScenario(scenario_params);
   sim::SitlRunnerParams params;
   params.duration_s = options.duration_s;
@@ -66,12 +71,8 @@ Flight Fly(const MononavBenchOptions& options, const Configuration& configuratio
 
   MissionRegistry missions;
   RegisterBuiltinMissions(missions);
-  const config::ConfigTree tree = config::ConfigTree::FromCommandLine("", {}, mission_items);
-  config::ParamReader root = tree.Reader();
-  config::ParamReader mission_params = root.Section("mission");
   const std::unique_ptr<MissionFlight> flight =
       missions.Create("forest", {scenario, params, mission_params});
-  root.RejectUnknownKeys();
   sim::SitlRunner runner(params, &scenario.scene());
   const sim::SitlResult result = runner.Run(flight->autopilot(), sim::MakeScenarioHooks(&scenario));
   Flight out;
