@@ -26,6 +26,7 @@
 #include "perception/graph/parallel_executor.h"
 #include "perception/graph/serial_executor.h"
 #include "perception/io/open_frame_source.h"
+#include "servo/visp_tag_detector.h"
 
 namespace aperture::apps {
 namespace {
@@ -51,6 +52,8 @@ void RunFrontEnds(const RunOptions& options, output::OutputFolder& out) {
   if (!options.calibration_path.empty()) {
     resources.calibration = perception::LoadCameraCalibration(options.calibration_path);
   }
+  resources.output_directory = out.directory();
+  resources.tag_detectors.Register(servo::kVispTagDetectorName, &servo::CreateVispTagDetector);
   perception::FrontEndRegistry registry;
   perception::RegisterBuiltinFrontEnds(registry);
   // Each front end reads the config section named after it; any other section is a typo.
@@ -139,6 +142,7 @@ void RunFrontEnds(const RunOptions& options, output::OutputFolder& out) {
                              source->Describe() + ")");
   }
   csv->Close();
+  const std::map<std::string, std::string> front_end_files = graph.Finish();
 
   summary["frames"] = record.frame_count();
   summary["skipped_frames"] = source->SkippedFrames().size();
@@ -150,6 +154,7 @@ void RunFrontEnds(const RunOptions& options, output::OutputFolder& out) {
   summary["timing"] = TimingJson(executor->Timing(), executor->FrameTiming());
   summary["metrics"] = record.MetricStatistics(metric_names);
   nlohmann::json outputs = {{"csv", "frames.csv"}, {"report", "report.html"}};
+  for (const auto& [key, file] : front_end_files) outputs[key] = file;
   summary["poses"] = pose_streams.Close();
   if (video) {
     if (const std::optional<std::string> path = video->Close()) {

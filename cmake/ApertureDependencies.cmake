@@ -10,6 +10,10 @@ find_package(GTest REQUIRED)
 find_package(benchmark REQUIRED)
 # libapriltag-dev ships a CMake config (target apriltag::apriltag, includes <apriltag/...>).
 find_package(apriltag REQUIRED)
+# libceres-dev: the tag map's pose graph (perception/tags/tag_map.cc).
+find_package(Ceres REQUIRED)
+# libvisp-dev: ViSP 3.5, linked by servo/ only (DESIGN.md).
+find_package(VISP REQUIRED COMPONENTS core detection)
 
 set(APERTURE_OPENCV_CORE opencv_core opencv_imgproc opencv_imgcodecs)
 set(APERTURE_OPENCV_ALL opencv_core opencv_imgproc opencv_imgcodecs opencv_videoio opencv_calib3d

@@ -1,0 +1,114 @@
+#include "perception/tags/tag_flip_resolver.h"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "perception/led/se3_twist.h"
+
+namespace aperture::perception {
+
+std::string FlipDecisionName(FlipDecision decision) {
+  switch (decision) {
+    case FlipDecision::kSingle:
+      return "single";
+    case FlipDecision::kUnambiguous:
+      return "unambiguous";
+    case FlipDecision::kCoplanar:
+      return "coplanar";
+    case FlipDecision::kTemporal:
+      return "temporal";
+    case FlipDecision::kLowestError:
+      return "lowest_error";
+  }
+  return "unknown";
+}
+
+TagFlipResolver::TagFlipResolver(const TagFlipResolverParams& params) : params_(params) {
+  if (!(params.max_ambiguity_ratio >= 0.0 && params.max_ambiguity_ratio <= 1.0)) {
+    throw std::invalid_argument("apriltag.flip.max_ambiguity_ratio = " +
+                                std::to_string(params.max_ambiguity_ratio) + " must be in [0, 1]");
+  }
+  if (!(params.coplanar_tolerance_deg >= 0.0) || !(params.max_track_gap_s >= 0.0)) {
+    throw std::invalid_argument(
+        "apriltag.flip: coplanar_tolerance_deg and max_track_gap_s must be >= 0");
+  }
+}
+
+bool TagFlipResolver::ChooseCoplanar(const TagPose& pose,
+                                     const std::vector<Eigen::Vector3d>& references,
+                                     FlipChoice* choice) const {
+  if (references.empty() || params_.coplanar_tolerance_deg <= 0.0) return false;
+  const double cos_tolerance = std::cos(params_.coplanar_tolerance_deg * M_PI / 180.0);
+  auto fits = [&](const Eigen::Isometry3d& T_CT) {
+    const Eigen::Vector3d normal_C = T_CT.linear().col(2);
+    for (const Eigen::Vector3d& reference : references) {
+      if (normal_C.dot(reference) >= cos_tolerance) return true;
+    }
+    return false;
+  };
+  const bool best_fits = fits(pose.best.T_CT);
+  const bool alternative_fits = fits(pose.alternative->T_CT);
+  if (best_fits == alternative_fits) return false;
+  choice->use_alternative = alternative_fits;
+  choice->decision = FlipDecision::kCoplanar;
+  return true;
+}
+
+std::vector<FlipChoice> TagFlipResolver::Resolve(double t_s,
+                                                 const std::vector<TagPoseInImage>& tags) {
+  const std::size_t n = tags.size();
+  std::vector<FlipChoice> choices(n);
+  std::vector<bool> decided(n, false);
+  auto chosen = [&](std::size_t i) -> const Eigen::Isometry3d& {
+    return choices[i].use_alternative ? tags[i].pose.alternative->T_CT : tags[i].pose.best.T_CT;
+  };
+  // Rule 1: what the image decides.
+  std::vector<Eigen::Vector3d> image_normals;
+  for (std::size_t i = 0; i < n; ++i) {
+    const TagPose& pose = tags[i].pose;
+    if (!pose.alternative) {
+      choices[i].decision = FlipDecision::kSingle;
+    } else if (!params_.enabled || pose.ambiguity_ratio <= params_.max_ambiguity_ratio) {
+      choices[i].decision =
+          params_.enabled ? FlipDecision::kUnambiguous : FlipDecision::kLowestError;
+    } else {
+      continue;
+    }
+    decided[i] = true;
+    image_normals.push_back(pose.best.T_CT.linear().col(2));
+  }
+  // Rules 2 and 3: coplanar with the image's decisions, else the tag's own history.
+  std::vector<Eigen::Vector3d> temporal_normals;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (decided[i]) continue;
+    if (ChooseCoplanar(tags[i].pose, image_normals, &choices[i])) {
+      decided[i] = true;
+      continue;
+    }
+    const auto track = tracks_.find({tags[i].family, tags[i].id});
+    if (track != tracks_.end() && t_s - track->second.t_s <= params_.max_track_gap_s) {
+      const Eigen::Matrix3d& R_previous = track->second.R_CT;
+      const double to_best =
+          LogSo3(R_previous.transpose() * tags[i].pose.best.T_CT.linear()).norm();
+      const double to_alternative =
+          LogSo3(R_previous.transpose() * tags[i].pose.alternative->T_CT.linear()).norm();
+      choices[i] = {to_alternative < to_best, FlipDecision::kTemporal};
+      decided[i] = true;
+      temporal_normals.push_back(chosen(i).linear().col(2));
+    }
+  }
+  // Rules 4 and 5.
+  for (std::size_t i = 0; i < n; ++i) {
+    if (decided[i]) continue;
+    if (!ChooseCoplanar(tags[i].pose, temporal_normals, &choices[i])) {
+      choices[i] = {false, FlipDecision::kLowestError};
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    tracks_[{tags[i].family, tags[i].id}] = {chosen(i).linear(), t_s};
+  }
+  return choices;
+}
+
+}  // namespace aperture::perception

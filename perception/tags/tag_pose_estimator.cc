@@ -1,0 +1,70 @@
+#include "perception/tags/tag_pose_estimator.h"
+
+#include <cmath>
+#include <opencv2/calib3d.hpp>
+#include <stdexcept>
+#include <vector>
+
+#include "perception/led/se3_twist.h"
+
+namespace aperture::perception {
+
+Eigen::Vector3d TagCorner(int k, double tag_size_m) {
+  static constexpr double kSigns[4][2] = {{-1, 1}, {1, 1}, {1, -1}, {-1, -1}};
+  return {kSigns[k][0] * tag_size_m / 2, kSigns[k][1] * tag_size_m / 2, 0.0};
+}
+
+std::optional<TagPose> EstimateTagPose(const CameraModel& camera,
+                                       const std::array<Eigen::Vector2d, 4>& corners_px,
+                                       double tag_size_m, const TagPoseParams& params) {
+  if (!(tag_size_m > 0.0)) {
+    throw std::invalid_argument("EstimateTagPose: tag_size_m = " + std::to_string(tag_size_m) +
+                                " must be > 0 (set apriltag.size_m / apriltag.sizes)");
+  }
+  std::vector<cv::Point3d> object(4);
+  std::vector<cv::Point2d> normalized(4);
+  std::vector<Eigen::Vector3d> p_T(4);
+  std::vector<Eigen::Vector2d> px(corners_px.begin(), corners_px.end());
+  for (int k = 0; k < 4; ++k) {
+    p_T[k] = TagCorner(k, tag_size_m);
+    object[k] = cv::Point3d(p_T[k].x(), p_T[k].y(), 0.0);
+    const Eigen::Vector3d bearing = camera.Unproject(corners_px[k]);
+    if (!(bearing.z() > 1e-9)) return std::nullopt;
+    normalized[k] = cv::Point2d(bearing.x() / bearing.z(), bearing.y() / bearing.z());
+  }
+  // IPPE on the undistorted corners (identity camera matrix: normalized coordinates).
+  std::vector<cv::Mat> rvecs, tvecs;
+  const cv::Matx33d identity = cv::Matx33d::eye();
+  const int solutions = cv::solvePnPGeneric(object, normalized, identity, cv::noArray(), rvecs,
+                                            tvecs, false, cv::SOLVEPNP_IPPE_SQUARE);
+  std::vector<TagPoseCandidate> candidates;
+  for (int s = 0; s < solutions; ++s) {
+    Eigen::Isometry3d T_CT = Eigen::Isometry3d::Identity();
+    T_CT.linear() = ExpSo3(
+        Eigen::Vector3d(rvecs[s].at<double>(0), rvecs[s].at<double>(1), rvecs[s].at<double>(2)));
+    T_CT.translation() =
+        Eigen::Vector3d(tvecs[s].at<double>(0), tvecs[s].at<double>(1), tvecs[s].at<double>(2));
+    const LedPoseRefinement refined = RefineLedPose(camera, p_T, px, T_CT, params.refiner);
+    if (!refined.valid) continue;
+    candidates.push_back({refined.T_CT, refined.covariance, refined.rms_px});
+  }
+  if (candidates.empty()) return std::nullopt;
+  if (candidates.size() == 2 && candidates[1].rms_px < candidates[0].rms_px) {
+    std::swap(candidates[0], candidates[1]);
+  }
+  TagPose pose;
+  pose.best = candidates[0];
+  if (candidates.size() == 2) {
+    const double angle_rad =
+        LogSo3(candidates[0].T_CT.linear().transpose() * candidates[1].T_CT.linear()).norm();
+    if (angle_rad * 180.0 / M_PI >= params.same_solution_deg) {
+      pose.alternative = candidates[1];
+      const double best_sq = pose.best.rms_px * pose.best.rms_px;
+      const double alternative_sq = pose.alternative->rms_px * pose.alternative->rms_px;
+      pose.ambiguity_ratio = alternative_sq > 0.0 ? best_sq / alternative_sq : 1.0;
+    }
+  }
+  return pose;
+}
+
+}  // namespace aperture::perception
