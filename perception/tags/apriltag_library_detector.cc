@@ -2,6 +2,7 @@
 
 #include <apriltag/apriltag.h>
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace aperture::perception {
@@ -15,7 +16,12 @@ AprilTagLibraryDetector::AprilTagLibraryDetector(const TagDetectorParams& params
   detector_ = apriltag_detector_create();
   for (const std::string& family : params_.families) {
     families_.push_back(CreateAprilTagFamily(family));
-    apriltag_detector_add_family_bits(detector_, families_.back().get(), params_.max_hamming);
+    // The quick-decode table holds every code with up to `bits` flipped: for the big families
+    // (41 bits and more) 2 bits means millions of entries (49h12: ~80 M, minutes to build), so
+    // they correct at most 1 bit (the library's advice).
+    const int bits =
+        families_.back()->nbits >= 41 ? std::min(params_.max_hamming, 1) : params_.max_hamming;
+    apriltag_detector_add_family_bits(detector_, families_.back().get(), bits);
   }
   detector_->quad_decimate = static_cast<float>(params_.quad_decimate);
   detector_->quad_sigma = static_cast<float>(params_.quad_sigma);

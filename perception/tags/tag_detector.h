@@ -36,7 +36,9 @@ struct TagDetectorParams {
   int threads = 1;          // the front end runs on one core next to the others
   bool refine_edges = true;
   double decode_sharpening = 0.25;  // the library's default
-  int max_hamming = 2;  // bits corrected at most (the library's default; 36h11 has distance 11)
+  // Bits corrected at most (the library's default; 36h11 has distance 11). Families of 41 bits
+  // and more correct at most 1 (AprilTagLibraryDetector).
+  int max_hamming = 2;
   double min_decision_margin = 0.0;  // weaker decodings are dropped (0: keep all)
 
   // std::invalid_argument naming the field: no family or an unknown one, quad_decimate < 1,

@@ -55,11 +55,52 @@ bool TagFlipResolver::ChooseCoplanar(const TagPose& pose,
   return true;
 }
 
+bool TagFlipResolver::UpdateTrack(double t_s, const TagPoseInImage& tag, bool* had_history) {
+  // A single solution is decisive: the other hypothesis gets this many px^2 of penalty.
+  constexpr double kSinglePenalty_px2 = 100.0;
+  const TagPose& pose = tag.pose;
+  const Eigen::Matrix3d& R_best = pose.best.T_CT.linear();
+  const Eigen::Matrix3d& R_alternative =
+      pose.alternative ? pose.alternative->T_CT.linear() : R_best;
+  const double sse_best = 4.0 * pose.best.rms_px * pose.best.rms_px;
+  const double sse_alternative = pose.alternative
+                                     ? 4.0 * pose.alternative->rms_px * pose.alternative->rms_px
+                                     : sse_best + kSinglePenalty_px2;
+  const auto key = std::make_pair(tag.family, tag.id);
+  auto it = tracks_.find(key);
+  *had_history = it != tracks_.end() && t_s - it->second.t_s <= params_.max_track_gap_s;
+  if (!*had_history) {
+    tracks_[key] = Track{{R_best, R_alternative}, {sse_best, sse_alternative}, t_s};
+    return sse_alternative < sse_best;
+  }
+  Track& track = it->second;
+  auto angle = [](const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
+    return LogSo3(a.transpose() * b).norm();
+  };
+  // best -> hypothesis 0 unless the crossed assignment is closer.
+  const bool crossed = angle(R_best, track.R_CT[1]) + angle(R_alternative, track.R_CT[0]) <
+                       angle(R_best, track.R_CT[0]) + angle(R_alternative, track.R_CT[1]);
+  const int best_hypothesis = crossed ? 1 : 0;
+  track.R_CT[best_hypothesis] = R_best;
+  track.R_CT[1 - best_hypothesis] = R_alternative;
+  track.cost[best_hypothesis] += sse_best;
+  track.cost[1 - best_hypothesis] += sse_alternative;
+  track.t_s = t_s;
+  return track.cost[1 - best_hypothesis] < track.cost[best_hypothesis];
+}
+
 std::vector<FlipChoice> TagFlipResolver::Resolve(double t_s,
                                                  const std::vector<TagPoseInImage>& tags) {
   const std::size_t n = tags.size();
   std::vector<FlipChoice> choices(n);
   std::vector<bool> decided(n, false);
+  // Every tag's track is updated first: the evidence of this frame counts for the temporal rule.
+  std::vector<bool> temporal_alternative(n), has_history(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    bool history = false;
+    temporal_alternative[i] = UpdateTrack(t_s, tags[i], &history);
+    has_history[i] = history;
+  }
   auto chosen = [&](std::size_t i) -> const Eigen::Isometry3d& {
     return choices[i].use_alternative ? tags[i].pose.alternative->T_CT : tags[i].pose.best.T_CT;
   };
@@ -84,16 +125,8 @@ std::vector<FlipChoice> TagFlipResolver::Resolve(double t_s,
     if (decided[i]) continue;
     if (ChooseCoplanar(tags[i].pose, image_normals, &choices[i])) {
       decided[i] = true;
-      continue;
-    }
-    const auto track = tracks_.find({tags[i].family, tags[i].id});
-    if (track != tracks_.end() && t_s - track->second.t_s <= params_.max_track_gap_s) {
-      const Eigen::Matrix3d& R_previous = track->second.R_CT;
-      const double to_best =
-          LogSo3(R_previous.transpose() * tags[i].pose.best.T_CT.linear()).norm();
-      const double to_alternative =
-          LogSo3(R_previous.transpose() * tags[i].pose.alternative->T_CT.linear()).norm();
-      choices[i] = {to_alternative < to_best, FlipDecision::kTemporal};
+    } else if (has_history[i]) {
+      choices[i] = {temporal_alternative[i], FlipDecision::kTemporal};
       decided[i] = true;
       temporal_normals.push_back(chosen(i).linear().col(2));
     }
@@ -104,9 +137,6 @@ std::vector<FlipChoice> TagFlipResolver::Resolve(double t_s,
     if (!ChooseCoplanar(tags[i].pose, temporal_normals, &choices[i])) {
       choices[i] = {false, FlipDecision::kLowestError};
     }
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    tracks_[{tags[i].family, tags[i].id}] = {chosen(i).linear(), t_s};
   }
   return choices;
 }

@@ -8,8 +8,12 @@
 //   coplanar     exactly one candidate's normal z_T (in C) lies within coplanar_tolerance_deg of
 //                the normal of a tag decided by the image in the same frame (paper D's tags all
 //                lie flat on the ground or on obstacle tops);
-//   temporal     the tag was seen within max_track_gap_s: the candidate whose rotation is
-//                closer to the previous choice (camera motion between frames is small);
+//   temporal     the tag was seen within max_track_gap_s: each tag keeps both hypotheses,
+//                follows each by rotation (camera motion between frames is small) and sums its
+//                squared corner reprojection errors over the frames; the candidate of the
+//                hypothesis with the lower sum wins (a sequential likelihood-ratio test: the
+//                wrong tilt fits slightly worse on average, so evidence accumulates where a
+//                single frame is a coin flip);
 //   coplanar     as above, against tags decided by the temporal rule in this frame;
 //   lowest_error best.
 // Tags with one distinct solution are decided as `single`. State: the last choice per
@@ -56,10 +60,15 @@ class TagFlipResolver {
   std::vector<FlipChoice> Resolve(double t_s, const std::vector<TagPoseInImage>& tags);
 
  private:
+  // Both hypotheses of one tag: their latest rotations and summed squared errors [px^2].
   struct Track {
-    Eigen::Matrix3d R_CT;
+    Eigen::Matrix3d R_CT[2];
+    double cost[2];
     double t_s;
   };
+  // Updates (or starts) the tag's track with this frame's candidates; returns true when the
+  // alternative belongs to the cheaper hypothesis. *had_history: the track existed before.
+  bool UpdateTrack(double t_s, const TagPoseInImage& tag, bool* had_history);
   // Chooses by the normals in `references` (unit z_T in C); false when no unique candidate fits.
   bool ChooseCoplanar(const TagPose& pose, const std::vector<Eigen::Vector3d>& references,
                       FlipChoice* choice) const;

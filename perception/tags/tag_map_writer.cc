@@ -28,7 +28,7 @@ void EmitPose(YAML::Emitter& out, const Eigen::Isometry3d& T) {
 void WriteTagMapYaml(const std::string& path, const std::vector<MappedTag>& tags,
                      const TagMapParams& params) {
   YAML::Emitter out;
-  out.SetDoublePrecision(9);
+  out.SetDoublePrecision(12);  // significant digits: sub-micrometre over a field
   out << YAML::BeginMap;
   out << YAML::Key << "origin_id" << YAML::Value << params.origin_id;
   out << YAML::Key << "tags" << YAML::Value << YAML::BeginSeq;
