@@ -8,12 +8,16 @@ find_package(CLI11 REQUIRED)
 find_package(NLopt REQUIRED)
 find_package(GTest REQUIRED)
 find_package(benchmark REQUIRED)
+# libvisp-dev 3.5 (visual servoing): imported targets per module; servo/ links them PRIVATE and
+# its tests add visp_robot for the vpSimulatorCamera free-camera simulation.
+find_package(VISP 3.5 REQUIRED COMPONENTS visp_core visp_visual_features visp_vs visp_robot
+             visp_detection)
+# visp_detection: vpDetectorAprilTag (servo/visp_tag_detector.cc).
+set(APERTURE_VISP visp_vs visp_visual_features visp_detection visp_core)
 # libapriltag-dev ships a CMake config (target apriltag::apriltag, includes <apriltag/...>).
 find_package(apriltag REQUIRED)
 # libceres-dev: the tag map's pose graph (perception/tags/tag_map.cc).
 find_package(Ceres REQUIRED)
-# libvisp-dev: ViSP 3.5, linked by servo/ only (DESIGN.md).
-find_package(VISP REQUIRED COMPONENTS core detection)
 
 set(APERTURE_OPENCV_CORE opencv_core opencv_imgproc opencv_imgcodecs)
 set(APERTURE_OPENCV_ALL opencv_core opencv_imgproc opencv_imgcodecs opencv_videoio opencv_calib3d

@@ -9,7 +9,8 @@ packages=(
   libeigen3-dev libopencv-dev libtbb-dev
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libnlopt-cxx-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libapriltag-dev libopengv-dev libceres-dev libvisp-dev
+  libapriltag-dev libopengv-dev libceres-dev
+  libvisp-dev
   visp-images-data
 )
 

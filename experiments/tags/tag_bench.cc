@@ -10,7 +10,7 @@
 #include "output/csv_writer.h"
 #include "output/svg_plot.h"
 #include "perception/camera/pinhole_camera.h"
-#include "perception/led/se3_twist.h"
+#include "control/so3.h"
 #include "perception/tags/tag_front_end.h"
 #include "perception/tags/tag_map.h"
 #include "sim/render/camera_effects.h"
@@ -27,7 +27,7 @@ constexpr double kFlipThreshold_deg = 10.0;  // a chosen rotation further off is
 const char* const kFamilies[] = {"tag36h11", "tag16h5", "tag25h9", "tagStandard41h12"};
 
 double RotationErrorDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
-  return perception::LogSo3(a.linear().transpose() * b.linear()).norm() * 180.0 / M_PI;
+  return control::LogSo3(a.linear().transpose() * b.linear()).norm() * 180.0 / M_PI;
 }
 
 double Median(std::vector<double> values) {

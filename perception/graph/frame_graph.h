@@ -47,8 +47,8 @@ class FrameGraph {
 
   // After a frame ran: every node's Metrics, keyed "<node>.<metric>" (nodes in topological order).
   std::map<std::string, double> CollectMetrics(const FrameSlots& slots) const;
-  // After a frame ran: every node's pose estimates (nodes in topological order).
-  std::vector<PoseEstimate> CollectPoses(const FrameSlots& slots) const;
+  // After a frame ran: every node's pose observations (nodes in topological order).
+  std::vector<PoseObservation> CollectPoses(const FrameSlots& slots) const;
   // After the last frame: every node's Finish, keyed "<node>.<key>" (file names).
   std::map<std::string, std::string> Finish();
   // After a frame ran: every node's DrawOverlay in topological order onto `bgr` (CV_8UC3).

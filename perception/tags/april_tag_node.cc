@@ -6,6 +6,7 @@
 #include <limits>
 #include <opencv2/imgproc.hpp>
 
+#include "control/so3.h"
 #include "perception/sensor_data.h"
 #include "perception/tags/tag_front_end_params_io.h"
 #include "perception/tags/tag_map_writer.h"
@@ -134,13 +135,25 @@ std::map<std::string, double> AprilTagNode::Metrics(const NodeContext& context) 
           {"map_tags", map_ ? double(map_->Tags().size()) : kNaN}};
 }
 
-std::vector<PoseEstimate> AprilTagNode::Poses(const NodeContext& context) const {
-  std::vector<PoseEstimate> poses;
+std::vector<PoseObservation> AprilTagNode::Poses(const NodeContext& context) const {
+  const double t_s = context.Get<Frame>(kFrameSlot).t_s;
+  std::vector<PoseObservation> observations;
   for (const TagResult& tag : context.Get<TagFrameResult>(kOutputSlot).tags) {
     if (!tag.pose) continue;
-    poses.push_back({StreamName(tag.detection), tag.chosen().T_CT, tag.chosen().covariance});
+    PoseObservation observation;
+    observation.stream = StreamName(tag.detection);
+    observation.target_frame = "tag" + std::to_string(tag.detection.id);
+    observation.fixed = PoseObservation::Fixed::kTarget;
+    observation.t_s = t_s;
+    observation.T_CX = tag.chosen().T_CT;
+    // (C.9) perturbs p_CT + dt; the observation's convention perturbs Exp(dr) p_CT + dt', so
+    // dt' = dt + [p_CT]x dr (as the LED tracker's node).
+    Matrix6d B = Matrix6d::Identity();
+    B.topRightCorner<3, 3>() = control::Skew(tag.chosen().T_CT.translation());
+    observation.covariance_CX = B * tag.chosen().covariance * B.transpose();
+    observations.push_back(std::move(observation));
   }
-  return poses;
+  return observations;
 }
 
 void AprilTagNode::DrawOverlay(const NodeContext& context, cv::Mat& bgr) const {

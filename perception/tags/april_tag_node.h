@@ -5,8 +5,10 @@
 //   params: tag_front_end_params_io.h (detector, families, sizes, flip, map, mapping)
 //   reads:  "frame" (Frame, 8-bit gray)
 //   writes: "apriltag" (TagFrameResult)
-//   poses:  one stream per tag, "tag<id>" ("<family>_tag<id>" with several families),
-//           T = T_CT (p_C = T_CT * p_T) with covariance [p_CT; rotation]
+//   poses:  one PoseObservation per tag and frame, stream "tag<id>" ("<family>_tag<id>" with
+//           several families), T_CX = T_CT (p_C = T_CT * p_T), fixed target (the TUM stream
+//           records T_TC, the camera in the tag frame), covariance in PoseObservation's
+//           convention
 //   metrics: detections, posed, ambiguous (candidates with ambiguity_ratio above the
 //            resolver's threshold), alternatives_chosen, mean_rms_px, map_tags
 //   files (with an output directory): tags.csv, one row per detection: t_s, index, family, id,
@@ -47,7 +49,7 @@ class AprilTagNode final : public Node {
   std::vector<SlotSpec> Outputs() const override;
   void Run(NodeContext& context) override;
   std::map<std::string, double> Metrics(const NodeContext& context) const override;
-  std::vector<PoseEstimate> Poses(const NodeContext& context) const override;
+  std::vector<PoseObservation> Poses(const NodeContext& context) const override;
   void DrawOverlay(const NodeContext& context, cv::Mat& bgr) const override;
   std::map<std::string, std::string> Finish() override;
 

@@ -4,7 +4,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "perception/led/se3_twist.h"
+#include "control/so3.h"
 
 namespace aperture::perception {
 
@@ -75,7 +75,7 @@ bool TagFlipResolver::UpdateTrack(double t_s, const TagPoseInImage& tag, bool* h
   }
   Track& track = it->second;
   auto angle = [](const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
-    return LogSo3(a.transpose() * b).norm();
+    return control::LogSo3(a.transpose() * b).norm();
   };
   // best -> hypothesis 0 unless the crossed assignment is closer.
   const bool crossed = angle(R_best, track.R_CT[1]) + angle(R_alternative, track.R_CT[0]) <

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "perception/led/se3_twist.h"
+#include "control/so3.h"
 
 namespace aperture::perception {
 
@@ -40,7 +40,7 @@ std::optional<TagPose> EstimateTagPose(const CameraModel& camera,
   std::vector<TagPoseCandidate> candidates;
   for (int s = 0; s < solutions; ++s) {
     Eigen::Isometry3d T_CT = Eigen::Isometry3d::Identity();
-    T_CT.linear() = ExpSo3(
+    T_CT.linear() = control::ExpSo3(
         Eigen::Vector3d(rvecs[s].at<double>(0), rvecs[s].at<double>(1), rvecs[s].at<double>(2)));
     T_CT.translation() =
         Eigen::Vector3d(tvecs[s].at<double>(0), tvecs[s].at<double>(1), tvecs[s].at<double>(2));
@@ -56,7 +56,7 @@ std::optional<TagPose> EstimateTagPose(const CameraModel& camera,
   pose.best = candidates[0];
   if (candidates.size() == 2) {
     const double angle_rad =
-        LogSo3(candidates[0].T_CT.linear().transpose() * candidates[1].T_CT.linear()).norm();
+        control::LogSo3(candidates[0].T_CT.linear().transpose() * candidates[1].T_CT.linear()).norm();
     if (angle_rad * 180.0 / M_PI >= params.same_solution_deg) {
       pose.alternative = candidates[1];
       const double best_sq = pose.best.rms_px * pose.best.rms_px;

@@ -63,13 +63,14 @@ TEST(AprilTagNode, WritesTagsCsvPoseStreamsAndTheMap) {
   frame.t_s = 0.5;
   FrameSlots slots = executor.Run(frame);
   const NodeContext context = graph.ContextFor(0, slots);
-  const std::vector<PoseEstimate> poses = graph.node(0).Poses(context);
+  const std::vector<PoseObservation> poses = graph.node(0).Poses(context);
   ASSERT_EQ(poses.size(), 12u);
-  for (const PoseEstimate& pose : poses) {
+  for (const PoseObservation& pose : poses) {
     EXPECT_THAT(pose.stream, ::testing::StartsWith("tag"));
-    ASSERT_TRUE(pose.covariance);
-    EXPECT_GT(pose.T.translation().z(), 0.3);  // 0.37-0.56 m in front of the camera
-    EXPECT_LT(pose.T.translation().z(), 0.6);
+    ASSERT_TRUE(pose.covariance_CX);
+    EXPECT_EQ(pose.fixed, PoseObservation::Fixed::kTarget);
+    EXPECT_GT(pose.T_CX.translation().z(), 0.3);  // 0.37-0.56 m in front of the camera
+    EXPECT_LT(pose.T_CX.translation().z(), 0.6);
   }
   const std::map<std::string, double> metrics = graph.CollectMetrics(slots);
   EXPECT_EQ(metrics.at("apriltag.detections"), 12.0);

@@ -25,7 +25,7 @@
 #include <string>
 
 #include "perception/camera/pinhole_camera.h"
-#include "perception/led/se3_twist.h"
+#include "control/so3.h"
 #include "perception/tags/apriltag_library_detector.h"
 #include "perception/tags/tag_pose_estimator.h"
 
@@ -52,7 +52,7 @@ Eigen::Isometry3d VispToOurTagFrame(const Eigen::Isometry3d& T_CO) {
 }
 
 double RotationErrorDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
-  return LogSo3(a.linear().transpose() * b.linear()).norm() * 180.0 / M_PI;
+  return control::LogSo3(a.linear().transpose() * b.linear()).norm() * 180.0 / M_PI;
 }
 
 cv::Mat ReadGray(const std::filesystem::path& path) {
@@ -75,7 +75,7 @@ TEST(AprilTagRealImages, PhotoEveryTagFoundWithinOneCentimetre) {
   while (file >> message >> tx >> ty >> tz >> ux >> uy >> uz) {
     const int id = std::stoi(message.substr(message.rfind('_') + 1));  // "36h11_id:_8"
     Eigen::Isometry3d T_CO = Eigen::Isometry3d::Identity();
-    T_CO.linear() = ExpSo3(Eigen::Vector3d(ux, uy, uz));
+    T_CO.linear() = control::ExpSo3(Eigen::Vector3d(ux, uy, uz));
     T_CO.translation() = Eigen::Vector3d(tx, ty, tz);
     truth[id] = VispToOurTagFrame(T_CO);
   }

@@ -6,14 +6,14 @@
 #include <random>
 
 #include "perception/camera/pinhole_camera.h"
-#include "perception/led/se3_twist.h"
+#include "control/so3.h"
 
 namespace aperture::perception {
 namespace {
 
 Eigen::Isometry3d Rotated(const Eigen::Vector3d& phi, double z_m = 2.0) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = ExpSo3(phi);
+  T.linear() = control::ExpSo3(phi);
   T.translation() = Eigen::Vector3d(0, 0, z_m);
   return T;
 }
@@ -121,7 +121,7 @@ TEST(TagFlipResolver, LowersTheFlipRateOnANoisySequence) {
         const TagPoseCandidate& other =
             choices[i].use_alternative ? tags[i].pose.best : *tags[i].pose.alternative;
         auto angle_deg = [](const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
-          return LogSo3(a.linear().transpose() * b.linear()).norm() * 180 / M_PI;
+          return control::LogSo3(a.linear().transpose() * b.linear()).norm() * 180 / M_PI;
         };
         if (angle_deg(chosen.T_CT, other.T_CT) <= 10.0) continue;
         flips += angle_deg(chosen.T_CT, truth[i]) > angle_deg(other.T_CT, truth[i]);

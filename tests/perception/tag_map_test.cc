@@ -8,7 +8,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <random>
 
-#include "perception/led/se3_twist.h"
+#include "control/so3.h"
 #include "perception/tags/tag_map_writer.h"
 #include "temp_directory.h"
 
@@ -65,14 +65,14 @@ Field MakeField(std::uint32_t seed, int flip_every) {
     for (const auto& [id, T_WT] : field.T_WT) {
       if ((T_WT.translation().head<2>() - xy).norm() > 2.0) continue;
       const Eigen::Isometry3d T_CT = T_WC.inverse() * T_WT;
-      Vector6d noise;
+      control::Vector6d noise;
       for (int i = 0; i < 6; ++i) noise(i) = normal(rng);
-      const Vector6d delta = llt.matrixL() * noise;
+      const control::Vector6d delta = llt.matrixL() * noise;
       TagMapObservation observation{"tag36h11", id, 0.25, T_CT, covariance};
       observation.T_CT.translation() += delta.head<3>();
-      observation.T_CT.linear() = ExpSo3(delta.tail<3>()) * T_CT.linear();
+      observation.T_CT.linear() = control::ExpSo3(delta.tail<3>()) * T_CT.linear();
       if (flip_every > 0 && ++observation_count % flip_every == 0 && id != 0) {
-        observation.T_CT.linear() = ExpSo3(Eigen::Vector3d(0.7, 0, 0)) * T_CT.linear();
+        observation.T_CT.linear() = control::ExpSo3(Eigen::Vector3d(0.7, 0, 0)) * T_CT.linear();
         ++field.flips;
       }
       image.push_back(observation);
@@ -97,7 +97,7 @@ MapErrors Evaluate(const Field& field, const std::vector<MappedTag>& tags) {
         (tag.T_WT_initial.translation() - truth.translation()).squaredNorm();
     errors.max_rotation_error_deg =
         std::max(errors.max_rotation_error_deg,
-                 LogSo3(tag.T_WT.linear().transpose() * truth.linear()).norm() * 180 / M_PI);
+                 control::LogSo3(tag.T_WT.linear().transpose() * truth.linear()).norm() * 180 / M_PI);
   }
   errors.position_rms_m = std::sqrt(errors.position_rms_m / tags.size());
   errors.initial_position_rms_m = std::sqrt(errors.initial_position_rms_m / tags.size());

@@ -9,7 +9,7 @@
 #include "perception/camera/equidistant_camera.h"
 #include "perception/camera/pinhole_camera.h"
 #include "perception/camera/radtan_camera.h"
-#include "perception/led/se3_twist.h"
+#include "control/so3.h"
 
 namespace aperture::perception {
 namespace {
@@ -32,7 +32,7 @@ std::unique_ptr<CameraModel> MakeCamera(const std::string& model) {
 // Tag at `distance` along the optical axis shifted sideways, tilted by tilt_deg about x_C.
 Eigen::Isometry3d TrueTagPose(double distance_m, double tilt_deg, const Eigen::Vector2d& offset_m) {
   Eigen::Isometry3d T_CT = Eigen::Isometry3d::Identity();
-  T_CT.linear() = ExpSo3(Eigen::Vector3d(tilt_deg * M_PI / 180.0, 0.0, 0.3));
+  T_CT.linear() = control::ExpSo3(Eigen::Vector3d(tilt_deg * M_PI / 180.0, 0.0, 0.3));
   T_CT.translation() = Eigen::Vector3d(offset_m.x(), offset_m.y(), distance_m);
   return T_CT;
 }
@@ -50,7 +50,7 @@ std::array<Eigen::Vector2d, 4> ProjectCorners(const CameraModel& camera,
 }
 
 double RotationErrorDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
-  return LogSo3(a.linear().transpose() * b.linear()).norm() * 180.0 / M_PI;
+  return control::LogSo3(a.linear().transpose() * b.linear()).norm() * 180.0 / M_PI;
 }
 
 class TagPoseEstimatorTest : public ::testing::TestWithParam<std::string> {};
@@ -116,9 +116,9 @@ TEST_P(TagPoseEstimatorTest, CovarianceMatchesTheScatter) {
     const std::optional<TagPose> pose =
         EstimateTagPose(*camera, ProjectCorners(*camera, T_CT, 0.5, &rng), kTagSize_m, params);
     ASSERT_TRUE(pose);
-    Vector6d error;
+    control::Vector6d error;
     error.head<3>() = pose->best.T_CT.translation() - T_CT.translation();
-    error.tail<3>() = LogSo3(pose->best.T_CT.linear() * T_CT.linear().transpose());
+    error.tail<3>() = control::LogSo3(pose->best.T_CT.linear() * T_CT.linear().transpose());
     nees_sum += error.dot(pose->best.covariance.ldlt().solve(error));
   }
   const double mean_nees = nees_sum / trials;

@@ -7,7 +7,7 @@
 #include <map>
 #include <string>
 
-#include "perception/led/se3_twist.h"
+#include "control/so3.h"
 #include "perception/tags/apriltag_library_detector.h"
 #include "perception/tags/tag_front_end.h"
 #include "sim/scenario/scenario.h"
@@ -64,7 +64,7 @@ TEST_P(AprilTagSceneTest, DetectsEveryVisibleTagAtItsTruePose) {
     const double distance_m = T_CT.translation().norm();
     const perception::TagPoseCandidate* nearest = &tag.pose->best;
     auto angle_deg = [&](const perception::TagPoseCandidate& c) {
-      return perception::LogSo3(c.T_CT.linear().transpose() * T_CT.linear()).norm() * 180 / M_PI;
+      return control::LogSo3(c.T_CT.linear().transpose() * T_CT.linear()).norm() * 180 / M_PI;
     };
     if (tag.pose->alternative && angle_deg(*tag.pose->alternative) < angle_deg(*nearest)) {
       nearest = &*tag.pose->alternative;
