@@ -28,6 +28,7 @@ void LoadParams(config::ParamReader& reader, TagMapParams* params) {
   reader.Read("origin_rpy_deg", &params->origin_rpy_deg);
   reader.Read("floor_sigma_m", &params->floor_sigma_m);
   reader.Read("floor_sigma_rad", &params->floor_sigma_rad);
+  reader.Read("gravity_sigma_deg", &params->gravity_sigma_deg);
   reader.Read("huber_scale", &params->huber_scale);
   reader.Read("outlier_chi2", &params->outlier_chi2);
   reader.Read("solve_every", &params->solve_every);

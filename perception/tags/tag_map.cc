@@ -63,6 +63,25 @@ struct ObservationResidual {
   Matrix6d sqrt_information;
 };
 
+// The gravity edge of one image (see the header); parameter: the T_WC block.
+struct GravityResidual {
+  GravityResidual(const Eigen::Vector3d& down_C, double sigma_rad)
+      : down_C(down_C), inverse_sigma(1.0 / sigma_rad) {}
+
+  template <typename S>
+  bool operator()(const S* camera, S* residual) const {
+    const Eigen::Map<const Eigen::Quaternion<S>> q_WC(camera);
+    const Eigen::Matrix<S, 3, 1> down_W = q_WC * down_C.cast<S>();
+    residual[0] = S(inverse_sigma) * down_W.x();
+    residual[1] = S(inverse_sigma) * down_W.y();
+    residual[2] = S(inverse_sigma) * (down_W.z() + S(1));  // second order in the tilt
+    return true;
+  }
+
+  Eigen::Vector3d down_C;
+  double inverse_sigma;
+};
+
 }  // namespace
 
 void TagMapParams::Validate() const {
@@ -71,6 +90,7 @@ void TagMapParams::Validate() const {
   };
   require(floor_sigma_m > 0 && floor_sigma_rad > 0,
           "floor_sigma_m and floor_sigma_rad must be > 0");
+  require(gravity_sigma_deg > 0, "gravity_sigma_deg must be > 0");
   require(huber_scale > 0, "huber_scale must be > 0");
   require(outlier_chi2 > 0, "outlier_chi2 must be > 0 (22.46: chi^2 6 DOF 99.9 %)");
   require(solve_every >= 0, "solve_every must be >= 0 (0: solve only at the end)");
@@ -106,7 +126,13 @@ TagMap::TagMap(const TagMapParams& params) : params_(params) {
 
 TagMap::~TagMap() = default;
 
-void TagMap::AddImage(double t_s, const std::vector<TagMapObservation>& observations) {
+void TagMap::AddImage(double t_s, const std::vector<TagMapObservation>& observations,
+                      const std::optional<Eigen::Vector3d>& down_C) {
+  if (down_C && !(down_C->allFinite() && down_C->norm() > 0.0)) {
+    throw std::invalid_argument(
+        "TagMap: down_C (gravity in the camera frame) must be finite and non-zero; pass "
+        "std::nullopt when the vehicle's attitude is unknown");
+  }
   for (const TagMapObservation& o : observations) {
     const std::string what = "TagMap: observation of " + o.family + " id " + std::to_string(o.id);
     if (!(o.tag_size_m > 0.0)) throw std::invalid_argument(what + ": tag size must be > 0");
@@ -119,7 +145,8 @@ void TagMap::AddImage(double t_s, const std::vector<TagMapObservation>& observat
     }
   }
   if (observations.empty()) return;
-  Image image{t_s, observations};
+  Image image{t_s, observations, std::nullopt};
+  if (down_C) image.down_C = down_C->normalized();
   if (TryInsert(image)) {
     InsertPending();
     if (params_.solve_every > 0 && ++images_since_solve_ >= params_.solve_every) {
@@ -159,6 +186,12 @@ bool TagMap::TryInsert(const Image& image) {
   cameras_.push_back(ToBlock(T_WC));
   double* camera = cameras_.back().data();
   problem_->AddParameterBlock(camera, 7, new SeManifold());
+  if (image.down_C) {
+    problem_->AddResidualBlock(
+        new ceres::AutoDiffCostFunction<GravityResidual, 3, 7>(
+            new GravityResidual(*image.down_C, params_.gravity_sigma_deg * M_PI / 180.0)),
+        nullptr, camera);
+  }
   const Matrix6d floor =
       (Eigen::Matrix<double, 6, 1>() << Eigen::Vector3d::Constant(params_.floor_sigma_m),
        Eigen::Vector3d::Constant(params_.floor_sigma_rad))

@@ -8,6 +8,12 @@
 // L^T L = (Sigma_meas + floor)^-1 (the rotation part in C, matching the covariance's left
 // perturbation), under a Huber loss; the origin tag's pose is fixed (the gauge: paper D's origin
 // tag "provides a common reference frame for both robots").
+// Gravity (paper D: each image is sent "together with the onboard pose estimate of the
+// quadrotor"): an image may carry the direction of gravity in C from the vehicle's attitude
+// estimate; its edge r = (R_WC down_C - down_W) / sigma_gravity ties the camera's roll and pitch
+// to W (gravity-aligned, z up). Without it the map's tilt about the origin tag is observable only
+// through the origin tag's own rotation measurements (~1 deg each for a 0.25 m tag at 2.5 m), and
+// a tilt of a fraction of a degree moves tags 6 m away by centimetres.
 // Incremental: an image joins the graph once it sees a tag already in the map (its camera pose is
 // initialised from the most certain such tag, its new tags from the camera: the "before
 // optimization" map); images that do not (yet) connect wait. Every solve_every images the graph is
@@ -47,6 +53,8 @@ struct TagMapParams {
   // (calibration, tag flatness) [m], [rad].
   double floor_sigma_m = 0.002;
   double floor_sigma_rad = 0.005;
+  // sigma of a per-image gravity direction (the vehicle's roll/pitch estimate) [deg].
+  double gravity_sigma_deg = 1.0;
   double huber_scale = 2.0;     // on the whitened residual norm (in sigmas)
   double outlier_chi2 = 22.46;  // chi^2, 6 DOF, 99.9 %: larger whitened errors are dropped
   int solve_every = 10;         // images between incremental solves (0: only in Optimize)
@@ -101,9 +109,12 @@ class TagMap {
   TagMap(const TagMap&) = delete;
   TagMap& operator=(const TagMap&) = delete;
 
-  // The tags seen in one image (std::invalid_argument for a non-positive size, a non-finite
-  // pose or a covariance that is not symmetric positive definite).
-  void AddImage(double t_s, const std::vector<TagMapObservation>& observations);
+  // The tags seen in one image and, optionally, the direction of gravity (down) in C from the
+  // vehicle's attitude estimate (any length > 0). std::invalid_argument for a non-positive size,
+  // a non-finite pose, a covariance that is not symmetric positive definite or a zero or
+  // non-finite down_C.
+  void AddImage(double t_s, const std::vector<TagMapObservation>& observations,
+                const std::optional<Eigen::Vector3d>& down_C = std::nullopt);
 
   // Solves to convergence with outlier rejection, then the marginal covariances.
   TagMapSolveSummary Optimize();
@@ -119,6 +130,7 @@ class TagMap {
   struct Image {
     double t_s;
     std::vector<TagMapObservation> observations;
+    std::optional<Eigen::Vector3d> down_C;  // unit
   };
   struct Edge {
     ceres::internal::ResidualBlock* block;  // ceres::ResidualBlockId

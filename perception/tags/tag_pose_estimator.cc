@@ -37,6 +37,7 @@ std::optional<TagPose> EstimateTagPose(const CameraModel& camera,
   const cv::Matx33d identity = cv::Matx33d::eye();
   const int solutions = cv::solvePnPGeneric(object, normalized, identity, cv::noArray(), rvecs,
                                             tvecs, false, cv::SOLVEPNP_IPPE_SQUARE);
+  std::vector<Eigen::Isometry3d> starts;
   std::vector<TagPoseCandidate> candidates;
   for (int s = 0; s < solutions; ++s) {
     Eigen::Isometry3d T_CT = Eigen::Isometry3d::Identity();
@@ -44,6 +45,7 @@ std::optional<TagPose> EstimateTagPose(const CameraModel& camera,
         Eigen::Vector3d(rvecs[s].at<double>(0), rvecs[s].at<double>(1), rvecs[s].at<double>(2)));
     T_CT.translation() =
         Eigen::Vector3d(tvecs[s].at<double>(0), tvecs[s].at<double>(1), tvecs[s].at<double>(2));
+    starts.push_back(T_CT);
     const LedPoseRefinement refined = RefineLedPose(camera, p_T, px, T_CT, params.refiner);
     if (!refined.valid) continue;
     candidates.push_back({refined.T_CT, refined.covariance, refined.rms_px});
@@ -52,17 +54,34 @@ std::optional<TagPose> EstimateTagPose(const CameraModel& camera,
   if (candidates.size() == 2 && candidates[1].rms_px < candidates[0].rms_px) {
     std::swap(candidates[0], candidates[1]);
   }
+  const auto angle_deg = [](const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+    return control::LogSo3(a.linear().transpose() * b.linear()).norm() * 180.0 / M_PI;
+  };
   TagPose pose;
   pose.best = candidates[0];
-  if (candidates.size() == 2) {
-    const double angle_rad =
-        control::LogSo3(candidates[0].T_CT.linear().transpose() * candidates[1].T_CT.linear()).norm();
-    if (angle_rad * 180.0 / M_PI >= params.same_solution_deg) {
-      pose.alternative = candidates[1];
-      const double best_sq = pose.best.rms_px * pose.best.rms_px;
-      const double alternative_sq = pose.alternative->rms_px * pose.alternative->rms_px;
-      pose.ambiguity_ratio = alternative_sq > 0.0 ? best_sq / alternative_sq : 1.0;
+  if (candidates.size() == 2 &&
+      angle_deg(candidates[0].T_CT, candidates[1].T_CT) >= params.same_solution_deg) {
+    pose.alternative = candidates[1];
+  } else if (starts.size() == 2 && angle_deg(starts[0], starts[1]) >= params.same_solution_deg) {
+    // Near head-on the mirrored tilt is often no local minimum of the reprojection error:
+    // Gauss-Newton slides from it into the best solution. IPPE's mirrored start stays the
+    // alternative hypothesis (unrefined; its error and covariance at that pose) for the flip
+    // resolver, which decides over time and across tags.
+    const Eigen::Isometry3d& mirrored =
+        angle_deg(starts[0], pose.best.T_CT) > angle_deg(starts[1], pose.best.T_CT) ? starts[0]
+                                                                                    : starts[1];
+    LedPoseRefinerParams evaluate_only = params.refiner;
+    evaluate_only.max_iterations = 0;
+    const LedPoseRefinement at_start = RefineLedPose(camera, p_T, px, mirrored, evaluate_only);
+    if (at_start.valid && angle_deg(mirrored, pose.best.T_CT) >= params.same_solution_deg) {
+      pose.alternative = TagPoseCandidate{at_start.T_CT, at_start.covariance, at_start.rms_px};
+      if (pose.alternative->rms_px < pose.best.rms_px) std::swap(pose.best, *pose.alternative);
     }
+  }
+  if (pose.alternative) {
+    const double best_sq = pose.best.rms_px * pose.best.rms_px;
+    const double alternative_sq = pose.alternative->rms_px * pose.alternative->rms_px;
+    pose.ambiguity_ratio = alternative_sq > 0.0 ? best_sq / alternative_sq : 1.0;
   }
   return pose;
 }

