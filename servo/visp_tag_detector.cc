@@ -23,16 +23,16 @@ vpDetectorAprilTag::vpAprilTagFamily VispFamily(const std::string& family) {
       {"tag36h11", vpDetectorAprilTag::TAG_36h11},
       {"tag25h9", vpDetectorAprilTag::TAG_25h9},
       {"tag16h5", vpDetectorAprilTag::TAG_16h5},
-      {"tagStandard41h12", vpDetectorAprilTag::TAG_STANDARD41h12},
-      {"tagStandard52h13", vpDetectorAprilTag::TAG_STANDARD52h13},
       {"tagCircle21h7", vpDetectorAprilTag::TAG_CIRCLE21h7},
-      {"tagCircle49h12", vpDetectorAprilTag::TAG_CIRCLE49h12},
-      {"tagCustom48h12", vpDetectorAprilTag::TAG_CUSTOM48h12},
   };
   for (const auto& [name, value] : kFamilies) {
     if (family == name) return value;
   }
-  throw std::invalid_argument("visp tag detector: family '" + family + "' not in ViSP 3.5");
+  // Debian's ViSP 3.5 declares tagStandard41h12, tagStandard52h13, tagCircle49h12 and
+  // tagCustom48h12 but is built with them disabled ("... are disabled" and no detections).
+  throw std::invalid_argument("visp tag detector: family '" + family +
+                              "' is not available in this ViSP build (tag36h11, tag25h9, "
+                              "tag16h5, tagCircle21h7); use apriltag.detector=apriltag");
 }
 
 class VispTagDetector final : public perception::TagDetector {

@@ -17,7 +17,8 @@ namespace aperture::servo {
 
 inline constexpr const char* kVispTagDetectorName = "visp";
 
-// std::invalid_argument for a family ViSP 3.5 lacks or the settings above.
+// std::invalid_argument for a family this ViSP build lacks (Debian's disables tagStandard41h12,
+// tagStandard52h13, tagCircle49h12, tagCustom48h12) or the settings above.
 std::unique_ptr<perception::TagDetector> CreateVispTagDetector(
     const perception::TagDetectorParams& params);
 

