@@ -35,7 +35,8 @@ struct Frame12 {
     scene.AddObject({"ground", sim::GroundPlane{}, {}, Eigen::Isometry3d::Identity()});
     for (int id = 0; id < 12; ++id) {
       Eigen::Isometry3d T_WO = Eigen::Isometry3d::Identity();
-      T_WO.translation() = Eigen::Vector3d(1.0 * (id % 4) - 1.5, 1.0 * (id / 4) - 1.0, 0.01);
+      // 0.1 m above the ground: a tilted tag's lower edge stays above it (not occluded).
+      T_WO.translation() = Eigen::Vector3d(1.0 * (id % 4) - 1.5, 1.0 * (id / 4) - 1.0, 0.1);
       // z_O down into the ground, yaw by id, every third tag tilted 30 deg.
       T_WO.linear() =
           (Eigen::AngleAxisd(0.4 * id, Eigen::Vector3d::UnitZ()) *
