@@ -30,6 +30,7 @@
 #include "perception/graph/source_run.h"
 #include "perception/io/open_frame_source.h"
 #include "perception/io/rosbag_source.h"
+#include "servo/visp_tag_detector.h"
 
 namespace aperture::apps {
 namespace {
@@ -54,7 +55,6 @@ void RunFrontEnds(const RunOptions& options, output::OutputFolder& out) {
       perception::SplitFrontEndList(options.front_ends);
   perception::FrontEndResources resources;
   resources.source = options.source;
-  resources.output_dir = out.directory();
   if (!options.calibration_path.empty() && !options.camera_info_topic.empty()) {
     throw std::invalid_argument(
         "give the calibration either as --calib FILE or as "
@@ -66,6 +66,8 @@ void RunFrontEnds(const RunOptions& options, output::OutputFolder& out) {
     resources.calibration =
         perception::LoadCameraInfoFromBag(options.source, options.camera_info_topic);
   }
+  resources.output_directory = out.directory();
+  resources.tag_detectors.Register(servo::kVispTagDetectorName, &servo::CreateVispTagDetector);
   perception::FrontEndRegistry registry;
   perception::RegisterBuiltinFrontEnds(registry);
   // Each front end reads the config section named after it; any other section is a typo.
@@ -152,6 +154,7 @@ void RunFrontEnds(const RunOptions& options, output::OutputFolder& out) {
       });
   progress.Finish();
   csv->Close();
+  const std::map<std::string, std::string> front_end_files = graph.Finish();
 
   summary["frames"] = record.frame_count();
   summary["skipped_frames"] = source->SkippedFrames().size();
@@ -164,6 +167,7 @@ void RunFrontEnds(const RunOptions& options, output::OutputFolder& out) {
   summary["timing"] = TimingJson(executor->Timing(), executor->FrameTiming());
   summary["metrics"] = record.MetricStatistics(metric_names);
   nlohmann::json outputs = {{"csv", "frames.csv"}, {"report", "report.html"}};
+  for (const auto& [key, file] : front_end_files) outputs[key] = file;
   summary["poses"] = pose_streams.Close();
   if (imu_csv) {
     imu_csv->Close();

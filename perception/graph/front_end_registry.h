@@ -17,10 +17,11 @@
 #include <string>
 #include <vector>
 
-#include "perception/graph/frame_graph.h"
-#include "perception/graph/node.h"
 #include "config/param_reader.h"
 #include "perception/camera/calibration_io.h"
+#include "perception/graph/frame_graph.h"
+#include "perception/graph/node.h"
+#include "perception/tags/tag_detector_registry.h"
 
 namespace aperture::perception {
 
@@ -31,9 +32,12 @@ struct FrontEndResources {
   // The frame source as given (`aperture run --source`: folder, video or camera:N), so a front end
   // can find ground truth stored beside the images; empty when unknown.
   std::string source;
-  // The run's output folder, where a front end may write per-frame files into a subfolder named
-  // after itself; empty when the run keeps no per-frame files.
-  std::string output_dir;
+  // The run's output folder, where a front end may write its own files (Node::Finish); empty:
+  // write none (tests, SITL).
+  std::string output_directory;
+  // Tag detectors by name for the `apriltag` front end; the application adds those of higher
+  // layers (servo/'s ViSP detector).
+  TagDetectorRegistry tag_detectors = TagDetectorRegistry::WithBuiltins();
 
   // The calibration, or std::invalid_argument telling the user that `front_end` needs --calib.
   const CameraCalibration& RequireCalibration(const std::string& front_end) const;

@@ -32,7 +32,7 @@ std::unique_ptr<Node> MonoDepthNode::Create(config::ParamReader& params,
     ground_truth = ListPngFiles(*depth_folder);
   }
   return std::make_unique<MonoDepthNode>(std::move(model),
-                                         node_params.write_depth ? resources.output_dir : "",
+                                         node_params.write_depth ? resources.output_directory : "",
                                          std::move(ground_truth));
 }
 
