@@ -12,6 +12,7 @@ void AddBenchCommand(CLI::App& app, int* exit_code) {
   AddBenchControlCommand(*bench, exit_code);
   AddBenchGapCommand(*bench, exit_code);
   AddBenchLedCommand(*bench, exit_code);
+  AddBenchTs2pCommand(*bench, exit_code);
 }
 
 }  // namespace aperture::apps

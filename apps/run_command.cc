@@ -48,6 +48,7 @@ void RunFrontEnds(const RunOptions& options, output::OutputFolder& out) {
   const std::vector<std::string> front_end_names =
       perception::SplitFrontEndList(options.front_ends);
   perception::FrontEndResources resources;
+  resources.output_dir = out.directory();
   if (!options.calibration_path.empty()) {
     resources.calibration = perception::LoadCameraCalibration(options.calibration_path);
   }

@@ -1,6 +1,8 @@
 # Every package here comes from Debian 12 (scripts/install-deps.sh installs them).
 find_package(Eigen3 3.4 REQUIRED NO_MODULE)
-find_package(OpenCV 4 REQUIRED COMPONENTS core imgproc imgcodecs videoio calib3d features2d video)
+# optflow comes from libopencv-contrib-dev (DeepFlow, DualTVL1, RLOF, PCAFlow, SparseToDense).
+find_package(OpenCV 4 REQUIRED COMPONENTS core imgproc imgcodecs videoio calib3d features2d video
+             optflow)
 find_package(TBB REQUIRED)
 find_package(yaml-cpp REQUIRED)
 find_package(nlohmann_json 3 REQUIRED)
@@ -13,7 +15,7 @@ find_package(apriltag REQUIRED)
 
 set(APERTURE_OPENCV_CORE opencv_core opencv_imgproc opencv_imgcodecs)
 set(APERTURE_OPENCV_ALL opencv_core opencv_imgproc opencv_imgcodecs opencv_videoio opencv_calib3d
-    opencv_features2d opencv_video)
+    opencv_features2d opencv_video opencv_optflow)
 # yaml-cpp 0.7 on Debian exports the plain target name `yaml-cpp`.
 
 # libopengv-dev ships no CMake config: wrap the library in an imported target.

@@ -1,8 +1,10 @@
 #include "perception/graph/builtin_front_ends.h"
 
 #include "perception/gap/gap_node.h"
+#include "perception/ts2p/gap_tracker_node.h"
 #include "perception/led/led_tracker_node.h"
 #include "perception/quality/image_quality_node.h"
+#include "perception/ts2p/ts2p_node.h"
 
 namespace aperture::perception {
 
@@ -16,6 +18,14 @@ void RegisterBuiltinFrontEnds(FrontEndRegistry& registry) {
   registry.Register(LedTrackerNode::kName,
                     "infrared-LED target pose T_CT with covariance (needs --calib; led.config)",
                     &LedTrackerNode::Create);
+  registry.Register(Ts2pNode::kName,
+                    "TS2P unknown-gap detection from stacked flow parallax (seed 002): "
+                    "openings/<index>.png, ts2p.csv",
+                    &Ts2pNode::Create);
+  registry.Register(GapTrackerNode::kName,
+                    "KLT label tracking of the ts2p opening under FOE constraints (seed 002 "
+                    "Alg. 1): safe point x_s, FOE, divergence; needs ts2p",
+                    &GapTrackerNode::Create);
 }
 
 }  // namespace aperture::perception

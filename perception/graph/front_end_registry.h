@@ -28,6 +28,9 @@ namespace aperture::perception {
 struct FrontEndResources {
   // The camera calibration (`aperture run --calib`), when one was given.
   std::optional<CameraCalibration> calibration;
+  // The run's output folder (`aperture run --out`): front ends that write per-detection files
+  // (e.g. ts2p's openings/<index>.png) put them here; empty = write no files (tests, SITL).
+  std::string output_dir;
 
   // The calibration, or std::invalid_argument telling the user that `front_end` needs --calib.
   const CameraCalibration& RequireCalibration(const std::string& front_end) const;

@@ -1,0 +1,79 @@
+// TS²P on rendered scans of the gapflyt scene against the renderer's id masks (seed 002 Sec. IV),
+// and gyro derotation on a rendered pure-rotation pair.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "experiments/ts2p/ts2p_scan.h"
+#include "perception/ts2p/opening_score.h"
+#include "perception/ts2p/ts2p_detector.h"
+
+namespace aperture::experiments {
+namespace {
+
+class Ts2pShapeTest : public ::testing::TestWithParam<std::string> {};
+
+// Every shape at the paper's depths (Z_F 2.6 m, Z_B 5.7 m), N = 4, default detector: a
+// detection in the paper's sense (lambda_D >= 0.75) with few wall pixels called opening.
+TEST_P(Ts2pShapeTest, DetectsTheOpeningOfEveryShape) {
+  Ts2pScanConfig config;
+  config.shape = GetParam();
+  config.seed = 11;
+  sim::RayCaster caster;
+  const Ts2pScan scan = RenderTs2pScan(config, caster);
+  ASSERT_EQ(scan.frames.size(), 4u);
+  perception::Ts2pDetector detector(perception::Ts2pParams{});
+  const perception::Ts2pDetection d = detector.Detect(scan.reference, scan.frames);
+  ASSERT_TRUE(d.valid) << d.status;
+  const perception::OpeningScore score = perception::ScoreOpening(d.opening, scan.truth);
+  EXPECT_GE(score.overlap, 0.85) << GetParam();
+  // Table II's best AFP is 0.02; one trial may be worse than the mean, not by 2x.
+  EXPECT_LE(score.false_positive, 0.04) << GetParam();
+  // The safe point lies inside the true opening.
+  const cv::Point x_s(static_cast<int>(std::lround(d.safe_point_px.x())),
+                      static_cast<int>(std::lround(d.safe_point_px.y())));
+  EXPECT_NE(scan.truth.at<uchar>(x_s), 0) << "x_s " << d.safe_point_px.transpose();
+  // The modes are the two walls' stacked parallax: F moves more than B.
+  EXPECT_GT(d.foreground_flow_px, 1.5 * d.background_flow_px);
+}
+
+INSTANTIATE_TEST_SUITE_P(FiveShapes, Ts2pShapeTest, ::testing::ValuesIn(kTs2pShapes),
+                         [](const auto& info) { return info.param; });
+
+// A pure rotation (no baseline) moves every pixel by the rotational flow alone, so flow minus the
+// derotation map predicted through the camera model is the flow method's error only.
+TEST(Ts2pDerotationTest, PureRotationLeavesSubpixelResidual) {
+  Ts2pScanConfig config;
+  config.stack = 1;
+  config.scan_step_m = 0.0;
+  config.rotation_per_step_deg = Eigen::Vector3d(0.5, 1.0, 1.5);  // roll, pitch, yaw
+  sim::RayCaster caster;
+  const Ts2pScan scan = RenderTs2pScan(config, caster);
+  perception::Ts2pParams params;
+  perception::Ts2pDetector detector(params, scan.camera);
+  perception::DenseFlowParams flow_params;
+  flow_params.variational_refinement = true;
+  perception::DenseFlow flow(flow_params);
+  const cv::Mat measured = flow.Compute(scan.reference, scan.frames[0]);
+  const cv::Mat predicted = detector.RotationalFlow(scan.R_CkCr[0]);
+  double residual = 0.0, rotational = 0.0;
+  int count = 0;
+  const int border = 24;  // pixels that rotate out of view have no flow to measure
+  for (int y = border; y < measured.rows - border; ++y) {
+    for (int x = border; x < measured.cols - border; ++x) {
+      const cv::Vec2f m = measured.at<cv::Vec2f>(y, x), p = predicted.at<cv::Vec2f>(y, x);
+      residual += std::hypot(m[0] - p[0], m[1] - p[1]);
+      rotational += std::hypot(p[0], p[1]);
+      ++count;
+    }
+  }
+  EXPECT_GT(rotational / count, 5.0);  // the rotation is large against the tolerance
+  EXPECT_LT(residual / count, 0.1);
+  // The detector given the rotation sees no parallax: no opening from a pure rotation.
+  const perception::Ts2pDetection d = detector.Detect(scan.reference, scan.frames, scan.R_CkCr);
+  EXPECT_FALSE(d.valid);
+  EXPECT_LT(d.foreground_flow_px, 0.5);
+}
+
+}  // namespace
+}  // namespace aperture::experiments
