@@ -63,7 +63,7 @@ void RunBenchTs2p(BenchTs2pOptions options, output::OutputFolder& out) {
               << summary["acceptance"]["dr"].dump() << " AFN "
               << summary["acceptance"]["afn"].dump() << " AFP "
               << summary["acceptance"]["afp"].dump() << " at "
-              << summary["acceptance"]["time_ms"].dump() << " ms over " << options.bench.trials
+              << summary["acceptance"]["cpu_ms"].dump() << " ms CPU over " << options.bench.trials
               << " trials\n";
   }
 }

@@ -146,7 +146,8 @@ nlohmann::json SeriesJson(const Ts2pSeries& series) {
           {"afn", finite_or_null(series.AverageFalseNegative())},
           {"afp", finite_or_null(series.AverageFalsePositive())},
           {"time_ms",
-           {{"total_mean", series.MeanTotalMs()},
+           {{"cpu_mean", series.MeanCpuMs()},
+            {"total_mean", series.MeanTotalMs()},
             {"flow_mean", Mean(flow)},
             {"stacking_mean", Mean(stacking)},
             {"segmentation_mean", Mean(segmentation)},
@@ -217,6 +218,12 @@ double Ts2pSeries::AverageFalsePositive() const {
   for (const auto& o : outcomes) {
     if (o.score.detected()) values.push_back(o.score.false_positive);
   }
+  return Mean(values);
+}
+
+double Ts2pSeries::MeanCpuMs() const {
+  std::vector<double> values;
+  for (const auto& o : outcomes) values.push_back(o.timing.cpu_ms);
   return Mean(values);
 }
 
@@ -331,7 +338,7 @@ nlohmann::json SummarizeTs2pBench(const Ts2pBenchResult& result) {
     // Best: highest DR; ties to the faster method.
     if (!best || series.DetectionRate() > best->DetectionRate() ||
         (series.DetectionRate() == best->DetectionRate() &&
-         series.MeanTotalMs() < best->MeanTotalMs())) {
+         series.MeanCpuMs() < best->MeanCpuMs())) {
       best = &series;
     }
   }
@@ -343,9 +350,10 @@ nlohmann::json SummarizeTs2pBench(const Ts2pBenchResult& result) {
         {"dr", best->DetectionRate()},
         {"afn", best->AverageFalseNegative()},
         {"afp", best->AverageFalsePositive()},
-        {"time_ms", best->MeanTotalMs()},
+        {"cpu_ms", best->MeanCpuMs()},
+        {"wall_ms", best->MeanTotalMs()},
         {"met", best->DetectionRate() >= 0.93 && best->AverageFalseNegative() <= 0.14 &&
-                    best->AverageFalsePositive() <= 0.02 && best->MeanTotalMs() <= 100.0}};
+                    best->AverageFalsePositive() <= 0.02 && best->MeanCpuMs() <= 100.0}};
   }
   const auto sweep_json = [](const std::vector<Ts2pSeries>& series) {
     nlohmann::json array = nlohmann::json::array();
@@ -394,14 +402,14 @@ void WriteTs2pBenchOutputs(const Ts2pBenchResult& result, output::OutputFolder& 
   output::CsvWriter csv(
       out.Path("trials.csv"),
       {"series", "trial", "shape", "valid", "overlap", "false_negative", "false_positive",
-       "flow_ms", "stacking_ms", "segmentation_ms", "safe_point_ms", "total_ms"});
+       "flow_ms", "stacking_ms", "segmentation_ms", "safe_point_ms", "total_ms", "cpu_ms"});
   for (const auto* group : {&result.methods, &result.stacks, &result.sizes, &result.depths}) {
     for (const Ts2pSeries& series : *group) {
       for (const Ts2pTrialOutcome& o : series.outcomes) {
         csv.WriteCells({series.name, double(o.trial), o.shape, o.valid ? 1.0 : 0.0, o.score.overlap,
                         o.score.false_negative, o.score.false_positive, o.timing.flow_ms,
                         o.timing.stacking_ms, o.timing.segmentation_ms, o.timing.safe_point_ms,
-                        o.timing.total_ms});
+                        o.timing.total_ms, o.timing.cpu_ms});
       }
     }
   }
@@ -415,7 +423,8 @@ void WriteTs2pBenchOutputs(const Ts2pBenchResult& result, output::OutputFolder& 
                     {"DR", entry["dr"]},
                     {"AFN", entry["afn"]},
                     {"AFP", entry["afp"]},
-                    {"total [ms]", entry["time_ms"]["total_mean"]},
+                    {"CPU [ms]", entry["time_ms"]["cpu_mean"]},
+                    {"wall [ms]", entry["time_ms"]["total_mean"]},
                     {"flow [ms]", entry["time_ms"]["flow_mean"]},
                     {"segmentation [ms]", entry["time_ms"]["segmentation_mean"]}});
   }

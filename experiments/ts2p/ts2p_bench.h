@@ -64,7 +64,8 @@ struct Ts2pSeries {
   double DetectionRate() const;
   double AverageFalseNegative() const;
   double AverageFalsePositive() const;
-  double MeanTotalMs() const;
+  double MeanTotalMs() const;  // wall-clock
+  double MeanCpuMs() const;    // CPU time on the detecting thread
 };
 
 struct Ts2pTrackingRun {

@@ -43,12 +43,18 @@ class GapflytRig {
   }
 
   // Gray image at T_WC; *truth (optional) = G.
-  cv::Mat Capture(const Eigen::Isometry3d& T_WC, int index, sim::RayCaster& caster,
-                  cv::Mat* truth) const {
+  cv::Mat Capture(const Eigen::Isometry3d& T_WC, double forward_m, int index,
+                  sim::RayCaster& caster, cv::Mat* truth) const {
     sim::CapturedFrame frame = camera().effects.Capture(
         caster, scenario_.scene(), *camera().model, [&](double) { return T_WC; }, index / 30.0,
         index, camera().render);
-    if (truth) *truth = frame.object_id != wall_id_;
+    // G: seen through the hole, i.e. not the wall and behind the wall's plane (the ground in
+    // front of the wall, at the image bottom, is not part of the opening). The scan camera faces
+    // the wall squarely, so the wall's plane is at z_C = Z_F (minus the approach distance).
+    if (truth) {
+      const double wall_z_m = config_.foreground_depth_m - forward_m;
+      *truth = (frame.object_id != wall_id_) & (frame.depth_C > wall_z_m);
+    }
     return frame.frame.image;
   }
 
@@ -92,14 +98,14 @@ Ts2pScan RenderTs2pScan(const Ts2pScanConfig& config, sim::RayCaster& caster) {
   Ts2pScan scan;
   scan.camera = rig.camera().model;
   const int half = config.stack / 2;
-  scan.reference = rig.Capture(rig.T_WC(0.0, 0.0), half, caster, &scan.truth);
+  scan.reference = rig.Capture(rig.T_WC(0.0, 0.0), 0.0, half, caster, &scan.truth);
   const Eigen::Matrix3d R_WCr = rig.T_WC(0.0, 0.0).linear();
   for (int k = 0; k <= config.stack; ++k) {
     if (k == half) continue;
     // N = 1: the one frame after the reference.
     const double offset = config.stack == 1 ? 1.0 : static_cast<double>(k - half);
     const Eigen::Isometry3d T_WC = rig.T_WC(offset, 0.0);
-    scan.frames.push_back(rig.Capture(T_WC, k, caster, nullptr));
+    scan.frames.push_back(rig.Capture(T_WC, 0.0, k, caster, nullptr));
     scan.R_CkCr.push_back(T_WC.linear().transpose() * R_WCr);
   }
   return scan;
@@ -114,8 +120,9 @@ Ts2pApproach RenderTs2pApproach(const Ts2pScanConfig& config, int frames, double
   Ts2pApproach approach;
   for (int k = 1; k <= frames; ++k) {
     cv::Mat truth;
-    approach.frames.push_back(rig.Capture(rig.T_WC(0.0, k * speed_mps / approach.frame_rate_hz),
-                                          100 + k, caster, &truth));
+    const double forward_m = k * speed_mps / approach.frame_rate_hz;
+    approach.frames.push_back(
+        rig.Capture(rig.T_WC(0.0, forward_m), forward_m, 100 + k, caster, &truth));
     approach.truth.push_back(truth);
   }
   return approach;

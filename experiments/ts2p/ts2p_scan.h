@@ -5,8 +5,9 @@
 // the five shapes, textured background wall), the camera at the reference pose looking along +x_W
 // and the N stack frames at offsets (k - N/2) * scan_step_m along a straight line in the wall's
 // plane (k = 0..N, the reference k = N/2 left out), so the reference sits mid-scan.
-// Truth G: the reference pixels whose object id is not the foreground wall's (the opening as the
-// renderer's id mask shows it).
+// Truth G: the reference pixels whose object id is not the foreground wall's and whose depth is
+// behind the wall's plane (the opening as the renderer's id mask and depth show it; the ground in
+// front of the wall at the image bottom is not part of it).
 //
 //   Ts2pScanConfig config = DrawTs2pTrial(Ts2pTrialRanges{}, /*seed=*/1, /*trial=*/7);
 //   Ts2pScan scan = RenderTs2pScan(config, caster);

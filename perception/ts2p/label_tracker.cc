@@ -101,17 +101,27 @@ ExpansionFit FitExpansion(const std::vector<Eigen::Vector2d>& before,
   fit.inlier.assign(before.size(), true);
   Eigen::Vector3d solution;
   if (!SolveExpansion(before, after, fit.inlier, &solution)) return fit;
-  // One re-weighting pass: drop tracks beyond 3 median residuals (and 0.5 px, the KLT noise).
-  std::vector<double> residuals(before.size());
-  for (std::size_t i = 0; i < before.size(); ++i) {
-    const Eigen::Vector2d predicted = (1.0 + solution.x()) * before[i] + solution.tail<2>();
-    residuals[i] = (after[i] - predicted).norm();
+  // Re-weighting passes: drop tracks beyond 3 median residuals (and 0.5 px, the KLT noise) of
+  // the current fit, refit, until the inlier set settles.
+  constexpr int kPasses = 5;
+  for (int pass = 0; pass < kPasses; ++pass) {
+    std::vector<double> residuals(before.size());
+    for (std::size_t i = 0; i < before.size(); ++i) {
+      const Eigen::Vector2d predicted = (1.0 + solution.x()) * before[i] + solution.tail<2>();
+      residuals[i] = (after[i] - predicted).norm();
+    }
+    std::vector<double> sorted;
+    for (std::size_t i = 0; i < before.size(); ++i) {
+      if (fit.inlier[i]) sorted.push_back(residuals[i]);
+    }
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    const double gate = std::max(3.0 * sorted[sorted.size() / 2], 0.5);
+    std::vector<bool> inlier(before.size());
+    for (std::size_t i = 0; i < before.size(); ++i) inlier[i] = residuals[i] <= gate;
+    if (inlier == fit.inlier && pass > 0) break;
+    fit.inlier = inlier;
+    if (!SolveExpansion(before, after, fit.inlier, &solution)) return fit;
   }
-  std::vector<double> sorted = residuals;
-  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-  const double gate = std::max(3.0 * sorted[sorted.size() / 2], 0.5);
-  for (std::size_t i = 0; i < before.size(); ++i) fit.inlier[i] = residuals[i] <= gate;
-  if (!SolveExpansion(before, after, fit.inlier, &solution)) return fit;
   fit.ok = true;
   fit.alpha = solution.x();
   fit.offset_px = solution.tail<2>();

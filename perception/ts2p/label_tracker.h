@@ -11,8 +11,8 @@
 //        alpha and beta = alpha x_0 on the x-components (steps 2-4) and takes y_0 from the
 //        y-components (step 5); here both components enter one linear least-squares problem
 //        [x 1 0; y 0 1] [alpha; c_x; c_y] = [Delta x; Delta y] (c = -alpha x_0, so the fit also
-//        holds for alpha -> 0, a pure translation, where the FOE is undefined), with one
-//        re-weighting pass rejecting corners beyond 3 median residuals (corners on the other
+//        holds for alpha -> 0, a pure translation, where the FOE is undefined), re-weighted
+//        (up to 5 passes) rejecting corners beyond 3 median residuals (corners on the other
 //        depth);
 //   6.   propagate the set: x -> (1 + alpha) x + c (composed since the detection, so the masks
 //        are warped only to re-detect corners).

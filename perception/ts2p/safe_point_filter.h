@@ -11,9 +11,10 @@
 namespace aperture::perception {
 
 struct SafePointFilterParams {
-  // Acceleration spectral density [px^2/s^3]: x_s accelerates by ~100 px/s^2 when a 576-px
-  // image's gap grows over a 2 s approach.
-  double acceleration_psd = 1.0e4;
+  // Acceleration spectral density [px^2/s^3]: the velocity of x_s may wander by ~20 px/s per
+  // sqrt(s) (x_s 100 px off the FOE at 1.5 %/frame divergence moves at ~45 px/s and changes
+  // that over the ~1 s approach).
+  double acceleration_psd = 400.0;
   // Measurement std [px]: a median switch between F and B moves x_s by a few px.
   double measurement_sigma_px = 4.0;
   void Validate() const;

@@ -1,8 +1,10 @@
 #include "perception/ts2p/ts2p_detector.h"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <limits>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
@@ -16,6 +18,13 @@ double MsSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
+// CPU time of the calling thread [ms]: the cost on one core, whatever else loads the machine.
+double ThreadCpuMs() {
+  timespec now{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+  return now.tv_sec * 1e3 + now.tv_nsec * 1e-6;
+}
+
 cv::Mat Disk(int radius) {
   return cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * radius + 1, 2 * radius + 1));
 }
@@ -25,6 +34,17 @@ cv::Mat ToGray(const cv::Mat& image) {
   cv::Mat gray;
   cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY);
   return gray;
+}
+
+// An opening seen whole lies inside the wall; one partly out of view touches one side. A region
+// on more than a quarter of the border pixels is the wall itself (or the background around it).
+constexpr double kMaxBorderFraction = 0.25;
+
+double BorderFraction(const cv::Mat& mask) {
+  const int w = mask.cols, h = mask.rows;
+  const double on = cv::countNonZero(mask.row(0)) + cv::countNonZero(mask.row(h - 1)) +
+                    cv::countNonZero(mask.col(0)) + cv::countNonZero(mask.col(w - 1));
+  return on / (2.0 * (w + h));
 }
 
 // Fills the holes of a binary mask: background not connected to the image border becomes 255.
@@ -77,9 +97,11 @@ void Ts2pParams::Validate() const {
                                 "' is unknown; use region or edges");
   }
   if (!(min_mode_separation_px >= 0.0) || !(morphology_radius_px >= 0.0) ||
+      !(threshold_fraction > 0.0 && threshold_fraction < 1.0) ||
       !(min_area_fraction >= 0.0 && min_area_fraction < 1.0)) {
     throw std::invalid_argument(
-        "ts2p.min_mode_separation_px and morphology_radius_px must be >= 0 and "
+        "ts2p.min_mode_separation_px and morphology_radius_px must be >= 0, "
+        "threshold_fraction in (0, 1) and "
         "min_area_fraction in [0, 1)");
   }
   if (!(canny_low > 0.0 && canny_high >= canny_low) || weiszfeld_iterations < 1) {
@@ -94,6 +116,7 @@ void LoadParams(config::ParamReader& reader, Ts2pParams* params) {
   reader.Read("segmentation", &params->segmentation);
   reader.Read("min_mode_separation_px", &params->min_mode_separation_px);
   reader.Read("morphology_radius_px", &params->morphology_radius_px);
+  reader.Read("threshold_fraction", &params->threshold_fraction);
   reader.Read("min_area_fraction", &params->min_area_fraction);
   reader.Read("canny_low", &params->canny_low);
   reader.Read("canny_high", &params->canny_high);
@@ -292,6 +315,7 @@ Ts2pDetection Ts2pDetector::Detect(const cv::Mat& reference, const std::vector<c
     cv::resize(gray, small, cv::Size(), scale, scale, cv::INTER_AREA);
     return small;
   };
+  const double cpu_start_ms = ThreadCpuMs();
   const cv::Mat reference_small = resize(reference);
   cv::Mat sum = cv::Mat::zeros(reference_small.size(), CV_32F);
   for (std::size_t k = 0; k < frames.size(); ++k) {
@@ -305,7 +329,7 @@ Ts2pDetection Ts2pDetector::Detect(const cv::Mat& reference, const std::vector<c
         cv::resize(rotational, rotational, flow.size(), 0, 0, cv::INTER_LINEAR);
         rotational *= scale;
       }
-      flow -= rotational;
+      flow = flow - rotational;
       detection.timing.derotation_ms += MsSince(stage);
     }
     stage = Clock::now();
@@ -330,32 +354,46 @@ Ts2pDetection Ts2pDetector::Detect(const cv::Mat& reference, const std::vector<c
   detection.timing.stacking_ms += MsSince(stage);
 
   stage = Clock::now();
-  const double threshold =
-      TwoMeansThreshold(mean_flow, &detection.background_flow_px, &detection.foreground_flow_px);
   detection.opening = cv::Mat::zeros(full, CV_8U);
   const double width_ratio = full.width / 576.0;  // thresholds are given at 576 px
-  if (!(detection.foreground_flow_px - detection.background_flow_px >=
-        params_.min_mode_separation_px * width_ratio)) {
-    detection.status = "no parallax: flow modes " + std::to_string(detection.background_flow_px) +
-                       " and " + std::to_string(detection.foreground_flow_px) +
-                       " px are closer than min_mode_separation_px";
-  } else {
-    detection.opening =
-        params_.segmentation == "region"
-            ? SegmentRegion(mean_flow, threshold)
-            : SegmentEdges(inverse_flow, 1.0 / detection.foreground_flow_px,
-                           1.0 / std::max(detection.background_flow_px, 1e-3));
-    detection.area_px = cv::countNonZero(detection.opening);
-    if (detection.area_px < params_.min_area_fraction * full.area()) {
-      detection.status = "no opening: largest candidate " +
-                         std::to_string(static_cast<int>(detection.area_px)) +
-                         " px is below min_area_fraction";
+  // The opening is the lowest-flow mode. When the two-means split separates something nearer
+  // than the wall (e.g. the ground in front of it) from wall + opening, the low side covers the
+  // image border: split that low side again (at most kMaxSplits times).
+  constexpr int kMaxSplits = 3;
+  cv::Mat values = mean_flow.clone();
+  for (int split = 0; split < kMaxSplits; ++split) {
+    TwoMeansThreshold(values, &detection.background_flow_px, &detection.foreground_flow_px);
+    const double separation = detection.foreground_flow_px - detection.background_flow_px;
+    if (!(separation >= params_.min_mode_separation_px * width_ratio)) {
+      detection.status = "no parallax: flow modes " + std::to_string(detection.background_flow_px) +
+                         " and " + std::to_string(detection.foreground_flow_px) +
+                         " px are closer than min_mode_separation_px";
       detection.opening.setTo(0);
-      detection.area_px = 0.0;
+      break;
     }
+    const double threshold = detection.background_flow_px + params_.threshold_fraction * separation;
+    detection.opening = params_.segmentation == "region"
+                            ? SegmentRegion(mean_flow, threshold)
+                            : SegmentEdges(inverse_flow, 1.0 / detection.foreground_flow_px,
+                                           1.0 / std::max(detection.background_flow_px, 1e-3));
+    if (BorderFraction(detection.opening) <= kMaxBorderFraction) {
+      detection.status = "ok";
+      break;
+    }
+    detection.status = "no enclosed opening: the low-flow region covers the image border";
+    detection.opening.setTo(0);
+    values.setTo(std::numeric_limits<float>::quiet_NaN(), mean_flow >= threshold);
+  }
+  detection.area_px = cv::countNonZero(detection.opening);
+  if (detection.status == "ok" && detection.area_px < params_.min_area_fraction * full.area()) {
+    detection.status = "no opening: largest candidate " +
+                       std::to_string(static_cast<int>(detection.area_px)) +
+                       " px is below min_area_fraction";
+    detection.opening.setTo(0);
+    detection.area_px = 0.0;
   }
   detection.timing.segmentation_ms = MsSince(stage);
-  if (detection.area_px > 0.0) {
+  if (detection.status == "ok" && detection.area_px > 0.0) {
     stage = Clock::now();
     std::vector<std::vector<cv::Point>> contours;
     cv::findContours(detection.opening.clone(), contours, cv::RETR_EXTERNAL,
@@ -371,6 +409,7 @@ Ts2pDetection Ts2pDetector::Detect(const cv::Mat& reference, const std::vector<c
     detection.status = "ok";
   }
   detection.timing.total_ms = MsSince(start);
+  detection.timing.cpu_ms = ThreadCpuMs() - cpu_start_ms;
   return detection;
 }
 
