@@ -18,7 +18,7 @@ namespace aperture::apps {
 class PoseStreams {
  public:
   explicit PoseStreams(const output::OutputFolder& out) : out_(out) {}
-  void Write(double t_s, const std::vector<perception::PoseEstimate>& poses);
+  void Write(double t_s, const std::vector<perception::PoseObservation>& poses);
   // Finishes every file; returns {"<stream>": {"file", "estimates"}} for summary.json.
   nlohmann::json Close();
 
@@ -28,7 +28,7 @@ class PoseStreams {
     std::unique_ptr<output::CsvWriter> covariance;
     std::size_t estimates = 0;
   };
-  Stream& Open(const perception::PoseEstimate& pose);
+  Stream& Open(const perception::PoseObservation& pose);
 
   const output::OutputFolder& out_;
   std::map<std::string, Stream> streams_;

@@ -97,7 +97,7 @@ void RenderDataset(const RenderCommandOptions& options, output::OutputFolder& ou
   perception::CameraCalibration calibration;
   calibration.camera = camera.model;
   calibration.name = camera.name;
-  if (camera.mount_on_body) calibration.T_BC = camera.T_mount;
+  if (camera.T_BC) calibration.T_BC = *camera.T_BC;
   perception::SaveCameraCalibration(calibration, out.Path("calib.yaml"),
                                     perception::CalibrationFormat::kOpenCv);
 

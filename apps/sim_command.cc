@@ -4,11 +4,12 @@
 //   aperture sim tracking ... | aperture sim recovery ...   (sim_tracking/recovery_command.cc)
 //
 // NAME is a built-in scenario (sim/scenario); --config/--set override its keys. The vehicle starts
-// at the scenario's start pose and the ground-truth autopilot holds it there, except `gap`: the
-// vision gap mission (apps/sim_gap_mission.h; parameters via --set mission.<key>=<value>, its
-// outcome in summary.json "mission"), and `led`: the LED-stabilized hover (LED pose + IMU only,
-// experiments/led/led_hover_flight.h; summary key `led_hover`, report plots of position vs
-// set-point and estimate vs ground truth). Writes OUT/summary.json (outcome, crash reason and
+// at the scenario's start pose and flies a mission of the registry
+// (experiments/missions/builtin_missions.h): --mission, or the scenario's default (`gap`: the
+// vision gap mission, `led`: the LED-stabilized hover, others: a ground-truth hover), with its
+// parameters from --set mission.<key>=<value>; its ground-truth evaluation goes into
+// summary.json "mission" (name, passed, its figures) and its report sections into report.html.
+// Writes OUT/summary.json (outcome, crash reason and
 // contact point, real_time_factor, timing, hover errors, frame statistics), OUT/trajectory.csv
 // and OUT/trajectory.tum (ground truth), OUT/commands.csv, OUT/imu.csv, OUT/sim.mp4 (or .avi: the
 // onboard camera with overlays beside a third-person view from behind the vehicle) and
@@ -25,16 +26,16 @@
 #include "apps/chase_view.h"
 #include "apps/command_support.h"
 #include "apps/commands.h"
-#include "apps/sim_gap_mission.h"
 #include "apps/sitl_outputs.h"
+#include "config/config_tree.h"
 #include "experiments/led/led_hover_flight.h"
+#include "experiments/missions/builtin_missions.h"
 #include "output/background_video_writer.h"
 #include "output/html_report.h"
 #include "output/progress_bar.h"
 #include "output/svg_plot.h"
 #include "sim/scenario/scenario.h"
 #include "sim/scenario/scenario_sitl.h"
-#include "sim/sitl/ground_truth_autopilot.h"
 #include "sim/sitl/sitl_runner.h"
 
 namespace aperture::apps {
@@ -43,6 +44,7 @@ namespace {
 struct SimOptions {
   CommonOptions common;
   std::string scenario;
+  std::string mission;  // empty: the scenario's default
   std::optional<std::uint64_t> seed;
   double duration_s = 10.0;
   int video_every = 2;  // camera frames per video frame (30 Hz camera: 15 frames/s video)
@@ -79,11 +81,12 @@ nlohmann::json Vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
 void WriteReport(const sim::SitlResult& result, const std::vector<cv::Mat>& key_frames,
                  const std::string& title, output::OutputFolder& out,
-                 const std::function<void(output::HtmlReport*)>& add_flight_sections) {
+                 const experiments::MissionFlight& flight,
+                 const experiments::MissionEvaluation& evaluation) {
   output::HtmlReport report(title);
   report.AddSection("Summary");
   report.AddTable(out.summary());
-  if (add_flight_sections) add_flight_sections(&report);
+  flight.AddReportSections(evaluation, result, &report);
   std::vector<double> t, x, y, z;
   for (const control::QuadState& s : result.trajectory) {
     t.push_back(s.t_s);
@@ -109,9 +112,7 @@ void WriteReport(const sim::SitlResult& result, const std::vector<cv::Mat>& key_
 
 void RunSim(const SimOptions& options, output::OutputFolder& out) {
   std::vector<std::string> set_items = options.common.set_items;
-  const bool gap_mission = options.scenario == "gap";
-  const std::vector<std::string> mission_items =
-      gap_mission ? SimGapMission::TakeMissionSetItems(&set_items) : std::vector<std::string>{};
+  const std::vector<std::string> mission_items = experiments::TakeMissionSetItems(&set_items);
   if (options.seed) set_items.push_back("seed=" + std::to_string(*options.seed));
   const config::ConfigTree tree =
       sim::ScenarioConfig(options.scenario, options.common.config_files, set_items);
@@ -123,7 +124,6 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
   params.trajectory_decimation = 5;  // 200 Hz ground truth in the outputs
   sim::ConfigureSitlFromScenario(scenario, &params);
   for (sim::SitlCamera& camera : params.cameras) camera.render.ground_truth = false;
-  const Eigen::Isometry3d T_WB_start = scenario.T_WB_start();
   params.SetSeed(scenario_params.seed);
   // The video shows the first body-mounted camera (else the first camera) beside a third-person
   // view of the same height.
@@ -135,24 +135,19 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
   ChaseView chase(options.chase, view_height, &scenario.scene());
   params.collision.ignored_objects.push_back(ChaseView::kMarkerName);
 
+  experiments::MissionRegistry missions;
+  experiments::RegisterBuiltinMissions(missions);
+  const std::string mission_name =
+      options.mission.empty() ? missions.DefaultFor(scenario_params.scenario) : options.mission;
+  const config::ConfigTree mission_tree =
+      config::ConfigTree::FromCommandLine("", {}, mission_items);
+  config::ParamReader mission_root = mission_tree.Reader();
+  config::ParamReader mission_params = mission_root.Section("mission");
+  const std::unique_ptr<experiments::MissionFlight> flight =
+      missions.Create(mission_name, {scenario, params, mission_params});
+  mission_root.RejectUnknownKeys();
+  perception::Autopilot& autopilot = flight->autopilot();
   sim::SitlRunner runner(params, &scenario.scene());
-  sim::GroundTruthAutopilotParams autopilot_params;
-  autopilot_params.waypoints.push_back(
-      sim::Waypoint{params.initial_state.p_WB,
-                    std::atan2(T_WB_start.linear()(1, 0), T_WB_start.linear()(0, 0)), 0.0});
-  sim::GroundTruthAutopilot ground_truth_autopilot(params.dynamics.vehicle, autopilot_params);
-  // Scenario flights: `gap` flies the gap mission, `led` holds the start from the LED pose + IMU
-  // (experiments/led); the others hover on ground truth.
-  std::unique_ptr<SimGapMission> mission;
-  if (gap_mission) mission = std::make_unique<SimGapMission>(scenario, params, mission_items);
-  std::unique_ptr<experiments::LedHoverFlight> led_flight;
-  if (scenario_params.scenario == "led") {
-    led_flight = std::make_unique<experiments::LedHoverFlight>(scenario, params);
-  }
-  perception::Autopilot& autopilot =
-      mission     ? static_cast<perception::Autopilot&>(mission->mission())
-      : led_flight ? led_flight->autopilot()
-                   : static_cast<perception::Autopilot&>(ground_truth_autopilot);
 
   std::unique_ptr<output::BackgroundVideoWriter> video;
   std::vector<cv::Mat> key_frames;
@@ -179,7 +174,7 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
              {params.cameras[primary].name + Format("  t = %.2f s", state.t_s),
               Format("p = [%.2f %.2f %.2f] m", state.p_WB.x(), state.p_WB.y(), state.p_WB.z()),
               Format("|v| = %.2f m/s", state.v_W.norm()), autopilot.status()});
-    if (mission) mission->DrawOverlay(&onboard);
+    flight->DrawOverlay(onboard);
     const bool key_frame = video_frames % key_frame_every == 0;
     cv::Mat composite;
     cv::hconcat(onboard, chase.Update(video_frames, state, key_frame), composite);
@@ -199,6 +194,7 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
   nlohmann::json& summary = out.summary();
   summary["command"] = "sim";
   summary["inputs"] = {{"scenario", options.scenario},
+                       {"mission", mission_name},
                        {"seed", scenario_params.seed},
                        {"duration_s", options.duration_s},
                        {"autopilot", result.autopilot_name}};
@@ -215,14 +211,10 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
                             {"part", result.collision->part},
                             {"contact_p_W_m", Vec(result.collision->contact_p_W)}};
   }
-  double max_error_m = 0.0, sum_squared = 0.0;
-  for (const control::QuadState& s : result.trajectory) {
-    const double e = (s.p_WB - params.initial_state.p_WB).norm();
-    max_error_m = std::max(max_error_m, e);
-    sum_squared += e * e;
-  }
-  summary["hover_error_m"] = {{"max", max_error_m},
-                              {"rms", std::sqrt(sum_squared / result.trajectory.size())}};
+  const experiments::HoverMetrics hover = experiments::ComputeHoverMetrics(
+      result.trajectory, params.initial_state.p_WB, {}, /*recovery_radius_m=*/0.1,
+      /*recovery_hold_s=*/1.0);
+  summary["hover_error_m"] = {{"max", hover.max_error_m}, {"rms", hover.rms_error_m}};
   nlohmann::json cameras = nlohmann::json::array();
   for (const sim::SitlCameraStats& c : result.cameras) {
     cameras.push_back({{"name", c.name},
@@ -231,7 +223,11 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
                        {"frames_delivered", c.frames_delivered}});
   }
   summary["cameras"] = cameras;
-  if (mission) summary["mission"] = mission->Summary(result, scenario);
+  const experiments::MissionEvaluation evaluation = flight->Evaluate(result);
+  nlohmann::json& mission_summary = summary["mission"];
+  mission_summary = evaluation.figures;
+  mission_summary["name"] = mission_name;
+  mission_summary["passed"] = evaluation.passed;
   WriteSitlTimeSeries(result, out);
   nlohmann::json outputs = {{"trajectory", "trajectory.csv"},
                             {"tum", "trajectory.tum"},
@@ -244,20 +240,11 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
     }
   }
   summary["outputs"] = outputs;
-  std::function<void(output::HtmlReport*)> add_flight_sections;
-  if (led_flight) {
-    const experiments::LedHoverFlightResult led =
-        led_flight->Finish(result, params.disturbances.pushes);
-    summary["led_hover"] = experiments::LedHoverSummary(led);
-    add_flight_sections = [led](output::HtmlReport* report) {
-      experiments::AddLedHoverReport(led, report);
-    };
-  }
-  WriteReport(result, key_frames, "aperture sim: " + options.scenario, out, add_flight_sections);
+  WriteReport(result, key_frames, "aperture sim: " + options.scenario, out, *flight, evaluation);
   std::cout << "aperture sim " << options.scenario << ": " << sim::ToString(result.outcome) << " ("
             << result.reason << ") after " << result.sim_time_s << " s, real-time factor "
             << result.real_time_factor << "\n";
-  if (mission) std::cout << mission->OutcomeLine(summary["mission"]) << "\n";
+  std::cout << evaluation.outcome << "\n";
 }
 
 }  // namespace
@@ -268,6 +255,8 @@ void AddSimCommand(CLI::App& app, int* exit_code) {
       app.add_subcommand("sim", "Fly a scenario closed-loop in the rendered simulator (SITL)");
   command->add_option("scenario", options->scenario,
                       "Built-in scenario name (see aperture render); or a flow below");
+  command->add_option("--mission", options->mission,
+                      "Mission to fly (gap, led_hover, hover); default: the scenario's own");
   command->add_option("--seed", options->seed, "Seed of the scenario and every sensor stream");
   command->add_option("--duration", options->duration_s, "Simulated time [s]")
       ->check(CLI::PositiveNumber);

@@ -10,6 +10,10 @@ find_package(CLI11 REQUIRED)
 find_package(NLopt REQUIRED)
 find_package(GTest REQUIRED)
 find_package(benchmark REQUIRED)
+# libvisp-dev 3.5 (visual servoing): imported targets per module; servo/ links them PRIVATE and
+# its tests add visp_robot for the vpSimulatorCamera free-camera simulation.
+find_package(VISP 3.5 REQUIRED COMPONENTS visp_core visp_visual_features visp_vs visp_robot)
+set(APERTURE_VISP visp_vs visp_visual_features visp_core)
 # libapriltag-dev ships a CMake config (target apriltag::apriltag, includes <apriltag/...>).
 find_package(apriltag REQUIRED)
 

@@ -1,15 +1,20 @@
-# aperture_add_module(<folder> DEPS <targets...>)
+# aperture_add_module(<folder> DEPS <targets...> [PRIVATE_DEPS <targets...>])
 # One library per top-level folder (STYLE.md 5): sources are the folder's *.cc files, the include
 # root is the project root (#include "perception/camera/pinhole_camera.h"), the alias is
 # aperture::<folder>. A folder without sources yet is an INTERFACE target so the layering holds.
+# PRIVATE_DEPS are linked privately: their headers must not appear in the folder's public headers
+# (servo's ViSP), so its dependents neither see nor link them directly.
 function(aperture_add_module name)
-  cmake_parse_arguments(ARG "" "" "DEPS" ${ARGN})
+  cmake_parse_arguments(ARG "" "" "DEPS;PRIVATE_DEPS" ${ARGN})
   file(GLOB_RECURSE sources CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/${name}/*.cc)
   set(target aperture_${name})
   if(sources)
     add_library(${target} STATIC ${sources})
     target_include_directories(${target} PUBLIC ${PROJECT_SOURCE_DIR})
     target_link_libraries(${target} PUBLIC ${ARG_DEPS})
+    if(ARG_PRIVATE_DEPS)
+      target_link_libraries(${target} PRIVATE ${ARG_PRIVATE_DEPS})
+    endif()
     target_compile_options(${target} PRIVATE -Wall -Wextra)
   else()
     add_library(${target} INTERFACE)

@@ -6,16 +6,10 @@
 #include <string>
 
 #include "control/flatness.h"  // kYawSingularity
+#include "control/require.h"
 
 namespace aperture::control {
 namespace {
-
-void RequireGain(double value, const char* name) {
-  if (!(value >= 0.0) || !std::isfinite(value)) {
-    throw std::invalid_argument(std::string("AttitudeControllerGains::") + name + " = " +
-                                std::to_string(value) + " must be finite and >= 0");
-  }
-}
 
 // Sign convention of (B.15): take the shorter way round.
 double ShortWaySign(double w) { return w >= 0.0 ? 1.0 : -1.0; }
@@ -23,8 +17,8 @@ double ShortWaySign(double w) { return w >= 0.0 ? 1.0 : -1.0; }
 }  // namespace
 
 void AttitudeControllerGains::Validate() const {
-  RequireGain(p_rp_per_s, "p_rp_per_s");
-  RequireGain(p_yaw_per_s, "p_yaw_per_s");
+  RequireNonNegative(p_rp_per_s, "AttitudeControllerGains.p_rp_per_s");
+  RequireNonNegative(p_yaw_per_s, "AttitudeControllerGains.p_yaw_per_s");
 }
 
 Eigen::Matrix3d ComputeDesiredAttitude(const Eigen::Vector3d& z_des_W, double heading_rad,

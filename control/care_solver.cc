@@ -9,15 +9,10 @@
 #include <limits>
 #include <stdexcept>
 
+#include "control/require.h"
+
 namespace aperture::control {
 namespace {
-
-void RequireFinite(const Eigen::MatrixXd& M, const char* name) {
-  if (!M.allFinite()) {
-    throw std::invalid_argument(std::string("CARE: matrix ") + name +
-                                " has non-finite entries; pass finite system matrices");
-  }
-}
 
 void RequireSymmetric(const Eigen::MatrixXd& M, const char* name) {
   const double scale = 1.0 + M.norm();
@@ -77,8 +72,8 @@ std::optional<Eigen::MatrixXd> SolveContinuousLyapunov(const Eigen::MatrixXd& A,
   if (A.cols() != n || C.rows() != n || C.cols() != n) {
     throw std::invalid_argument("Lyapunov: A and C must be square of equal size");
   }
-  RequireFinite(A, "A");
-  RequireFinite(C, "C");
+  RequireFinite(A, "CARE matrix A");
+  RequireFinite(C, "CARE matrix C");
   // A = U T U^H with T upper triangular; A^T = A^H since A is real, so A^T X + X A + C = 0
   // becomes T^H Y + Y T = F with Y = U^H X U, F = -U^H C U, solved entry by entry.
   const Eigen::ComplexSchur<Eigen::MatrixXd> schur(A);
@@ -121,10 +116,10 @@ CareResult SolveContinuousAlgebraicRiccati(const Eigen::MatrixXd& A, const Eigen
   if (R.rows() != m || R.cols() != m) {
     throw std::invalid_argument("CARE: R must be " + std::to_string(m) + " x " + std::to_string(m));
   }
-  RequireFinite(A, "A");
-  RequireFinite(B, "B");
-  RequireFinite(Q, "Q");
-  RequireFinite(R, "R");
+  RequireFinite(A, "CARE matrix A");
+  RequireFinite(B, "CARE matrix B");
+  RequireFinite(Q, "CARE matrix Q");
+  RequireFinite(R, "CARE matrix R");
   RequireSymmetric(Q, "Q");
   RequireSymmetric(R, "R");
   const Eigen::LLT<Eigen::MatrixXd> R_llt(R);

@@ -5,14 +5,10 @@
 #include <stdexcept>
 #include <string>
 
+#include "control/so3.h"
+
 namespace aperture::control {
 namespace {
-
-Eigen::Matrix3d Hat(const Eigen::Vector3d& w) {
-  Eigen::Matrix3d m;
-  m << 0.0, -w.z(), w.y(), w.z(), 0.0, -w.x(), -w.y(), w.x(), 0.0;
-  return m;
-}
 
 void CheckFinite(const TrajectoryPoint& reference) {
   if (!reference.IsFinite()) {
@@ -158,7 +154,7 @@ FlatnessResult ComputeFlatnessOutputs(const TrajectoryPoint& reference,
   const double c_dot =
       z_B.dot(j) + w.x() * (dy - dz) * yv + w.y() * (dz - dx) * xv + dz * z_B.dot(a);  // (F.29)
   result.collective_thrust_rate_mps3 = c_dot;
-  const Eigen::Matrix3d W = Hat(w);
+  const Eigen::Matrix3d W = Skew(w);
   const Eigen::Matrix3d D = d.asDiagonal();
   const Eigen::Matrix3d& R = result.R_WB;
   const Eigen::Matrix3d W2 = W * W;

@@ -4,23 +4,14 @@
 #include <stdexcept>
 #include <string>
 
+#include "control/require.h"
+
 namespace aperture::control {
-namespace {
-
-void RequirePositive(double value, const char* name) {
-  if (!(value > 0.0) || !std::isfinite(value)) {
-    throw std::invalid_argument(std::string("HeightFilterParams::") + name + " = " +
-                                std::to_string(value) + " must be finite and > 0");
-  }
-}
-
-}  // namespace
-
 void HeightFilterParams::Validate() const {
-  RequirePositive(accel_noise_sigma_mps2, "accel_noise_sigma_mps2");
-  RequirePositive(range_noise_sigma_m, "range_noise_sigma_m");
-  RequirePositive(range_period_s, "range_period_s");
-  RequirePositive(gravity_mps2, "gravity_mps2");
+  RequirePositive(accel_noise_sigma_mps2, "HeightFilterParams.accel_noise_sigma_mps2");
+  RequirePositive(range_noise_sigma_m, "HeightFilterParams.range_noise_sigma_m");
+  RequirePositive(range_period_s, "HeightFilterParams.range_period_s");
+  RequirePositive(gravity_mps2, "HeightFilterParams.gravity_mps2");
   if (gain_K && !gain_K->allFinite()) {
     throw std::invalid_argument("HeightFilterParams::gain_K must be finite");
   }

@@ -5,28 +5,20 @@
 #include <stdexcept>
 #include <string>
 
+#include "control/require.h"
+
 namespace aperture::control {
-namespace {
-
-void RequirePositive(double value, const char* name) {
-  if (!(value > 0.0) || !std::isfinite(value)) {
-    throw std::invalid_argument(std::string("ImuAttitudeEstimatorParams::") + name + " = " +
-                                std::to_string(value) + " must be finite and > 0");
-  }
-}
-
-}  // namespace
-
 void ImuAttitudeEstimatorParams::Validate() const {
-  RequirePositive(correction_gain, "correction_gain");
+  RequirePositive(correction_gain, "ImuAttitudeEstimatorParams.correction_gain");
   if (correction_gain > 1.0) {
     throw std::invalid_argument("ImuAttitudeEstimatorParams::correction_gain = " +
                                 std::to_string(correction_gain) +
                                 " must be <= 1 (k_corr of B.25 is a fraction of the angle)");
   }
-  RequirePositive(max_update_rate_radps, "max_update_rate_radps");
-  RequirePositive(max_accel_norm_error_mps2, "max_accel_norm_error_mps2");
-  RequirePositive(gravity_mps2, "gravity_mps2");
+  RequirePositive(max_update_rate_radps, "ImuAttitudeEstimatorParams.max_update_rate_radps");
+  RequirePositive(max_accel_norm_error_mps2,
+                  "ImuAttitudeEstimatorParams.max_accel_norm_error_mps2");
+  RequirePositive(gravity_mps2, "ImuAttitudeEstimatorParams.gravity_mps2");
   if (!gyro_bias_B.allFinite() || !accel_bias_B.allFinite()) {
     throw std::invalid_argument("ImuAttitudeEstimatorParams: gyro_bias_B and accel_bias_B must be finite");
   }

@@ -4,15 +4,10 @@
 #include <stdexcept>
 #include <string>
 
+#include "control/require.h"
+
 namespace aperture::control {
 namespace {
-
-void RequireGain(double value, const char* name) {
-  if (!(value >= 0.0) || !std::isfinite(value)) {
-    throw std::invalid_argument(std::string("PositionControllerParams::") + name + " = " +
-                                std::to_string(value) + " must be finite and >= 0");
-  }
-}
 
 VehicleParameters ControllerModel(const VehicleParameters& vehicle,
                                   const PositionControllerParams& params) {
@@ -29,10 +24,10 @@ VehicleParameters ControllerModel(const VehicleParameters& vehicle,
 }  // namespace
 
 void PositionControllerParams::Validate() const {
-  RequireGain(p_xy_per_s2, "p_xy_per_s2");
-  RequireGain(p_z_per_s2, "p_z_per_s2");
-  RequireGain(d_xy_per_s, "d_xy_per_s");
-  RequireGain(d_z_per_s, "d_z_per_s");
+  RequireNonNegative(p_xy_per_s2, "PositionControllerParams.p_xy_per_s2");
+  RequireNonNegative(p_z_per_s2, "PositionControllerParams.p_z_per_s2");
+  RequireNonNegative(d_xy_per_s, "PositionControllerParams.d_xy_per_s");
+  RequireNonNegative(d_z_per_s, "PositionControllerParams.d_z_per_s");
   attitude.Validate();
 }
 

@@ -5,15 +5,10 @@
 #include <stdexcept>
 #include <string>
 
+#include "control/require.h"
+
 namespace aperture::control {
 namespace {
-
-void RequireNonNegative(double value, const char* name) {
-  if (!(value >= 0.0) || !std::isfinite(value)) {
-    throw std::invalid_argument(std::string("RecoveryParams::") + name + " = " +
-                                std::to_string(value) + " must be finite and >= 0");
-  }
-}
 
 // Heading of the current attitude in the sense of (B.16)-(B.18): angle of x_B projected on the
 // x_W-y_W plane. Used as reference before the heading is locked, so no yaw rate is commanded.
@@ -45,11 +40,11 @@ const char* ToString(RecoveryStage stage) {
 }
 
 void RecoveryParams::Validate() const {
-  RequireNonNegative(max_tilt_for_height_rad, "max_tilt_for_height_rad");
-  RequireNonNegative(max_roll_pitch_rate_radps, "max_roll_pitch_rate_radps");
-  RequireNonNegative(max_vertical_speed_mps, "max_vertical_speed_mps");
-  RequireNonNegative(max_horizontal_speed_mps, "max_horizontal_speed_mps");
-  RequireNonNegative(min_height_filter_time_s, "min_height_filter_time_s");
+  RequireNonNegative(max_tilt_for_height_rad, "RecoveryParams.max_tilt_for_height_rad");
+  RequireNonNegative(max_roll_pitch_rate_radps, "RecoveryParams.max_roll_pitch_rate_radps");
+  RequireNonNegative(max_vertical_speed_mps, "RecoveryParams.max_vertical_speed_mps");
+  RequireNonNegative(max_horizontal_speed_mps, "RecoveryParams.max_horizontal_speed_mps");
+  RequireNonNegative(min_height_filter_time_s, "RecoveryParams.min_height_filter_time_s");
   controller.Validate();
 }
 

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "control/require.h"
+
 namespace aperture::control {
 namespace {
 
@@ -27,17 +29,6 @@ double PolynomialDerivative(const Coeffs& c, double x, int order) {
     value = value * x + factor * c[k];
   }
   return value;
-}
-
-void RequirePositive(double value, const std::string& name) {
-  if (!(value > 0.0) || !std::isfinite(value)) {
-    throw std::invalid_argument(name + " = " + std::to_string(value) +
-                                " must be positive and finite");
-  }
-}
-
-void RequireFinite(const Eigen::Vector3d& value, const std::string& name) {
-  if (!value.allFinite()) throw std::invalid_argument(name + " must be finite");
 }
 
 // Phase rate [rad/s] at which a path with |dp/dphi| peaking at `length_m` reaches `speed_mps`.

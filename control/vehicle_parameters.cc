@@ -5,18 +5,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "control/require.h"
+
 namespace aperture::control {
 namespace {
 
 double EvaluateQuadratic(const Eigen::Vector3d& k, double u) {
   return (k[2] * u + k[1]) * u + k[0];
-}
-
-void RequirePositive(double value, const std::string& field) {
-  if (!(std::isfinite(value) && value > 0.0)) {
-    throw std::invalid_argument("vehicle parameter '" + field + "' must be finite and > 0, got " +
-                                std::to_string(value));
-  }
 }
 
 }  // namespace
@@ -62,13 +57,14 @@ Eigen::Vector3d VehicleParameters::RotorPosition_B(int i) const {
 }
 
 void VehicleParameters::Validate() const {
-  RequirePositive(mass_kg, "mass_kg");
-  for (int i = 0; i < 3; ++i) RequirePositive(inertia_diag_kgm2[i], "inertia_diag_kgm2");
-  RequirePositive(arm_length_m, "arm_length_m");
-  RequirePositive(gravity_mps2, "gravity_mps2");
-  RequirePositive(rotor.time_constant_up_s, "rotor.time_constant_up_s");
-  RequirePositive(rotor.time_constant_down_s, "rotor.time_constant_down_s");
-  for (int i = 0; i < 4; ++i) RequirePositive(rotor_fitness[i], "rotor_fitness");
+  RequirePositive(mass_kg, "VehicleParameters.mass_kg");
+  for (int i = 0; i < 3; ++i)
+    RequirePositive(inertia_diag_kgm2[i], "VehicleParameters.inertia_diag_kgm2");
+  RequirePositive(arm_length_m, "VehicleParameters.arm_length_m");
+  RequirePositive(gravity_mps2, "VehicleParameters.gravity_mps2");
+  RequirePositive(rotor.time_constant_up_s, "VehicleParameters.rotor.time_constant_up_s");
+  RequirePositive(rotor.time_constant_down_s, "VehicleParameters.rotor.time_constant_down_s");
+  for (int i = 0; i < 4; ++i) RequirePositive(rotor_fitness[i], "VehicleParameters.rotor_fitness");
   if (!(rotor_drag_D_per_s.allFinite() && rotor_drag_A.allFinite() && rotor_drag_B.allFinite() &&
         std::isfinite(thrust_velocity_coeff_kh))) {
     throw std::invalid_argument(

@@ -1,7 +1,5 @@
 #include "planning/approach_planner.h"
 
-#include "planning/fast_acos.h"
-
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
@@ -10,6 +8,9 @@
 #include <ostream>
 #include <stdexcept>
 #include <string>
+
+#include "control/require.h"
+#include "planning/fast_acos.h"
 
 namespace aperture::planning {
 namespace {
@@ -39,13 +40,6 @@ Eigen::Matrix3d ApproachFrame(const ApproachTarget& target) {
   R_WA.col(2) = Eigen::Vector3d::UnitZ();
   R_WA.col(1) = R_WA.col(2).cross(R_WA.col(0));
   return R_WA;
-}
-
-void Require(bool ok, const char* field, double value, const char* fix) {
-  if (!ok) {
-    throw std::invalid_argument(std::string("ApproachPlannerParameters: ") + field + " = " +
-                                std::to_string(value) + " " + fix);
-  }
 }
 
 }  // namespace
@@ -94,34 +88,36 @@ ApproachTarget ApproachTarget::FromTraverse(const TraverseTrajectory& traverse) 
 
 void ApproachPlannerParameters::Validate() const {
   for (int i = 0; i < 3; ++i) {
-    Require(std::isfinite(start_offset_min_A[i]) && std::isfinite(start_offset_max_A[i]) &&
-                start_offset_max_A[i] >= start_offset_min_A[i],
-            "start_offset_max_A[i] - start_offset_min_A[i]",
-            start_offset_max_A[i] - start_offset_min_A[i], "must be finite and >= 0");
-    Require(start_counts[i] >= 1, "start_counts[i]", start_counts[i], "must be >= 1");
+    control::Require(std::isfinite(start_offset_min_A[i]) && std::isfinite(start_offset_max_A[i]) &&
+                         start_offset_max_A[i] >= start_offset_min_A[i],
+                     "ApproachPlannerParameters.start_offset_max_A[i] - start_offset_min_A[i]",
+                     start_offset_max_A[i] - start_offset_min_A[i], "must be finite and >= 0");
+    control::Require(start_counts[i] >= 1, "ApproachPlannerParameters.start_counts[i]",
+                     start_counts[i], "must be >= 1");
   }
-  Require(std::isfinite(duration_min_s) && duration_min_s > 0.0, "duration_min_s", duration_min_s,
-          "must be finite and > 0");
-  Require(std::isfinite(duration_max_s) && duration_max_s >= duration_min_s, "duration_max_s",
-          duration_max_s, "must be finite and >= duration_min_s");
-  Require(duration_count >= 1, "duration_count", duration_count, "must be >= 1");
-  Require(samples_per_candidate >= 2, "samples_per_candidate", samples_per_candidate,
-          "must be >= 2 (both ends)");
-  Require(std::isfinite(view_angle_normalization_rad) && view_angle_normalization_rad > 0.0,
-          "view_angle_normalization_rad", view_angle_normalization_rad, "must be finite and > 0");
-  Require(std::isfinite(start_distance_normalization_m) && start_distance_normalization_m > 0.0,
-          "start_distance_normalization_m", start_distance_normalization_m,
-          "must be finite and > 0");
-  Require(!std::isnan(min_height_m) && min_height_m < std::numeric_limits<double>::infinity(),
-          "min_height_m", min_height_m, "must be a height or -infinity (no floor)");
-  Require(std::isfinite(max_view_angle_rad) && max_view_angle_rad > 0.0, "max_view_angle_rad",
-          max_view_angle_rad, "must be finite and > 0");
+  control::RequirePositive(duration_min_s, "ApproachPlannerParameters.duration_min_s");
+  control::Require(std::isfinite(duration_max_s) && duration_max_s >= duration_min_s,
+                   "ApproachPlannerParameters.duration_max_s", duration_max_s,
+                   "must be finite and >= duration_min_s");
+  control::Require(duration_count >= 1, "ApproachPlannerParameters.duration_count", duration_count,
+                   "must be >= 1");
+  control::Require(samples_per_candidate >= 2, "ApproachPlannerParameters.samples_per_candidate",
+                   samples_per_candidate, "must be >= 2 (both ends)");
+  control::RequirePositive(view_angle_normalization_rad,
+                           "ApproachPlannerParameters.view_angle_normalization_rad");
+  control::RequirePositive(start_distance_normalization_m,
+                           "ApproachPlannerParameters.start_distance_normalization_m");
+  control::Require(
+      !std::isnan(min_height_m) && min_height_m < std::numeric_limits<double>::infinity(),
+      "ApproachPlannerParameters.min_height_m", min_height_m,
+      "must be a height or -infinity (no floor)");
+  control::RequirePositive(max_view_angle_rad, "ApproachPlannerParameters.max_view_angle_rad");
   const double axis_norm = optical_axis_B.norm();
-  Require(optical_axis_B.allFinite() && axis_norm > 0.0 &&
-              std::abs(optical_axis_B.z()) < 0.999 * axis_norm,
-          "optical_axis_B.z / |optical_axis_B|",
-          axis_norm > 0.0 ? optical_axis_B.z() / axis_norm : 0.0,
-          "the optical axis must be non-zero and not parallel to z_B");
+  control::Require(optical_axis_B.allFinite() && axis_norm > 0.0 &&
+                       std::abs(optical_axis_B.z()) < 0.999 * axis_norm,
+                   "ApproachPlannerParameters.optical_axis_B.z / |optical_axis_B|",
+                   axis_norm > 0.0 ? optical_axis_B.z() / axis_norm : 0.0,
+                   "the optical axis must be non-zero and not parallel to z_B");
   limits.Validate();
 }
 

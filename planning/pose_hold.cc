@@ -5,22 +5,11 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "control/require.h"
 #include "control/trajectory_point.h"
 
 namespace aperture::planning {
 namespace {
-
-void RequireFinite(bool finite, const std::string& what) {
-  if (!finite) throw std::invalid_argument(what + " must be finite");
-}
-
-// T_WB = T_WX * T_BX^-1 of a pose measurement.
-Eigen::Quaterniond BodyRotation(const perception::PoseMeasurement& z) {
-  return (z.q_WX.normalized() * z.q_BX.normalized().conjugate()).normalized();
-}
-Eigen::Vector3d BodyPosition(const perception::PoseMeasurement& z) {
-  return z.p_WX - BodyRotation(z) * z.p_BX;
-}
 
 // Largest gap between control steps integrated at once [s]: a stalled caller must not wind up
 // the integral in one step.
@@ -70,81 +59,30 @@ void PoseHoldParams::Validate() const {
 
 PoseHold::PoseHold(const control::VehicleParameters& vehicle, const PoseHoldParams& params,
                    const PoseHoldSetpoint& setpoint)
-    : params_(params), controller_(vehicle, params.controller) {
-  params_.Validate();
+    : params_((params.Validate(), params)),
+      controller_(vehicle, params.controller),
+      fusion_({params.filter, params.max_consecutive_rejections}) {
   SetSetpoint(setpoint);
 }
 
 void PoseHold::SetSetpoint(const PoseHoldSetpoint& setpoint) {
-  RequireFinite(setpoint.p_W.allFinite(), "PoseHoldSetpoint.p_W");
-  RequireFinite(std::isfinite(setpoint.heading_rad), "PoseHoldSetpoint.heading_rad");
+  control::RequireFinite(setpoint.p_W, "PoseHoldSetpoint.p_W");
+  control::RequireFinite(setpoint.heading_rad, "PoseHoldSetpoint.heading_rad");
   setpoint_ = setpoint;
 }
 
 void PoseHold::AddImu(const perception::ImuSample& sample) {
-  if (filter_ && sample.t_s > filter_->time_s()) filter_->Propagate(sample);
-  imu_buffer_.push_back(sample);
+  fusion_.AddImu(sample);
   last_imu_ = sample;
-  while (imu_buffer_.front().t_s < sample.t_s - params_.filter.history_duration_s) {
-    imu_buffer_.pop_front();
-  }
 }
 
-void PoseHold::StartFilter(const perception::PoseMeasurement& z) {
-  RequireFinite(z.p_WX.allFinite() && z.q_WX.coeffs().allFinite() && z.p_BX.allFinite() &&
-                    z.q_BX.coeffs().allFinite() && std::isfinite(z.t_s),
-                "PoseMeasurement (t_s, p_WX, q_WX, p_BX, q_BX)");
-  control::QuadState state;
-  state.t_s = z.t_s;
-  state.q_WB = BodyRotation(z);
-  state.p_WB = BodyPosition(z);
-  perception::PoseImuEstimate initial = perception::InitialEstimate(params_.filter, state);
-  if (filter_) {  // restart: keep the biases, velocity from the rejected run of poses
-    const perception::PoseImuEstimate previous = filter_->Estimate();
-    initial.accel_bias_B = previous.accel_bias_B;
-    initial.gyro_bias_B = previous.gyro_bias_B;
-    initial.state.v_W = previous.state.v_W;
-    if (rejected_p_WB_.size() >= 2 &&
-        rejected_p_WB_.back().first > rejected_p_WB_.front().first) {
-      initial.state.v_W = (rejected_p_WB_.back().second - rejected_p_WB_.front().second) /
-                          (rejected_p_WB_.back().first - rejected_p_WB_.front().first);
-    }
-  }
-  rejected_p_WB_.clear();
-  filter_ = std::make_unique<perception::PoseImuFilter>(params_.filter, initial);
-  for (const perception::ImuSample& sample : imu_buffer_) {
-    if (sample.t_s > filter_->time_s()) filter_->Propagate(sample);
-  }
-  consecutive_rejections_ = 0;
-  last_pose_t_s_ = z.t_s;
-  ++filter_starts_;
-}
-
-PoseHoldUpdate PoseHold::AddPose(const perception::PoseMeasurement& measurement) {
-  PoseHoldUpdate result;
-  if (!filter_) {
-    StartFilter(measurement);
-    result.initialized_filter = true;
-    return result;
-  }
-  result.update = filter_->Update(measurement);
-  if (result.update.applied()) {
-    consecutive_rejections_ = 0;
-    rejected_p_WB_.clear();
-    last_pose_t_s_ = std::max(last_pose_t_s_, measurement.t_s);
-  } else if (result.update.status == perception::PoseUpdateStatus::kRejectedOutlier) {
-    rejected_p_WB_.emplace_back(measurement.t_s, BodyPosition(measurement));
-    if (++consecutive_rejections_ >= params_.max_consecutive_rejections) {
-      StartFilter(measurement);
-      result.initialized_filter = true;
-    }
-  }
-  return result;
+std::vector<perception::PoseFusionOutcome> PoseHold::AddPose(
+    const perception::PoseMeasurement& measurement) {
+  return fusion_.AddPose(measurement);
 }
 
 std::optional<perception::PoseImuEstimate> PoseHold::estimate() const {
-  if (!filter_) return std::nullopt;
-  return filter_->Estimate();
+  return fusion_.estimate();
 }
 
 Eigen::Vector3d PoseHold::integral_accel_W() const {
@@ -152,10 +90,10 @@ Eigen::Vector3d PoseHold::integral_accel_W() const {
 }
 
 perception::AutopilotCommand PoseHold::Step(double t_s) {
-  RequireFinite(std::isfinite(t_s), "PoseHold::Step t_s");
+  control::RequireFinite(t_s, "PoseHold::Step t_s");
   perception::AutopilotCommand command;
-  if (!filter_) return command;
-  const perception::PoseImuEstimate estimate = filter_->Estimate();
+  if (!fusion_.started()) return command;
+  const perception::PoseImuEstimate estimate = *fusion_.estimate();
   const Eigen::Vector3d error_W = setpoint_.p_W - estimate.state.p_WB;
   if (stepped_ && params_.integral_gain_per_s3 > 0.0) {
     const double dt_s = std::clamp(t_s - last_step_t_s_, 0.0, kMaxIntegrationStep_s);
@@ -202,8 +140,8 @@ perception::AutopilotCommand PoseHold::Step(double t_s) {
 }
 
 std::string PoseHold::status(double t_s) const {
-  if (!filter_) return "waiting for pose";
-  const double age_s = t_s - last_pose_t_s_;
+  if (!fusion_.started()) return "waiting for pose";
+  const double age_s = t_s - fusion_.last_pose_t_s();
   if (age_s <= params_.max_pose_age_s) return "hold";
   char buffer[64];
   std::snprintf(buffer, sizeof(buffer), "hold, dead reckoning %.1f s", age_s);

@@ -4,19 +4,15 @@
 // the IMU, on hardware as in SITL (no ground truth, nothing from sim/).
 //
 //   IMU ──────────────┐
-//   PoseMeasurement ──┴─> PoseImuFilter (perception/estimation, latency-aware ESKF)
+//   PoseMeasurement ──┴─> perception::PoseFusion (PoseImuFilter, the one start/restart policy)
 //                              └─> estimate -> control::PositionController (Faessler thesis
 //                                  (F.31)-(F.38), Table A.2 gains) on a constant reference
 //                                  -> ThrustRatesCommand for the flight controller
 //
-// Initialization: the filter starts at the first pose measurement (its time, the body pose it
-// implies through the measurement's extrinsics T_BX, zero velocity, the filter params' initial
-// sigmas) and replays the IMU samples buffered after it. Until then Step() commands nothing
-// (Kind::kNone). A filter that rejects max_consecutive_rejections pose measurements in a row
-// as outliers (it drifted on the IMU alone while the pose was lost, or the pose source jumped)
-// is restarted the same way from the latest measurement, keeping its bias estimates, with the
-// velocity from the rejected measurements (their first and last body positions): an impulsive
-// push the IMU missed leaves the old velocity estimate wrong.
+// Initialization and restarts are PoseFusion's (perception/estimation/pose_fusion.h): the filter
+// starts at the first pose measurement and restarts after max_consecutive_rejections outliers in
+// a row with the velocity of the rejected run (an impulsive push the IMU missed leaves the old
+// velocity estimate wrong). Until the first pose Step() commands nothing (Kind::kNone).
 //
 // Control law: the reference is the set-point with an acceleration feed-forward
 //   a_ff = k_i * integral(p_set - p_est) - a_ext,
@@ -35,15 +31,15 @@
 // stamped at their measurement time, at most filter.history_duration_s old), Step(t_s) at the
 // control rate. Bad parameters or non-finite inputs throw std::invalid_argument naming them.
 #include <Eigen/Core>
-#include <deque>
 #include <memory>
 #include <optional>
 #include <string>
-#include <utility>
+#include <vector>
 
 #include "control/position_controller.h"
 #include "control/vehicle_parameters.h"
 #include "perception/autopilot.h"
+#include "perception/estimation/pose_fusion.h"
 #include "perception/estimation/pose_imu_filter.h"
 
 namespace aperture::planning {
@@ -78,12 +74,6 @@ struct PoseHoldSetpoint {
   double heading_rad = 0.0;                       // psi (trajectory_point.h)
 };
 
-// What became of one pose measurement.
-struct PoseHoldUpdate {
-  bool initialized_filter = false;  // started (or restarted) the filter
-  perception::PoseUpdateResult update;  // the filter's result when not initializing
-};
-
 class PoseHold {
  public:
   // `vehicle`: the controller's model (mass, drag). Throws for invalid parameters or set-point.
@@ -92,11 +82,12 @@ class PoseHold {
 
   void SetSetpoint(const PoseHoldSetpoint& setpoint);
   void AddImu(const perception::ImuSample& sample);
-  PoseHoldUpdate AddPose(const perception::PoseMeasurement& measurement);
+  // What became of the measurements processed by this call (PoseFusion::AddPose).
+  std::vector<perception::PoseFusionOutcome> AddPose(const perception::PoseMeasurement& measurement);
   // Command for t_s (kThrustRates once a pose has initialized the filter, else kNone).
   perception::AutopilotCommand Step(double t_s);
 
-  bool initialized() const { return filter_ != nullptr; }
+  bool initialized() const { return fusion_.started(); }
   // The filter's estimate at its latest IMU sample; none before initialization.
   std::optional<perception::PoseImuEstimate> estimate() const;
   const PoseHoldSetpoint& setpoint() const { return setpoint_; }
@@ -104,30 +95,22 @@ class PoseHold {
   Eigen::Vector3d integral_accel_W() const;
   // Current external-acceleration estimate a_ext [m/s^2] (zero with the observer disabled).
   const Eigen::Vector3d& disturbance_accel_W() const { return disturbance_accel_W_; }
-  double last_pose_t_s() const { return last_pose_t_s_; }
-  int filter_starts() const { return filter_starts_; }
+  double last_pose_t_s() const { return fusion_.last_pose_t_s(); }
+  const perception::PoseFusionCounts& fusion_counts() const { return fusion_.counts(); }
   // "waiting for pose", "hold", "hold, dead reckoning 0.8 s".
   std::string status(double t_s) const;
 
  private:
-  void StartFilter(const perception::PoseMeasurement& measurement);
-
   PoseHoldParams params_;
   PoseHoldSetpoint setpoint_;
   control::PositionController controller_;
-  std::unique_ptr<perception::PoseImuFilter> filter_;
-  std::deque<perception::ImuSample> imu_buffer_;  // last filter.history_duration_s of IMU
+  perception::PoseFusion fusion_;
   Eigen::Vector3d error_integral_W_ = Eigen::Vector3d::Zero();  // [m s]
   Eigen::Vector3d disturbance_accel_W_ = Eigen::Vector3d::Zero();  // a_ext [m/s^2]
   std::optional<perception::ImuSample> last_imu_;
-  // Body positions of the current run of rejected measurements: (t_s, p_WB).
-  std::deque<std::pair<double, Eigen::Vector3d>> rejected_p_WB_;
   double last_collective_thrust_mps2_ = 0.0;  // c_prev; 0 before the first command
   double last_step_t_s_ = 0.0;
   bool stepped_ = false;
-  double last_pose_t_s_ = -1.0;  // < 0: none yet
-  int consecutive_rejections_ = 0;
-  int filter_starts_ = 0;
 };
 
 }  // namespace aperture::planning

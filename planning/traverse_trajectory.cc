@@ -11,19 +11,18 @@
 #include <string>
 #include <vector>
 
+#include "control/require.h"
+
 namespace aperture::planning {
 namespace {
-
-void Require(bool ok, const std::string& what, double value, const char* fix) {
-  if (!ok) throw std::invalid_argument(what + " = " + std::to_string(value) + " " + fix);
-}
 
 void ValidateGap(const GapPose& gap) {
   const double orthogonality_error =
       (gap.R_WG.transpose() * gap.R_WG - Eigen::Matrix3d::Identity()).norm();
-  Require(gap.p_WG.allFinite() && orthogonality_error < 1e-6 && gap.R_WG.determinant() > 0.0,
-          "GapPose: R_WG orthogonality error", orthogonality_error,
-          "(R_WG must be a rotation matrix, p_WG finite; see traverse_trajectory.h for the axes)");
+  control::Require(
+      gap.p_WG.allFinite() && orthogonality_error < 1e-6 && gap.R_WG.determinant() > 0.0,
+      "GapPose: R_WG orthogonality error", orthogonality_error,
+      "(R_WG must be a rotation matrix, p_WG finite; see traverse_trajectory.h for the axes)");
 }
 
 // The plane basis of the header comment.
@@ -96,31 +95,24 @@ double ClearanceConstraint(const std::vector<double>& x, std::vector<double>& gr
 
 void TraverseParameters::Validate() const {
   const std::string prefix = "TraverseParameters: ";
-  Require(std::isfinite(max_start_speed_mps) && max_start_speed_mps > 0.0,
-          prefix + "max_start_speed_mps", max_start_speed_mps, "must be finite and > 0");
-  Require(std::isfinite(min_start_distance_m) && min_start_distance_m > 0.0,
-          prefix + "min_start_distance_m", min_start_distance_m, "must be finite and > 0");
-  Require(std::isfinite(max_start_distance_m) && max_start_distance_m > min_start_distance_m,
-          prefix + "max_start_distance_m", max_start_distance_m,
-          "must be finite and > min_start_distance_m");
-  Require(std::isfinite(max_time_to_gap_s) && max_time_to_gap_s > 0.0, prefix + "max_time_to_gap_s",
-          max_time_to_gap_s, "must be finite and > 0");
-  Require(std::isfinite(gravity_mps2) && gravity_mps2 > 0.0, prefix + "gravity_mps2", gravity_mps2,
-          "must be finite and > 0");
-  Require(std::isfinite(relative_tolerance) && relative_tolerance > 0.0,
-          prefix + "relative_tolerance", relative_tolerance, "must be finite and > 0");
-  Require(max_evaluations > 0, prefix + "max_evaluations", max_evaluations, "must be > 0");
+  control::RequirePositive(max_start_speed_mps, prefix + "max_start_speed_mps");
+  control::RequirePositive(min_start_distance_m, prefix + "min_start_distance_m");
+  control::Require(
+      std::isfinite(max_start_distance_m) && max_start_distance_m > min_start_distance_m,
+      prefix + "max_start_distance_m", max_start_distance_m,
+      "must be finite and > min_start_distance_m");
+  control::RequirePositive(max_time_to_gap_s, prefix + "max_time_to_gap_s");
+  control::RequirePositive(gravity_mps2, prefix + "gravity_mps2");
+  control::RequirePositive(relative_tolerance, prefix + "relative_tolerance");
+  control::Require(max_evaluations > 0, prefix + "max_evaluations", max_evaluations, "must be > 0");
 }
 
 TraverseTrajectory::TraverseTrajectory(const GapPose& gap, double d_m, double time_to_gap_s,
                                        double gravity_mps2)
     : gap_(gap), d_m_(d_m), time_to_gap_s_(time_to_gap_s) {
-  Require(std::isfinite(d_m) && d_m > 0.0, "TraverseTrajectory: d_m", d_m,
-          "must be a positive finite distance");
-  Require(std::isfinite(time_to_gap_s) && time_to_gap_s > 0.0, "TraverseTrajectory: time_to_gap_s",
-          time_to_gap_s, "must be positive and finite");
-  Require(std::isfinite(gravity_mps2) && gravity_mps2 > 0.0, "TraverseTrajectory: gravity_mps2",
-          gravity_mps2, "must be positive and finite");
+  control::RequirePositive(d_m, "TraverseTrajectory: d_m");
+  control::RequirePositive(time_to_gap_s, "TraverseTrajectory: time_to_gap_s");
+  control::RequirePositive(gravity_mps2, "TraverseTrajectory: gravity_mps2");
   ValidateGap(gap);
   const PlaneBasis basis = ComputePlaneBasis(gap.R_WG, gravity_mps2);
   e1_W_ = basis.e1;

@@ -10,6 +10,7 @@ packages=(
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libnlopt-cxx-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libapriltag-dev libopengv-dev
+  libvisp-dev
   visp-images-data
 )
 

@@ -11,7 +11,7 @@ int ForwardCameraIndex(const sim::Scenario& scenario) {
   const std::vector<sim::ScenarioCamera>& cameras = scenario.cameras();
   int first_on_body = -1;
   for (int i = 0; i < static_cast<int>(cameras.size()); ++i) {
-    if (!cameras[i].mount_on_body) continue;
+    if (!cameras[i].T_BC) continue;
     if (cameras[i].name == "front") return i;
     if (first_on_body < 0) first_on_body = i;
   }
@@ -30,9 +30,7 @@ planning::GapMissionParams GapMissionParamsFor(const sim::Scenario& scenario,
                                                const planning::GapMissionParams& base) {
   planning::GapMissionParams params = base;
   const sim::GapParams& gap = scenario.params().gap;
-  params.detector.opening_size_m = gap.opening_m;
-  params.detector.inner_size_m = gap.pattern_inner_m;
-  params.detector.outer_size_m = gap.pattern_outer_m;
+  static_cast<perception::GapPattern&>(params.detector) = gap.Pattern();  // tuning kept
   params.camera_id = ForwardCameraIndex(scenario);
   params.filter.accel_noise_density = imu.accel_noise_density;
   params.filter.gyro_noise_density = imu.gyro_noise_density;
@@ -46,13 +44,13 @@ std::unique_ptr<planning::GapMission> MakeGapMission(const sim::Scenario& scenar
                                                      const planning::GapMissionParams& params) {
   const std::vector<sim::ScenarioCamera>& cameras = scenario.cameras();
   if (params.camera_id < 0 || params.camera_id >= static_cast<int>(cameras.size()) ||
-      !cameras[params.camera_id].mount_on_body) {
+      !cameras[params.camera_id].T_BC) {
     throw std::invalid_argument("gap mission camera_id " + std::to_string(params.camera_id) +
                                 " is not a body-mounted camera of scenario '" + scenario.kind() +
                                 "' (it has " + std::to_string(cameras.size()) + " cameras)");
   }
   const sim::ScenarioCamera& camera = cameras[params.camera_id];
-  return std::make_unique<planning::GapMission>(params, camera.model, camera.T_mount, vehicle);
+  return std::make_unique<planning::GapMission>(params, camera.model, *camera.T_BC, vehicle);
 }
 
 }  // namespace aperture::experiments

@@ -5,18 +5,15 @@
 #include <stdexcept>
 #include <string>
 
+#include "control/require.h"
+
 namespace aperture::experiments {
 namespace {
 
-void Require(bool condition, const std::string& field, const std::string& what) {
-  if (!condition) {
-    throw std::invalid_argument("GapTrialRanges." + field + ": " + what);
-  }
-}
-
 void RequireRange(const Eigen::Vector2d& range, const std::string& field) {
-  Require(range.allFinite() && range.x() >= 0.0 && range.x() <= range.y(), field,
-          "must be a finite range [min, max] with 0 <= min <= max");
+  control::Require(range.allFinite() && range.x() >= 0.0 && range.x() <= range.y(),
+                   std::string("GapTrialRanges.") + field,
+                   "must be a finite range [min, max] with 0 <= min <= max");
 }
 
 // SplitMix64 finalizer: adjacent (seed, index) pairs give uncorrelated trial seeds.
@@ -30,24 +27,25 @@ std::uint64_t Mix(std::uint64_t x) {
 }  // namespace
 
 void GapTrialRanges::Validate() const {
-  Require(std::isfinite(max_roll_deg) && max_roll_deg >= 0.0 && max_roll_deg < 90.0,
-          "max_roll_deg", "must be in [0, 90) deg");
-  Require(std::isfinite(max_pitch_deg) && max_pitch_deg >= 0.0 && max_pitch_deg < 90.0,
-          "max_pitch_deg", "must be in [0, 90) deg");
-  Require(start_offset_m.allFinite() && (start_offset_m.array() >= 0.0).all(), "start_offset_m",
-          "must be finite and >= 0");
-  Require(std::isfinite(max_start_yaw_deg) && max_start_yaw_deg >= 0.0, "max_start_yaw_deg",
-          "must be finite and >= 0");
+  control::Require(std::isfinite(max_roll_deg) && max_roll_deg >= 0.0 && max_roll_deg < 90.0,
+                   "GapTrialRanges.max_roll_deg", "must be in [0, 90) deg");
+  control::Require(std::isfinite(max_pitch_deg) && max_pitch_deg >= 0.0 && max_pitch_deg < 90.0,
+                   "GapTrialRanges.max_pitch_deg", "must be in [0, 90) deg");
+  control::Require(start_offset_m.allFinite() && (start_offset_m.array() >= 0.0).all(),
+                   "GapTrialRanges.start_offset_m", "must be finite and >= 0");
+  control::Require(std::isfinite(max_start_yaw_deg) && max_start_yaw_deg >= 0.0,
+                   "GapTrialRanges.max_start_yaw_deg", "must be finite and >= 0");
   RequireRange(imu_noise_scale, "imu_noise_scale");
-  Require(std::isfinite(accel_bias_sigma_mps2) && accel_bias_sigma_mps2 >= 0.0,
-          "accel_bias_sigma_mps2", "must be finite and >= 0");
-  Require(std::isfinite(gyro_bias_sigma_radps) && gyro_bias_sigma_radps >= 0.0,
-          "gyro_bias_sigma_radps", "must be finite and >= 0");
-  Require(std::isfinite(max_drop_probability) && max_drop_probability >= 0.0 &&
-              max_drop_probability < 1.0,
-          "max_drop_probability", "must be in [0, 1)");
+  control::Require(std::isfinite(accel_bias_sigma_mps2) && accel_bias_sigma_mps2 >= 0.0,
+                   "GapTrialRanges.accel_bias_sigma_mps2", "must be finite and >= 0");
+  control::Require(std::isfinite(gyro_bias_sigma_radps) && gyro_bias_sigma_radps >= 0.0,
+                   "GapTrialRanges.gyro_bias_sigma_radps", "must be finite and >= 0");
+  control::Require(std::isfinite(max_drop_probability) && max_drop_probability >= 0.0 &&
+                       max_drop_probability < 1.0,
+                   "GapTrialRanges.max_drop_probability", "must be in [0, 1)");
   RequireRange(exposure_s, "exposure_s");
-  Require(motion_blur_subframes >= 1, "motion_blur_subframes", "must be >= 1");
+  control::Require(motion_blur_subframes >= 1, "GapTrialRanges.motion_blur_subframes",
+                   "must be >= 1");
 }
 
 GapTrialConfig DrawGapTrial(const GapTrialRanges& ranges, std::uint64_t bench_seed, int index,

@@ -1,5 +1,6 @@
 #include "experiments/gap/gap_trial_evaluation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -57,7 +58,41 @@ std::string CheckFinalHover(const std::vector<control::QuadState>& trajectory,
   return {};
 }
 
+// a + s (b - a) for times, positions, velocities and rates; slerp for the attitude.
+control::QuadState Interpolate(const control::QuadState& a, const control::QuadState& b, double s) {
+  control::QuadState c;
+  c.t_s = a.t_s + s * (b.t_s - a.t_s);
+  c.p_WB = a.p_WB + s * (b.p_WB - a.p_WB);
+  c.v_W = a.v_W + s * (b.v_W - a.v_W);
+  c.q_WB = a.q_WB.slerp(s, b.q_WB);
+  c.omega_B = a.omega_B + s * (b.omega_B - a.omega_B);
+  return c;
+}
+
 }  // namespace
+
+control::QuadState GroundTruthAt(const std::vector<control::QuadState>& trajectory, double t_s) {
+  if (trajectory.empty()) throw std::invalid_argument("GroundTruthAt: empty trajectory");
+  const auto later = std::lower_bound(
+      trajectory.begin(), trajectory.end(), t_s,
+      [](const control::QuadState& s, double t) { return s.t_s < t; });
+  if (later == trajectory.begin()) return trajectory.front();
+  if (later == trajectory.end()) return trajectory.back();
+  const control::QuadState& a = *(later - 1);
+  const control::QuadState& b = *later;
+  return Interpolate(a, b, (t_s - a.t_s) / (b.t_s - a.t_s));
+}
+
+Eigen::Isometry3d TrueGapMatchingEstimate(const Eigen::Isometry3d& T_WG_true,
+                                          const Eigen::Matrix3d& R_WG_est) {
+  // The pattern looks the same turned by 180 deg about z_G; the estimate's frame is the one of
+  // the two whose x_G/y_G map the estimate's up (z_W of the mission frame) to the world's up.
+  Eigen::Isometry3d T_WG = T_WG_true;
+  if ((T_WG_true.linear() * R_WG_est.transpose())(2, 2) < 0.0) {
+    T_WG.linear() = T_WG_true.linear() * Eigen::Vector3d(-1.0, -1.0, 1.0).asDiagonal();
+  }
+  return T_WG;
+}
 
 std::optional<GapCrossing> FindGapCrossing(const std::vector<control::QuadState>& trajectory,
                                            const GapGeometry& gap) {
@@ -74,12 +109,8 @@ std::optional<GapCrossing> FindGapCrossing(const std::vector<control::QuadState>
     const double s = z_a / (z_a - z_b);  // in (0, 1]
     GapCrossing crossing;
     crossing.t_s = a.t_s + s * (b.t_s - a.t_s);
-    control::QuadState& c = crossing.state;
-    c.t_s = crossing.t_s;
-    c.p_WB = a.p_WB + s * (b.p_WB - a.p_WB);
-    c.v_W = a.v_W + s * (b.v_W - a.v_W);
-    c.q_WB = a.q_WB.slerp(s, b.q_WB);
-    c.omega_B = a.omega_B + s * (b.omega_B - a.omega_B);
+    crossing.state = Interpolate(a, b, s);
+    const control::QuadState& c = crossing.state;
     crossing.p_G_m = (T_GW * c.p_WB).head<2>();
     crossing.inside_opening = (crossing.p_G_m.cwiseAbs().array() < 0.5 * gap.opening_m.array()).all();
     return crossing;
@@ -100,7 +131,8 @@ GapStateError ComputeErrorAtGap(const GapCrossing& crossing, const GapGeometry& 
   Eigen::Isometry3d T_WG_est = Eigen::Isometry3d::Identity();
   T_WG_est.linear() = plan.gap().R_WG;
   T_WG_est.translation() = plan.gap().p_WG;
-  const Eigen::Isometry3d T_true_est = gap.T_WG * T_WG_est.inverse();
+  const Eigen::Isometry3d T_true_est =
+      TrueGapMatchingEstimate(gap.T_WG, T_WG_est.linear()) * T_WG_est.inverse();
   const double t_c = plan.time_to_gap_s();
   const Eigen::Matrix3d R_WB_plan =
       control::ComputeDesiredAttitude(plan.thrust_direction_W(), plan.heading_rad());

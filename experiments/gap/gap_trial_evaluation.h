@@ -64,6 +64,16 @@ GapStateError ComputeErrorAtGap(const GapCrossing& crossing, const GapGeometry& 
                                 const planning::TraverseTrajectory& plan,
                                 double traverse_start_time_s);
 
+// Ground truth at t_s, interpolated between the recorded states as at the crossing (linear,
+// slerp for the attitude), clamped to the recorded span. Throws for an empty trajectory.
+control::QuadState GroundTruthAt(const std::vector<control::QuadState>& trajectory, double t_s);
+
+// The true gap pose in the one of the pattern's two look-alike frames (turned by 180 deg about
+// z_G) whose up matches the estimate R_WG_est's (the error at the gap compares relative states
+// through it).
+Eigen::Isometry3d TrueGapMatchingEstimate(const Eigen::Isometry3d& T_WG_true,
+                                          const Eigen::Matrix3d& R_WG_est);
+
 // Roll and pitch [deg] of R = Rz(yaw) Ry(pitch) Rx(roll).
 Eigen::Vector2d RollPitchDeg(const Eigen::Matrix3d& R_WB);
 

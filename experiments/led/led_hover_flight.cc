@@ -175,6 +175,10 @@ LedHoverFlight::~LedHoverFlight() = default;
 
 perception::Autopilot& LedHoverFlight::autopilot() { return *recorder_; }
 
+void LedHoverFlight::DrawOverlay(cv::Mat& bgr) const {
+  recorder_->inner().front_ends().DrawOverlays(bgr);
+}
+
 LedHoverFlightResult LedHoverFlight::Finish(const sim::SitlResult& sitl,
                                             const std::vector<sim::Push>& pushes) const {
   LedHoverFlightResult result;
@@ -198,7 +202,7 @@ LedHoverFlightResult LedHoverFlight::Finish(const sim::SitlResult& sitl,
       continue;
     }
     const double error =
-        (frame.T_WB.translation() - TruePositionAt(sitl.trajectory, frame.t_s)).norm();
+        (frame.p_WB - TruePositionAt(sitl.trajectory, frame.t_s)).norm();
     result.led_pose_error_m.push_back(error);
     led_sum_sq += error * error;
   }

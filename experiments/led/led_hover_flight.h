@@ -18,6 +18,7 @@
 #include <Eigen/Core>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <opencv2/core/mat.hpp>
 #include <optional>
 #include <vector>
 
@@ -93,6 +94,8 @@ class LedHoverFlight {
 
   // The autopilot to fly (LedHoverAutopilot behind a recorder for the scores).
   perception::Autopilot& autopilot();
+  // The LED front end's overlay of the latest LED-camera frame onto `bgr` (that camera's size).
+  void DrawOverlay(cv::Mat& bgr) const;
   // Scores the run (its ground-truth trajectory and the recorded estimates).
   LedHoverFlightResult Finish(const sim::SitlResult& sitl, const std::vector<sim::Push>& pushes) const;
 

@@ -7,42 +7,19 @@
 #include <stdexcept>
 #include <string>
 
+#include "control/require.h"
+#include "control/so3.h"
+
 namespace aperture::perception {
 namespace {
 
+using control::ExpQuaternion;
+using control::LogQuaternion;
+using control::Skew;
 using Index = ErrorStateIndex;
 
-Eigen::Matrix3d Skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return m;
-}
-
-Eigen::Quaterniond ExpQuaternion(const Eigen::Vector3d& rotation_vector) {
-  const double angle = rotation_vector.norm();
-  if (angle < 1e-12) {
-    // First order; exact to round-off for such angles.
-    return Eigen::Quaterniond(1.0, 0.5 * rotation_vector.x(), 0.5 * rotation_vector.y(),
-                              0.5 * rotation_vector.z())
-        .normalized();
-  }
-  return Eigen::Quaterniond(Eigen::AngleAxisd(angle, rotation_vector / angle));
-}
-
-Eigen::Vector3d LogQuaternion(const Eigen::Quaterniond& q) {
-  const Eigen::AngleAxisd angle_axis(q.w() < 0.0 ? Eigen::Quaterniond(-q.coeffs()) : q);
-  return angle_axis.angle() * angle_axis.axis();
-}
-
-void RequireFinite(bool finite, const std::string& what) {
-  if (!finite) {
-    throw std::invalid_argument("PoseImuFilter: " + what +
-                                " is not finite (NaN or inf); check the sensor driver");
-  }
-}
-
 void RequireUnitQuaternion(const Eigen::Quaterniond& q, const std::string& what) {
-  RequireFinite(q.coeffs().allFinite(), what);
+  control::RequireFinite(q.coeffs(), std::string("PoseImuFilter: ") + what);
   if (std::abs(q.norm() - 1.0) > 1e-6) {
     throw std::invalid_argument("PoseImuFilter: " + what + " has norm " + std::to_string(q.norm()) +
                                 ", expected a unit quaternion; normalize it");
@@ -51,7 +28,7 @@ void RequireUnitQuaternion(const Eigen::Quaterniond& q, const std::string& what)
 
 template <int N>
 void RequireCovariance(const Eigen::Matrix<double, N, N>& P, const std::string& what) {
-  RequireFinite(P.allFinite(), what);
+  control::RequireFinite(P, std::string("PoseImuFilter: ") + what);
   const double scale = std::max(P.cwiseAbs().maxCoeff(), 1e-300);
   if ((P - P.transpose()).cwiseAbs().maxCoeff() > 1e-9 * scale) {
     throw std::invalid_argument("PoseImuFilter: " + what + " is not symmetric");
@@ -63,34 +40,22 @@ void RequireCovariance(const Eigen::Matrix<double, N, N>& P, const std::string& 
   }
 }
 
-void RequirePositive(double value, const char* field) {
-  if (!(value > 0.0) || !std::isfinite(value)) {
-    throw std::invalid_argument(std::string("PoseImuFilterParams.") + field + " = " +
-                                std::to_string(value) + " must be finite and > 0");
-  }
-}
-
-void RequireNonNegative(double value, const char* field) {
-  if (!(value >= 0.0) || !std::isfinite(value)) {
-    throw std::invalid_argument(std::string("PoseImuFilterParams.") + field + " = " +
-                                std::to_string(value) + " must be finite and >= 0");
-  }
-}
-
 }  // namespace
 
 void PoseImuFilterParams::Validate() const {
-  RequireNonNegative(accel_noise_density, "accel_noise_density");
-  RequireNonNegative(gyro_noise_density, "gyro_noise_density");
-  RequireNonNegative(accel_bias_random_walk, "accel_bias_random_walk");
-  RequireNonNegative(gyro_bias_random_walk, "gyro_bias_random_walk");
-  RequireNonNegative(gravity_mps2, "gravity_mps2");
-  RequirePositive(initial_position_sigma_m, "initial_position_sigma_m");
-  RequirePositive(initial_velocity_sigma_mps, "initial_velocity_sigma_mps");
-  RequirePositive(initial_attitude_sigma_rad, "initial_attitude_sigma_rad");
-  RequirePositive(initial_accel_bias_sigma_mps2, "initial_accel_bias_sigma_mps2");
-  RequirePositive(initial_gyro_bias_sigma_radps, "initial_gyro_bias_sigma_radps");
-  RequirePositive(history_duration_s, "history_duration_s");
+  ValidateNoise("PoseImuFilterParams");
+  control::RequireNonNegative(gravity_mps2, "PoseImuFilterParams.gravity_mps2");
+  control::RequirePositive(initial_position_sigma_m,
+                           "PoseImuFilterParams.initial_position_sigma_m");
+  control::RequirePositive(initial_velocity_sigma_mps,
+                           "PoseImuFilterParams.initial_velocity_sigma_mps");
+  control::RequirePositive(initial_attitude_sigma_rad,
+                           "PoseImuFilterParams.initial_attitude_sigma_rad");
+  control::RequirePositive(initial_accel_bias_sigma_mps2,
+                           "PoseImuFilterParams.initial_accel_bias_sigma_mps2");
+  control::RequirePositive(initial_gyro_bias_sigma_radps,
+                           "PoseImuFilterParams.initial_gyro_bias_sigma_radps");
+  control::RequirePositive(history_duration_s, "PoseImuFilterParams.history_duration_s");
   if (!(mahalanobis_gate > 0.0)) {  // +inf allowed (no gating)
     throw std::invalid_argument(
         "PoseImuFilterParams.mahalanobis_gate = " + std::to_string(mahalanobis_gate) +
@@ -140,12 +105,12 @@ PoseImuFilter::PoseImuFilter(const PoseImuFilterParams& params, const control::Q
 PoseImuFilter::PoseImuFilter(const PoseImuFilterParams& params, const PoseImuEstimate& initial)
     : params_(params) {
   params_.Validate();
-  RequireFinite(std::isfinite(initial.state.t_s), "initial state.t_s");
-  RequireFinite(initial.state.p_WB.allFinite(), "initial state.p_WB");
-  RequireFinite(initial.state.v_W.allFinite(), "initial state.v_W");
+  control::RequireFinite(initial.state.t_s, "PoseImuFilter: initial state.t_s");
+  control::RequireFinite(initial.state.p_WB, "PoseImuFilter: initial state.p_WB");
+  control::RequireFinite(initial.state.v_W, "PoseImuFilter: initial state.v_W");
   RequireUnitQuaternion(initial.state.q_WB, "initial state.q_WB");
-  RequireFinite(initial.accel_bias_B.allFinite(), "initial accel_bias_B");
-  RequireFinite(initial.gyro_bias_B.allFinite(), "initial gyro_bias_B");
+  control::RequireFinite(initial.accel_bias_B, "PoseImuFilter: initial accel_bias_B");
+  control::RequireFinite(initial.gyro_bias_B, "PoseImuFilter: initial gyro_bias_B");
   RequireCovariance(initial.covariance, "initial covariance");
 
   Vector15d q = Vector15d::Zero();
@@ -265,9 +230,9 @@ PoseUpdateResult PoseImuFilter::ApplyMeasurement(const PoseMeasurement& z, Nomin
 }
 
 void PoseImuFilter::Propagate(const ImuSample& sample) {
-  RequireFinite(std::isfinite(sample.t_s), "ImuSample.t_s");
-  RequireFinite(sample.specific_force_B.allFinite(), "ImuSample.specific_force_B");
-  RequireFinite(sample.omega_B.allFinite(), "ImuSample.omega_B");
+  control::RequireFinite(sample.t_s, "PoseImuFilter: ImuSample.t_s");
+  control::RequireFinite(sample.specific_force_B, "PoseImuFilter: ImuSample.specific_force_B");
+  control::RequireFinite(sample.omega_B, "PoseImuFilter: ImuSample.omega_B");
   Entry& last = history_.back();
   if (!last.has_imu && sample.t_s == last.t_s) {  // first sample exactly at the initial time
     last.has_imu = true;
@@ -296,10 +261,10 @@ void PoseImuFilter::TrimHistory() {
 }
 
 PoseUpdateResult PoseImuFilter::Update(const PoseMeasurement& z) {
-  RequireFinite(std::isfinite(z.t_s), "PoseMeasurement.t_s");
-  RequireFinite(z.p_WX.allFinite(), "PoseMeasurement.p_WX");
+  control::RequireFinite(z.t_s, "PoseImuFilter: PoseMeasurement.t_s");
+  control::RequireFinite(z.p_WX, "PoseImuFilter: PoseMeasurement.p_WX");
   RequireUnitQuaternion(z.q_WX, "PoseMeasurement.q_WX");
-  RequireFinite(z.p_BX.allFinite(), "PoseMeasurement.p_BX");
+  control::RequireFinite(z.p_BX, "PoseImuFilter: PoseMeasurement.p_BX");
   RequireUnitQuaternion(z.q_BX, "PoseMeasurement.q_BX");
   RequireCovariance(z.covariance, "PoseMeasurement.covariance");
 

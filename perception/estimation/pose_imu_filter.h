@@ -50,6 +50,7 @@
 #include <iosfwd>
 
 #include "control/quad_state.h"
+#include "perception/imu_noise_params.h"
 #include "perception/sensor_data.h"
 
 namespace aperture::perception {
@@ -68,12 +69,9 @@ struct ErrorStateIndex {
   static constexpr int kGyroBias = 12;  // db_g in B [rad/s]
 };
 
-struct PoseImuFilterParams {
-  // IMU noise: defaults are those of sim::ImuSensorParams (MPU-6000-class MEMS IMU).
-  double accel_noise_density = 400e-6 * 9.81;                    // [m/s^2/sqrt(Hz)]
-  double gyro_noise_density = 0.005 * 3.14159265358979 / 180.0;  // [rad/s/sqrt(Hz)]
-  double accel_bias_random_walk = 3.0e-3;                        // [m/s^3/sqrt(Hz)]
-  double gyro_bias_random_walk = 2.0e-5;                         // [rad/s^2/sqrt(Hz)]
+// IMU noise (accel/gyro noise densities, bias random walks): perception::ImuNoiseParams, whose
+// defaults are the simulated IMU's (sim::ImuSensorParams derives from it too).
+struct PoseImuFilterParams : ImuNoiseParams {
   double gravity_mps2 = 9.81;                                    // [m/s^2], along -z_W
   // Initial 1-sigma uncertainties used by the constructor that takes no covariance. Biases: a
   // MEMS accelerometer is within ~0.1 m/s^2 and a gyro within ~0.5 deg/s after start-up.

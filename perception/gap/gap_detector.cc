@@ -1,7 +1,5 @@
 #include "perception/gap/gap_detector.h"
 
-#include "perception/gap/canny_edge_detector.h"
-
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <array>
@@ -11,6 +9,10 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "control/require.h"
+#include "control/so3.h"
+#include "perception/gap/canny_edge_detector.h"
+
 namespace aperture::perception {
 namespace {
 
@@ -19,12 +21,7 @@ using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
 using Mat6 = Eigen::Matrix<double, 6, 6>;
 using Vec6 = Eigen::Matrix<double, 6, 1>;
-
-Mat3 Skew(const Vec3& v) {
-  Mat3 S;
-  S << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return S;
-}
+using control::Skew;
 
 // Rotation R_VC of a virtual pinhole camera V looking along axis_C (unit), x_V close to x_C.
 // Gnomonic coordinates in V map straight 3D lines to straight lines whatever the lens.
@@ -89,40 +86,39 @@ struct Side {
 }  // namespace
 
 void ValidateGapDetectorParams(const GapDetectorParams& p) {
-  auto fail = [](const std::string& field, double value, const std::string& expected) {
-    std::ostringstream s;
-    s << "GapDetectorParams." << field << " = " << value << ": " << expected;
-    throw std::invalid_argument(s.str());
-  };
-  for (int i = 0; i < 2; ++i) {
-    const char* axis = i == 0 ? "x" : "y";
-    if (!(p.opening_size_m[i] > 0.0)) fail(std::string("opening_size_m.") + axis, p.opening_size_m[i], "must be > 0");
-    if (!(p.inner_size_m[i] > p.opening_size_m[i]))
-      fail(std::string("inner_size_m.") + axis, p.inner_size_m[i], "must exceed opening_size_m");
-    if (!(p.outer_size_m[i] > p.inner_size_m[i]))
-      fail(std::string("outer_size_m.") + axis, p.outer_size_m[i], "must exceed inner_size_m");
-  }
-  if (!(p.opening_size_m.x() > p.opening_size_m.y()))
-    fail("opening_size_m.x", p.opening_size_m.x(), "x must be the long side (x > y)");
-  if (!(p.canny_low > 0.0)) fail("canny_low", p.canny_low, "must be > 0");
-  if (!(p.canny_high >= p.canny_low)) fail("canny_high", p.canny_high, "must be >= canny_low");
-  if (!(p.min_perimeter_px > 0.0)) fail("min_perimeter_px", p.min_perimeter_px, "must be > 0");
-  if (!(p.approx_epsilon_ratio > 0.0 && p.approx_epsilon_ratio < 0.25))
-    fail("approx_epsilon_ratio", p.approx_epsilon_ratio, "must be in (0, 0.25)");
-  if (!(p.min_side_px > 0.0)) fail("min_side_px", p.min_side_px, "must be > 0");
-  if (!(p.area_ratio_tolerance > 1.0)) fail("area_ratio_tolerance", p.area_ratio_tolerance, "must be > 1");
-  if (!(p.min_contrast > 0.0)) fail("min_contrast", p.min_contrast, "must be > 0");
-  if (p.edge_search_px < 2 || p.edge_search_px > 16)
-    fail("edge_search_px", p.edge_search_px, "must be in [2, 16]");
-  if (!(p.edge_sample_step_px > 0.0)) fail("edge_sample_step_px", p.edge_sample_step_px, "must be > 0");
-  if (p.max_samples_per_side < 4) fail("max_samples_per_side", p.max_samples_per_side, "must be >= 4");
-  if (!(p.corner_exclusion >= 0.0 && p.corner_exclusion < 0.45))
-    fail("corner_exclusion", p.corner_exclusion, "must be in [0, 0.45)");
-  if (!(p.max_corner_rms_px > 0.0)) fail("max_corner_rms_px", p.max_corner_rms_px, "must be > 0");
-  if (!(p.pixel_sigma_px > 0.0)) fail("pixel_sigma_px", p.pixel_sigma_px, "must be > 0");
-  if (p.refinement_iterations < 0) fail("refinement_iterations", p.refinement_iterations, "must be >= 0");
-  if (!(p.roi_margin_ratio >= 0.0)) fail("roi_margin_ratio", p.roi_margin_ratio, "must be >= 0");
-  if (p.roi_margin_px < 0) fail("roi_margin_px", p.roi_margin_px, "must be >= 0");
+  p.ValidatePattern("GapDetectorParams");
+  control::Require(p.canny_low > 0.0, "GapDetectorParams.canny_low", p.canny_low, "must be > 0");
+  control::Require(p.canny_high >= p.canny_low, "GapDetectorParams.canny_high", p.canny_high,
+                   "must be >= canny_low");
+  control::Require(p.min_perimeter_px > 0.0, "GapDetectorParams.min_perimeter_px",
+                   p.min_perimeter_px, "must be > 0");
+  control::Require(p.approx_epsilon_ratio > 0.0 && p.approx_epsilon_ratio < 0.25,
+                   "GapDetectorParams.approx_epsilon_ratio", p.approx_epsilon_ratio,
+                   "must be in (0, 0.25)");
+  control::Require(p.min_side_px > 0.0, "GapDetectorParams.min_side_px", p.min_side_px,
+                   "must be > 0");
+  control::Require(p.area_ratio_tolerance > 1.0, "GapDetectorParams.area_ratio_tolerance",
+                   p.area_ratio_tolerance, "must be > 1");
+  control::Require(p.min_contrast > 0.0, "GapDetectorParams.min_contrast", p.min_contrast,
+                   "must be > 0");
+  control::RequireInRange(p.edge_search_px, 2, 16, "GapDetectorParams.edge_search_px");
+  control::Require(p.edge_sample_step_px > 0.0, "GapDetectorParams.edge_sample_step_px",
+                   p.edge_sample_step_px, "must be > 0");
+  control::Require(p.max_samples_per_side >= 4, "GapDetectorParams.max_samples_per_side",
+                   p.max_samples_per_side, "must be >= 4");
+  control::Require(p.corner_exclusion >= 0.0 && p.corner_exclusion < 0.45,
+                   "GapDetectorParams.corner_exclusion", p.corner_exclusion,
+                   "must be in [0, 0.45)");
+  control::Require(p.max_corner_rms_px > 0.0, "GapDetectorParams.max_corner_rms_px",
+                   p.max_corner_rms_px, "must be > 0");
+  control::Require(p.pixel_sigma_px > 0.0, "GapDetectorParams.pixel_sigma_px", p.pixel_sigma_px,
+                   "must be > 0");
+  control::Require(p.refinement_iterations >= 0, "GapDetectorParams.refinement_iterations",
+                   p.refinement_iterations, "must be >= 0");
+  control::Require(p.roi_margin_ratio >= 0.0, "GapDetectorParams.roi_margin_ratio",
+                   p.roi_margin_ratio, "must be >= 0");
+  control::Require(p.roi_margin_px >= 0, "GapDetectorParams.roi_margin_px", p.roi_margin_px,
+                   "must be >= 0");
 }
 
 std::string GapDetectionStatusName(GapDetectionStatus status) {
@@ -333,10 +329,7 @@ class Attempt {
       if (it == p_.refinement_iterations) break;
       const Vec6 delta = -H.ldlt().solve(g);
       if (!delta.allFinite()) return false;
-      const Mat3 dR = Eigen::AngleAxisd(delta.tail<3>().norm(), delta.tail<3>().norm() > 0
-                                                                     ? Vec3(delta.tail<3>().normalized())
-                                                                     : Vec3::UnitX())
-                          .toRotationMatrix();
+      const Mat3 dR = control::ExpSo3(delta.tail<3>());
       *R = dR * *R;
       *t = dR * *t + delta.head<3>();
       if (delta.norm() < 1e-10) {

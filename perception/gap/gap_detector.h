@@ -5,10 +5,7 @@
 // refinement on all sampled edge points -> region of interest around the last detection (full
 // search only when the ROI finds nothing).
 //
-// The pattern (all rectangles concentric, sides parallel, on one plane):
-//   white surround | black band | white band | opening (the gap, seen through)
-//                  ^ outer_size_m            ^ opening_size_m
-//                               ^ inner_size_m
+// The pattern: perception/gap/gap_pattern.h (white surround | black band | white band | opening).
 // The outer quadrangle is the white->black boundary, the inner one the black->white boundary,
 // so both are edges of the pattern itself whatever is seen through the opening.
 //
@@ -30,17 +27,13 @@
 #include <vector>
 
 #include "perception/camera/camera_model.h"
+#include "perception/gap/gap_pattern.h"
 
 namespace aperture::perception {
 
-struct GapDetectorParams {
-  // Pattern geometry [m] (see the header comment); the seed's gap is 0.8 x 0.28 m. The defaults
-  // are the `gap` scenario's pattern (sim/scenario/scenario_params.h GapParams): 5 cm white band,
-  // 20 cm black band; the white band is >= 2 px wide on a 180 deg fisheye at 5 m.
-  Eigen::Vector2d opening_size_m = Eigen::Vector2d(0.8, 0.28);
-  Eigen::Vector2d inner_size_m = Eigen::Vector2d(0.9, 0.38);
-  Eigen::Vector2d outer_size_m = Eigen::Vector2d(1.3, 0.78);
-
+// The pattern geometry (opening_size_m, inner_size_m, outer_size_m) is the GapPattern base, shared
+// with the simulator's scene; the members below tune the detector.
+struct GapDetectorParams : GapPattern {
   double canny_low = 40.0;   // Canny hysteresis thresholds on the 8-bit image
   double canny_high = 120.0;
   double min_perimeter_px = 60.0;  // smaller contours are not looked at

@@ -4,19 +4,11 @@
 #include <limits>
 #include <opencv2/imgproc.hpp>
 
+#include "control/so3.h"
 #include "perception/gap/gap_detector_params_io.h"
 #include "perception/sensor_data.h"
 
 namespace aperture::perception {
-namespace {
-
-Eigen::Matrix3d Skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d S;
-  S << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return S;
-}
-
-}  // namespace
 
 std::unique_ptr<Node> GapNode::Create(config::ParamReader& params, const FrontEndResources& resources) {
   const CameraCalibration& calibration = resources.RequireCalibration(kName);
@@ -42,25 +34,17 @@ std::map<std::string, double> GapNode::Metrics(const NodeContext& context) const
           {"distance_m", d.detected() ? d.T_CG.translation().norm() : kNaN}};
 }
 
-Eigen::Matrix<double, 6, 6> GapNode::InverseCovariance(const Eigen::Isometry3d& T_CG,
-                                                       const Eigen::Matrix<double, 6, 6>& cov_CG) {
-  // T_GC Exp(-delta) = Exp(-Ad(T_GC) delta) T_GC, Ad(R, t) = [R, [t]x R; 0, R] for [dt; dr].
-  const Eigen::Isometry3d T_GC = T_CG.inverse();
-  Eigen::Matrix<double, 6, 6> Ad = Eigen::Matrix<double, 6, 6>::Zero();
-  Ad.topLeftCorner<3, 3>() = T_GC.linear();
-  Ad.topRightCorner<3, 3>() = Skew(T_GC.translation()) * T_GC.linear();
-  Ad.bottomRightCorner<3, 3>() = T_GC.linear();
-  return Ad * cov_CG * Ad.transpose();
-}
-
-std::vector<PoseEstimate> GapNode::Poses(const NodeContext& context) const {
+std::vector<PoseObservation> GapNode::Poses(const NodeContext& context) const {
   const auto& d = context.Get<GapDetection>(kOutputSlot);
   if (!d.detected()) return {};
-  PoseEstimate estimate;
-  estimate.stream = kName;
-  estimate.T = d.T_CG.inverse();
-  estimate.covariance = InverseCovariance(d.T_CG, d.covariance);
-  return {estimate};
+  PoseObservation observation;
+  observation.stream = kName;
+  observation.target_frame = "G";
+  observation.fixed = PoseObservation::Fixed::kTarget;
+  observation.t_s = context.Get<Frame>(kFrameSlot).t_s;
+  observation.T_CX = d.T_CG;
+  observation.covariance_CX = d.covariance;
+  return {observation};
 }
 
 void GapNode::DrawOverlay(const NodeContext& context, cv::Mat& bgr) const {

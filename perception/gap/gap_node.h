@@ -2,9 +2,9 @@
 // Front end "gap": runs GapDetector (seed 000, Sec. III-A) on every frame.
 //   reads:   "frame" (Frame)
 //   writes:  "gap" (GapDetection: T_CG, covariance, status, reprojection RMS)
-//   poses:   stream "gap" with T = T_GC (the camera's pose in the gap frame G, see
-//            gap_detector.h for G) and its 6x6 covariance of [translation [m]; rotation [rad]]
-//            for the left perturbation T_GC = Exp(delta) * T_GC (delta in G); none when missed.
+//   poses:   stream "gap": PoseObservation of target G (fixed; gap_detector.h defines G), T_CG
+//            with the detector's covariance; the TUM stream records the camera's pose in the gap
+//            frame T_GC (covariance of the left perturbation in G); none when missed.
 //   metrics: detected (0/1), reprojection_rms_px (corners), edge_rms_px, distance_m (|p_CG|);
 //            NaN when missed.
 //   overlay: the 8 sub-pixel corners and the axes of G (x red, y green, z blue, 0.3 m), drawn
@@ -38,12 +38,8 @@ class GapNode final : public Node {
   std::vector<SlotSpec> Outputs() const override;
   void Run(NodeContext& context) override;
   std::map<std::string, double> Metrics(const NodeContext& context) const override;
-  std::vector<PoseEstimate> Poses(const NodeContext& context) const override;
+  std::vector<PoseObservation> Poses(const NodeContext& context) const override;
   void DrawOverlay(const NodeContext& context, cv::Mat& bgr) const override;
-
-  // Covariance of T_GC = T_CG^-1 from that of T_CG (both left perturbations [dt; dr]).
-  static Eigen::Matrix<double, 6, 6> InverseCovariance(const Eigen::Isometry3d& T_CG,
-                                                       const Eigen::Matrix<double, 6, 6>& cov_CG);
 
  private:
   GapDetector detector_;

@@ -189,12 +189,12 @@ std::map<std::string, double> FrameGraph::CollectMetrics(const FrameSlots& slots
   return metrics;
 }
 
-std::vector<PoseEstimate> FrameGraph::CollectPoses(const FrameSlots& slots) const {
-  std::vector<PoseEstimate> poses;
+std::vector<PoseObservation> FrameGraph::CollectPoses(const FrameSlots& slots) const {
+  std::vector<PoseObservation> poses;
   for (std::size_t index : topological_order_) {
     // Poses receives a const context: it cannot Set, so the const_cast never writes.
     const NodeContext context(const_cast<FrameSlots&>(slots), declarations_[index]);
-    for (PoseEstimate& pose : nodes_[index]->Poses(context)) poses.push_back(std::move(pose));
+    for (PoseObservation& pose : nodes_[index]->Poses(context)) poses.push_back(std::move(pose));
   }
   return poses;
 }

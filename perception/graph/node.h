@@ -20,19 +20,10 @@
 
 #include "perception/graph/node_context.h"
 #include "perception/graph/slot_spec.h"
+#include "perception/pose_observation.h"
 
 namespace aperture::perception {
 
-// One pose estimate of a front end on one frame, written by `aperture run` as a row of the TUM
-// trajectory file `<stream>.csv` (e.g. stream "gap" with T = T_GC, stream "led" with T = T_CT;
-// the node's header says which transform it reports).
-struct PoseEstimate {
-  std::string stream;
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  // 6x6 covariance of [translation [m]; rotation [rad]] when the front end provides one; written
-  // to `<stream>_covariance.csv`.
-  std::optional<Eigen::Matrix<double, 6, 6>> covariance;
-};
 
 class Node {
  public:
@@ -48,8 +39,8 @@ class Node {
   // same keys every frame (NaN for "not available") so the columns stay fixed.
   virtual std::map<std::string, double> Metrics(const NodeContext& /*context*/) const { return {}; }
 
-  // Pose estimates of this frame (none when nothing was found).
-  virtual std::vector<PoseEstimate> Poses(const NodeContext& /*context*/) const { return {}; }
+  // Pose observations of this frame (none when nothing was found), stamped with the frame's t_s.
+  virtual std::vector<PoseObservation> Poses(const NodeContext& /*context*/) const { return {}; }
   // Draws this node's results on `bgr` (CV_8UC3, the frame's size) for the overlay video.
   virtual void DrawOverlay(const NodeContext& /*context*/, cv::Mat& /*bgr*/) const {}
 };

@@ -4,12 +4,10 @@
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
+#include "control/require.h"
+
 namespace aperture::perception {
 namespace {
-
-void Require(bool ok, const std::string& field, const std::string& what) {
-  if (!ok) throw std::invalid_argument("LedDetectorParams." + field + " " + what);
-}
 
 // Merges overlapping rectangles until none overlap (few ROIs: quadratic is fine).
 std::vector<cv::Rect> MergeOverlapping(std::vector<cv::Rect> rects) {
@@ -32,14 +30,18 @@ std::vector<cv::Rect> MergeOverlapping(std::vector<cv::Rect> rects) {
 }  // namespace
 
 LedDetector::LedDetector(const LedDetectorParams& params) : params_(params) {
-  Require(params.threshold >= 1 && params.threshold <= 254, "threshold", "must be in [1, 254]");
-  Require(params.smoothing_sigma_px >= 0.0, "smoothing_sigma_px", "must be >= 0");
-  Require(params.min_area_px >= 1, "min_area_px", "must be >= 1");
-  Require(params.max_area_px >= params.min_area_px, "max_area_px", "must be >= min_area_px");
-  Require(params.max_blobs >= 3, "max_blobs", "must be >= 3 (P3P needs three detections)");
-  Require(params.centroid_floor >= 0 && params.centroid_floor < params.threshold,
-          "centroid_floor", "must be in [0, threshold)");
-  Require(params.centroid_margin_px >= 0, "centroid_margin_px", "must be >= 0");
+  control::RequireInRange(params.threshold, 1, 254, "LedDetectorParams.threshold");
+  control::Require(params.smoothing_sigma_px >= 0.0, "LedDetectorParams.smoothing_sigma_px",
+                   "must be >= 0");
+  control::Require(params.min_area_px >= 1, "LedDetectorParams.min_area_px", "must be >= 1");
+  control::Require(params.max_area_px >= params.min_area_px, "LedDetectorParams.max_area_px",
+                   "must be >= min_area_px");
+  control::Require(params.max_blobs >= 3, "LedDetectorParams.max_blobs",
+                   "must be >= 3 (P3P needs three detections)");
+  control::Require(params.centroid_floor >= 0 && params.centroid_floor < params.threshold,
+                   "LedDetectorParams.centroid_floor", "must be in [0, threshold)");
+  control::Require(params.centroid_margin_px >= 0, "LedDetectorParams.centroid_margin_px",
+                   "must be >= 0");
 }
 
 LedDetectionResult LedDetector::Detect(const cv::Mat& image, const CameraModel& camera,

@@ -3,7 +3,7 @@
 #include <Eigen/Cholesky>
 #include <cmath>
 
-#include "perception/led/se3_twist.h"
+#include "control/so3.h"
 
 namespace aperture::perception {
 
@@ -17,7 +17,7 @@ bool ProjectLed(const CameraModel& camera, const Eigen::Isometry3d& T_CT,
   }
   if (J_px_delta) {
     J_px_delta->leftCols<3>() = J_px_p;
-    J_px_delta->rightCols<3>() = -J_px_p * Skew(p_rotated);
+    J_px_delta->rightCols<3>() = -J_px_p * control::Skew(p_rotated);
   }
   return true;
 }
@@ -30,7 +30,7 @@ LedPoseRefinement RefineLedPose(const CameraModel& camera, const std::vector<Eig
   result.T_CT = T_CT_initial;
   if (p_T.size() < 3 || p_T.size() != px.size()) return result;
   Matrix6d H;
-  Vector6d b;
+  control::Vector6d b;
   double squared_error = 0.0;
   // Normal equations at T_CT; false when a point is not projectable.
   auto linearize = [&](const Eigen::Isometry3d& T_CT) {
@@ -52,10 +52,10 @@ LedPoseRefinement RefineLedPose(const CameraModel& camera, const std::vector<Eig
     if (!linearize(result.T_CT)) return result;
     const Eigen::LDLT<Matrix6d> ldlt(H);
     if (ldlt.info() != Eigen::Success) return result;
-    const Vector6d delta = -ldlt.solve(b);
+    const control::Vector6d delta = -ldlt.solve(b);
     if (!delta.allFinite()) return result;
     result.T_CT.translation() += delta.head<3>();
-    result.T_CT.linear() = ExpSo3(delta.tail<3>()) * result.T_CT.linear();
+    result.T_CT.linear() = control::ExpSo3(delta.tail<3>()) * result.T_CT.linear();
     if (delta.norm() < params.step_tolerance) {
       ++result.iterations;
       break;

@@ -5,7 +5,7 @@
 #include <map>
 #include <stdexcept>
 
-#include "perception/led/se3_twist.h"
+#include "control/so3.h"
 
 namespace aperture::perception {
 namespace {
@@ -47,8 +47,8 @@ std::optional<Eigen::Isometry3d> LedTracker::Predict(double t_s) const {
   const TimedPose& previous = history_.front();
   const double dt_previous = last.t_s - previous.t_s;
   const double delta = dt_previous > 0.0 ? (t_s - last.t_s) / dt_previous : 0.0;  // (C.7)
-  const Vector6d xi_last = LogSe3(last.T_CT);
-  return ExpSe3(xi_last + delta * (xi_last - LogSe3(previous.T_CT)));  // (C.6)
+  const control::Vector6d xi_last = control::LogSe3(last.T_CT);
+  return control::ExpSe3(xi_last + delta * (xi_last - control::LogSe3(previous.T_CT)));  // (C.6)
 }
 
 std::vector<LedCorrespondence> LedTracker::MatchPrediction(

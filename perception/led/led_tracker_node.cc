@@ -6,6 +6,7 @@
 #include <limits>
 #include <opencv2/imgproc.hpp>
 
+#include "control/so3.h"
 #include "perception/sensor_data.h"
 
 namespace aperture::perception {
@@ -58,10 +59,21 @@ std::map<std::string, double> LedTrackerNode::Metrics(const NodeContext& context
   };
 }
 
-std::vector<PoseEstimate> LedTrackerNode::Poses(const NodeContext& context) const {
+std::vector<PoseObservation> LedTrackerNode::Poses(const NodeContext& context) const {
   const auto& result = context.Get<LedTrackResult>(kOutputSlot);
   if (!result.has_pose()) return {};
-  return {PoseEstimate{kPoseStream, *result.T_CT, result.covariance}};
+  PoseObservation observation;
+  observation.stream = kPoseStream;
+  observation.target_frame = "T";
+  observation.fixed = PoseObservation::Fixed::kCamera;
+  observation.t_s = context.Get<Frame>(kFrameSlot).t_s;
+  observation.T_CX = *result.T_CT;
+  // (C.9) perturbs p_CT + dt; the observation's convention perturbs Exp(dr) p_CT + dt', so
+  // dt' = dt + [p_CT]x dr.
+  Matrix6d B = Matrix6d::Identity();
+  B.topRightCorner<3, 3>() = control::Skew(result.T_CT->translation());
+  observation.covariance_CX = B * *result.covariance * B.transpose();
+  return {observation};
 }
 
 void LedTrackerNode::DrawOverlay(const NodeContext& context, cv::Mat& bgr) const {

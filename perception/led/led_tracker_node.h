@@ -6,7 +6,8 @@
 //           reprojection_threshold_px, max_rms_px
 //   reads:  "frame" (Frame)
 //   writes: "led" (LedTrackResult)
-//   poses:  stream "led", T = T_CT (p_C = T_CT * p_T) with covariance [p_CT; rotation], (C.9)
+//   poses:  stream "led": PoseObservation of target T with the camera fixed, T_CT (p_C = T_CT * p_T)
+//           with covariance [p_CT; rotation] (C.9); the TUM stream records T_CT
 //   metrics: detections, correspondences, merged_detections, rms_px, status (LedTrackStatus as a
 //            number: 0 tracked, 1 reinitialized, 2 no_detections, 3 no_correspondences,
 //            4 ambiguous, 5 inconsistent), blob_cap_hit
@@ -41,7 +42,7 @@ class LedTrackerNode final : public Node {
   std::vector<SlotSpec> Outputs() const override;
   void Run(NodeContext& context) override;
   std::map<std::string, double> Metrics(const NodeContext& context) const override;
-  std::vector<PoseEstimate> Poses(const NodeContext& context) const override;
+  std::vector<PoseObservation> Poses(const NodeContext& context) const override;
   void DrawOverlay(const NodeContext& context, cv::Mat& bgr) const override;
 
  private:

@@ -6,32 +6,11 @@
 #include <stdexcept>
 #include <utility>
 
+#include "control/require.h"
 #include "perception/gap/gap_node.h"
-#include "perception/led/se3_twist.h"
 
 namespace aperture::planning {
 namespace {
-
-void RequirePositive(double value, const char* field) {
-  if (!std::isfinite(value) || value <= 0.0) {
-    throw std::invalid_argument(std::string("GapMissionParams.") + field +
-                                " must be a positive finite number, got " + std::to_string(value));
-  }
-}
-
-void RequireNonNegative(double value, const char* field) {
-  if (!std::isfinite(value) || value < 0.0) {
-    throw std::invalid_argument(std::string("GapMissionParams.") + field +
-                                " must be finite and >= 0, got " + std::to_string(value));
-  }
-}
-
-void RequireAtLeast(int value, int minimum, const char* field) {
-  if (value < minimum) {
-    throw std::invalid_argument(std::string("GapMissionParams.") + field + " must be >= " +
-                                std::to_string(minimum) + ", got " + std::to_string(value));
-  }
-}
 
 double HeadingOf(const Eigen::Quaterniond& q_WB) {
   const Eigen::Vector3d x_B = q_WB * Eigen::Vector3d::UnitX();
@@ -48,22 +27,24 @@ void GapMissionParams::Validate() const {
   controller.Validate();
   fallback_limits.Validate();
   recovery.Validate();
-  RequireAtLeast(camera_id, 0, "camera_id");
-  RequireAtLeast(init_detections, 1, "init_detections");
-  RequireAtLeast(gravity_samples, 1, "gravity_samples");
-  RequireNonNegative(hover_s, "hover_s");
-  RequirePositive(init_max_relative_sigma, "init_max_relative_sigma");
-  RequirePositive(detection_covariance_scale, "detection_covariance_scale");
-  RequireNonNegative(min_ground_clearance_m, "min_ground_clearance_m");
-  RequireAtLeast(max_consecutive_rejections, 1, "max_consecutive_rejections");
-  RequirePositive(transfer_speed_mps, "transfer_speed_mps");
-  RequirePositive(min_transfer_s, "min_transfer_s");
-  RequireNonNegative(start_hold_s, "start_hold_s");
-  RequireNonNegative(lead_in_s, "lead_in_s");
-  RequireNonNegative(min_replan_remaining_s, "min_replan_remaining_s");
-  RequirePositive(detection_timeout_s, "detection_timeout_s");
-  RequireNonNegative(approach_commit_s, "approach_commit_s");
-  RequireNonNegative(recovered_hold_s, "recovered_hold_s");
+  control::RequireAtLeast(camera_id, 0, "GapMissionParams.camera_id");
+  control::RequireAtLeast(init_detections, 1, "GapMissionParams.init_detections");
+  control::RequireAtLeast(gravity_samples, 1, "GapMissionParams.gravity_samples");
+  control::RequireNonNegative(hover_s, "GapMissionParams.hover_s");
+  control::RequirePositive(init_max_relative_sigma, "GapMissionParams.init_max_relative_sigma");
+  control::RequirePositive(detection_covariance_scale,
+                           "GapMissionParams.detection_covariance_scale");
+  control::RequireNonNegative(min_ground_clearance_m, "GapMissionParams.min_ground_clearance_m");
+  control::RequireAtLeast(max_consecutive_rejections, 1,
+                          "GapMissionParams.max_consecutive_rejections");
+  control::RequirePositive(transfer_speed_mps, "GapMissionParams.transfer_speed_mps");
+  control::RequirePositive(min_transfer_s, "GapMissionParams.min_transfer_s");
+  control::RequireNonNegative(start_hold_s, "GapMissionParams.start_hold_s");
+  control::RequireNonNegative(lead_in_s, "GapMissionParams.lead_in_s");
+  control::RequireNonNegative(min_replan_remaining_s, "GapMissionParams.min_replan_remaining_s");
+  control::RequirePositive(detection_timeout_s, "GapMissionParams.detection_timeout_s");
+  control::RequireNonNegative(approach_commit_s, "GapMissionParams.approach_commit_s");
+  control::RequireNonNegative(recovered_hold_s, "GapMissionParams.recovered_hold_s");
 }
 
 const char* ToString(GapMissionPhase phase) {
@@ -81,24 +62,32 @@ const char* ToString(GapMissionPhase phase) {
   return "unknown";
 }
 
+namespace {
+
+std::vector<std::unique_ptr<perception::Node>> GapFrontEnd(
+    const perception::GapDetectorParams& params,
+    std::shared_ptr<const perception::CameraModel> camera) {
+  if (!camera) throw std::invalid_argument("GapMission: the camera model is null");
+  std::vector<std::unique_ptr<perception::Node>> nodes;
+  nodes.push_back(std::make_unique<perception::GapNode>(params, std::move(camera)));
+  return nodes;
+}
+
+}  // namespace
+
 GapMission::GapMission(const GapMissionParams& params,
                        std::shared_ptr<const perception::CameraModel> camera,
                        const Eigen::Isometry3d& T_BC, const control::VehicleParameters& vehicle)
     : params_((params.Validate(), params)),
-      T_BC_(T_BC),
+      T_BC_((perception::RequireRigid(T_BC, "GapMission: T_BC (camera mount)"), T_BC)),
       vehicle_(vehicle),
-      detector_(params.detector,
-                camera ? std::move(camera)
-                       : throw std::invalid_argument("GapMission: the camera model is null")),
+      front_ends_(GapFrontEnd(params.detector, std::move(camera))),
       approach_planner_(params.approach),
       controller_(vehicle, params.controller),
       attitude_controller_(params.controller.attitude),
-      recovery_(vehicle, params.recovery) {
-  const Eigen::Matrix3d R = T_BC.linear();
-  if (!T_BC.matrix().allFinite() || !(R.transpose() * R).isIdentity(1e-6) ||
-      R.determinant() < 0.0) {
-    throw std::invalid_argument("GapMission: T_BC must be a finite rigid transform (rotation)");
-  }
+      recovery_(vehicle, params.recovery),
+      rig_{Eigen::Isometry3d::Identity(), T_BC, params.detection_covariance_scale},
+      fusion_({params.filter, params.max_consecutive_rejections}) {
   recent_up_B_.reserve(static_cast<std::size_t>(params_.gravity_samples));
   phase_changes_.push_back({0.0, phase_});
 }
@@ -117,11 +106,8 @@ void GapMission::Abort(const std::string& reason, double t_s) {
 
 void GapMission::OnImu(const perception::ImuSample& sample) {
   last_imu_ = sample;
-  if (filter_) {
-    filter_->Propagate(sample);
-    ApplyPendingMeasurements();
-    return;
-  }
+  fusion_.AddImu(sample);
+  if (fusion_.started()) return;
   // Hovering at rest before the filter starts: the specific force is gravity, up in B.
   const Eigen::Vector3d up_B = sample.specific_force_B.normalized();
   if (recent_up_B_.size() < static_cast<std::size_t>(params_.gravity_samples)) {
@@ -132,89 +118,49 @@ void GapMission::OnImu(const perception::ImuSample& sample) {
   }
 }
 
-void GapMission::OnFrame(const perception::Frame& frame) {
-  if (frame.camera_id != params_.camera_id) return;
+bool GapMission::LookingForGap(double frame_t_s) const {
   // The detector looks until the planned crossing of the gap plane; after it the gap is behind.
-  const bool looking =
-      phase_ == GapMissionPhase::kDetect || phase_ == GapMissionPhase::kHover ||
-      phase_ == GapMissionPhase::kTransfer || phase_ == GapMissionPhase::kApproach ||
-      phase_ == GapMissionPhase::kLeadIn ||
-      (phase_ == GapMissionPhase::kTraverse &&
-       frame.t_s < traverse_start_t_s_ + traverse_->time_to_gap_s());
-  if (!looking) return;
-  last_detection_ = detector_.Detect(frame.image);
-  last_frame_t_s_ = frame.t_s;
-  ++frames_processed_;
-  if (!last_detection_.detected()) return;
-  ++detections_;
-  last_detected_t_s_ = frame.t_s;
-  last_T_CG_ = last_detection_.T_CG;
-  if (!filter_) {
-    if (recent_up_B_.empty()) return;  // no IMU yet: gravity unknown
-    Eigen::Vector3d up_B = Eigen::Vector3d::Zero();
-    for (const Eigen::Vector3d& u : recent_up_B_) up_B += u;
-    const Eigen::Matrix3d R_GB = last_T_CG_.linear().transpose() * T_BC_.linear().transpose();
-    up_G_sum_ += R_GB * up_B.normalized();
-    return;
+  switch (phase_) {
+    case GapMissionPhase::kDetect:
+    case GapMissionPhase::kHover:
+    case GapMissionPhase::kTransfer:
+    case GapMissionPhase::kApproach:
+    case GapMissionPhase::kLeadIn:
+      return true;
+    case GapMissionPhase::kTraverse:
+      return frame_t_s < traverse_start_t_s_ + traverse_->time_to_gap_s();
+    default:
+      return false;
   }
-  // Pose of the camera in W from T_WC = T_WG T_CG^-1, covariance mapped from the detector's left
-  // perturbation of T_GC in G to the filter's [n_p (W); n_theta (C)] (pose_imu_filter.h):
-  // n_p = R_WG (dt - [p_GC]x dr), n_theta = R_CG dr.
-  const Eigen::Isometry3d T_GC = last_T_CG_.inverse();
-  const Eigen::Isometry3d T_WC = T_WG_ * T_GC;
-  const perception::Matrix6d cov_GC =
-      perception::GapNode::InverseCovariance(last_T_CG_, last_detection_.covariance);
-  perception::Matrix6d J = perception::Matrix6d::Zero();
-  J.topLeftCorner<3, 3>() = T_WG_.linear();
-  J.topRightCorner<3, 3>() = -T_WG_.linear() * perception::Skew(T_GC.translation());
-  J.bottomRightCorner<3, 3>() = T_GC.linear().transpose();
-  perception::Matrix6d cov = params_.detection_covariance_scale * J * cov_GC * J.transpose();
-  cov = 0.5 * (cov + cov.transpose()).eval();
-  perception::PoseMeasurement z;
-  z.t_s = frame.t_s;
-  z.p_WX = T_WC.translation();
-  z.q_WX = Eigen::Quaterniond(T_WC.linear()).normalized();
-  z.covariance = cov;
-  z.p_BX = T_BC_.translation();
-  z.q_BX = Eigen::Quaterniond(T_BC_.linear()).normalized();
-  // A frame stamped after the latest IMU sample (IMU latency) waits for the IMU to catch up.
-  pending_.push_back(z);
-  ApplyPendingMeasurements();
 }
 
-void GapMission::ApplyPendingMeasurements() {
-  while (!pending_.empty() && pending_.front().t_s <= filter_->time_s()) {
-    const perception::PoseMeasurement z = pending_.front();
-    pending_.pop_front();
-    const perception::PoseUpdateResult result = filter_->Update(z);
-    if (result.applied()) {
-      consecutive_rejections_ = 0;
+void GapMission::OnFrame(const perception::Frame& frame) {
+  if (frame.camera_id != params_.camera_id || !LookingForGap(frame.t_s)) return;
+  const std::vector<perception::PoseObservation>& observations = front_ends_.Process(frame);
+  last_detection_ =
+      *front_ends_.Latest<perception::GapDetection>(perception::GapNode::kOutputSlot);
+  last_frame_t_s_ = frame.t_s;
+  ++frames_processed_;
+  for (const perception::PoseObservation& observation : observations) {
+    if (observation.stream != perception::GapNode::kName) continue;
+    ++detections_;
+    last_detected_t_s_ = frame.t_s;
+    last_T_CG_ = observation.T_CX;
+    if (!fusion_.started()) {
+      AccumulateUpInGap(last_T_CG_);
       continue;
     }
-    ++updates_rejected_;
-    if (result.status != perception::PoseUpdateStatus::kRejectedOutlier ||
-        ++consecutive_rejections_ < params_.max_consecutive_rejections) {
-      continue;
-    }
-    // Diverged: restart at the measured pose (T_WB = T_WX T_BX^-1), keeping velocity and biases.
-    perception::PoseImuEstimate restart = filter_->Estimate();
-    const Eigen::Quaterniond q_WB = (z.q_WX * z.q_BX.inverse()).normalized();
-    restart.state.q_WB = q_WB;
-    restart.state.p_WB = z.p_WX - q_WB * z.p_BX;
-    const double kInitial[5] = {params_.filter.initial_position_sigma_m,
-                                params_.filter.initial_velocity_sigma_mps,
-                                params_.filter.initial_attitude_sigma_rad,
-                                params_.filter.initial_accel_bias_sigma_mps2,
-                                params_.filter.initial_gyro_bias_sigma_radps};
-    restart.covariance.setZero();
-    for (int block = 0; block < 5; ++block) {
-      restart.covariance.block<3, 3>(3 * block, 3 * block) =
-          kInitial[block] * kInitial[block] * Eigen::Matrix3d::Identity();
-    }
-    filter_ = std::make_unique<perception::PoseImuFilter>(params_.filter, restart);
-    consecutive_rejections_ = 0;
-    ++filter_restarts_;
+    // A frame stamped after the latest IMU sample (IMU latency) waits for the IMU to catch up.
+    fusion_.AddPose(perception::ToPoseMeasurement(observation, rig_));
   }
+}
+
+void GapMission::AccumulateUpInGap(const Eigen::Isometry3d& T_CG) {
+  if (recent_up_B_.empty()) return;  // no IMU yet: gravity unknown
+  Eigen::Vector3d up_B = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& u : recent_up_B_) up_B += u;
+  const Eigen::Matrix3d R_GB = T_CG.linear().transpose() * T_BC_.linear().transpose();
+  up_G_sum_ += R_GB * up_B.normalized();
 }
 
 void GapMission::OnRange(const perception::RangeReading& reading) {
@@ -230,29 +176,29 @@ void GapMission::StartFilter() {
   R_GW.col(0) = x_G_of_W;
   R_GW.col(1) = up_G.cross(x_G_of_W);
   R_GW.col(2) = up_G;
-  T_WG_ = Eigen::Isometry3d::Identity();
-  T_WG_.linear() = R_GW.transpose();
+  rig_.T_W_fixed = Eigen::Isometry3d::Identity();
+  rig_.T_W_fixed.linear() = R_GW.transpose();  // T_WG
   gap_W_.p_WG.setZero();
-  gap_W_.R_WG = T_WG_.linear();
-  const Eigen::Isometry3d T_WB = T_WG_ * last_T_CG_.inverse() * T_BC_.inverse();
+  gap_W_.R_WG = rig_.T_W_fixed.linear();
+  const Eigen::Isometry3d T_WB = rig_.T_W_fixed * last_T_CG_.inverse() * T_BC_.inverse();
   control::QuadState initial;
   initial.t_s = last_imu_->t_s;
   initial.p_WB = T_WB.translation();
   initial.q_WB = Eigen::Quaterniond(T_WB.linear()).normalized();
-  filter_ = std::make_unique<perception::PoseImuFilter>(params_.filter, initial);
+  fusion_.Start(initial);
   hover_reference_ = control::TrajectoryPoint();
   hover_reference_.p_W = initial.p_WB;
   hover_reference_.heading_rad = HeadingOf(initial.q_WB);
 }
 
 control::QuadState GapMission::estimate() const {
-  if (!filter_) return control::QuadState();
-  return filter_->Estimate().state;
+  if (!fusion_.started()) return control::QuadState();
+  return fusion_.estimate()->state;
 }
 
 double GapMission::position_sigma_m() const {
-  if (!filter_) return std::numeric_limits<double>::quiet_NaN();
-  const perception::Matrix15d P = filter_->Estimate().covariance;
+  if (!fusion_.started()) return std::numeric_limits<double>::quiet_NaN();
+  const perception::Matrix15d P = fusion_.estimate()->covariance;
   return std::sqrt(
       P.block<3, 3>(perception::ErrorStateIndex::kPosition, perception::ErrorStateIndex::kPosition)
           .diagonal()
@@ -338,133 +284,150 @@ control::RecoveryInputs GapMission::RecoveryInputsAt(double t_s) const {
 }
 
 perception::AutopilotCommand GapMission::Step(double t_s) {
-  switch (phase_) {
-    case GapMissionPhase::kDetect: {
-      if (up_G_sum_.norm() > 0.0 && detections_ >= params_.init_detections && last_imu_) {
-        StartFilter();
-        EnterPhase(GapMissionPhase::kHover, t_s);
-        return Track(hover_reference_);
-      }
-      return HoverCommand();
+  for (;;) {
+    std::optional<perception::AutopilotCommand> command;
+    switch (phase_) {
+      case GapMissionPhase::kDetect: command = StepDetect(t_s); break;
+      case GapMissionPhase::kHover: command = StepHover(t_s); break;
+      case GapMissionPhase::kTransfer: command = StepTransfer(t_s); break;
+      case GapMissionPhase::kApproach: command = StepApproach(t_s); break;
+      case GapMissionPhase::kLeadIn: command = StepLeadIn(t_s); break;
+      case GapMissionPhase::kTraverse: command = StepTraverse(t_s); break;
+      case GapMissionPhase::kRecover:
+      case GapMissionPhase::kDone:
+      case GapMissionPhase::kAborted: command = StepRecovery(t_s); break;
     }
-    case GapMissionPhase::kHover: {
-      if (t_s - last_detected_t_s_ > params_.detection_timeout_s) {
-        Abort("gap lost while hovering", t_s);
-        return Step(t_s);
-      }
-      const double distance_m = (estimate().p_WB - gap_W_.p_WG).norm();
-      if (t_s - phase_start_t_s_ >= params_.hover_s &&
-          position_sigma_m() <= params_.init_max_relative_sigma * distance_m) {
-        Plan(t_s);
-        return Step(t_s);
-      }
-      hover_reference_.t_s = t_s;
-      return Track(hover_reference_);
-    }
-    case GapMissionPhase::kTransfer: {
-      if (t_s - last_detected_t_s_ > params_.detection_timeout_s) {
-        Abort("gap lost during the transfer", t_s);
-        return Step(t_s);
-      }
-      const double t_rel = t_s - phase_start_t_s_;
-      if (t_rel >= transfer_.duration_s() + params_.start_hold_s) {
-        EnterPhase(GapMissionPhase::kApproach, t_s);
-        approach_start_t_s_ = t_s;
-        approach_end_t_s_ = t_s + primitive_.duration_s();
-        primitive_start_t_s_ = t_s;
-        last_reference_a_W_.setZero();
-        return Step(t_s);
-      }
-      control::TrajectoryPoint reference = approach_planner_.Sample(
-          transfer_, approach_target_.gap_center_W, std::min(t_rel, transfer_.duration_s()));
-      reference.t_s = t_s;
-      return Track(reference);
-    }
-    case GapMissionPhase::kApproach: {
-      if (t_s >= approach_end_t_s_) {
-        EnterPhase(GapMissionPhase::kLeadIn, t_s);
-        return Step(t_s);
-      }
-      const double remaining_s = approach_end_t_s_ - t_s;
-      if (remaining_s > params_.approach_commit_s &&
-          t_s - last_detected_t_s_ > params_.detection_timeout_s) {
-        Abort("gap lost during the approach", t_s);
-        return Step(t_s);
-      }
-      if (remaining_s > params_.min_replan_remaining_s) {
-        const control::QuadState x = estimate();
-        const ApproachCandidate candidate = approach_planner_.Replan(
-            approach_target_, x.p_WB, x.v_W, last_reference_a_W_, remaining_s);
-        if (candidate.IsValid()) {
-          primitive_ = candidate.primitive;
-          primitive_start_t_s_ = t_s;
-          ++replans_accepted_;
-        } else {
-          ++replans_rejected_;
-        }
-      }
-      control::TrajectoryPoint reference = approach_planner_.Sample(
-          primitive_, approach_target_.gap_center_W, t_s - primitive_start_t_s_);
-      reference.t_s = t_s;
-      last_reference_a_W_ = reference.a_W;
-      return Track(reference);
-    }
-    case GapMissionPhase::kLeadIn: {
-      // Traverse time runs from -lead_in_s at the approach end.
-      const double t_traverse = t_s - approach_end_t_s_ - params_.lead_in_s;
-      if (t_traverse >= 0.0) {
-        EnterPhase(GapMissionPhase::kTraverse, t_s);
-        traverse_start_t_s_ = t_s;
-        traverse_start_estimate_ = estimate();
-        return Step(t_s);
-      }
-      control::TrajectoryPoint reference = traverse_->Sample(t_traverse);
-      reference.t_s = t_s;
-      return Track(reference);
-    }
-    case GapMissionPhase::kTraverse: {
-      if (t_s - traverse_start_t_s_ >= traverse_->duration_s()) {
-        EnterPhase(GapMissionPhase::kRecover, t_s);
-        recovery_.StartWithoutLaunch(t_s);
-        return Step(t_s);
-      }
-      // Open loop: constant thrust, constant attitude (thrust along +-e3, traverse heading).
-      perception::AutopilotCommand command;
-      command.kind = perception::AutopilotCommand::Kind::kThrustRates;
-      command.thrust_rates.collective_thrust_mps2 = traverse_->collective_thrust_mps2();
-      command.thrust_rates.omega_des_B =
-          attitude_controller_
-              .Compute(estimate().q_WB, traverse_->thrust_direction_W(), traverse_->heading_rad())
-              .omega_fb_B;
-      return command;
-    }
-    case GapMissionPhase::kRecover:
-    case GapMissionPhase::kDone:
-    case GapMissionPhase::kAborted: {
-      const control::RecoveryOutput output = recovery_.Step(RecoveryInputsAt(t_s));
-      if (output.stage == control::RecoveryStage::kPosition) {
-        if (std::isnan(position_stage_since_t_s_)) position_stage_since_t_s_ = t_s;
-      } else {
-        position_stage_since_t_s_ = std::numeric_limits<double>::quiet_NaN();
-      }
-      const bool recovered = !std::isnan(position_stage_since_t_s_) &&
-                             t_s - position_stage_since_t_s_ >= params_.recovered_hold_s;
-      if (recovered && phase_ == GapMissionPhase::kRecover) {
-        EnterPhase(GapMissionPhase::kDone, t_s);
-      }
-      perception::AutopilotCommand command;
-      command.kind = perception::AutopilotCommand::Kind::kThrustRates;
-      command.thrust_rates = output.command;
-      command.done = recovered;
-      return command;
-    }
+    if (command) return *command;
+  }
+}
+
+std::optional<perception::AutopilotCommand> GapMission::StepDetect(double t_s) {
+  if (up_G_sum_.norm() > 0.0 && detections_ >= params_.init_detections && last_imu_) {
+    StartFilter();
+    EnterPhase(GapMissionPhase::kHover, t_s);
+    return Track(hover_reference_);
   }
   return HoverCommand();
 }
 
+std::optional<perception::AutopilotCommand> GapMission::StepHover(double t_s) {
+  if (t_s - last_detected_t_s_ > params_.detection_timeout_s) {
+    Abort("gap lost while hovering", t_s);
+    return std::nullopt;
+  }
+  const double distance_m = (estimate().p_WB - gap_W_.p_WG).norm();
+  if (t_s - phase_start_t_s_ >= params_.hover_s &&
+      position_sigma_m() <= params_.init_max_relative_sigma * distance_m) {
+    Plan(t_s);  // enters kTransfer, or aborts
+    return std::nullopt;
+  }
+  hover_reference_.t_s = t_s;
+  return Track(hover_reference_);
+}
+
+std::optional<perception::AutopilotCommand> GapMission::StepTransfer(double t_s) {
+  if (t_s - last_detected_t_s_ > params_.detection_timeout_s) {
+    Abort("gap lost during the transfer", t_s);
+    return std::nullopt;
+  }
+  const double t_rel = t_s - phase_start_t_s_;
+  if (t_rel >= transfer_.duration_s() + params_.start_hold_s) {
+    EnterPhase(GapMissionPhase::kApproach, t_s);
+    approach_start_t_s_ = t_s;
+    approach_end_t_s_ = t_s + primitive_.duration_s();
+    primitive_start_t_s_ = t_s;
+    last_reference_a_W_.setZero();
+    return std::nullopt;
+  }
+  control::TrajectoryPoint reference = approach_planner_.Sample(
+      transfer_, approach_target_.gap_center_W, std::min(t_rel, transfer_.duration_s()));
+  reference.t_s = t_s;
+  return Track(reference);
+}
+
+std::optional<perception::AutopilotCommand> GapMission::StepApproach(double t_s) {
+  if (t_s >= approach_end_t_s_) {
+    EnterPhase(GapMissionPhase::kLeadIn, t_s);
+    return std::nullopt;
+  }
+  const double remaining_s = approach_end_t_s_ - t_s;
+  if (remaining_s > params_.approach_commit_s &&
+      t_s - last_detected_t_s_ > params_.detection_timeout_s) {
+    Abort("gap lost during the approach", t_s);
+    return std::nullopt;
+  }
+  if (remaining_s > params_.min_replan_remaining_s) {
+    const control::QuadState x = estimate();
+    const ApproachCandidate candidate = approach_planner_.Replan(
+        approach_target_, x.p_WB, x.v_W, last_reference_a_W_, remaining_s);
+    if (candidate.IsValid()) {
+      primitive_ = candidate.primitive;
+      primitive_start_t_s_ = t_s;
+      ++replans_accepted_;
+    } else {
+      ++replans_rejected_;
+    }
+  }
+  control::TrajectoryPoint reference = approach_planner_.Sample(
+      primitive_, approach_target_.gap_center_W, t_s - primitive_start_t_s_);
+  reference.t_s = t_s;
+  last_reference_a_W_ = reference.a_W;
+  return Track(reference);
+}
+
+std::optional<perception::AutopilotCommand> GapMission::StepLeadIn(double t_s) {
+  // Traverse time runs from -lead_in_s at the approach end.
+  const double t_traverse = t_s - approach_end_t_s_ - params_.lead_in_s;
+  if (t_traverse >= 0.0) {
+    EnterPhase(GapMissionPhase::kTraverse, t_s);
+    traverse_start_t_s_ = t_s;
+    traverse_start_estimate_ = estimate();
+    return std::nullopt;
+  }
+  control::TrajectoryPoint reference = traverse_->Sample(t_traverse);
+  reference.t_s = t_s;
+  return Track(reference);
+}
+
+std::optional<perception::AutopilotCommand> GapMission::StepTraverse(double t_s) {
+  if (t_s - traverse_start_t_s_ >= traverse_->duration_s()) {
+    EnterPhase(GapMissionPhase::kRecover, t_s);
+    recovery_.StartWithoutLaunch(t_s);
+    return std::nullopt;
+  }
+  // Open loop: constant thrust, constant attitude (thrust along +-e3, traverse heading).
+  perception::AutopilotCommand command;
+  command.kind = perception::AutopilotCommand::Kind::kThrustRates;
+  command.thrust_rates.collective_thrust_mps2 = traverse_->collective_thrust_mps2();
+  command.thrust_rates.omega_des_B =
+      attitude_controller_
+          .Compute(estimate().q_WB, traverse_->thrust_direction_W(), traverse_->heading_rad())
+          .omega_fb_B;
+  return command;
+}
+
+perception::AutopilotCommand GapMission::StepRecovery(double t_s) {
+  const control::RecoveryOutput output = recovery_.Step(RecoveryInputsAt(t_s));
+  if (output.stage == control::RecoveryStage::kPosition) {
+    if (std::isnan(position_stage_since_t_s_)) position_stage_since_t_s_ = t_s;
+  } else {
+    position_stage_since_t_s_ = std::numeric_limits<double>::quiet_NaN();
+  }
+  const bool recovered = !std::isnan(position_stage_since_t_s_) &&
+                         t_s - position_stage_since_t_s_ >= params_.recovered_hold_s;
+  if (recovered && phase_ == GapMissionPhase::kRecover) {
+    EnterPhase(GapMissionPhase::kDone, t_s);
+  }
+  perception::AutopilotCommand command;
+  command.kind = perception::AutopilotCommand::Kind::kThrustRates;
+  command.thrust_rates = output.command;
+  command.done = recovered;
+  return command;
+}
+
 std::string GapMission::status() const {
   char buffer[160];
-  const double t_rel = (filter_ ? filter_->time_s() : 0.0) - phase_start_t_s_;
+  const double t_rel = (fusion_.started() ? fusion_.estimate()->state.t_s : 0.0) - phase_start_t_s_;
   switch (phase_) {
     case GapMissionPhase::kDetect:
       std::snprintf(buffer, sizeof(buffer), "detect (%d/%d detections)", detections_,

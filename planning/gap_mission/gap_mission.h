@@ -29,9 +29,11 @@
 //             detection_timeout_s, except in the approach's last approach_commit_s, or when
 //             planning fails): straight to the recovery stages.
 //
-// State estimate: perception::PoseImuFilter fed with every IMU sample and every detection's pose
-// of the camera T_WC = T_WG * T_CG^-1 with its covariance (GapDetection::covariance mapped to the
-// filter's convention), latency handled by the filter. Mission frame W (Sec. III: the state is
+// Perception and state estimate: the `gap` front end (perception::GapNode, the node `aperture run
+// --frontends gap` runs) inside a perception::FrontEndRunner; its pose observations (T_CG of the
+// fixed gap) go through perception::ToPoseMeasurement with the rig {T_WG, T_BC,
+// detection_covariance_scale} into perception::PoseFusion (PoseImuFilter with the one restart
+// policy, latency handled by the filter), which the mission starts itself once W is fixed. Mission frame W (Sec. III: the state is
 // estimated relative to the gap): origin at the gap centre, z_W up (gravity from the averaged
 // accelerometer while hovering, expressed in G through the detections' R_CG), x_W the horizontal
 // projection of the gap normal z_G (direction of traversal). The gap pose in W is therefore fixed,
@@ -40,9 +42,9 @@
 // Times are on the sensor clock (the simulator clock in SITL).
 #include <Eigen/Core>
 #include <Eigen/Geometry>
-#include <deque>
 #include <limits>
 #include <memory>
+#include <opencv2/core/mat.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -53,8 +55,10 @@
 #include "control/vehicle_parameters.h"
 #include "perception/autopilot.h"
 #include "perception/camera/camera_model.h"
+#include "perception/estimation/pose_fusion.h"
 #include "perception/estimation/pose_imu_filter.h"
 #include "perception/gap/gap_detector.h"
+#include "perception/graph/front_end_runner.h"
 #include "planning/approach_planner.h"
 #include "planning/motion_primitive.h"
 #include "planning/traverse_trajectory.h"
@@ -99,8 +103,9 @@ struct GapMissionParams {
   // this before fusion: rendered edges with noise, blur and aliasing err by more than the model
   // says, and an overconfident measurement model makes the filter gate out good detections.
   double detection_covariance_scale = 9.0;
-  // After this many consecutive gated-out detections the filter restarts at the detected pose,
-  // keeping its velocity and biases (a diverged filter otherwise rejects every later update).
+  // After this many consecutive gated-out detections the filter restarts at the detected pose
+  // (perception::PoseFusion's policy: biases kept, velocity from the rejected run; a diverged
+  // filter otherwise rejects every later update).
   int max_consecutive_rejections = 5;
   // The approach stays this high above the ground [m], the ground being measured once by the
   // downward range sensor while hovering (OnRange); without a range reading there is no floor.
@@ -183,7 +188,7 @@ class GapMission : public perception::Autopilot {
   // The filter's state estimate in the mission frame (t_s = latest IMU sample); a default
   // QuadState (t_s = 0) before the filter starts.
   control::QuadState estimate() const;
-  bool has_estimate() const { return filter_ != nullptr; }
+  bool has_estimate() const { return fusion_.started(); }
   // The filter's position 1-sigma along its most uncertain axis of W [m]; NaN before the filter.
   double position_sigma_m() const;
   // Gap pose in the mission frame (fixed once the frame is set; identity rotation before).
@@ -204,22 +209,39 @@ class GapMission : public perception::Autopilot {
   double approach_start_time_s() const { return approach_start_t_s_; }
   // Latest processed detection of the forward camera and its frame time (NaN before any).
   const perception::GapDetection& last_detection() const { return last_detection_; }
+  // The front ends' overlays of the latest processed frame onto `bgr` (CV_8UC3, its size).
+  void DrawOverlay(cv::Mat& bgr) const { front_ends_.DrawOverlays(bgr); }
   double last_detection_frame_time_s() const { return last_frame_t_s_; }
   int detections() const { return detections_; }
   int frames_processed() const { return frames_processed_; }
   int replans_accepted() const { return replans_accepted_; }
   int replans_rejected() const { return replans_rejected_; }
-  int updates_rejected() const { return updates_rejected_; }
-  int filter_restarts() const { return filter_restarts_; }
+  // Detections the filter did not fuse (gated out or too old).
+  int updates_rejected() const {
+    return fusion_.counts().rejected_outlier + fusion_.counts().not_applied;
+  }
+  int filter_restarts() const { return fusion_.counts().restarts; }
   // True when the approach was planned with fallback_limits.
   bool used_fallback_limits() const { return used_fallback_limits_; }
 
  private:
+  // One handler per phase: the command for t_s, or nullopt after a change of phase, whose
+  // handler then runs at the same t_s (Step loops until one returns a command).
+  std::optional<perception::AutopilotCommand> StepDetect(double t_s);
+  std::optional<perception::AutopilotCommand> StepHover(double t_s);
+  std::optional<perception::AutopilotCommand> StepTransfer(double t_s);
+  std::optional<perception::AutopilotCommand> StepApproach(double t_s);
+  std::optional<perception::AutopilotCommand> StepLeadIn(double t_s);
+  std::optional<perception::AutopilotCommand> StepTraverse(double t_s);
+  // kRecover, kDone and kAborted: the recovery state machine down to the position hold.
+  perception::AutopilotCommand StepRecovery(double t_s);
+
+  bool LookingForGap(double frame_t_s) const;
+  // Before the filter: the gravity direction in G from this detection (mission frame set-up).
+  void AccumulateUpInGap(const Eigen::Isometry3d& T_CG);
   void EnterPhase(GapMissionPhase phase, double t_s);
   void Abort(const std::string& reason, double t_s);
   void StartFilter();
-  // Fuses the buffered measurements the filter's IMU time has reached, in stamp order.
-  void ApplyPendingMeasurements();
   void Plan(double t_s);
   perception::AutopilotCommand Track(const control::TrajectoryPoint& reference) const;
   perception::AutopilotCommand HoverCommand() const;
@@ -228,7 +250,7 @@ class GapMission : public perception::Autopilot {
   GapMissionParams params_;
   Eigen::Isometry3d T_BC_;
   control::VehicleParameters vehicle_;
-  perception::GapDetector detector_;
+  perception::FrontEndRunner front_ends_;
   ApproachPlanner approach_planner_;
   control::PositionController controller_;
   control::AttitudeController attitude_controller_;
@@ -247,9 +269,8 @@ class GapMission : public perception::Autopilot {
   Eigen::Isometry3d last_T_CG_ = Eigen::Isometry3d::Identity();
 
   GapPose gap_W_;
-  Eigen::Isometry3d T_WG_ = Eigen::Isometry3d::Identity();
-  std::unique_ptr<perception::PoseImuFilter> filter_;
-  std::deque<perception::PoseMeasurement> pending_;
+  perception::PoseRig rig_;  // T_WG, T_BC and the detection covariance scale
+  perception::PoseFusion fusion_;
 
   perception::GapDetection last_detection_;
   double last_frame_t_s_ = std::numeric_limits<double>::quiet_NaN();
@@ -258,9 +279,6 @@ class GapMission : public perception::Autopilot {
   int frames_processed_ = 0;
   int replans_accepted_ = 0;
   int replans_rejected_ = 0;
-  int updates_rejected_ = 0;
-  int consecutive_rejections_ = 0;
-  int filter_restarts_ = 0;
   bool used_fallback_limits_ = false;
   std::optional<double> last_range_m_;
 

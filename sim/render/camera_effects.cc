@@ -11,17 +11,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "control/require.h"
 #include "sim/scene/counter_hash.h"
 
 namespace aperture::sim {
 namespace {
-
-void Require(bool ok, const char* field, double value, const char* rule) {
-  if (!ok) {
-    throw std::invalid_argument(std::string("CameraEffectsParams.") + field + " = " +
-                                std::to_string(value) + " " + rule);
-  }
-}
 
 // Standard normal samples for sensor noise: a table of kNormalTableSize values at the
 // stratified quantiles Phi^-1((i + 0.5) / kNormalTableSize), rescaled to unit variance (the
@@ -76,16 +70,19 @@ void FillNormals(std::uint64_t row_seed, const std::array<float, kNormalTableSiz
 }  // namespace
 
 CameraEffects::CameraEffects(const CameraEffectsParams& params) : params_(params) {
-  Require(params.gain > 0.0 && std::isfinite(params.gain), "gain", params.gain, "must be > 0");
-  Require(params.full_well_electrons >= 0.0, "full_well_electrons", params.full_well_electrons,
-          "must be >= 0 (0 disables shot noise)");
-  Require(params.read_noise_sigma >= 0.0, "read_noise_sigma", params.read_noise_sigma,
-          "must be >= 0");
-  Require(params.exposure_s >= 0.0, "exposure_s", params.exposure_s, "must be >= 0");
-  Require(params.motion_blur_subframes >= 1, "motion_blur_subframes",
-          params.motion_blur_subframes, "must be >= 1");
-  Require(params.infrared_reflectance_scale >= 0.0f, "infrared_reflectance_scale",
-          params.infrared_reflectance_scale, "must be >= 0");
+  control::Require(params.gain > 0.0 && std::isfinite(params.gain), "CameraEffectsParams.gain",
+                   params.gain, "must be > 0");
+  control::Require(params.full_well_electrons >= 0.0, "CameraEffectsParams.full_well_electrons",
+                   params.full_well_electrons, "must be >= 0 (0 disables shot noise)");
+  control::Require(params.read_noise_sigma >= 0.0, "CameraEffectsParams.read_noise_sigma",
+                   params.read_noise_sigma, "must be >= 0");
+  control::Require(params.exposure_s >= 0.0, "CameraEffectsParams.exposure_s", params.exposure_s,
+                   "must be >= 0");
+  control::Require(params.motion_blur_subframes >= 1, "CameraEffectsParams.motion_blur_subframes",
+                   params.motion_blur_subframes, "must be >= 1");
+  control::Require(params.infrared_reflectance_scale >= 0.0f,
+                   "CameraEffectsParams.infrared_reflectance_scale",
+                   params.infrared_reflectance_scale, "must be >= 0");
 }
 
 cv::Mat CameraEffects::ToImage8U(const cv::Mat& radiance, int frame_index) const {

@@ -383,29 +383,18 @@ RenderOutput RayCaster::Render(const Scene& scene, const perception::CameraModel
   return output;
 }
 
-void RayCaster::Render(const Scene& scene, const perception::CameraModel& camera,
-                       const Eigen::Isometry3d& T_WC, const RenderOptions& options,
-                       RenderOutput* output) {
-  if (options.supersampling < 1) {
-    throw std::invalid_argument("RenderOptions.supersampling = " +
-                                std::to_string(options.supersampling) + " must be >= 1");
-  }
-  if (!T_WC.matrix().allFinite()) {
-    throw std::invalid_argument("RayCaster::Render: T_WC is not finite; pass a valid camera pose");
-  }
-  const int w = camera.width();
-  const int h = camera.height();
-  const int k = options.supersampling;
-  const RayTable& rays = Rays(camera, k);
+namespace {
 
-  // Per-frame preparation: objects into the camera frame.
+// Render step 1: the non-LED objects in the camera frame C (FrameContext::objects, all_objects);
+// LEDs go to *leds, they are splatted, not ray traced.
+FrameContext PrepareFrameObjects(const Scene& scene, const Eigen::Isometry3d& T_WC,
+                                 std::vector<const SceneObject*>* leds) {
   FrameContext frame;
   frame.R_WC = T_WC.linear();
   const Eigen::Vector3d to_light_W = -scene.lighting.direction_W.normalized();
-  std::vector<const SceneObject*> leds;
   for (const SceneObject& object : scene.objects()) {
     if (std::holds_alternative<Led>(object.primitive)) {
-      leds.push_back(&object);
+      leds->push_back(&object);
       continue;
     }
     FrameObject f;
@@ -431,142 +420,42 @@ void RayCaster::Render(const Scene& scene, const perception::CameraModel& camera
   for (int i = 0; i < static_cast<int>(frame.objects.size()); ++i) {
     frame.all_objects.push_back({i, 0.0});
   }
-  const size_t tiles = rays.tile_axis.size();
-  frame.tile_begin.reserve(tiles + 1);
-  frame.tile_begin.push_back(0);
+  return frame;
+}
+
+// Render step 2: per image tile (cone tile_axis[t], half angle tile_half_angle_rad[t]) the objects
+// its rays can hit, nearest lower bound first (FrameContext::tile_candidates, tile_begin).
+void CullObjectsPerTile(const std::vector<Eigen::Vector3d>& tile_axis,
+                        const std::vector<double>& tile_half_angle_rad, FrameContext* frame) {
+  const size_t tiles = tile_axis.size();
+  frame->tile_begin.reserve(tiles + 1);
+  frame->tile_begin.push_back(0);
   for (size_t t = 0; t < tiles; ++t) {
-    const RayCone cone{rays.tile_axis[t], std::cos(rays.tile_half_angle_rad[t]),
-                       std::sin(rays.tile_half_angle_rad[t])};
-    for (int i = 0; i < static_cast<int>(frame.objects.size()); ++i) {
+    const RayCone cone{tile_axis[t], std::cos(tile_half_angle_rad[t]),
+                       std::sin(tile_half_angle_rad[t])};
+    for (int i = 0; i < static_cast<int>(frame->objects.size()); ++i) {
       if (const std::optional<double> t_lower =
-              ConeLowerDistance(frame.objects[static_cast<size_t>(i)], cone)) {
-        frame.tile_candidates.push_back({i, *t_lower});
+              ConeLowerDistance(frame->objects[static_cast<size_t>(i)], cone)) {
+        frame->tile_candidates.push_back({i, *t_lower});
       }
     }
     // Nearest first (ties by index, so the order is deterministic).
-    std::sort(frame.tile_candidates.begin() + static_cast<std::ptrdiff_t>(frame.tile_begin.back()),
-              frame.tile_candidates.end(), [](const TileCandidate& a, const TileCandidate& b) {
-                return a.t_lower_m != b.t_lower_m ? a.t_lower_m < b.t_lower_m : a.index < b.index;
-              });
-    frame.tile_begin.push_back(frame.tile_candidates.size());
+    std::sort(
+        frame->tile_candidates.begin() + static_cast<std::ptrdiff_t>(frame->tile_begin.back()),
+        frame->tile_candidates.end(), [](const TileCandidate& a, const TileCandidate& b) {
+          return a.t_lower_m != b.t_lower_m ? a.t_lower_m < b.t_lower_m : a.index < b.index;
+        });
+    frame->tile_begin.push_back(frame->tile_candidates.size());
   }
+}
 
-  const int image_type = options.color ? CV_32FC3 : CV_32FC1;
-  output->radiance.create(h, w, image_type);
-  if (options.ground_truth) {
-    output->depth_C.create(h, w, CV_32FC1);
-    output->object_id.create(h, w, CV_32SC1);
-  } else {
-    output->depth_C.release();
-    output->object_id.release();
-  }
-  const float scale = options.reflectance_scale;
-  const float inv_samples = 1.0f / static_cast<float>(k * k);
-  const bool adaptive = k > 1 && options.adaptive_supersampling;
-  if (adaptive) {
-    center_samples_.resize(rays.center.size());
-    edge_pairs_.resize(rays.center.size());
-  }
-
-  // Average radiance of the k x k sub-pixel rays of pixel p.
-  auto supersample = [&](int x, int y, int hint) {
-    const size_t p = static_cast<size_t>(y) * w + x;
-    const auto candidates = frame.Candidates(rays.Tile(x, y));
-    const double sample_angle = rays.pixel_angle_rad[p] / k;
-    Rgb sum = Rgb::Zero();
-    for (int s = 0; s < k * k; ++s) {
-      const Eigen::Vector3d d = rays.sub[p * k * k + static_cast<size_t>(s)].cast<double>();
-      const RayHit hit = TraceRay(d, frame.objects, candidates, hint, kInf);
-      sum += Shade(scene, frame, d, hit, sample_angle);
-      hint = hit.index;
-    }
-    return Rgb(sum * inv_samples);
-  };
-  auto store = [&](int y, int x, const Rgb& radiance) {
-    const Rgb value = radiance * scale;
-    if (options.color) {
-      output->radiance.ptr<cv::Vec3f>(y)[x] = cv::Vec3f(value.z(), value.y(), value.x());
-    } else {
-      output->radiance.ptr<float>(y)[x] = Luminance(value);
-    }
-  };
-
-  // Pixel centres: ground truth, and the radiance for k = 1 and adaptive supersampling.
-  tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& row_range) {
-    for (int y = row_range.begin(); y < row_range.end(); ++y) {
-      int hint = -1;  // per row, so results never depend on how rows are split among threads
-      float* depth = options.ground_truth ? output->depth_C.ptr<float>(y) : nullptr;
-      int32_t* ids = options.ground_truth ? output->object_id.ptr<int32_t>(y) : nullptr;
-      for (int x = 0; x < w; ++x) {
-        const size_t p = static_cast<size_t>(y) * w + x;
-        const Eigen::Vector3d d = rays.center[p].cast<double>();
-        const RayHit hit =
-            TraceRay(d, frame.objects, frame.Candidates(rays.Tile(x, y)), hint, kInf);
-        const int index = hit.index;
-        if (depth) {
-          depth[x] = index < 0 ? std::numeric_limits<float>::infinity()
-                               : static_cast<float>(hit.local.t_m * d.z());
-          ids[x] = index < 0 ? 0 : frame.objects[static_cast<size_t>(index)].id;
-        }
-        if (k == 1 || adaptive) {
-          Rgb albedo;
-          store(y, x, Shade(scene, frame, d, hit, rays.pixel_angle_rad[p], &albedo));
-          if (adaptive) {
-            center_samples_[p] = CenterSample{
-                index, index >= 0 && frame.objects[static_cast<size_t>(index)].hard_edged,
-                Luminance(albedo),
-                index < 0 ? Eigen::Vector3f(Eigen::Vector3f::Zero())
-                          : Eigen::Vector3f(hit.local.n_O.cast<float>())};
-          }
-        } else {
-          store(y, x, supersample(x, y, index));
-        }
-        hint = index;
-      }
-    }
-  });
-
-  // Adaptive supersampling: k x k rays where the centre samples show an edge. First each pixel
-  // compares itself with its right, lower-left, lower and lower-right neighbours (each of the 8
-  // neighbour pairs once), then a pixel is supersampled when any pair touching it is an edge.
-  if (adaptive) {
-    enum : uint8_t { kRight = 1, kDownLeft = 2, kDown = 4, kDownRight = 8 };
-    tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& row_range) {
-      for (int y = row_range.begin(); y < row_range.end(); ++y) {
-        const CenterSample* row = &center_samples_[static_cast<size_t>(y) * w];
-        const CenterSample* below = y + 1 < h ? row + w : nullptr;
-        uint8_t* pairs = &edge_pairs_[static_cast<size_t>(y) * w];
-        for (int x = 0; x < w; ++x) {
-          uint8_t bits = 0;
-          if (x + 1 < w && row[x].EdgeTo(row[x + 1])) bits |= kRight;
-          if (below) {
-            if (x > 0 && row[x].EdgeTo(below[x - 1])) bits |= kDownLeft;
-            if (row[x].EdgeTo(below[x])) bits |= kDown;
-            if (x + 1 < w && row[x].EdgeTo(below[x + 1])) bits |= kDownRight;
-          }
-          pairs[x] = bits;
-        }
-      }
-    });
-    tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& row_range) {
-      for (int y = row_range.begin(); y < row_range.end(); ++y) {
-        const uint8_t* pairs = &edge_pairs_[static_cast<size_t>(y) * w];
-        const uint8_t* above = y > 0 ? pairs - w : nullptr;
-        for (int x = 0; x < w; ++x) {
-          bool edge = pairs[x] != 0 || (x > 0 && (pairs[x - 1] & kRight));
-          if (above && !edge) {
-            edge = (above[x] & kDown) || (x > 0 && (above[x - 1] & kDownRight)) ||
-                   (x + 1 < w && (above[x + 1] & kDownLeft));
-          }
-          if (edge) {
-            store(y, x, supersample(x, y, center_samples_[static_cast<size_t>(y) * w + x].index));
-          }
-        }
-      }
-    });
-  }
-
-  // LEDs: exact pixel integrals of an isotropic Gaussian around the projected centre.
+// Render step 5: LEDs as exact pixel integrals of an isotropic Gaussian around the projected
+// centre, added to the radiance (and the ground truth within kLedMaskSigmas), unless occluded.
+void SplatLeds(const std::vector<const SceneObject*>& leds, const FrameContext& frame,
+               const perception::CameraModel& camera, const Eigen::Isometry3d& T_WC,
+               const RenderOptions& options, RenderOutput* output) {
+  const int w = camera.width();
+  const int h = camera.height();
   const Eigen::Isometry3d T_CW = T_WC.inverse();
   for (const SceneObject* led_object : leds) {
     const Led& led = std::get<Led>(led_object->primitive);
@@ -613,8 +502,7 @@ void RayCaster::Render(const Scene& scene, const perception::CameraModel& camera
         } else {
           output->radiance.at<float>(y, x) += e * gray_value;
         }
-        if (options.ground_truth &&
-            std::hypot(x - px.x(), y - px.y()) <= kLedMaskSigmas * sigma &&
+        if (options.ground_truth && std::hypot(x - px.x(), y - px.y()) <= kLedMaskSigmas * sigma &&
             depth_led < output->depth_C.at<float>(y, x)) {
           output->depth_C.at<float>(y, x) = depth_led;
           output->object_id.at<int32_t>(y, x) = led_object->id;
@@ -622,6 +510,171 @@ void RayCaster::Render(const Scene& scene, const perception::CameraModel& camera
       }
     }
   }
+}
+
+}  // namespace
+
+// One frame's pixel shading, shared by the centre pass and the adaptive edge pass.
+struct RayCaster::PixelPass {
+  const Scene& scene;
+  const FrameContext& frame;
+  const RayTable& rays;
+  const RenderOptions& options;
+  RenderOutput* output;
+  int w;
+  int k;  // supersampling
+  float inv_samples;
+
+  // Average radiance of the k x k sub-pixel rays of pixel (x, y); `hint` is tried first.
+  Rgb Supersample(int x, int y, int hint) const {
+    const size_t p = static_cast<size_t>(y) * w + x;
+    const auto candidates = frame.Candidates(rays.Tile(x, y));
+    const double sample_angle = rays.pixel_angle_rad[p] / k;
+    Rgb sum = Rgb::Zero();
+    for (int s = 0; s < k * k; ++s) {
+      const Eigen::Vector3d d = rays.sub[p * k * k + static_cast<size_t>(s)].cast<double>();
+      const RayHit hit = TraceRay(d, frame.objects, candidates, hint, kInf);
+      sum += Shade(scene, frame, d, hit, sample_angle);
+      hint = hit.index;
+    }
+    return Rgb(sum * inv_samples);
+  }
+
+  void Store(int y, int x, const Rgb& radiance) const {
+    const Rgb value = radiance * options.reflectance_scale;
+    if (options.color) {
+      output->radiance.ptr<cv::Vec3f>(y)[x] = cv::Vec3f(value.z(), value.y(), value.x());
+    } else {
+      output->radiance.ptr<float>(y)[x] = Luminance(value);
+    }
+  }
+};
+
+void RayCaster::Render(const Scene& scene, const perception::CameraModel& camera,
+                       const Eigen::Isometry3d& T_WC, const RenderOptions& options,
+                       RenderOutput* output) {
+  if (options.supersampling < 1) {
+    throw std::invalid_argument(
+        "RenderOptions.supersampling = " + std::to_string(options.supersampling) + " must be >= 1");
+  }
+  if (!T_WC.matrix().allFinite()) {
+    throw std::invalid_argument("RayCaster::Render: T_WC is not finite; pass a valid camera pose");
+  }
+  const int w = camera.width();
+  const int h = camera.height();
+  const int k = options.supersampling;
+  const RayTable& rays = Rays(camera, k);
+
+  std::vector<const SceneObject*> leds;
+  FrameContext frame = PrepareFrameObjects(scene, T_WC, &leds);
+  CullObjectsPerTile(rays.tile_axis, rays.tile_half_angle_rad, &frame);
+
+  const int image_type = options.color ? CV_32FC3 : CV_32FC1;
+  output->radiance.create(h, w, image_type);
+  if (options.ground_truth) {
+    output->depth_C.create(h, w, CV_32FC1);
+    output->object_id.create(h, w, CV_32SC1);
+  } else {
+    output->depth_C.release();
+    output->object_id.release();
+  }
+  const bool adaptive = k > 1 && options.adaptive_supersampling;
+  if (adaptive) {
+    center_samples_.resize(rays.center.size());
+    edge_pairs_.resize(rays.center.size());
+  }
+  const PixelPass pass{scene, frame, rays, options, output, w, k, 1.0f / static_cast<float>(k * k)};
+  ShadePixelCenters(pass, h, adaptive);
+  if (adaptive) SupersampleEdges(pass, h);
+  SplatLeds(leds, frame, camera, T_WC, options, output);
+}
+
+// Render step 3: one ray per pixel centre gives the ground truth, and the radiance for k = 1 and
+// adaptive supersampling (which keeps the centre sample where it finds no edge); otherwise the
+// pixel is supersampled at once.
+void RayCaster::ShadePixelCenters(const PixelPass& pass, int h, bool adaptive) {
+  const int w = pass.w;
+  const int k = pass.k;
+  const RayTable& rays = pass.rays;
+  const FrameContext& frame = pass.frame;
+  RenderOutput* output = pass.output;
+  const bool ground_truth = pass.options.ground_truth;
+  tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& row_range) {
+    for (int y = row_range.begin(); y < row_range.end(); ++y) {
+      int hint = -1;  // per row, so results never depend on how rows are split among threads
+      float* depth = ground_truth ? output->depth_C.ptr<float>(y) : nullptr;
+      int32_t* ids = ground_truth ? output->object_id.ptr<int32_t>(y) : nullptr;
+      for (int x = 0; x < w; ++x) {
+        const size_t p = static_cast<size_t>(y) * w + x;
+        const Eigen::Vector3d d = rays.center[p].cast<double>();
+        const RayHit hit =
+            TraceRay(d, frame.objects, frame.Candidates(rays.Tile(x, y)), hint, kInf);
+        const int index = hit.index;
+        if (depth) {
+          depth[x] = index < 0 ? std::numeric_limits<float>::infinity()
+                               : static_cast<float>(hit.local.t_m * d.z());
+          ids[x] = index < 0 ? 0 : frame.objects[static_cast<size_t>(index)].id;
+        }
+        if (k == 1 || adaptive) {
+          Rgb albedo;
+          pass.Store(y, x, Shade(pass.scene, frame, d, hit, rays.pixel_angle_rad[p], &albedo));
+          if (adaptive) {
+            center_samples_[p] = CenterSample{
+                index, index >= 0 && frame.objects[static_cast<size_t>(index)].hard_edged,
+                Luminance(albedo),
+                index < 0 ? Eigen::Vector3f(Eigen::Vector3f::Zero())
+                          : Eigen::Vector3f(hit.local.n_O.cast<float>())};
+          }
+        } else {
+          pass.Store(y, x, pass.Supersample(x, y, index));
+        }
+        hint = index;
+      }
+    }
+  });
+}
+
+// Render step 4, adaptive supersampling: k x k rays where the centre samples show an edge. First
+// each pixel compares itself with its right, lower-left, lower and lower-right neighbours (each
+// of the 8 neighbour pairs once), then a pixel is supersampled when any pair touching it is an
+// edge.
+void RayCaster::SupersampleEdges(const PixelPass& pass, int h) {
+  const int w = pass.w;
+  enum : uint8_t { kRight = 1, kDownLeft = 2, kDown = 4, kDownRight = 8 };
+  tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& row_range) {
+    for (int y = row_range.begin(); y < row_range.end(); ++y) {
+      const CenterSample* row = &center_samples_[static_cast<size_t>(y) * w];
+      const CenterSample* below = y + 1 < h ? row + w : nullptr;
+      uint8_t* pairs = &edge_pairs_[static_cast<size_t>(y) * w];
+      for (int x = 0; x < w; ++x) {
+        uint8_t bits = 0;
+        if (x + 1 < w && row[x].EdgeTo(row[x + 1])) bits |= kRight;
+        if (below) {
+          if (x > 0 && row[x].EdgeTo(below[x - 1])) bits |= kDownLeft;
+          if (row[x].EdgeTo(below[x])) bits |= kDown;
+          if (x + 1 < w && row[x].EdgeTo(below[x + 1])) bits |= kDownRight;
+        }
+        pairs[x] = bits;
+      }
+    }
+  });
+  tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& row_range) {
+    for (int y = row_range.begin(); y < row_range.end(); ++y) {
+      const uint8_t* pairs = &edge_pairs_[static_cast<size_t>(y) * w];
+      const uint8_t* above = y > 0 ? pairs - w : nullptr;
+      for (int x = 0; x < w; ++x) {
+        bool edge = pairs[x] != 0 || (x > 0 && (pairs[x - 1] & kRight));
+        if (above && !edge) {
+          edge = (above[x] & kDown) || (x > 0 && (above[x - 1] & kDownRight)) ||
+                 (x + 1 < w && (above[x + 1] & kDownLeft));
+        }
+        if (edge) {
+          pass.Store(y, x,
+                     pass.Supersample(x, y, center_samples_[static_cast<size_t>(y) * w + x].index));
+        }
+      }
+    }
+  });
 }
 
 }  // namespace aperture::sim

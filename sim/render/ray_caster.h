@@ -90,7 +90,11 @@ class RayCaster {
  private:
   struct RayTable;
   struct CenterSample;
+  struct PixelPass;
   const RayTable& Rays(const perception::CameraModel& camera, int supersampling);
+  // Render's pixel steps (ray_caster.cc): centre rays, then adaptive supersampling at edges.
+  void ShadePixelCenters(const PixelPass& pass, int h, bool adaptive);
+  void SupersampleEdges(const PixelPass& pass, int h);
 
   std::vector<std::unique_ptr<RayTable>> ray_cache_;  // most recently used last
   // Adaptive supersampling, per pixel: centre samples and edge bits towards 4 neighbours.

@@ -116,12 +116,7 @@ class Builder {
          Eigen::AngleAxisd(gap.roll_deg * kDegToRad, Eigen::Vector3d::UnitX()))
             .toRotationMatrix() *
         FacingPlusX();
-    // The detector's own pattern definition, so `gap.*` sizes and GapDetectorParams agree.
-    perception::GapDetectorParams pattern;
-    pattern.opening_size_m = gap.opening_m;
-    pattern.inner_size_m = gap.pattern_inner_m;
-    pattern.outer_size_m = gap.pattern_outer_m;
-    Add(MakeGapPatternObject(pattern, gap.panel_m, Jitter(Facing(R_WG, gap.center_W))));
+    Add(MakeGapPatternObject(gap.Pattern(), gap.panel_m, Jitter(Facing(R_WG, gap.center_W))));
 
     // Textured room around it: x from -3 m, centred in y, floor at z = 0.
     const Eigen::Vector3d room = gap.room_m;
@@ -431,8 +426,8 @@ ScenarioCamera BuildCamera(const std::string& name, const CameraParams& c, std::
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument("cameras." + name + ": " + e.what());
   }
-  camera.mount_on_body = c.mount_on_body;
-  camera.T_mount = c.pose.ToIsometry();
+  camera.T_BC.reset();
+  (c.mount_on_body ? camera.T_BC : camera.T_WC_fixed) = c.pose.ToIsometry();
   camera.rate_hz = c.rate_hz;
   camera.latency_s = c.latency_s;
   camera.drop_probability = c.drop_probability;

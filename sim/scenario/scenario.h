@@ -19,6 +19,7 @@
 // TagsSceneParams); walls/ground/trees have descriptive names.
 #include <Eigen/Geometry>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,9 +35,10 @@ namespace aperture::sim {
 struct ScenarioCamera {
   std::string name;
   std::shared_ptr<const perception::CameraModel> model;
-  bool mount_on_body = true;
-  // Body mount: T_BC (p_B = T_BC * p_C). World mount: T_WC.
-  Eigen::Isometry3d T_mount = Eigen::Isometry3d::Identity();
+  // Exactly one is set: T_BC (p_B = T_BC * p_C) for a camera on the body, T_WC_fixed for a camera
+  // fixed in the world (the scenario's `mount_on_body`).
+  std::optional<Eigen::Isometry3d> T_BC = Eigen::Isometry3d::Identity();
+  std::optional<Eigen::Isometry3d> T_WC_fixed;
   double rate_hz = 30.0;
   double latency_s = 0.0;         // SITL delivery latency [s]
   double drop_probability = 0.0;  // SITL frame drops, in [0, 1)
@@ -45,7 +47,7 @@ struct ScenarioCamera {
 
   // Camera pose for the vehicle at T_WB (ignored for a world-mounted camera).
   Eigen::Isometry3d T_WC(const Eigen::Isometry3d& T_WB) const {
-    return mount_on_body ? Eigen::Isometry3d(T_WB * T_mount) : T_mount;
+    return T_BC ? Eigen::Isometry3d(T_WB * *T_BC) : *T_WC_fixed;
   }
 };
 

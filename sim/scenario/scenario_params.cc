@@ -1,13 +1,11 @@
 #include "sim/scenario/scenario_params.h"
 
-#include <yaml-cpp/yaml.h>
-
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 #include <utility>
 
+#include "control/require.h"
+#include "perception/led/led_configuration.h"
 #include "sim/sim_params_io.h"
 
 namespace aperture::sim {
@@ -26,15 +24,14 @@ void ReadChoice(config::ParamReader& reader, const std::string& key, std::string
   throw std::invalid_argument(reader.Where(key) + ": '" + reader.FullKey(key) + "' " + what);
 }
 
-void RequirePositive(const config::ParamReader& reader, const std::string& key, double value) {
-  if (!(value > 0.0) || !std::isfinite(value)) {
-    ThrowAt(reader, key, "must be a positive finite number, got " + std::to_string(value));
-  }
+// control::RequirePositive with the key's location ("file:line:col: 'gap.opening_m'") as its name.
+void RequirePositiveAt(const config::ParamReader& reader, const std::string& key, double value) {
+  control::RequirePositive(value, reader.Where(key) + ": '" + reader.FullKey(key) + "'");
 }
 
-void RequirePositive(const config::ParamReader& reader, const std::string& key,
-                     const Eigen::VectorXd& values) {
-  for (Eigen::Index i = 0; i < values.size(); ++i) RequirePositive(reader, key, values[i]);
+void RequirePositiveAt(const config::ParamReader& reader, const std::string& key,
+                       const Eigen::VectorXd& values) {
+  for (Eigen::Index i = 0; i < values.size(); ++i) RequirePositiveAt(reader, key, values[i]);
 }
 
 // A SITL block that replaces the caller's part of SitlRunnerParams only when present.
@@ -45,33 +42,6 @@ void ReadOptionalSection(config::ParamReader& reader, const std::string& key,
   T loaded;
   reader.ReadSection(key, &loaded);
   *value = std::move(loaded);
-}
-
-std::vector<Eigen::Vector3d> ReadLedFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) {
-    throw std::runtime_error("cannot read LED configuration '" + path +
-                             "' (led.config); expected a YAML file with leds: [[x, y, z], ...]");
-  }
-  std::stringstream text;
-  text << in.rdbuf();
-  YAML::Node node;
-  try {
-    node = YAML::Load(text.str());
-  } catch (const YAML::Exception& e) {
-    throw std::invalid_argument(path + ": YAML syntax error: " + e.what());
-  }
-  config::ParamReader reader(node, path);
-  std::vector<Eigen::Vector3d> leds;
-  reader.Read("leds", &leds);
-  reader.RejectUnknownKeys();
-  if (leds.size() < 4) {
-    throw std::invalid_argument(path +
-                                ": 'leds' needs at least 4 positions [x, y, z] in metres "
-                                "(P3P needs 3 plus one to disambiguate), got " +
-                                std::to_string(leds.size()));
-  }
-  return leds;
 }
 
 }  // namespace
@@ -87,6 +57,14 @@ Eigen::Isometry3d PoseParams::ToIsometry() const {
   return T;
 }
 
+perception::GapPattern GapParams::Pattern() const {
+  perception::GapPattern pattern;
+  pattern.opening_size_m = opening_m;
+  pattern.inner_size_m = pattern_inner_m;
+  pattern.outer_size_m = pattern_outer_m;
+  return pattern;
+}
+
 void LoadParams(config::ParamReader& reader, PoseParams* params) {
   reader.Read("p_m", &params->p_m);
   reader.Read("rpy_deg", &params->rpy_deg);
@@ -99,9 +77,9 @@ void LoadParams(config::ParamReader& reader, TextureParams* params) {
   reader.Read("scale", &params->scale);
   reader.Read("texel_size_m", &params->texel_size_m);
   reader.Read("square_size_m", &params->square_size_m);
-  RequirePositive(reader, "scale", params->scale);
-  RequirePositive(reader, "texel_size_m", params->texel_size_m);
-  RequirePositive(reader, "square_size_m", params->square_size_m);
+  RequirePositiveAt(reader, "scale", params->scale);
+  RequirePositiveAt(reader, "texel_size_m", params->texel_size_m);
+  RequirePositiveAt(reader, "square_size_m", params->square_size_m);
 }
 
 void LoadParams(config::ParamReader& reader, ObjectParams* params) {
@@ -170,10 +148,10 @@ void LoadParams(config::ParamReader& reader, CameraParams* params) {
   reader.Read("infrared", &params->infrared);
   reader.Read("supersampling", &params->supersampling);
   reader.Read("drop_probability", &params->drop_probability);
-  RequirePositive(reader, "width", params->width);
-  RequirePositive(reader, "height", params->height);
-  RequirePositive(reader, "rate_hz", params->rate_hz);
-  RequirePositive(reader, "supersampling", params->supersampling);
+  RequirePositiveAt(reader, "width", params->width);
+  RequirePositiveAt(reader, "height", params->height);
+  RequirePositiveAt(reader, "rate_hz", params->rate_hz);
+  RequirePositiveAt(reader, "supersampling", params->supersampling);
   if (!(params->latency_s >= 0.0) || !std::isfinite(params->latency_s)) {
     ThrowAt(reader, "latency_s", "must be finite and >= 0, got " + std::to_string(params->latency_s));
   }
@@ -200,7 +178,7 @@ void LoadParams(config::ParamReader& reader, TrajectoryParams* params) {
   reader.Read("amplitude_m", &params->amplitude_m);
   reader.Read("cycles", &params->cycles);
   reader.Read("angle_amplitude_deg", &params->angle_amplitude_deg);
-  RequirePositive(reader, "frames", params->frames);
+  RequirePositiveAt(reader, "frames", params->frames);
 }
 
 void LoadParams(config::ParamReader& reader, GapParams* params) {
@@ -213,8 +191,8 @@ void LoadParams(config::ParamReader& reader, GapParams* params) {
   reader.Read("pattern_outer_m", &params->pattern_outer_m);
   reader.Read("panel_m", &params->panel_m);
   reader.Read("room_m", &params->room_m);
-  RequirePositive(reader, "opening_m", params->opening_m);
-  RequirePositive(reader, "room_m", params->room_m);
+  RequirePositiveAt(reader, "opening_m", params->opening_m);
+  RequirePositiveAt(reader, "room_m", params->room_m);
   const bool nested = (params->pattern_inner_m.array() > params->opening_m.array()).all() &&
                       (params->pattern_outer_m.array() > params->pattern_inner_m.array()).all() &&
                       (params->panel_m.array() > params->pattern_outer_m.array()).all();
@@ -238,7 +216,7 @@ void LoadParams(config::ParamReader& reader, GapFlytParams* params) {
   reader.Read("star_inner_ratio", &params->star_inner_ratio);
   reader.Read("foreground_wall_m", &params->foreground_wall_m);
   reader.Read("background_wall_m", &params->background_wall_m);
-  RequirePositive(reader, "size_m", params->size_m);
+  RequirePositiveAt(reader, "size_m", params->size_m);
   if (!(params->background_x_m > params->foreground_x_m)) {
     ThrowAt(reader, "background_x_m", "must be larger than foreground_x_m");
   }
@@ -266,12 +244,16 @@ void LoadParams(config::ParamReader& reader, LedSceneParams* params) {
   reader.Read("false_spots", &params->false_spots);
   reader.Read("false_spot_area_m", &params->false_spot_area_m);
   reader.Read("false_spot_height_m", &params->false_spot_height_m);
-  if (!params->config.empty()) params->leds_B = ReadLedFile(params->config);
-  if (params->leds_B.size() < 4) {
-    ThrowAt(reader, "leds", "needs at least 4 LED positions [x, y, z] [m]");
+  // The target frame T of perception::LedConfiguration is the body frame B here. Its checks (4..8
+  // LEDs, spacing, not coplanar, no symmetry) hold for a file and for inline `leds` alike.
+  if (!params->config.empty()) {
+    params->leds_B = perception::LedConfiguration::Load(params->config).p_T();
+  } else {
+    perception::LedConfiguration(params->leds_B,
+                                 reader.Where("leds") + " '" + reader.FullKey("leds") + "'");
   }
-  RequirePositive(reader, "led_radius_m", params->led_radius_m);
-  RequirePositive(reader, "led_intensity", params->led_intensity);
+  RequirePositiveAt(reader, "led_radius_m", params->led_radius_m);
+  RequirePositiveAt(reader, "led_intensity", params->led_intensity);
   if (params->false_spots < 0) ThrowAt(reader, "false_spots", "must be >= 0");
 }
 
@@ -287,13 +269,13 @@ void LoadParams(config::ParamReader& reader, TagsSceneParams* params) {
   reader.Read("robot_size_m", &params->robot_size_m);
   reader.Read("goal_xy_m", &params->goal_xy_m);
   reader.Read("goal_size_m", &params->goal_size_m);
-  RequirePositive(reader, "area_m", params->area_m);
-  RequirePositive(reader, "tag_size_m", params->tag_size_m);
-  RequirePositive(reader, "movable_size_m", params->movable_size_m);
-  RequirePositive(reader, "movable_tag_size_m", params->movable_tag_size_m);
-  RequirePositive(reader, "fixed_size_m", params->fixed_size_m);
-  RequirePositive(reader, "robot_size_m", params->robot_size_m);
-  RequirePositive(reader, "goal_size_m", params->goal_size_m);
+  RequirePositiveAt(reader, "area_m", params->area_m);
+  RequirePositiveAt(reader, "tag_size_m", params->tag_size_m);
+  RequirePositiveAt(reader, "movable_size_m", params->movable_size_m);
+  RequirePositiveAt(reader, "movable_tag_size_m", params->movable_tag_size_m);
+  RequirePositiveAt(reader, "fixed_size_m", params->fixed_size_m);
+  RequirePositiveAt(reader, "robot_size_m", params->robot_size_m);
+  RequirePositiveAt(reader, "goal_size_m", params->goal_size_m);
   if (params->movable_obstacles < 0) ThrowAt(reader, "movable_obstacles", "must be >= 0");
   if (params->fixed_obstacles < 0) ThrowAt(reader, "fixed_obstacles", "must be >= 0");
 }
@@ -305,9 +287,9 @@ void LoadParams(config::ParamReader& reader, ForestParams* params) {
   reader.Read("min_spacing_m", &params->min_spacing_m);
   reader.Read("radius_range_m", &params->radius_range_m);
   reader.Read("height_range_m", &params->height_range_m);
-  RequirePositive(reader, "area_m", params->area_m);
-  RequirePositive(reader, "radius_range_m", params->radius_range_m);
-  RequirePositive(reader, "height_range_m", params->height_range_m);
+  RequirePositiveAt(reader, "area_m", params->area_m);
+  RequirePositiveAt(reader, "radius_range_m", params->radius_range_m);
+  RequirePositiveAt(reader, "height_range_m", params->height_range_m);
   if (params->trees < 0 || params->boxes < 0) ThrowAt(reader, "trees", "and boxes must be >= 0");
 }
 

@@ -39,6 +39,7 @@
 #include <vector>
 
 #include "config/param_reader.h"
+#include "perception/gap/gap_pattern.h"
 #include "sim/scene/primitives.h"
 #include "sim/sensors/imu_sensor.h"
 #include "sim/sensors/range_sensor.h"
@@ -142,20 +143,25 @@ struct TrajectoryParams {
 
 // Patterned gap (seed 000): a white panel with a black rectangular band around a rectangular
 // opening (sim/scene/gap_pattern_object.h, the pattern of perception/gap/gap_detector.h); the
-// detector sees nested quadrangles (band outer and inner edge). Defaults = GapDetectorParams'.
-// Frame G: centre of the opening, z_G along the approach direction (+x_W at zero angles),
-// x_G = -y_W, y_G = -z_W (so the pattern reads unmirrored from the approach side); roll/pitch
-// rotate about x_W / y_W. Sizes in multiples of 2 cm put every edge on a texel border.
+// detector sees nested quadrangles (band outer and inner edge). Defaults =
+// perception::GapPattern's. Frame G: centre of the opening, z_G along the approach direction (+x_W
+// at zero angles), x_G = -y_W, y_G = -z_W (so the pattern reads unmirrored from the approach side);
+// roll/pitch rotate about x_W / y_W. Sizes in multiples of 2 cm put every edge on a texel border.
 struct GapParams {
   Eigen::Vector3d center_W = Eigen::Vector3d(5.0, 0.0, 1.5);
   double roll_deg = 0.0;   // about x_W (the paper's roll, 0..45 deg)
   double pitch_deg = 0.0;  // about y_W (0..30 deg)
   double yaw_deg = 0.0;    // about z_W
-  Eigen::Vector2d opening_m = Eigen::Vector2d(0.8, 0.28);        // paper: 80 x 28 cm
-  Eigen::Vector2d pattern_inner_m = Eigen::Vector2d(0.9, 0.38);  // white margin inside the band
-  Eigen::Vector2d pattern_outer_m = Eigen::Vector2d(1.3, 0.78);  // outer edge of the black band
-  Eigen::Vector2d panel_m = Eigen::Vector2d(1.7, 1.2);           // white panel
-  Eigen::Vector3d room_m = Eigen::Vector3d(14.0, 8.0, 4.0);      // textured room (x from -3 m)
+  Eigen::Vector2d opening_m = perception::GapPattern().opening_size_m;  // paper: 80 x 28 cm
+  Eigen::Vector2d pattern_inner_m =
+      perception::GapPattern().inner_size_m;  // white band's outer edge
+  Eigen::Vector2d pattern_outer_m =
+      perception::GapPattern().outer_size_m;                 // black band's outer edge
+  Eigen::Vector2d panel_m = Eigen::Vector2d(1.7, 1.2);       // white panel
+  Eigen::Vector3d room_m = Eigen::Vector3d(14.0, 8.0, 4.0);  // textured room (x from -3 m)
+
+  // The pattern as the detector and the scene object take it (gap_pattern.h).
+  perception::GapPattern Pattern() const;
 };
 
 // GapFlyt (seed 002): textured foreground wall with an arbitrarily shaped opening and a textured

@@ -6,11 +6,8 @@ SitlCamera MakeSitlCamera(const ScenarioCamera& camera) {
   SitlCamera sitl;
   sitl.name = camera.name;
   sitl.model = camera.model;
-  if (camera.mount_on_body) {
-    sitl.T_BC = camera.T_mount;
-  } else {
-    sitl.T_WC_fixed = camera.T_mount;
-  }
+  if (camera.T_BC) sitl.T_BC = *camera.T_BC;
+  sitl.T_WC_fixed = camera.T_WC_fixed;
   sitl.rate_hz = camera.rate_hz;
   sitl.latency_s = camera.latency_s;
   sitl.drop_probability = camera.drop_probability;

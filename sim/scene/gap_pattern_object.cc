@@ -7,10 +7,10 @@
 
 namespace aperture::sim {
 
-SceneObject MakeGapPatternObject(const perception::GapDetectorParams& pattern,
+SceneObject MakeGapPatternObject(const perception::GapPattern& pattern,
                                  const Eigen::Vector2d& panel_size_m, const Eigen::Isometry3d& T_WG,
                                  const std::string& name) {
-  perception::ValidateGapDetectorParams(pattern);
+  pattern.ValidatePattern("MakeGapPatternObject pattern");
   if (!(panel_size_m.x() > pattern.outer_size_m.x() && panel_size_m.y() > pattern.outer_size_m.y())) {
     std::ostringstream s;
     s << "MakeGapPatternObject: panel_size_m = (" << panel_size_m.transpose()

@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "control/require.h"
+
 namespace aperture::sim {
 namespace {
 
@@ -181,13 +183,6 @@ bool IntersectGround(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double 
   return true;
 }
 
-void RequirePositive(double value, const char* field) {
-  if (!(value > 0.0) || !std::isfinite(value)) {
-    throw std::invalid_argument(std::string("scene primitive: ") + field + " = " +
-                                std::to_string(value) + " must be a positive finite number");
-  }
-}
-
 }  // namespace
 
 bool IntersectPrimitive(const Primitive& primitive, const Eigen::Vector3d& o_O,
@@ -228,8 +223,8 @@ Eigen::Vector3d BoundingCenter(const Primitive& primitive) {
 
 void ValidatePrimitive(const Primitive& primitive) {
   if (const auto* r = std::get_if<Rectangle>(&primitive)) {
-    RequirePositive(r->size_m.x(), "Rectangle.size_m.x");
-    RequirePositive(r->size_m.y(), "Rectangle.size_m.y");
+    control::RequirePositive(r->size_m.x(), "scene primitive Rectangle.size_m.x");
+    control::RequirePositive(r->size_m.y(), "scene primitive Rectangle.size_m.y");
     for (const auto& polygon : r->polygon_holes) {
       if (polygon.size() < 3) {
         throw std::invalid_argument("scene primitive: Rectangle polygon hole has " +
@@ -238,19 +233,20 @@ void ValidatePrimitive(const Primitive& primitive) {
       }
     }
     for (const auto& e : r->ellipse_holes) {
-      RequirePositive(e.semi_axes_m.x(), "EllipseHole.semi_axes_m.x");
-      RequirePositive(e.semi_axes_m.y(), "EllipseHole.semi_axes_m.y");
+      control::RequirePositive(e.semi_axes_m.x(), "scene primitive EllipseHole.semi_axes_m.x");
+      control::RequirePositive(e.semi_axes_m.y(), "scene primitive EllipseHole.semi_axes_m.y");
     }
   } else if (const auto* b = std::get_if<Box>(&primitive)) {
-    for (int a = 0; a < 3; ++a) RequirePositive(b->size_m[a], "Box.size_m");
+    for (int a = 0; a < 3; ++a)
+      control::RequirePositive(b->size_m[a], "scene primitive Box.size_m");
   } else if (const auto* c = std::get_if<Cylinder>(&primitive)) {
-    RequirePositive(c->radius_m, "Cylinder.radius_m");
-    RequirePositive(c->height_m, "Cylinder.height_m");
+    control::RequirePositive(c->radius_m, "scene primitive Cylinder.radius_m");
+    control::RequirePositive(c->height_m, "scene primitive Cylinder.height_m");
   } else if (const auto* s = std::get_if<Sphere>(&primitive)) {
-    RequirePositive(s->radius_m, "Sphere.radius_m");
+    control::RequirePositive(s->radius_m, "scene primitive Sphere.radius_m");
   } else if (const auto* l = std::get_if<Led>(&primitive)) {
-    RequirePositive(l->radius_m, "Led.radius_m");
-    RequirePositive(l->intensity, "Led.intensity");
+    control::RequirePositive(l->radius_m, "scene primitive Led.radius_m");
+    control::RequirePositive(l->intensity, "scene primitive Led.intensity");
   }
 }
 

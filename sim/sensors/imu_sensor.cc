@@ -4,15 +4,10 @@
 #include <stdexcept>
 #include <string>
 
+#include "control/require.h"
+
 namespace aperture::sim {
 namespace {
-
-void RequireNonNegative(double value, const std::string& field) {
-  if (!(std::isfinite(value) && value >= 0.0)) {
-    throw std::invalid_argument("ImuSensorParams." + field + " must be finite and >= 0, got " +
-                                std::to_string(value));
-  }
-}
 
 const ImuSensorParams& Validated(const ImuSensorParams& params) {
   params.Validate();
@@ -25,11 +20,8 @@ void ImuSensorParams::Validate() const {
   if (!(std::isfinite(rate_hz) && rate_hz > 0.0)) {
     throw std::invalid_argument("ImuSensorParams.rate_hz must be > 0, got " + std::to_string(rate_hz));
   }
-  RequireNonNegative(latency_s, "latency_s");
-  RequireNonNegative(accel_noise_density, "accel_noise_density");
-  RequireNonNegative(gyro_noise_density, "gyro_noise_density");
-  RequireNonNegative(accel_bias_random_walk, "accel_bias_random_walk");
-  RequireNonNegative(gyro_bias_random_walk, "gyro_bias_random_walk");
+  control::RequireNonNegative(latency_s, "ImuSensorParams.latency_s");
+  ValidateNoise("ImuSensorParams");
   if (!(accel_bias_initial_B.allFinite() && gyro_bias_initial_B.allFinite())) {
     throw std::invalid_argument("ImuSensorParams: initial biases must be finite");
   }

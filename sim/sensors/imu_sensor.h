@@ -8,23 +8,21 @@
 // sigma_c [unit/sqrt(Hz)] averaged over a sample and of a Wiener bias process of density sigma_b
 // [unit/s/sqrt(Hz)] (the Kalibr / OpenVINS IMU noise model). Samples are delivered latency_s after
 // they are taken. Deterministic for a given seed (std::mt19937_64).
+#include <Eigen/Core>
 #include <cstdint>
 #include <deque>
 #include <random>
 #include <vector>
 
-#include <Eigen/Core>
-
+#include "perception/imu_noise_params.h"
 #include "perception/sensor_data.h"
 #include "sim/sensors/sample_schedule.h"
 
 namespace aperture::sim {
 
-// Defaults: an MPU-6000/MPU-9250-class MEMS IMU as on small research quadrotors. White-noise
-// densities from the InvenSense MPU-6000 datasheet (gyro 0.005 deg/s/sqrt(Hz), accelerometer
-// 400 ug/sqrt(Hz)); bias random walks, which MEMS datasheets do not list, are the order of
-// magnitude used for such IMUs in VIO calibrations (Kalibr/EuRoC-style values).
-struct ImuSensorParams {
+// Noise densities and bias random walks: perception::ImuNoiseParams (the defaults the filter
+// expects, an MPU-6000-class MEMS IMU); the rest is how this IMU samples and delivers.
+struct ImuSensorParams : perception::ImuNoiseParams {
   double rate_hz = 500.0;         // output rate; the simulator must step at least this fast
   // Delivery delay [s] (bus transfer + driver). 0 = delivered in the step it is taken.
   double latency_s = 0.002;
@@ -32,10 +30,6 @@ struct ImuSensorParams {
   // driver). true: it is stamped with its arrival time, so the data are latency_s older than the
   // stamp (a driver that stamps on reception; unmodelled latency for the estimator).
   bool stamp_at_delivery = false;
-  double accel_noise_density = 400e-6 * 9.81;          // [m/s^2/sqrt(Hz)] = 3.9e-3
-  double gyro_noise_density = 0.005 * 3.14159265358979 / 180.0;  // [rad/s/sqrt(Hz)] = 8.7e-5
-  double accel_bias_random_walk = 3.0e-3;             // [m/s^3/sqrt(Hz)]
-  double gyro_bias_random_walk = 2.0e-5;              // [rad/s^2/sqrt(Hz)]
   Eigen::Vector3d accel_bias_initial_B = Eigen::Vector3d::Zero();  // [m/s^2]
   Eigen::Vector3d gyro_bias_initial_B = Eigen::Vector3d::Zero();   // [rad/s]
   std::uint64_t seed = 1;

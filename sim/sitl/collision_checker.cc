@@ -8,23 +8,14 @@
 #include <variant>
 #include <vector>
 
+#include "control/require.h"
+
 namespace aperture::sim {
-namespace {
-
-void RequirePositive(double value, const char* field) {
-  if (!std::isfinite(value) || value <= 0.0) {
-    throw std::invalid_argument(std::string("CollisionParams.") + field + " = " +
-                                std::to_string(value) + " must be positive and finite");
-  }
-}
-
-}  // namespace
-
 void CollisionParams::Validate() const {
-  RequirePositive(body_radius_m, "body_radius_m");
-  RequirePositive(propeller_radius_m, "propeller_radius_m");
-  RequirePositive(max_touchdown_speed_mps, "max_touchdown_speed_mps");
-  RequirePositive(max_touchdown_tilt_rad, "max_touchdown_tilt_rad");
+  control::RequirePositive(body_radius_m, "CollisionParams.body_radius_m");
+  control::RequirePositive(propeller_radius_m, "CollisionParams.propeller_radius_m");
+  control::RequirePositive(max_touchdown_speed_mps, "CollisionParams.max_touchdown_speed_mps");
+  control::RequirePositive(max_touchdown_tilt_rad, "CollisionParams.max_touchdown_tilt_rad");
   if (sphere_rays < 6) {
     throw std::invalid_argument("CollisionParams.sphere_rays = " + std::to_string(sphere_rays) +
                                 " must be >= 6 (64 recommended)");

@@ -9,6 +9,7 @@
 #include <string>
 #include <utility>
 
+#include "control/require.h"
 #include "sim/sensors/sample_schedule.h"
 
 namespace aperture::sim {
@@ -18,20 +19,6 @@ using Clock = std::chrono::steady_clock;
 
 double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-void RequirePositive(double value, const std::string& field) {
-  if (!std::isfinite(value) || value <= 0.0) {
-    throw std::invalid_argument("SitlRunnerParams." + field + " = " + std::to_string(value) +
-                                " must be positive and finite");
-  }
-}
-
-void RequireNonNegative(double value, const std::string& field) {
-  if (!std::isfinite(value) || value < 0.0) {
-    throw std::invalid_argument("SitlRunnerParams." + field + " = " + std::to_string(value) +
-                                " must be >= 0 and finite");
-  }
 }
 
 // Ground-truth poses of the last few steps, for motion blur over an exposure that ends now.
@@ -100,11 +87,11 @@ void SitlRunnerParams::SetSeed(std::uint64_t seed) {
 }
 
 void SitlRunnerParams::Validate() const {
-  RequirePositive(duration_s, "duration_s");
-  RequirePositive(dynamics_rate_hz, "dynamics_rate_hz");
-  RequirePositive(control_rate_hz, "control_rate_hz");
-  RequireNonNegative(command_latency_s, "command_latency_s");
-  RequireNonNegative(range_latency_s, "range_latency_s");
+  control::RequirePositive(duration_s, "SitlRunnerParams.duration_s");
+  control::RequirePositive(dynamics_rate_hz, "SitlRunnerParams.dynamics_rate_hz");
+  control::RequirePositive(control_rate_hz, "SitlRunnerParams.control_rate_hz");
+  control::RequireNonNegative(command_latency_s, "SitlRunnerParams.command_latency_s");
+  control::RequireNonNegative(range_latency_s, "SitlRunnerParams.range_latency_s");
   dynamics.Validate();
   disturbances.Validate();
   flight_controller.Validate();
@@ -127,8 +114,9 @@ void SitlRunnerParams::Validate() const {
     const SitlCamera& c = cameras[i];
     const std::string field = "cameras[" + std::to_string(i) + "] ('" + c.name + "').";
     if (!c.model) throw std::invalid_argument("SitlRunnerParams." + field + "model is missing");
-    RequirePositive(c.rate_hz, field + "rate_hz");
-    RequireNonNegative(c.latency_s, field + "latency_s");
+    control::RequirePositive(c.rate_hz, std::string("SitlRunnerParams.") + field + "rate_hz");
+    control::RequireNonNegative(c.latency_s,
+                                std::string("SitlRunnerParams.") + field + "latency_s");
     if (!(c.drop_probability >= 0.0 && c.drop_probability < 1.0)) {
       throw std::invalid_argument("SitlRunnerParams." + field + "drop_probability = " +
                                   std::to_string(c.drop_probability) + " must be in [0, 1)");
@@ -152,103 +140,155 @@ SitlRunner::SitlRunner(const SitlRunnerParams& params, const Scene* scene)
 
 SitlRunner::~SitlRunner() = default;
 
-SitlResult SitlRunner::Run(perception::Autopilot& autopilot, const SitlHooks& hooks) {
-  const Clock::time_point wall_start = Clock::now();
-  SitlResult result;
-  result.autopilot_name = autopilot.name();
-  const SitlRunnerParams& p = params_;
-  const control::VehicleParameters& vehicle_params = p.dynamics.vehicle;
-  const double dt_s = 1.0 / p.dynamics_rate_hz;
-  const long steps = std::lround(p.duration_s * p.dynamics_rate_hz);
+namespace {
 
-  control::QuadState initial = p.initial_state;
-  initial.t_s = 0.0;
-  QuadrotorDynamics vehicle(p.dynamics, initial);
-  SimulatedFlightController flight_controller(vehicle_params, p.flight_controller);
-  if (p.start_hovering) {
-    control::RotorThrustCommand hover;
-    hover.thrust_N.setConstant(vehicle_params.mass_kg * vehicle_params.gravity_mps2 / 4.0);
-    vehicle.SetRotorThrustCommand(hover);
-    vehicle.SettleRotors();
-    flight_controller.ResetThrustEstimate(vehicle.RotorThrusts_N());
-  } else {
-    flight_controller.ResetThrustEstimate(vehicle.RotorThrusts_N());
+// One flight of SitlRunner::Run: the simulated parts, what is in flight between them, and one
+// method per step of the lockstep loop (sitl_runner.h, "Per dynamics step k").
+class SitlFlight {
+ public:
+  SitlFlight(const SitlRunnerParams& p, const Scene* scene, RayCaster* ray_caster,
+             perception::Autopilot* autopilot, const SitlHooks& hooks, SitlResult* result)
+      : p_(p),
+        scene_(scene),
+        ray_caster_(ray_caster),
+        autopilot_(autopilot),
+        hooks_(hooks),
+        result_(result),
+        dt_s_(1.0 / p.dynamics_rate_hz),
+        steps_(std::lround(p.duration_s * p.dynamics_rate_hz)),
+        vehicle_(p.dynamics, InitialState(p)),
+        flight_controller_(p.dynamics.vehicle, p.flight_controller),
+        disturbances_(p.disturbances),
+        imu_(p.imu),
+        range_(p.range, MakeRangeWorld(p, scene)),
+        collision_checker_(p.dynamics, p.collision),
+        control_schedule_(p.control_rate_hz),
+        flight_controller_schedule_(p.flight_controller.rate_hz),
+        drop_rng_(p.drop_seed),
+        history_(MaxExposure(p) + 2.0 * (1.0 / p.dynamics_rate_hz)),
+        wants_ground_truth_(autopilot->UsesGroundTruth()) {
+    StartRotors();
+    for (const SitlCamera& camera : p.cameras) {
+      cameras_.push_back(CameraRuntime{&camera,
+                                       CameraEffects(camera.effects),
+                                       nullptr,
+                                       SampleSchedule(camera.rate_hz),
+                                       {},
+                                       0,
+                                       {}});
+      if (camera.T_WC_fixed && p.reuse_fixed_camera_background) {
+        cameras_.back().fixed =
+            std::make_unique<FixedCameraRenderer>(*camera.model, *camera.T_WC_fixed);
+      }
+      cameras_.back().stats.name = camera.name;
+    }
+    rotor_thrusts_.thrust_N = vehicle_.RotorThrusts_N();
   }
-  Disturbances disturbances(p.disturbances);
-  ImuSensor imu(p.imu);
+
+  // Steps until the autopilot is done, the duration is reached or the vehicle collides.
+  void Fly() {
+    result_->trajectory.push_back(vehicle_.state());
+    history_.Add(vehicle_.state());
+    for (long k = 0;; ++k) {
+      const double t_s = k * dt_s_;
+      SampleSensors(t_s);
+      CaptureFrames(t_s);
+      const Clock::time_point section = Clock::now();
+      Deliver(t_s);
+      const bool done = StepAutopilot(t_s);
+      result_->timing.autopilot_s += SecondsSince(section);
+      if (done) {
+        result_->outcome = SitlResult::Outcome::kAutopilotDone;
+        result_->reason = "autopilot done: " + autopilot_->status();
+        break;
+      }
+      if (k >= steps_) {
+        result_->outcome = SitlResult::Outcome::kDurationReached;
+        result_->reason = "duration reached";
+        break;
+      }
+      StepVehicle(k, t_s);
+      if (CheckCollision()) break;
+    }
+    result_->sim_time_s = vehicle_.state().t_s;
+    result_->autopilot_status = autopilot_->status();
+    for (const CameraRuntime& runtime : cameras_) result_->cameras.push_back(runtime.stats);
+  }
+
+ private:
+  static control::QuadState InitialState(const SitlRunnerParams& p) {
+    control::QuadState initial = p.initial_state;
+    initial.t_s = 0.0;
+    return initial;
+  }
+
   // The range ray sees what the vehicle can collide with: the ground and the scene's objects
   // except the collision checker's ignored ones (the parts attached to the body).
-  RangeWorld range_world{p.dynamics.ground_height_m, scene_, {}};
-  for (const std::string& name : p.collision.ignored_objects) {
-    const int id = scene_ != nullptr ? scene_->FindId(name) : -1;
-    if (id >= 0) range_world.see_through_object_ids.push_back(id);
-  }
-  RangeSensor range(p.range, std::move(range_world));
-  CollisionChecker collision_checker(p.dynamics, p.collision);
-  SampleSchedule control_schedule(p.control_rate_hz);
-  SampleSchedule flight_controller_schedule(p.flight_controller.rate_hz);
-  std::mt19937_64 drop_rng(p.drop_seed);
-  std::uniform_real_distribution<double> uniform(0.0, 1.0);
-
-  std::vector<CameraRuntime> cameras;
-  double max_exposure_s = 0.0;
-  for (const SitlCamera& camera : p.cameras) {
-    cameras.push_back(CameraRuntime{&camera,
-                                    CameraEffects(camera.effects),
-                                    nullptr,
-                                    SampleSchedule(camera.rate_hz),
-                                    {},
-                                    0,
-                                    {}});
-    if (camera.T_WC_fixed && p.reuse_fixed_camera_background) {
-      cameras.back().fixed =
-          std::make_unique<FixedCameraRenderer>(*camera.model, *camera.T_WC_fixed);
+  static RangeWorld MakeRangeWorld(const SitlRunnerParams& p, const Scene* scene) {
+    RangeWorld range_world{p.dynamics.ground_height_m, scene, {}};
+    for (const std::string& name : p.collision.ignored_objects) {
+      const int id = scene != nullptr ? scene->FindId(name) : -1;
+      if (id >= 0) range_world.see_through_object_ids.push_back(id);
     }
-    cameras.back().stats.name = camera.name;
-    max_exposure_s = std::max(max_exposure_s, camera.effects.exposure_s);
+    return range_world;
   }
-  PoseHistory history(max_exposure_s + 2.0 * dt_s);
-  std::deque<std::pair<double, perception::RangeReading>> range_in_flight;
-  std::deque<std::pair<double, perception::AutopilotCommand>> commands_in_flight;
-  perception::AutopilotCommand last_command;
-  control::RotorThrustCommand rotor_thrusts;
-  rotor_thrusts.thrust_N = vehicle.RotorThrusts_N();
-  const bool wants_ground_truth = autopilot.UsesGroundTruth();
 
-  result.trajectory.push_back(vehicle.state());
-  history.Add(vehicle.state());
-  for (long k = 0;; ++k) {
-    const double t_s = k * dt_s;
-    // 1. sensors.
-    Clock::time_point section = Clock::now();
-    const control::QuadState& state = vehicle.state();
-    const std::vector<perception::ImuSample> imu_samples =
-        imu.Update(t_s, vehicle.SpecificForce_B(), state.omega_B);
-    if (p.range_enabled) {
-      if (const std::optional<perception::RangeReading> reading = range.Update(state)) {
-        range_in_flight.emplace_back(t_s + p.range_latency_s, *reading);
+  static double MaxExposure(const SitlRunnerParams& p) {
+    double max_exposure_s = 0.0;
+    for (const SitlCamera& camera : p.cameras) {
+      max_exposure_s = std::max(max_exposure_s, camera.effects.exposure_s);
+    }
+    return max_exposure_s;
+  }
+
+  void StartRotors() {
+    if (p_.start_hovering) {
+      const control::VehicleParameters& vehicle_params = p_.dynamics.vehicle;
+      control::RotorThrustCommand hover;
+      hover.thrust_N.setConstant(vehicle_params.mass_kg * vehicle_params.gravity_mps2 / 4.0);
+      vehicle_.SetRotorThrustCommand(hover);
+      vehicle_.SettleRotors();
+    }
+    flight_controller_.ResetThrustEstimate(vehicle_.RotorThrusts_N());
+  }
+
+  // Step 1a: IMU and range sensor sample the state at t_s.
+  void SampleSensors(double t_s) {
+    const Clock::time_point section = Clock::now();
+    const control::QuadState& state = vehicle_.state();
+    imu_samples_ = imu_.Update(t_s, vehicle_.SpecificForce_B(), state.omega_B);
+    if (p_.range_enabled) {
+      if (const std::optional<perception::RangeReading> reading = range_.Update(state)) {
+        range_in_flight_.emplace_back(t_s + p_.range_latency_s, *reading);
       }
     }
-    result.timing.dynamics_s += SecondsSince(section);
-    section = Clock::now();
+    result_->timing.dynamics_s += SecondsSince(section);
+  }
+
+  // Step 1b: every camera due at t_s drops its frame or renders it (exposure ending at t_s) and
+  // sends it on its way (delivery at t_s + latency_s).
+  void CaptureFrames(double t_s) {
+    const Clock::time_point section = Clock::now();
     double hooks_s = 0.0;  // inside this section, booked apart from rendering
-    for (size_t c = 0; c < cameras.size(); ++c) {
-      CameraRuntime& runtime = cameras[c];
+    const control::QuadState& state = vehicle_.state();
+    for (size_t c = 0; c < cameras_.size(); ++c) {
+      CameraRuntime& runtime = cameras_[c];
       if (!runtime.schedule.Due(t_s)) continue;
       const int slot = runtime.slot++;
       ++runtime.stats.frames_due;
       const SitlCamera& camera = *runtime.camera;
-      if (camera.drop_probability > 0.0 && uniform(drop_rng) < camera.drop_probability) {
+      if (camera.drop_probability > 0.0 && uniform_(drop_rng_) < camera.drop_probability) {
         ++runtime.stats.frames_dropped;
         continue;
       }
-      if (hooks.before_render) {
+      if (hooks_.before_render) {
         const Clock::time_point hook_start = Clock::now();
-        hooks.before_render(t_s, state);
+        hooks_.before_render(t_s, state);
         hooks_s += SecondsSince(hook_start);
       }
       const Eigen::Isometry3d T_BC = camera.T_BC;
       const std::optional<Eigen::Isometry3d>& T_WC_fixed = camera.T_WC_fixed;
+      const PoseHistory& history = history_;
       const auto T_WC_at = [&history, &T_BC, &T_WC_fixed](double t) {
         return T_WC_fixed ? *T_WC_fixed : Eigen::Isometry3d(history.T_WB(t) * T_BC);
       };
@@ -260,106 +300,142 @@ SitlResult SitlRunner::Run(perception::Autopilot& autopilot, const SitlHooks& ho
                       runtime.fixed->Render(*scene_, options, out);
                     },
                     T_WC_at, t_mid_s, slot, camera.render)
-              : runtime.effects.Capture(ray_caster_, *scene_, *camera.model, T_WC_at, t_mid_s, slot,
-                                        camera.render);
+              : runtime.effects.Capture(*ray_caster_, *scene_, *camera.model, T_WC_at, t_mid_s,
+                                        slot, camera.render);
       captured.frame.camera_id = static_cast<int>(c);
-      if (hooks.on_frame) {
+      if (hooks_.on_frame) {
         const Clock::time_point hook_start = Clock::now();
-        hooks.on_frame(static_cast<int>(c), captured, state);
+        hooks_.on_frame(static_cast<int>(c), captured, state);
         hooks_s += SecondsSince(hook_start);
       }
       runtime.in_flight.emplace_back(t_s + camera.latency_s, captured.frame);
     }
-    result.timing.render_s += SecondsSince(section) - hooks_s;
-    result.timing.hooks_s += hooks_s;
+    result_->timing.render_s += SecondsSince(section) - hooks_s;
+    result_->timing.hooks_s += hooks_s;
+  }
 
-    // 2. deliveries.
-    section = Clock::now();
-    for (const perception::ImuSample& sample : imu_samples) {
-      flight_controller.SetGyro(sample.omega_B);
-      autopilot.OnImu(sample);
-      result.imu.push_back(sample);
+  // Step 2: everything delivered by t_s goes to the autopilot (IMU also to the flight
+  // controller's gyro).
+  void Deliver(double t_s) {
+    for (const perception::ImuSample& sample : imu_samples_) {
+      flight_controller_.SetGyro(sample.omega_B);
+      autopilot_->OnImu(sample);
+      result_->imu.push_back(sample);
     }
-    // Rounding of accumulated times must not push a delivery to the next step.
-    const double due_s = t_s + 1e-9;
-    while (!range_in_flight.empty() && range_in_flight.front().first <= due_s) {
-      autopilot.OnRange(range_in_flight.front().second);
-      result.range.push_back(range_in_flight.front().second);
-      range_in_flight.pop_front();
+    const double due_s = DueTime(t_s);
+    while (!range_in_flight_.empty() && range_in_flight_.front().first <= due_s) {
+      autopilot_->OnRange(range_in_flight_.front().second);
+      result_->range.push_back(range_in_flight_.front().second);
+      range_in_flight_.pop_front();
     }
-    for (CameraRuntime& runtime : cameras) {
+    for (CameraRuntime& runtime : cameras_) {
       while (!runtime.in_flight.empty() && runtime.in_flight.front().first <= due_s) {
-        autopilot.OnFrame(runtime.in_flight.front().second);
+        autopilot_->OnFrame(runtime.in_flight.front().second);
         ++runtime.stats.frames_delivered;
         runtime.in_flight.pop_front();
       }
     }
+  }
 
-    // 3. high-level control.
-    bool done = false;
-    if (control_schedule.Due(t_s)) {
-      if (wants_ground_truth) autopilot.OnGroundTruth(state);
-      const perception::AutopilotCommand command = autopilot.Step(t_s);
-      commands_in_flight.emplace_back(t_s + p.command_latency_s, command);
-      result.commands.push_back(SitlCommandRecord{t_s, command, rotor_thrusts.thrust_N});
-      done = command.done;
-    }
-    result.timing.autopilot_s += SecondsSince(section);
-    if (done) {
-      result.outcome = SitlResult::Outcome::kAutopilotDone;
-      result.reason = "autopilot done: " + autopilot.status();
-      break;
-    }
-    if (k >= steps) {
-      result.outcome = SitlResult::Outcome::kDurationReached;
-      result.reason = "duration reached";
-      break;
-    }
+  // Step 3, at the control rate: ground truth (if wanted), then Autopilot::Step; the command
+  // leaves for the flight controller. Returns the command's `done`.
+  bool StepAutopilot(double t_s) {
+    if (!control_schedule_.Due(t_s)) return false;
+    if (wants_ground_truth_) autopilot_->OnGroundTruth(vehicle_.state());
+    const perception::AutopilotCommand command = autopilot_->Step(t_s);
+    commands_in_flight_.emplace_back(t_s + p_.command_latency_s, command);
+    result_->commands.push_back(SitlCommandRecord{t_s, command, rotor_thrusts_.thrust_N});
+    return command.done;
+  }
 
-    // 4.-5. flight controller and vehicle.
-    section = Clock::now();
-    while (!commands_in_flight.empty() && commands_in_flight.front().first <= due_s) {
-      flight_controller.SetCommand(commands_in_flight.front().second);
-      commands_in_flight.pop_front();
+  // Steps 4-5: commands due reach the flight controller, which runs at its rate; the vehicle
+  // advances one step under the disturbances.
+  void StepVehicle(long k, double t_s) {
+    const Clock::time_point section = Clock::now();
+    const double due_s = DueTime(t_s);
+    while (!commands_in_flight_.empty() && commands_in_flight_.front().first <= due_s) {
+      flight_controller_.SetCommand(commands_in_flight_.front().second);
+      commands_in_flight_.pop_front();
     }
-    if (flight_controller_schedule.Due(t_s)) {
-      rotor_thrusts = flight_controller.Step();
-      vehicle.SetRotorThrustCommand(rotor_thrusts);
+    if (flight_controller_schedule_.Due(t_s)) {
+      rotor_thrusts_ = flight_controller_.Step();
+      vehicle_.SetRotorThrustCommand(rotor_thrusts_);
     }
-    const Eigen::Vector3d previous_p_WB = vehicle.state().p_WB;
-    const bool was_on_ground = vehicle.on_ground();
-    disturbances.StepVehicle(dt_s, &vehicle);
-    if (!vehicle.state().IsValid()) {
+    previous_p_WB_ = vehicle_.state().p_WB;
+    was_on_ground_ = vehicle_.on_ground();
+    disturbances_.StepVehicle(dt_s_, &vehicle_);
+    if (!vehicle_.state().IsValid()) {
       throw std::runtime_error("SitlRunner: the vehicle state became invalid at t = " +
                                std::to_string(t_s) + " s (check the autopilot's commands)");
     }
-    history.Add(vehicle.state());
-    if ((k + 1) % p.trajectory_decimation == 0) result.trajectory.push_back(vehicle.state());
-    result.timing.dynamics_s += SecondsSince(section);
-
-    // 6. collisions.
-    section = Clock::now();
-    std::optional<Collision> collision =
-        collision_checker.Check(scene_, vehicle.state(), previous_p_WB);
-    if (!collision && vehicle.on_ground() && !was_on_ground) {
-      collision =
-          collision_checker.CheckTouchdown(vehicle.state().p_WB, vehicle.last_touchdown_speed_mps(),
-                                           vehicle.last_touchdown_tilt_rad());
-    }
-    result.timing.collision_s += SecondsSince(section);
-    if (collision) {
-      result.outcome = SitlResult::Outcome::kCollision;
-      result.collision = collision;
-      result.reason = "collision: " + collision->part + " with '" + collision->object_name + "'";
-      if (result.trajectory.back().t_s != vehicle.state().t_s) {
-        result.trajectory.push_back(vehicle.state());
-      }
-      break;
-    }
+    history_.Add(vehicle_.state());
+    if ((k + 1) % p_.trajectory_decimation == 0) result_->trajectory.push_back(vehicle_.state());
+    result_->timing.dynamics_s += SecondsSince(section);
   }
-  result.sim_time_s = vehicle.state().t_s;
-  result.autopilot_status = autopilot.status();
-  for (const CameraRuntime& runtime : cameras) result.cameras.push_back(runtime.stats);
+
+  // Step 6: collision along the step, or a touchdown too hard for the landing gear. Records it
+  // and returns true when the run ends.
+  bool CheckCollision() {
+    const Clock::time_point section = Clock::now();
+    std::optional<Collision> collision =
+        collision_checker_.Check(scene_, vehicle_.state(), previous_p_WB_);
+    if (!collision && vehicle_.on_ground() && !was_on_ground_) {
+      collision = collision_checker_.CheckTouchdown(vehicle_.state().p_WB,
+                                                    vehicle_.last_touchdown_speed_mps(),
+                                                    vehicle_.last_touchdown_tilt_rad());
+    }
+    result_->timing.collision_s += SecondsSince(section);
+    if (!collision) return false;
+    result_->outcome = SitlResult::Outcome::kCollision;
+    result_->collision = collision;
+    result_->reason = "collision: " + collision->part + " with '" + collision->object_name + "'";
+    if (result_->trajectory.back().t_s != vehicle_.state().t_s) {
+      result_->trajectory.push_back(vehicle_.state());
+    }
+    return true;
+  }
+
+  // Rounding of accumulated times must not push a delivery to the next step.
+  static double DueTime(double t_s) { return t_s + 1e-9; }
+
+  const SitlRunnerParams& p_;
+  const Scene* scene_;
+  RayCaster* ray_caster_;
+  perception::Autopilot* autopilot_;
+  const SitlHooks& hooks_;
+  SitlResult* result_;
+  const double dt_s_;
+  const long steps_;
+
+  QuadrotorDynamics vehicle_;
+  SimulatedFlightController flight_controller_;
+  Disturbances disturbances_;
+  ImuSensor imu_;
+  RangeSensor range_;
+  CollisionChecker collision_checker_;
+  SampleSchedule control_schedule_;
+  SampleSchedule flight_controller_schedule_;
+  std::mt19937_64 drop_rng_;
+  std::uniform_real_distribution<double> uniform_{0.0, 1.0};
+  std::vector<CameraRuntime> cameras_;
+  PoseHistory history_;
+  const bool wants_ground_truth_;
+
+  std::vector<perception::ImuSample> imu_samples_;  // taken in this step, delivered in step 2
+  std::deque<std::pair<double, perception::RangeReading>> range_in_flight_;
+  std::deque<std::pair<double, perception::AutopilotCommand>> commands_in_flight_;
+  control::RotorThrustCommand rotor_thrusts_;
+  Eigen::Vector3d previous_p_WB_ = Eigen::Vector3d::Zero();  // before the last vehicle step
+  bool was_on_ground_ = false;
+};
+
+}  // namespace
+
+SitlResult SitlRunner::Run(perception::Autopilot& autopilot, const SitlHooks& hooks) {
+  const Clock::time_point wall_start = Clock::now();
+  SitlResult result;
+  result.autopilot_name = autopilot.name();
+  SitlFlight(params_, scene_, &ray_caster_, &autopilot, hooks, &result).Fly();
   result.timing.wall_time_s = SecondsSince(wall_start);
   result.real_time_factor =
       result.timing.wall_time_s > 0.0 ? result.sim_time_s / result.timing.wall_time_s : 0.0;

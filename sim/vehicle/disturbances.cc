@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "control/require.h"
+
 namespace aperture::sim {
 namespace {
 
@@ -12,28 +14,22 @@ namespace {
 // integration step, far above the rounding of accumulated simulator time.
 constexpr double kTimeEpsilon_s = 1e-9;
 
-void RequireFinite(bool finite, const std::string& field) {
-  if (!finite) throw std::invalid_argument("DisturbanceParams." + field + " must be finite");
-}
-
 }  // namespace
 
 void DisturbanceParams::Validate() const {
-  RequireFinite(steady_wind_W_mps.allFinite(), "steady_wind_W_mps");
-  RequireFinite(torque_B_Nm.allFinite(), "torque_B_Nm");
+  control::RequireFinite(steady_wind_W_mps, "DisturbanceParams.steady_wind_W_mps");
+  control::RequireFinite(torque_B_Nm, "DisturbanceParams.torque_B_Nm");
   for (size_t i = 0; i < gusts.size(); ++i) {
-    const std::string name = "gusts[" + std::to_string(i) + "]";
-    RequireFinite(std::isfinite(gusts[i].t_start_s) && gusts[i].wind_W_mps.allFinite(), name);
-    if (!(std::isfinite(gusts[i].duration_s) && gusts[i].duration_s > 0.0)) {
-      throw std::invalid_argument("DisturbanceParams." + name + ".duration_s must be > 0, got " +
-                                  std::to_string(gusts[i].duration_s));
-    }
+    const std::string name = "DisturbanceParams.gusts[" + std::to_string(i) + "]";
+    control::RequireFinite(gusts[i].t_start_s, name + ".t_start_s");
+    control::RequireFinite(gusts[i].wind_W_mps, name + ".wind_W_mps");
+    control::RequirePositive(gusts[i].duration_s, name + ".duration_s");
   }
   for (size_t i = 0; i < pushes.size(); ++i) {
     const Push& push = pushes[i];
-    RequireFinite(std::isfinite(push.t_s) && push.impulse_W_Ns.allFinite() &&
-                      push.angular_impulse_B_Nms.allFinite(),
-                  "pushes[" + std::to_string(i) + "]");
+    control::Require(std::isfinite(push.t_s) && push.impulse_W_Ns.allFinite() &&
+                         push.angular_impulse_B_Nms.allFinite(),
+                     "DisturbanceParams.pushes[" + std::to_string(i) + "]", "must be finite");
   }
 }
 

@@ -219,7 +219,7 @@ TEST_F(RenderTrajectory, RandomWanderIsSeededBoundedAndReturnsToTheStart) {
     double largest_offset_m = 0.0;
     for (const Eigen::Isometry3d& T_WC : *poses) {
       const Eigen::Vector3d offset_W =
-          (T_WC * camera.T_mount.inverse()).translation() - scenario.T_WB_start().translation();
+          (T_WC * camera.T_BC->inverse()).translation() - scenario.T_WB_start().translation();
       EXPECT_LE(offset_W.cwiseAbs().maxCoeff(), 2.0 * amplitude_m);
       largest_offset_m = std::max(largest_offset_m, offset_W.norm());
     }
@@ -256,7 +256,7 @@ TEST_F(RenderTrajectory, LedTargetAndLedsFollowTheVehiclePose) {
   }
   // The world-mounted camera does not move.
   for (const Eigen::Isometry3d& T_WC : CameraPoses(dataset)) {
-    ExpectPoseNear(T_WC, scenario.render_camera().T_mount, "ground camera pose");
+    ExpectPoseNear(T_WC, *scenario.render_camera().T_WC_fixed, "ground camera pose");
   }
   EXPECT_GT((target[2].translation() - target[0].translation()).norm(), 0.01);
 }

@@ -10,13 +10,13 @@
 #include <stdexcept>
 #include <vector>
 
+#include "control/so3.h"
 #include "perception/camera/pinhole_camera.h"
 #include "perception/led/led_configuration.h"
 #include "perception/led/led_correspondence_search.h"
 #include "perception/led/led_detector.h"
 #include "perception/led/led_pose_refiner.h"
 #include "perception/led/led_tracker.h"
-#include "perception/led/se3_twist.h"
 
 namespace aperture::perception {
 namespace {

@@ -219,5 +219,45 @@ TEST(EvaluateGapTrial, NamesTheFirstFailedCriterion) {
   EXPECT_FALSE(never.error.has_value());
 }
 
+// The pattern looks the same turned by 180 deg about z_G: a mission whose estimate picked the
+// other of the two frames flew the same path, and its error must not come out as a half turn.
+TEST(ComputeErrorAtGap, UsesTheLookAlikeGapFrameTheEstimateRefersTo) {
+  GapGeometry gap;
+  gap.T_WG = GapPoseW(20.0, 5.0, Eigen::Vector3d(5.0, 0.0, 1.5));
+  Eigen::Isometry3d T_WG_turned = gap.T_WG;
+  T_WG_turned.linear() = gap.T_WG.linear() * Eigen::Vector3d(-1.0, -1.0, 1.0).asDiagonal();
+  const planning::TraverseTrajectory plan(ToGapPose(gap.T_WG), 1.0, 0.5, 9.81);
+  const planning::TraverseTrajectory plan_turned(ToGapPose(T_WG_turned), 1.0, 0.5, 9.81);
+  // Both plans are the same arc in the world; mapped without the turn, the second one's velocity
+  // would come out mirrored about z_G.
+  ASSERT_TRUE(plan.Velocity(plan.time_to_gap_s())
+                  .isApprox(plan_turned.Velocity(plan_turned.time_to_gap_s()), 1e-9));
+  const sim::SitlResult flight = ThroughAndHover(gap, 0.0);
+  const GapTrialEvaluation evaluation = EvaluateGapTrial(flight, gap, plan, 0.5);
+  const GapTrialEvaluation turned = EvaluateGapTrial(flight, gap, plan_turned, 0.5);
+  ASSERT_TRUE(evaluation.error.has_value() && turned.error.has_value());
+  EXPECT_LT((turned.error->position_m - evaluation.error->position_m).norm(), 1e-9);
+  EXPECT_LT((turned.error->velocity_mps - evaluation.error->velocity_mps).norm(), 1e-9);
+  EXPECT_TRUE(TrueGapMatchingEstimate(gap.T_WG, T_WG_turned.linear()).isApprox(T_WG_turned));
+  EXPECT_TRUE(TrueGapMatchingEstimate(gap.T_WG, gap.T_WG.linear()).isApprox(gap.T_WG));
+}
+
+TEST(GroundTruthAt, InterpolatesBetweenRecordedStatesAndClampsToTheirSpan) {
+  control::QuadState a, b;
+  a.t_s = 1.0;
+  b.t_s = 2.0;
+  b.p_WB = Eigen::Vector3d(1.0, 2.0, 3.0);
+  b.v_W = Eigen::Vector3d(0.0, 0.0, 1.0);
+  b.q_WB = Eigen::Quaterniond(Eigen::AngleAxisd(1.0, Eigen::Vector3d::UnitZ()));
+  const std::vector<control::QuadState> trajectory = {a, b};
+  const control::QuadState mid = GroundTruthAt(trajectory, 1.25);
+  EXPECT_TRUE(mid.p_WB.isApprox(Eigen::Vector3d(0.25, 0.5, 0.75)));
+  EXPECT_NEAR(mid.v_W.z(), 0.25, 1e-12);
+  EXPECT_NEAR(Eigen::AngleAxisd(mid.q_WB).angle(), 0.25, 1e-12);
+  EXPECT_EQ(GroundTruthAt(trajectory, 0.0).t_s, 1.0);
+  EXPECT_EQ(GroundTruthAt(trajectory, 5.0).t_s, 2.0);
+  EXPECT_THROW(GroundTruthAt({}, 1.0), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace aperture::experiments

@@ -447,12 +447,13 @@ class PoseNode final : public Node {
   void Run(NodeContext& context) override {
     context.Set("t", context.Get<Frame>(kFrameSlot).t_s);
   }
-  std::vector<PoseEstimate> Poses(const NodeContext& context) const override {
+  std::vector<PoseObservation> Poses(const NodeContext& context) const override {
     const Frame& frame = context.Get<Frame>(kFrameSlot);
     if (frame.index % 2 == 1) return {};
-    PoseEstimate pose;
+    PoseObservation pose;
     pose.stream = "clock";
-    pose.T.translation().x() = context.Get<double>("t");
+    pose.t_s = frame.t_s;
+    pose.T_CX.translation().x() = context.Get<double>("t");
     return {pose};
   }
 };
@@ -467,14 +468,15 @@ TEST(FrameGraphExecutors, CollectPosesGathersEachNodesEstimatesOfTheFrame) {
     frame.index = index;
     frame.t_s = 0.5 * index;
     const FrameSlots slots = executor.Run(frame);
-    const std::vector<PoseEstimate> poses = graph.CollectPoses(slots);
+    const std::vector<PoseObservation> poses = graph.CollectPoses(slots);
     if (index % 2 == 1) {
       EXPECT_TRUE(poses.empty());
       continue;
     }
     ASSERT_EQ(poses.size(), 1u);
     EXPECT_EQ(poses[0].stream, "clock");
-    EXPECT_EQ(poses[0].T.translation().x(), frame.t_s);
+    EXPECT_EQ(poses[0].T_CX.translation().x(), frame.t_s);
+    EXPECT_EQ(poses[0].t_s, frame.t_s);
   }
 }
 

@@ -87,29 +87,6 @@ TEST(GapDetectorTest, DrawnPatternGivesExactPoseWithSymmetryConvention) {
   EXPECT_GT(d.T_CG.linear().col(2).dot(d.T_CG.translation()), 0.0);
 }
 
-// The covariance of T_GC = T_CG^-1: a perturbation delta of T_CG moves T_GC by -Ad(T_GC) delta.
-TEST(GapNodeTest, InverseCovarianceMatchesPerturbedInverse) {
-  const Eigen::Isometry3d T_CG = MakePose(0.3, -0.2, 0.5, Eigen::Vector3d(0.4, -0.3, 2.0));
-  Eigen::Matrix<double, 6, 6> J;  // d(delta_GC) / d(delta_CG), numerically
-  constexpr double kStep = 1e-6;
-  for (int i = 0; i < 6; ++i) {
-    Eigen::Matrix<double, 6, 1> delta = Eigen::Matrix<double, 6, 1>::Zero();
-    delta[i] = kStep;
-    Eigen::Isometry3d E = Eigen::Isometry3d::Identity();
-    E.linear() = Eigen::AngleAxisd(kStep, Eigen::Vector3d::Unit(i >= 3 ? i - 3 : 0)).toRotationMatrix();
-    if (i < 3) E.linear().setIdentity();
-    E.translation() = delta.head<3>();
-    const Eigen::Isometry3d T_GC = T_CG.inverse();
-    const Eigen::Isometry3d D = (E * T_CG).inverse() * T_GC.inverse();  // Exp(delta_GC)
-    const Eigen::AngleAxisd aa(D.linear());
-    J.col(i) << D.translation() / kStep, aa.axis() * aa.angle() / kStep;
-  }
-  Eigen::Matrix<double, 6, 6> cov = Eigen::Matrix<double, 6, 6>::Identity();
-  cov(0, 4) = cov(4, 0) = 0.3;
-  // Finite differences with step 1e-6 are exact to ~1e-6 relative.
-  EXPECT_TRUE(GapNode::InverseCovariance(T_CG, cov).isApprox(J * cov * J.transpose(), 1e-5));
-}
-
 TEST(GapNodeTest, RegisteredAndNeedsCalibration) {
   FrontEndRegistry registry;
   RegisterBuiltinFrontEnds(registry);
@@ -120,7 +97,8 @@ TEST(GapNodeTest, RegisteredAndNeedsCalibration) {
   EXPECT_NE(registry.Create("gap", resources), nullptr);
 }
 
-// The node reports T_GC, its metrics and nothing on a miss.
+// The node reports T_CG of the fixed target G (the stream records T_GC), its metrics and nothing
+// on a miss.
 TEST(GapNodeTest, ReportsCameraPoseInGapFrame) {
   const auto camera = Pinhole();
   std::vector<std::unique_ptr<Node>> nodes;
@@ -132,11 +110,13 @@ TEST(GapNodeTest, ReportsCameraPoseInGapFrame) {
   FrameSlots slots = graph.MakeSlots(frame);
   NodeContext context = graph.ContextFor(0, slots);
   graph.node(0).Run(context);
-  const std::vector<PoseEstimate> poses = graph.CollectPoses(slots);
+  const std::vector<PoseObservation> poses = graph.CollectPoses(slots);
   ASSERT_EQ(poses.size(), 1u);
   EXPECT_EQ(poses[0].stream, "gap");
-  EXPECT_LT((poses[0].T.translation() - T_CG.inverse().translation()).norm(), 0.015);  // 0.5 % of 3 m
-  ASSERT_TRUE(poses[0].covariance.has_value());
+  EXPECT_EQ(poses[0].fixed, PoseObservation::Fixed::kTarget);
+  EXPECT_LT((poses[0].T_CX.translation() - T_CG.translation()).norm(), 0.015);  // 0.5 % of 3 m
+  EXPECT_LT((poses[0].T_fixed_moving().translation() - T_CG.inverse().translation()).norm(), 0.015);
+  ASSERT_TRUE(poses[0].covariance_CX.has_value());
   const auto metrics = graph.CollectMetrics(slots);
   EXPECT_EQ(metrics.at("gap.detected"), 1.0);
   EXPECT_NEAR(metrics.at("gap.distance_m"), T_CG.translation().norm(), 0.015);

@@ -2,9 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include "control/so3.h"
 #include "perception/camera/pinhole_camera.h"
 #include "perception/led/led_configuration.h"
-#include "perception/led/se3_twist.h"
 
 namespace aperture::perception {
 namespace {
@@ -12,7 +12,7 @@ namespace {
 class LedCorrespondenceSearchTest : public ::testing::TestWithParam<P3pMethod> {
  protected:
   LedCorrespondenceSearchTest() {
-    T_CT_ = ExpSe3((Vector6d() << 0, 0, 0, 0.4, 0.3, -0.2).finished());
+    T_CT_ = control::ExpSe3((control::Vector6d() << 0, 0, 0, 0.4, 0.3, -0.2).finished());
     T_CT_.translation() = Eigen::Vector3d(-0.1, 0.05, 1.2);
   }
   // Detections of every LED in a shuffled order (detection d sees LED order_[d]).

@@ -4,10 +4,10 @@
 
 #include <random>
 
+#include "control/so3.h"
 #include "perception/camera/pinhole_camera.h"
 #include "perception/camera/radtan_camera.h"
 #include "perception/led/led_configuration.h"
-#include "perception/led/se3_twist.h"
 
 namespace aperture::perception {
 namespace {
@@ -20,16 +20,17 @@ std::unique_ptr<CameraModel> MakeCamera(bool distorted) {
 }
 
 Eigen::Isometry3d TruePose() {
-  Eigen::Isometry3d T_CT = ExpSe3((Vector6d() << 0, 0, 0, 0.3, -0.5, 2.8).finished());
+  Eigen::Isometry3d T_CT =
+      control::ExpSe3((control::Vector6d() << 0, 0, 0, 0.3, -0.5, 2.8).finished());
   T_CT.translation() = Eigen::Vector3d(0.1, -0.05, 1.0);
   return T_CT;
 }
 
 // The perturbation of the header: (Exp(delta_phi) R, p + delta_t).
-Eigen::Isometry3d Perturbed(const Eigen::Isometry3d& T, const Vector6d& delta) {
+Eigen::Isometry3d Perturbed(const Eigen::Isometry3d& T, const control::Vector6d& delta) {
   Eigen::Isometry3d result = T;
   result.translation() += delta.head<3>();
-  result.linear() = ExpSo3(delta.tail<3>()) * T.linear();
+  result.linear() = control::ExpSo3(delta.tail<3>()) * T.linear();
   return result;
 }
 
@@ -49,8 +50,10 @@ TEST_P(LedPoseRefinerTest, JacobianMatchesNumericDifferentiation) {
     const double h = 1e-6;  // central differences: O(h^2) truncation, ~1e-10 px rounding / h
     for (int k = 0; k < 6; ++k) {
       Eigen::Vector2d plus, minus;
-      ASSERT_TRUE(ProjectLed(*camera_, Perturbed(T_CT, h * Vector6d::Unit(k)), p_T, &plus));
-      ASSERT_TRUE(ProjectLed(*camera_, Perturbed(T_CT, -h * Vector6d::Unit(k)), p_T, &minus));
+      ASSERT_TRUE(
+          ProjectLed(*camera_, Perturbed(T_CT, h * control::Vector6d::Unit(k)), p_T, &plus));
+      ASSERT_TRUE(
+          ProjectLed(*camera_, Perturbed(T_CT, -h * control::Vector6d::Unit(k)), p_T, &minus));
       J_numeric.col(k) = (plus - minus) / (2 * h);
     }
     // Entries are O(100-400) px per m or rad; 1e-4 px is the numeric noise floor above.
@@ -65,7 +68,8 @@ TEST_P(LedPoseRefinerTest, ConvergesToTheTruePoseFromAPerturbedStart) {
     px.emplace_back();
     ASSERT_TRUE(camera_->Project(T_CT * p_T, &px.back()));
   }
-  const Vector6d offset = (Vector6d() << 0.03, -0.02, 0.1, 0.05, -0.04, 0.06).finished();
+  const control::Vector6d offset =
+      (control::Vector6d() << 0.03, -0.02, 0.1, 0.05, -0.04, 0.06).finished();
   const LedPoseRefinement refined =
       RefineLedPose(*camera_, configuration_.p_T(), px, Perturbed(T_CT, offset));
   ASSERT_TRUE(refined.valid);
@@ -91,9 +95,9 @@ TEST_P(LedPoseRefinerTest, CovarianceMatchesTheEmpiricalSpreadOfNoisyEstimates) 
     for (auto& p : px) p += Eigen::Vector2d(noise(rng), noise(rng));
     const LedPoseRefinement refined = RefineLedPose(*camera_, configuration_.p_T(), px, T_CT);
     ASSERT_TRUE(refined.valid);
-    Vector6d error;
+    control::Vector6d error;
     error.head<3>() = refined.T_CT.translation() - T_CT.translation();
-    error.tail<3>() = LogSo3(refined.T_CT.linear() * T_CT.linear().transpose());
+    error.tail<3>() = control::LogSo3(refined.T_CT.linear() * T_CT.linear().transpose());
     empirical += error * error.transpose() / kTrials;
     predicted += refined.covariance / kTrials;
   }

@@ -7,11 +7,11 @@
 #include <fstream>
 
 #include "config/config_tree.h"
+#include "control/so3.h"
 #include "led_test_images.h"
 #include "perception/camera/pinhole_camera.h"
 #include "perception/graph/builtin_front_ends.h"
 #include "perception/graph/serial_executor.h"
-#include "perception/led/se3_twist.h"
 #include "perception/sensor_data.h"
 #include "temp_directory.h"
 #include "tests/support/message_of.h"
@@ -44,7 +44,7 @@ TEST(LedTrackerNodeTest, ReportsThePoseStreamWithCovarianceMetricsAndOverlay) {
 
   const LedConfiguration configuration = LedConfiguration::Default();
   const Eigen::Isometry3d T_CT =
-      ExpSe3((Vector6d() << -0.1, 0.05, 1.3, 0.3, -0.2, 0.1).finished());
+      control::ExpSe3((control::Vector6d() << -0.1, 0.05, 1.3, 0.3, -0.2, 0.1).finished());
   std::vector<Eigen::Vector2d> px;
   for (const auto& p_T : configuration.p_T()) {
     px.emplace_back();
@@ -54,11 +54,13 @@ TEST(LedTrackerNodeTest, ReportsThePoseStreamWithCovarianceMetricsAndOverlay) {
   frame.image = test_support::BlobImage(752, 480, px, 2.0);
   FrameSlots slots = executor.Run(frame);
   const NodeContext context = graph.ContextFor(0, slots);
-  const std::vector<PoseEstimate> poses = graph.node(0).Poses(context);
+  const std::vector<PoseObservation> poses = graph.node(0).Poses(context);
   ASSERT_EQ(poses.size(), 1u);
   EXPECT_EQ(poses[0].stream, "led");
-  EXPECT_LT((poses[0].T.translation() - T_CT.translation()).norm(), 0.003);
-  ASSERT_TRUE(poses[0].covariance.has_value());
+  EXPECT_EQ(poses[0].fixed, PoseObservation::Fixed::kCamera);
+  EXPECT_LT((poses[0].T_CX.translation() - T_CT.translation()).norm(), 0.003);
+  EXPECT_TRUE(poses[0].T_fixed_moving().isApprox(poses[0].T_CX));  // the stream records T_CT
+  ASSERT_TRUE(poses[0].covariance_CX.has_value());
   const auto metrics = graph.node(0).Metrics(context);
   EXPECT_EQ(metrics.at("detections"), 5.0);
   EXPECT_EQ(metrics.at("correspondences"), 5.0);

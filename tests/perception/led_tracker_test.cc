@@ -3,9 +3,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "control/so3.h"
 #include "led_test_images.h"
 #include "perception/camera/pinhole_camera.h"
-#include "perception/led/se3_twist.h"
 
 namespace aperture::perception {
 namespace {
@@ -14,9 +14,11 @@ class LedTrackerTest : public ::testing::Test {
  protected:
   // The target moving linearly in twist coordinates, the model of (C.6): ~0.2 m/s, 0.5 rad/s.
   Eigen::Isometry3d PoseAt(double t_s) const {
-    const Vector6d xi_0 = (Vector6d() << -0.1, 0.05, 1.3, 0.3, -0.2, 0.1).finished();
-    const Vector6d xi_dot = (Vector6d() << 0.2, 0.0, 0.0, 0.5, 0.0, 0.0).finished();
-    return ExpSe3(xi_0 + t_s * xi_dot);
+    const control::Vector6d xi_0 =
+        (control::Vector6d() << -0.1, 0.05, 1.3, 0.3, -0.2, 0.1).finished();
+    const control::Vector6d xi_dot =
+        (control::Vector6d() << 0.2, 0.0, 0.0, 0.5, 0.0, 0.0).finished();
+    return control::ExpSe3(xi_0 + t_s * xi_dot);
   }
   std::vector<Eigen::Vector2d> Projections(const Eigen::Isometry3d& T_CT) const {
     std::vector<Eigen::Vector2d> px;
@@ -103,8 +105,10 @@ TEST_F(LedTrackerTest, PredictionFollowsEquationC6) {
   ASSERT_EQ(tracked.status, LedTrackStatus::kTracked);
   const Eigen::Isometry3d second = *tracker.Predict(0.05);
   // xi = xi_1 + (0.05 - 0.02) / (0.02 - 0.0) (xi_1 - xi_0) with the estimated poses.
-  const Vector6d expected = LogSe3(*tracked.T_CT) + 1.5 * (LogSe3(*tracked.T_CT) - LogSe3(first));
-  EXPECT_LT((LogSe3(second) - expected).cwiseAbs().maxCoeff(), 1e-9);
+  const control::Vector6d expected =
+      control::LogSe3(*tracked.T_CT) +
+      1.5 * (control::LogSe3(*tracked.T_CT) - control::LogSe3(first));
+  EXPECT_LT((control::LogSe3(second) - expected).cwiseAbs().maxCoeff(), 1e-9);
 }
 
 TEST_F(LedTrackerTest, NoDetectionsGiveNoPose) {

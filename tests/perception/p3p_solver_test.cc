@@ -4,7 +4,7 @@
 
 #include <random>
 
-#include "perception/led/se3_twist.h"
+#include "control/so3.h"
 
 namespace aperture::perception {
 namespace {
@@ -19,7 +19,8 @@ TEST_P(P3pSolverTest, TrueposeIsAmongTheSolutionsOnRandomNoiseFreeCases) {
   std::vector<Eigen::Isometry3d> solutions;
   for (int n = 0; n < kCases; ++n) {
     const Eigen::Vector3d rotation(unit(rng), unit(rng), unit(rng));
-    Eigen::Isometry3d T_CT = ExpSe3((Vector6d() << 0, 0, 0, rotation * 1.5).finished());
+    Eigen::Isometry3d T_CT =
+        control::ExpSe3((control::Vector6d() << 0, 0, 0, rotation * 1.5).finished());
     T_CT.translation() = Eigen::Vector3d(0.3 * unit(rng), 0.3 * unit(rng), 1.5 + unit(rng));
     std::array<Eigen::Vector3d, 3> p_T, f_C;
     for (int i = 0; i < 3; ++i) {
@@ -50,9 +51,9 @@ TEST(P3pSolverKneipTest, MatchesOpenGvSolutions) {
   std::vector<Eigen::Isometry3d> own, reference;
   int compared = 0;
   for (int n = 0; n < 300; ++n) {
-    Eigen::Isometry3d T_CT =
-        ExpSe3((Vector6d() << 0, 0, 0, Eigen::Vector3d(unit(rng), unit(rng), unit(rng)) * 2.0)
-                   .finished());
+    Eigen::Isometry3d T_CT = control::ExpSe3(
+        (control::Vector6d() << 0, 0, 0, Eigen::Vector3d(unit(rng), unit(rng), unit(rng)) * 2.0)
+            .finished());
     T_CT.translation() = Eigen::Vector3d(0.5 * unit(rng), 0.5 * unit(rng), 2.0 + unit(rng));
     std::array<Eigen::Vector3d, 3> p_T, f_C;
     for (int i = 0; i < 3; ++i) {

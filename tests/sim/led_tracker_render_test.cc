@@ -4,8 +4,8 @@
 
 #include <cstdio>
 
+#include "control/so3.h"
 #include "perception/led/led_tracker.h"
-#include "perception/led/se3_twist.h"
 #include "render_test_util.h"
 #include "sim/render/camera_effects.h"
 #include "sim/render/ray_caster.h"
@@ -25,14 +25,14 @@ constexpr double kFocal_px = 420.0;  // MakeTestPinhole
 // T) at position p_CT.
 Eigen::Isometry3d TargetPose(const Eigen::Vector3d& p_CT, const Eigen::Vector3d& tilt) {
   Eigen::Isometry3d T_CT = Eigen::Isometry3d::Identity();
-  T_CT.linear() = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix() *
-                  perception::ExpSo3(tilt);
+  T_CT.linear() =
+      Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix() * control::ExpSo3(tilt);
   T_CT.translation() = p_CT;
   return T_CT;
 }
 
 double AngleError_deg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
-  return perception::LogSo3(a.linear() * b.linear().transpose()).norm() * 180.0 / M_PI;
+  return control::LogSo3(a.linear() * b.linear().transpose()).norm() * 180.0 / M_PI;
 }
 
 class LedTrackerRenderTest : public ::testing::Test {

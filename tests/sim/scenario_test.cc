@@ -455,6 +455,30 @@ TEST(ScenarioLoadTest, LedConfigFileSetsTheLeds) {
   EXPECT_TRUE(scenario.scene().object("led_target").T_WO.isApprox(T_WB, 1e-12));
 }
 
+// One LED loader (perception::LedConfiguration): a file and inline `led.leds` get its checks, which
+// are stronger than a count (coplanar or symmetric layouts make the pose ambiguous).
+TEST(ScenarioLoadTest, LedLayoutsGetTheLedConfigurationChecks) {
+  const auto message = [](const std::vector<std::string>& sets) {
+    try {
+      Load("led", sets);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  // Five LEDs on one plane: enough of them, but coplanar.
+  EXPECT_THAT(message({"led.leds=[[0.2, 0, 0], [0, 0.2, 0], [-0.2, 0, 0], [0, -0.2, 0], "
+                       "[0.1, 0.1, 0]]"}),
+              AllOf(HasSubstr("led.leds"), HasSubstr("coplanar")));
+  // A regular tetrahedron: every relabelling is a rotation.
+  const TempFile file("symmetric_leds",
+                      "leds: [[0.1, 0.1, 0.1], [0.1, -0.1, -0.1], [-0.1, 0.1, -0.1], "
+                      "[-0.1, -0.1, 0.1]]\n");
+  EXPECT_THAT(message({"led.config=" + file.path()}),
+              AllOf(HasSubstr(file.path()), HasSubstr("symmetric")));
+  EXPECT_THROW(Load("led", {"led.config=" + file.path() + ".missing"}), std::runtime_error);
+}
+
 TEST(ScenarioLoadTest, LedFalseSpotsAreSeededEmittersInTheArea) {
   const Scenario a = BuildScenario(Load("led", {"led.false_spots=3", "seed=4"}));
   const Scenario b = BuildScenario(Load("led", {"led.false_spots=3", "seed=4"}));

@@ -1,0 +1,182 @@
+#include "perception/estimation/pose_fusion.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "control/so3.h"
+
+namespace aperture::perception {
+namespace {
+
+// Rotations from calibration files carry ~1e-9 rounding; 1e-6 flags real mistakes (a scaled or
+// sheared matrix, a reflection) without rejecting round-off.
+constexpr double kRotationTolerance = 1e-6;
+
+}  // namespace
+
+void RequireRigid(const Eigen::Isometry3d& T, const std::string& name) {
+  const Eigen::Matrix3d R = T.linear();
+  if (!R.allFinite() || !T.translation().allFinite()) {
+    throw std::invalid_argument(name + " must be finite");
+  }
+  const double orthonormality = (R.transpose() * R - Eigen::Matrix3d::Identity()).norm();
+  if (orthonormality > kRotationTolerance || R.determinant() < 0.0) {
+    throw std::invalid_argument(name + " is not a rigid transform (rotation part not orthonormal "
+                                "with determinant +1, |R^T R - I| = " +
+                                std::to_string(orthonormality) + "): give a proper rotation");
+  }
+}
+
+PoseMeasurement ToPoseMeasurement(const PoseObservation& observation, const PoseRig& rig) {
+  const std::string what = "pose observation '" + observation.stream + "'";
+  RequireRigid(rig.T_W_fixed, "PoseRig.T_W_fixed");
+  RequireRigid(rig.T_B_moving, "PoseRig.T_B_moving");
+  RequireRigid(observation.T_CX, what + " T_CX");
+  if (!std::isfinite(observation.t_s)) throw std::invalid_argument(what + ": t_s must be finite");
+  if (!observation.covariance_CX || !observation.covariance_CX->allFinite()) {
+    throw std::invalid_argument(what + ": a finite covariance is needed to fuse it");
+  }
+  if (!std::isfinite(rig.covariance_scale) || rig.covariance_scale <= 0.0) {
+    throw std::invalid_argument("PoseRig.covariance_scale must be > 0, got " +
+                                std::to_string(rig.covariance_scale));
+  }
+  // T_WM: the measured frame M (the camera for a fixed target, the target for a fixed camera).
+  Eigen::Isometry3d T_WM;
+  Matrix6d J = Matrix6d::Zero();
+  Matrix6d covariance;
+  if (observation.fixed == PoseObservation::Fixed::kTarget) {
+    const Eigen::Isometry3d T_XC = observation.T_CX.inverse();
+    T_WM = rig.T_W_fixed * T_XC;
+    covariance = control::InversePoseCovariance(observation.T_CX, *observation.covariance_CX);
+    J.topLeftCorner<3, 3>() = rig.T_W_fixed.linear();
+    J.topRightCorner<3, 3>() = -rig.T_W_fixed.linear() * control::Skew(T_XC.translation());
+    J.bottomRightCorner<3, 3>() = T_XC.linear().transpose();  // R_CX
+  } else {
+    T_WM = rig.T_W_fixed * observation.T_CX;
+    covariance = *observation.covariance_CX;
+    J.topLeftCorner<3, 3>() = rig.T_W_fixed.linear();
+    J.topRightCorner<3, 3>() = -rig.T_W_fixed.linear() * control::Skew(observation.T_CX.translation());
+    J.bottomRightCorner<3, 3>() = observation.T_CX.linear().transpose();  // R_XC
+  }
+  PoseMeasurement z;
+  z.t_s = observation.t_s;
+  z.p_WX = T_WM.translation();
+  z.q_WX = Eigen::Quaterniond(T_WM.linear()).normalized();
+  z.covariance = rig.covariance_scale * J * covariance * J.transpose();
+  z.covariance = 0.5 * (z.covariance + z.covariance.transpose()).eval();
+  z.p_BX = rig.T_B_moving.translation();
+  z.q_BX = Eigen::Quaterniond(rig.T_B_moving.linear()).normalized();
+  return z;
+}
+
+Eigen::Quaterniond BodyOrientation(const PoseMeasurement& z) {
+  return (z.q_WX.normalized() * z.q_BX.normalized().conjugate()).normalized();
+}
+
+Eigen::Vector3d BodyPosition(const PoseMeasurement& z) {
+  return z.p_WX - BodyOrientation(z) * z.p_BX;
+}
+
+void PoseFusionParams::Validate() const {
+  filter.Validate();
+  if (max_consecutive_rejections < 1) {
+    throw std::invalid_argument("PoseFusionParams.max_consecutive_rejections must be >= 1, got " +
+                                std::to_string(max_consecutive_rejections));
+  }
+}
+
+PoseFusion::PoseFusion(const PoseFusionParams& params) : params_(params) { params_.Validate(); }
+
+void PoseFusion::AddImu(const ImuSample& sample) {
+  if (filter_ && sample.t_s > filter_->time_s()) filter_->Propagate(sample);
+  imu_buffer_.push_back(sample);
+  while (imu_buffer_.front().t_s < sample.t_s - params_.filter.history_duration_s) {
+    imu_buffer_.pop_front();
+  }
+  if (filter_) ApplyPending();
+}
+
+std::vector<PoseFusionOutcome> PoseFusion::AddPose(const PoseMeasurement& measurement) {
+  if (!filter_) {
+    Restart(measurement);
+    return {PoseFusionOutcome{measurement.t_s, true, {}}};
+  }
+  pending_.push_back(measurement);
+  return ApplyPending();
+}
+
+std::vector<PoseFusionOutcome> PoseFusion::ApplyPending() {
+  std::vector<PoseFusionOutcome> outcomes;
+  while (!pending_.empty() && pending_.front().t_s <= filter_->time_s()) {
+    const PoseMeasurement z = pending_.front();
+    pending_.pop_front();
+    PoseFusionOutcome outcome;
+    outcome.t_s = z.t_s;
+    outcome.update = filter_->Update(z);
+    if (outcome.update.applied()) {
+      ++counts_.applied;
+      consecutive_rejections_ = 0;
+      rejected_p_WB_.clear();
+      last_pose_t_s_ = std::max(last_pose_t_s_, z.t_s);
+    } else if (outcome.update.status == PoseUpdateStatus::kRejectedOutlier) {
+      ++counts_.rejected_outlier;
+      rejected_p_WB_.emplace_back(z.t_s, BodyPosition(z));
+      if (++consecutive_rejections_ >= params_.max_consecutive_rejections) {
+        Restart(z);
+        ++counts_.restarts;
+        outcome.started_filter = true;
+      }
+    } else {
+      ++counts_.not_applied;
+    }
+    outcomes.push_back(outcome);
+  }
+  return outcomes;
+}
+
+void PoseFusion::Start(const control::QuadState& state) {
+  StartAt(InitialEstimate(params_.filter, state));
+}
+
+void PoseFusion::Restart(const PoseMeasurement& z) {
+  if (!z.p_WX.allFinite() || !z.q_WX.coeffs().allFinite() || !z.p_BX.allFinite() ||
+      !z.q_BX.coeffs().allFinite() || !std::isfinite(z.t_s)) {
+    throw std::invalid_argument("PoseMeasurement (t_s, p_WX, q_WX, p_BX, q_BX) must be finite");
+  }
+  control::QuadState state;
+  state.t_s = z.t_s;
+  state.q_WB = BodyOrientation(z);
+  state.p_WB = BodyPosition(z);
+  PoseImuEstimate initial = InitialEstimate(params_.filter, state);
+  if (filter_) {  // restart: keep the biases, velocity from the rejected run of poses
+    const PoseImuEstimate previous = filter_->Estimate();
+    initial.accel_bias_B = previous.accel_bias_B;
+    initial.gyro_bias_B = previous.gyro_bias_B;
+    initial.state.v_W = previous.state.v_W;
+    if (rejected_p_WB_.size() >= 2 &&
+        rejected_p_WB_.back().first > rejected_p_WB_.front().first) {
+      initial.state.v_W = (rejected_p_WB_.back().second - rejected_p_WB_.front().second) /
+                          (rejected_p_WB_.back().first - rejected_p_WB_.front().first);
+    }
+  }
+  StartAt(initial);
+  last_pose_t_s_ = z.t_s;
+}
+
+void PoseFusion::StartAt(const PoseImuEstimate& initial) {
+  rejected_p_WB_.clear();
+  consecutive_rejections_ = 0;
+  filter_ = std::make_unique<PoseImuFilter>(params_.filter, initial);
+  for (const ImuSample& sample : imu_buffer_) {
+    if (sample.t_s > filter_->time_s()) filter_->Propagate(sample);
+  }
+  ++counts_.starts;
+}
+
+std::optional<PoseImuEstimate> PoseFusion::estimate() const {
+  if (!filter_) return std::nullopt;
+  return filter_->Estimate();
+}
+
+}  // namespace aperture::perception

@@ -1,0 +1,129 @@
+#pragma once
+// Pose fusion: the one path from a front end's PoseObservation (perception/pose_observation.h)
+// to the pose + IMU filter (PoseImuFilter), with one start and restart policy. Every mission that
+// flies on a pose front end (the gap mission, the LED hover, ...) goes through it.
+//
+//   PoseObservation (T_CX, covariance in C) --ToPoseMeasurement(rig)--> PoseMeasurement (T_WX')
+//     --AddPose--> pending until the IMU has reached its time --> PoseImuFilter::Update
+//
+// The rig says how the observation relates to the vehicle (PoseObservation::fixed):
+//   * fixed target X (gap, tags), camera on the body: the measured frame is C,
+//       T_WC = T_WX * T_CX^-1, extrinsics T_BC;  rig = {T_W_fixed = T_WX, T_B_moving = T_BC};
+//   * fixed camera C (LED ground camera), target on the body: the measured frame is X,
+//       T_WX = T_WC * T_CX, extrinsics T_BX;     rig = {T_W_fixed = T_WC, T_B_moving = T_BX}.
+// Covariance: the observation's left perturbation (pose_observation.h) maps to the filter's
+// [n_p (W); n_theta (measured frame, right perturbation)] (pose_imu_filter.h):
+//   fixed target:  cov_XC = control::InversePoseCovariance(T_CX, cov_CX) (left in X), then
+//                  n_p = R_WX (dt - [p_XC]x dr), n_theta = R_CX dr;
+//   fixed camera:  n_p = R_WC (dt - [p_CX]x dr), n_theta = R_XC dr
+//                  (R_WC Exp(d) R_CX = R_WX Exp(R_XC d)),
+// scaled by the rig's covariance_scale (a front end whose covariance model is optimistic on the
+// vehicle's images is fused with an inflated one) and symmetrized.
+//
+// Start: the first AddPose starts the filter at that measurement (its time, the body pose it
+// implies, zero velocity, the filter's initial sigmas) and replays the buffered IMU samples after
+// it; a caller that must fix its world frame first (the gap mission) calls Start() itself and
+// feeds poses only afterwards. Restart: after max_consecutive_rejections outliers in a row (the
+// filter drifted on the IMU alone, or the pose source jumped) the filter starts again at the
+// latest measurement, keeping its bias estimates, with the velocity of the rejected run (its
+// first and last body positions; the previous estimate's velocity for a run of one).
+//
+// Calling order (perception/autopilot.h): AddImu / AddPose as measurements are delivered; a pose
+// stamped after the latest IMU sample waits for the IMU. Non-finite or non-rigid inputs throw
+// std::invalid_argument naming them.
+#include <Eigen/Geometry>
+#include <deque>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "control/quad_state.h"
+#include "perception/estimation/pose_imu_filter.h"
+#include "perception/pose_observation.h"
+#include "perception/sensor_data.h"
+
+namespace aperture::perception {
+
+// Throws std::invalid_argument naming `name` unless T is finite with an orthonormal rotation of
+// determinant +1 (tolerance 1e-6 on |R^T R - I|: calibration round-off passes, a scaled, sheared
+// or reflected matrix does not).
+void RequireRigid(const Eigen::Isometry3d& T, const std::string& name);
+
+// How a stream's observations relate to the vehicle (see the header comment).
+struct PoseRig {
+  // T_WX of a fixed target or T_WC of a fixed camera: the fixed frame's pose in W.
+  Eigen::Isometry3d T_W_fixed = Eigen::Isometry3d::Identity();
+  // T_BC of the body camera (fixed target) or T_BX of the body-mounted target (fixed camera).
+  Eigen::Isometry3d T_B_moving = Eigen::Isometry3d::Identity();
+  double covariance_scale = 1.0;  // > 0; multiplies the mapped covariance
+};
+
+// The filter measurement of `observation` through `rig` (header comment). Throws
+// std::invalid_argument when a transform is not finite and rigid (tolerance 1e-6 on R^T R = I,
+// det +1), the covariance is missing or not finite, t_s is not finite, or the scale is not > 0.
+PoseMeasurement ToPoseMeasurement(const PoseObservation& observation, const PoseRig& rig);
+
+// The body pose a measurement implies, T_WB = T_WX * T_BX^-1: orientation q_WB and position p_WB.
+Eigen::Quaterniond BodyOrientation(const PoseMeasurement& measurement);
+Eigen::Vector3d BodyPosition(const PoseMeasurement& measurement);
+
+struct PoseFusionParams {
+  PoseImuFilterParams filter;
+  // Outliers in a row that restart the filter (>= 1).
+  int max_consecutive_rejections = 3;
+  void Validate() const;  // throws std::invalid_argument naming the field
+};
+
+// What became of one pose measurement.
+struct PoseFusionOutcome {
+  double t_s = 0.0;                  // the measurement's time
+  bool started_filter = false;       // it started (or restarted) the filter
+  PoseUpdateResult update;           // the filter's result when it did not start it
+};
+
+struct PoseFusionCounts {
+  int applied = 0;           // fused
+  int rejected_outlier = 0;  // gated out
+  int not_applied = 0;       // too old for the history (kTooOld)
+  int starts = 0;            // first start + restarts
+  int restarts = 0;          // restarts after max_consecutive_rejections outliers
+};
+
+class PoseFusion {
+ public:
+  explicit PoseFusion(const PoseFusionParams& params);
+
+  void AddImu(const ImuSample& sample);
+  // Fuses `measurement` once the IMU has reached its time (now, if it has). Returns the outcomes
+  // of the measurements processed by this call (this one and any that waited), in time order.
+  std::vector<PoseFusionOutcome> AddPose(const PoseMeasurement& measurement);
+  // Starts the filter at `state` (its t_s), replaying the buffered IMU samples after it.
+  void Start(const control::QuadState& state);
+
+  bool started() const { return filter_ != nullptr; }
+  // The filter's estimate at its latest IMU sample; none before the start.
+  std::optional<PoseImuEstimate> estimate() const;
+  // Time of the latest measurement fused or started from (< 0: none).
+  double last_pose_t_s() const { return last_pose_t_s_; }
+  const PoseFusionCounts& counts() const { return counts_; }
+  const PoseFusionParams& params() const { return params_; }
+
+ private:
+  void Restart(const PoseMeasurement& measurement);
+  void StartAt(const PoseImuEstimate& initial);
+  std::vector<PoseFusionOutcome> ApplyPending();
+
+  PoseFusionParams params_;
+  std::unique_ptr<PoseImuFilter> filter_;
+  std::deque<ImuSample> imu_buffer_;         // last filter.history_duration_s of IMU
+  std::deque<PoseMeasurement> pending_;      // waiting for the IMU, in arrival order
+  // Body positions of the current run of rejected measurements: (t_s, p_WB).
+  std::deque<std::pair<double, Eigen::Vector3d>> rejected_p_WB_;
+  int consecutive_rejections_ = 0;
+  double last_pose_t_s_ = -1.0;
+  PoseFusionCounts counts_;
+};
+
+}  // namespace aperture::perception

@@ -1,0 +1,222 @@
+// Pose fusion: the mapping of a front end's PoseObservation into the filter's measurement for a
+// fixed target and for a fixed camera (poses and covariances against perturbations), the body
+// pose a measurement implies, and the one start / restart policy.
+#include "perception/estimation/pose_fusion.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "control/so3.h"
+
+namespace aperture::perception {
+namespace {
+
+using ::testing::HasSubstr;
+
+Eigen::Isometry3d RandomPose(std::mt19937_64* rng) {
+  std::normal_distribution<double> normal(0.0, 1.0);
+  Vector6d xi;
+  for (int i = 0; i < 6; ++i) xi(i) = normal(*rng);
+  return control::ExpSe3(xi);
+}
+
+// A small perturbation delta = [dt; dr] of T_CX in the observation's convention (p' = Exp(dr) p +
+// dt, R' = Exp(dr) R) and the observation with covariance
+// delta delta^T: the mapped covariance must then be r r^T for the residual r the perturbation
+// causes in the filter's convention [p' - p (W); Log(R^T R') (measured frame)].
+struct Perturbed {
+  PoseObservation observation;
+  Eigen::Isometry3d T_CX_perturbed;
+};
+
+Perturbed PerturbedObservation(PoseObservation::Fixed fixed, std::mt19937_64* rng,
+                               const Vector6d& delta) {
+  Perturbed p;
+  p.observation.stream = "test";
+  p.observation.fixed = fixed;
+  p.observation.t_s = 1.5;
+  p.observation.T_CX = RandomPose(rng);
+  p.observation.covariance_CX = delta * delta.transpose();
+  p.T_CX_perturbed = p.observation.T_CX;
+  p.T_CX_perturbed.linear() = control::ExpSo3(delta.tail<3>()) * p.observation.T_CX.linear();
+  p.T_CX_perturbed.translation() =
+      control::ExpSo3(delta.tail<3>()) * p.observation.T_CX.translation() + delta.head<3>();
+  return p;
+}
+
+Vector6d Residual(const Eigen::Isometry3d& T, const Eigen::Isometry3d& T_perturbed) {
+  Vector6d r;
+  r << T_perturbed.translation() - T.translation(), control::LogSo3(T.linear().transpose() * T_perturbed.linear());
+  return r;
+}
+
+const Vector6d kDelta = (Vector6d() << 1e-4, -2e-4, 0.5e-4, 1e-4, 0.7e-4, -1.5e-4).finished();
+
+// Both maps are exact to first order; the second-order remainder (|delta|^2 ~ 1e-8 times the
+// entries' 1e-4) and rounding in Log stay below 1e-11, while a wrong block (R_CX for R_XC, a
+// missing lever arm) is off by ~1e-8, the size of the entries.
+constexpr double kCovarianceTolerance = 1e-11;
+
+TEST(ToPoseMeasurementTest, FixedCameraMeasuresTheTargetInTheWorld) {
+  std::mt19937_64 rng(5);
+  const PoseRig rig{RandomPose(&rng), RandomPose(&rng), 1.0};  // T_WC, T_BX
+  const Perturbed p = PerturbedObservation(PoseObservation::Fixed::kCamera, &rng, kDelta);
+  const PoseMeasurement z = ToPoseMeasurement(p.observation, rig);
+  const Eigen::Isometry3d T_WX = rig.T_W_fixed * p.observation.T_CX;
+  const Vector6d r = Residual(T_WX, rig.T_W_fixed * p.T_CX_perturbed);
+  EXPECT_LT((z.covariance - r * r.transpose()).cwiseAbs().maxCoeff(), kCovarianceTolerance);
+  EXPECT_EQ(z.t_s, 1.5);
+  EXPECT_TRUE(z.p_WX.isApprox(T_WX.translation(), 1e-12));
+  EXPECT_TRUE(z.q_WX.toRotationMatrix().isApprox(T_WX.linear(), 1e-12));
+  EXPECT_TRUE(z.p_BX.isApprox(rig.T_B_moving.translation(), 1e-12));
+  EXPECT_TRUE(z.q_BX.toRotationMatrix().isApprox(rig.T_B_moving.linear(), 1e-12));
+}
+
+TEST(ToPoseMeasurementTest, FixedTargetMeasuresTheCameraInTheWorld) {
+  std::mt19937_64 rng(6);
+  const PoseRig rig{RandomPose(&rng), RandomPose(&rng), 1.0};  // T_WX, T_BC
+  const Perturbed p = PerturbedObservation(PoseObservation::Fixed::kTarget, &rng, kDelta);
+  const PoseMeasurement z = ToPoseMeasurement(p.observation, rig);
+  const Eigen::Isometry3d T_WC = rig.T_W_fixed * p.observation.T_CX.inverse();
+  const Vector6d r = Residual(T_WC, rig.T_W_fixed * p.T_CX_perturbed.inverse());
+  EXPECT_LT((z.covariance - r * r.transpose()).cwiseAbs().maxCoeff(), kCovarianceTolerance);
+  EXPECT_TRUE(z.p_WX.isApprox(T_WC.translation(), 1e-12));
+  EXPECT_TRUE(z.q_WX.toRotationMatrix().isApprox(T_WC.linear(), 1e-12));
+  EXPECT_TRUE(z.p_BX.isApprox(rig.T_B_moving.translation(), 1e-12));
+  // The rig's scale multiplies the whole covariance.
+  const PoseRig scaled{rig.T_W_fixed, rig.T_B_moving, 9.0};
+  EXPECT_TRUE(ToPoseMeasurement(p.observation, scaled).covariance.isApprox(9.0 * z.covariance));
+}
+
+TEST(ToPoseMeasurementTest, BodyPoseMakesEveryTargetPointLandWhereTheCameraSeesIt) {
+  // p_W of a target point through the body (T_WB T_BX p_X) equals the camera's view
+  // (T_WC T_CX p_X): checks the composition order and the inverse of the extrinsics.
+  std::mt19937_64 rng(11);
+  for (int trial = 0; trial < 20; ++trial) {
+    PoseObservation observation;
+    observation.fixed = PoseObservation::Fixed::kCamera;
+    observation.T_CX = RandomPose(&rng);
+    observation.covariance_CX = Matrix6d::Identity();
+    const PoseRig rig{RandomPose(&rng), RandomPose(&rng), 1.0};
+    const PoseMeasurement z = ToPoseMeasurement(observation, rig);
+    const Eigen::Vector3d p_X(0.1, -0.05, 0.02);
+    const Eigen::Vector3d through_body =
+        BodyOrientation(z) * (rig.T_B_moving * p_X) + BodyPosition(z);
+    EXPECT_TRUE(through_body.isApprox(rig.T_W_fixed * (observation.T_CX * p_X), 1e-9));
+  }
+}
+
+TEST(ToPoseMeasurementTest, RejectsNonRigidTransformsAndMissingCovariancesNamingThem) {
+  PoseObservation observation;
+  observation.stream = "led";
+  observation.covariance_CX = Matrix6d::Identity();
+  PoseRig rig;
+  rig.T_W_fixed.linear() *= 1.01;
+  try {
+    ToPoseMeasurement(observation, rig);
+    FAIL() << "a scaled T_W_fixed was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_THAT(e.what(), HasSubstr("T_W_fixed"));
+  }
+  rig = PoseRig{};
+  rig.T_B_moving.linear()(2, 2) = -1.0;  // a reflection
+  EXPECT_THROW(ToPoseMeasurement(observation, rig), std::invalid_argument);
+  rig = PoseRig{};
+  observation.covariance_CX.reset();
+  try {
+    ToPoseMeasurement(observation, rig);
+    FAIL() << "an observation without covariance was fused";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_THAT(e.what(), HasSubstr("'led'"));
+  }
+  observation.covariance_CX = Matrix6d::Identity() * std::nan("");
+  EXPECT_THROW(ToPoseMeasurement(observation, rig), std::invalid_argument);
+  observation.covariance_CX = Matrix6d::Identity();
+  rig.covariance_scale = 0.0;
+  EXPECT_THROW(ToPoseMeasurement(observation, rig), std::invalid_argument);
+}
+
+constexpr double kG = 9.81;
+
+ImuSample RestingImu(double t_s) {
+  ImuSample sample;
+  sample.t_s = t_s;
+  sample.specific_force_B = Eigen::Vector3d(0.0, 0.0, kG);
+  return sample;
+}
+
+PoseMeasurement PoseOfBodyAt(double t_s, const Eigen::Vector3d& p_WB) {
+  PoseMeasurement z;
+  z.t_s = t_s;
+  z.p_WX = p_WB;
+  z.covariance = Matrix6d::Identity() * 1e-6;  // 1 mm, 1 mrad
+  return z;
+}
+
+TEST(PoseFusionTest, AMeasurementAheadOfTheImuWaitsForIt) {
+  PoseFusion fusion(PoseFusionParams{});
+  for (int k = 1; k <= 10; ++k) fusion.AddImu(RestingImu(0.002 * k));
+  ASSERT_EQ(fusion.AddPose(PoseOfBodyAt(0.02, Eigen::Vector3d(0, 0, 1))).size(), 1u);  // start
+  // Stamped 4 ms after the latest IMU sample: nothing happens until the IMU gets there.
+  EXPECT_TRUE(fusion.AddPose(PoseOfBodyAt(0.024, Eigen::Vector3d(0, 0, 1))).empty());
+  fusion.AddImu(RestingImu(0.022));
+  EXPECT_EQ(fusion.counts().applied, 0);
+  fusion.AddImu(RestingImu(0.024));
+  EXPECT_EQ(fusion.counts().applied, 1);
+  EXPECT_DOUBLE_EQ(fusion.last_pose_t_s(), 0.024);
+}
+
+TEST(PoseFusionTest, RestartsAfterConsecutiveOutliersWithTheVelocityOfTheRejectedRun) {
+  PoseFusionParams params;
+  params.max_consecutive_rejections = 3;
+  PoseFusion fusion(params);
+  const Eigen::Vector3d p_set(0.0, 0.0, 2.0);
+  double t_s = 0.0;
+  const auto advance = [&](const Eigen::Vector3d& p_WB) {
+    for (int i = 1; i <= 12; ++i) fusion.AddImu(RestingImu(t_s + 0.002 * i));
+    t_s += 0.024;
+    return fusion.AddPose(PoseOfBodyAt(t_s, p_WB));
+  };
+  for (int k = 0; k < 10; ++k) advance(p_set);
+  EXPECT_EQ(fusion.counts().starts, 1);
+  EXPECT_EQ(fusion.counts().applied, 9);
+  // The pose source jumps by 0.5 m and moves on at 1 m/s (the vehicle was pushed and the IMU
+  // missed the impulse): far outside the gate, so the first two are rejected, then the filter
+  // restarts there with the velocity of the rejected poses.
+  const double t_jump = t_s;
+  const auto pushed = [&](double t) {
+    return Eigen::Vector3d(p_set + Eigen::Vector3d(0.5 + 1.0 * (t - t_jump), 0.0, 0.0));
+  };
+  for (int k = 1; k < params.max_consecutive_rejections; ++k) {
+    const std::vector<PoseFusionOutcome> outcomes = advance(pushed(t_s + 0.024));
+    ASSERT_EQ(outcomes.size(), 1u);
+    EXPECT_FALSE(outcomes[0].started_filter);
+    EXPECT_EQ(outcomes[0].update.status, PoseUpdateStatus::kRejectedOutlier);
+  }
+  const std::vector<PoseFusionOutcome> restart = advance(pushed(t_s + 0.024));
+  ASSERT_EQ(restart.size(), 1u);
+  EXPECT_TRUE(restart[0].started_filter);
+  EXPECT_EQ(fusion.counts().starts, 2);
+  EXPECT_EQ(fusion.counts().restarts, 1);
+  // Noise-free poses: position and velocity exact up to rounding.
+  EXPECT_LT((fusion.estimate()->state.p_WB - pushed(t_s)).norm(), 1e-6);
+  EXPECT_LT((fusion.estimate()->state.v_W - Eigen::Vector3d(1.0, 0.0, 0.0)).norm(), 1e-6);
+}
+
+TEST(PoseFusionTest, ExplicitStartReplaysTheBufferedImu) {
+  PoseFusion fusion(PoseFusionParams{});
+  for (int k = 1; k <= 50; ++k) fusion.AddImu(RestingImu(0.002 * k));
+  control::QuadState state;
+  state.t_s = 0.05;
+  state.p_WB = Eigen::Vector3d(1.0, 2.0, 3.0);
+  fusion.Start(state);
+  ASSERT_TRUE(fusion.started());
+  EXPECT_NEAR(fusion.estimate()->state.t_s, 0.1, 1e-12);  // replayed to the latest sample
+  EXPECT_LT((fusion.estimate()->state.p_WB - state.p_WB).norm(), 1e-9);  // at rest
+  EXPECT_THROW(PoseFusion(PoseFusionParams{{}, 0}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace aperture::perception
