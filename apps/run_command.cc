@@ -5,7 +5,9 @@
 // Writes OUT/summary.json (inputs, effective config, frame counts, skipped frames, per-node
 // timing, metric statistics), OUT/frames.csv (one row per frame: t_s, index, every node metric),
 // OUT/report.html (metric plots, timing, key frames with overlays) and with --video the overlay
-// video OUT/overlay.mp4 (or .avi).
+// video OUT/overlay.mp4 (or .avi). Front ends may add their own files (FrontEndResources::
+// output_dir), e.g. ts2p: OUT/openings/<index>.png and OUT/ts2p.csv; gap_tracker:
+// OUT/gap_tracker.csv.
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
