@@ -1,10 +1,12 @@
-# `make demo` and `make test` do the whole set-up on a fresh Debian 12 machine.
+# `make demo` and `make test` do the whole set-up on a fresh Debian 12 machine. `make demo` builds
+# only the `aperture` executable and the libraries it links (the first result comes fast);
+# `make test` builds the rest (test suites) and runs ctest.
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
 DEMO_OUT ?= out/demo
 APERTURE := $(BUILD_DIR)/apps/aperture
 
-.PHONY: all deps configure build test demo bench clean
+.PHONY: all deps configure build test demo python bench clean
 
 all: build
 
@@ -20,8 +22,14 @@ build: configure
 test: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 
-demo: build
+demo: configure
+	@cmake --build $(BUILD_DIR) -j $(JOBS) --target aperture
 	@scripts/demo.sh $(APERTURE) $(DEMO_OUT)
+
+# The `aperture` Python module in $(BUILD_DIR)/python/ (python/CMakeLists.txt).
+python: configure
+	@cmake --build $(BUILD_DIR) -j $(JOBS) --target aperture_python
+	@echo "python: PYTHONPATH=$(BUILD_DIR)/python python3 -c 'import aperture; print(aperture.__version__)'"
 
 bench: configure
 	@cmake --build $(BUILD_DIR) -j $(JOBS) --target bench

@@ -22,6 +22,21 @@ struct BenchLedOptions {
   bool quick = false;
 };
 
+// Passed when every acceptance check (thesis C.4 analogs, experiments/led/led_bench.h) holds.
+output::ReportOutcome AcceptanceOutcome(const nlohmann::json& acceptance) {
+  output::ReportOutcome outcome{"passed", "", {}};
+  int met = 0;
+  for (const auto& [check, value] : acceptance.items()) {
+    const bool ok = value.is_boolean() && value.get<bool>();
+    met += ok;
+    if (!ok) outcome.verdict = "failed";
+    outcome.figures.push_back({check, ok ? "met" : "NOT met", "met"});
+  }
+  outcome.headline =
+      std::to_string(met) + " of " + std::to_string(acceptance.size()) + " acceptance checks met.";
+  return outcome;
+}
+
 }  // namespace
 
 void AddBenchLedCommand(CLI::App& bench, int* exit_code) {
@@ -43,6 +58,9 @@ void AddBenchLedCommand(CLI::App& bench, int* exit_code) {
       bench_options.quick = options->quick;
       bench_options.frames_csv_path = out.Path("frames.csv");
       experiments::RunLedBench(bench_options, &out.summary(), &report);
+      report.AddOutcome(AcceptanceOutcome(out.summary()["acceptance"]));
+      report.AddRunDescription(out.summary(), out.ElapsedSeconds());
+      report.AddCollapsedTable(out.summary(), "Every figure of summary.json");
       report.Write(out.Path("report.html"));
     });
     *exit_code = 0;

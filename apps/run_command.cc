@@ -1,13 +1,14 @@
 // aperture run: perception front ends on a camera, a video or an image sequence.
 //
-//   aperture run --source DIR|VIDEO|camera:N --frontends image_quality --out OUT [--video]
+//   aperture run --source DIR|VIDEO|BAG|camera:N --frontends image_quality --out OUT [--video]
+//   aperture run --source FILE.bag --image-topic T [--imu-topic T] [--camera-info-topic T] ...
 //
 // Writes OUT/summary.json (inputs, effective config, frame counts, skipped frames, per-node
 // timing, metric statistics), OUT/frames.csv (one row per frame: t_s, index, every node metric),
 // OUT/report.html (metric plots, timing, key frames with overlays) and with --video the overlay
-// video OUT/overlay.mp4 (or .avi). Front ends may add their own files (FrontEndResources::
-// output_dir), e.g. ts2p: OUT/openings/<index>.png and OUT/ts2p.csv; gap_tracker:
-// OUT/gap_tracker.csv.
+// video OUT/overlay.mp4 (or .avi); a source with an IMU (a bag with --imu-topic) adds OUT/imu.csv.
+// Front ends may add their own files (FrontEndResources::output_dir), e.g. ts2p:
+// OUT/openings/<index>.png and OUT/ts2p.csv; gap_tracker: OUT/gap_tracker.csv.
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
@@ -17,6 +18,7 @@
 
 #include "apps/command_support.h"
 #include "apps/commands.h"
+#include "apps/imu_csv.h"
 #include "apps/pose_streams.h"
 #include "apps/run_report.h"
 #include "output/csv_writer.h"
@@ -28,6 +30,7 @@
 #include "perception/graph/parallel_executor.h"
 #include "perception/graph/serial_executor.h"
 #include "perception/io/open_frame_source.h"
+#include "perception/io/rosbag_source.h"
 
 namespace aperture::apps {
 namespace {
@@ -40,6 +43,7 @@ struct RunOptions {
   bool skip_bad_frames = false;
   std::string front_ends = "image_quality";
   std::string calibration_path;
+  std::string image_topic, imu_topic, camera_info_topic;
   bool parallel = false;
   bool video = false;
   int max_frames = 0;
@@ -51,8 +55,16 @@ void RunFrontEnds(const RunOptions& options, output::OutputFolder& out) {
       perception::SplitFrontEndList(options.front_ends);
   perception::FrontEndResources resources;
   resources.output_dir = out.directory();
+  if (!options.calibration_path.empty() && !options.camera_info_topic.empty()) {
+    throw std::invalid_argument(
+        "give the calibration either as --calib FILE or as "
+        "--camera-info-topic TOPIC of the bag, not both");
+  }
   if (!options.calibration_path.empty()) {
     resources.calibration = perception::LoadCameraCalibration(options.calibration_path);
+  } else if (!options.camera_info_topic.empty()) {
+    resources.calibration =
+        perception::LoadCameraInfoFromBag(options.source, options.camera_info_topic);
   }
   perception::FrontEndRegistry registry;
   perception::RegisterBuiltinFrontEnds(registry);
@@ -66,16 +78,19 @@ void RunFrontEnds(const RunOptions& options, output::OutputFolder& out) {
   source_options.color_mode =
       options.color ? perception::ColorMode::kColor : perception::ColorMode::kGray;
   source_options.skip_bad_frames = options.skip_bad_frames;
+  source_options.image_topic = options.image_topic;
+  source_options.imu_topic = options.imu_topic;
   std::unique_ptr<perception::FrameSource> source =
       perception::OpenFrameSource(options.source, source_options);
 
   nlohmann::json& summary = out.summary();
   summary["command"] = "run";
-  summary["inputs"] = {{"source", options.source},
-                       {"source_description", source->Describe()},
-                       {"front_ends", front_end_names},
-                       {"calibration", options.calibration_path},
-                       {"executor", options.parallel ? "parallel" : "serial"}};
+  summary["inputs"] = {
+      {"source", options.source},
+      {"source_description", source->Describe()},
+      {"front_ends", front_end_names},
+      {"calibration", resources.calibration ? resources.calibration->source_path : std::string()},
+      {"executor", options.parallel ? "parallel" : "serial"}};
   summary["config"] = nlohmann::json::parse(tree.ToJson());
 
   std::unique_ptr<perception::FrameGraphExecutor> executor;
@@ -92,6 +107,8 @@ void RunFrontEnds(const RunOptions& options, output::OutputFolder& out) {
   std::unique_ptr<output::CsvWriter> csv;
   std::vector<std::string> metric_names;
   std::unique_ptr<output::VideoWriter> video;
+  std::unique_ptr<output::CsvWriter> imu_csv;
+  std::size_t imu_samples = 0;
   PoseStreams pose_streams(out);
   RunRecord record;
   std::optional<perception::FrameSlots> slots;
@@ -104,6 +121,11 @@ void RunFrontEnds(const RunOptions& options, output::OutputFolder& out) {
         perception::CheckCalibrationImageSize(*resources.calibration, frame->image.cols,
                                               frame->image.rows);
       }
+    }
+    for (const perception::ImuSample& imu : source->TakeImuSamples()) {
+      if (!imu_csv) imu_csv = MakeImuCsv(out.Path("imu.csv"));
+      WriteImuRow(*imu_csv, imu);
+      ++imu_samples;
     }
     executor->Run(*frame, *slots);
     const std::map<std::string, double> metrics = graph.CollectMetrics(*slots);
@@ -145,6 +167,7 @@ void RunFrontEnds(const RunOptions& options, output::OutputFolder& out) {
 
   summary["frames"] = record.frame_count();
   summary["skipped_frames"] = source->SkippedFrames().size();
+  summary["imu_samples"] = imu_samples;
   nlohmann::json skipped = nlohmann::json::array();
   for (const auto& skip : source->SkippedFrames()) {
     skipped.push_back({{"item", skip.item}, {"reason", skip.reason}});
@@ -154,6 +177,10 @@ void RunFrontEnds(const RunOptions& options, output::OutputFolder& out) {
   summary["metrics"] = record.MetricStatistics(metric_names);
   nlohmann::json outputs = {{"csv", "frames.csv"}, {"report", "report.html"}};
   summary["poses"] = pose_streams.Close();
+  if (imu_csv) {
+    imu_csv->Close();
+    outputs["imu"] = "imu.csv";
+  }
   if (video) {
     if (const std::optional<std::string> path = video->Close()) {
       outputs["video"] = std::filesystem::path(*path).filename().string();
@@ -169,9 +196,18 @@ void AddRunCommand(CLI::App& app, int* exit_code) {
   auto options = std::make_shared<RunOptions>();
   CLI::App* command =
       app.add_subcommand("run", "Run perception front ends on a camera, video or image folder");
-  command->add_option("--source", options->source,
-                      "Image folder, video file, or camera:N (device index)")
+  command
+      ->add_option("--source", options->source,
+                   "Image folder, video file, ROS1 bag (FILE.bag, with --image-topic), or "
+                   "camera:N (device index)")
       ->required();
+  command->add_option("--image-topic", options->image_topic,
+                      "ROS bag: the sensor_msgs/Image or CompressedImage topic to read");
+  command->add_option("--imu-topic", options->imu_topic,
+                      "ROS bag: a sensor_msgs/Imu topic; its samples go to OUT/imu.csv");
+  command->add_option("--camera-info-topic", options->camera_info_topic,
+                      "ROS bag: take the calibration from this sensor_msgs/CameraInfo topic "
+                      "instead of --calib");
   perception::FrontEndRegistry registry;
   perception::RegisterBuiltinFrontEnds(registry);
   std::string known;

@@ -1,6 +1,7 @@
 #include "apps/run_report.h"
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <regex>
@@ -75,15 +76,38 @@ nlohmann::json TimingJson(const std::vector<perception::NodeTiming>& nodes,
   return {{"nodes", per_node}, {"frame", StatsJson(frame)}};
 }
 
+namespace {
+
+// `run` has no pass criterion: the outcome says what the front ends saw and how fast.
+output::ReportOutcome RunOutcome(const nlohmann::json& summary) {
+  const std::size_t frames = summary["frames"].get<std::size_t>();
+  output::ReportOutcome outcome;
+  outcome.verdict = "done";
+  outcome.headline = std::to_string(frames) + " frames of " +
+                     summary["inputs"]["source_description"].get<std::string>() + " through " +
+                     summary["inputs"]["front_ends"].dump() + ", " +
+                     std::to_string(summary["skipped_frames"].get<std::size_t>()) + " skipped.";
+  for (const auto& [stream, pose] : summary["poses"].items()) {
+    outcome.figures.push_back({stream + " poses",
+                               std::to_string(pose["estimates"].get<std::size_t>()) + " of " +
+                                   std::to_string(frames) + " frames",
+                               ""});
+  }
+  const nlohmann::json& frame = summary["timing"]["frame"];
+  char median_ms[32];
+  std::snprintf(median_ms, sizeof(median_ms), "%.2f ms", frame["median_s"].get<double>() * 1e3);
+  outcome.figures.push_back({"front ends per frame (median)", median_ms, ""});
+  return outcome;
+}
+
+}  // namespace
+
 void WriteRunReport(output::OutputFolder& out, const RunRecord& record,
                     const std::vector<std::string>& metric_names) {
   const nlohmann::json& summary = out.summary();
   output::HtmlReport report("aperture run: " + summary["inputs"]["source"].get<std::string>());
-  report.AddSection("Summary");
-  report.AddTable({{"source", summary["inputs"]["source_description"]},
-                   {"front ends", summary["inputs"]["front_ends"]},
-                   {"frames", summary["frames"]},
-                   {"skipped frames", summary["skipped_frames"]}});
+  report.AddOutcome(RunOutcome(summary));
+  report.AddRunDescription(summary, out.ElapsedSeconds());
   if (!summary["skipped"].empty()) report.AddTable(summary["skipped"], "Skipped frames");
 
   std::vector<double> t_s;
@@ -133,6 +157,7 @@ void WriteRunReport(output::OutputFolder& out, const RunRecord& record,
     report.AddImage(key_frame.overlay, "frame " + std::to_string(key_frame.index) + " at t = " +
                                            std::to_string(key_frame.t_s) + " s");
   }
+  report.AddCollapsedTable(summary, "Every figure of summary.json");
   report.Write(out.Path("report.html"));
 }
 

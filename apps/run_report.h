@@ -44,8 +44,9 @@ class RunRecord {
 nlohmann::json TimingJson(const std::vector<perception::NodeTiming>& nodes,
                           const perception::TimingStats& frame);
 
-// report.html: summary table, one plot per scalar metric over time, the mean of each vector
-// metric (keys "<stem>_<NN>") over its components, the timing table and the key frames.
+// report.html: the outcome (frames, poses per stream, time per frame), what was run, one plot per
+// scalar metric over time, the mean of each vector metric (keys "<stem>_<NN>") over its
+// components, the timing table, the key frames and, folded, every figure of summary.json.
 void WriteRunReport(output::OutputFolder& out, const RunRecord& record,
                     const std::vector<std::string>& metric_names);
 

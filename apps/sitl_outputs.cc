@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/imu_csv.h"
 #include "output/csv_writer.h"
 #include "output/svg_plot.h"
 #include "output/tum_trajectory_writer.h"
@@ -39,13 +40,9 @@ void WriteSitlTimeSeries(const sim::SitlResult& result, output::OutputFolder& ou
                          c.thrust_rates.omega_des_B.z(), f(0), f(1), f(2), f(3)});
   }
   commands.Close();
-  output::CsvWriter imu(out.Path("imu.csv"), {"t_s", "acc_x_mps2", "acc_y_mps2", "acc_z_mps2",
-                                              "gyro_x_radps", "gyro_y_radps", "gyro_z_radps"});
-  for (const perception::ImuSample& s : result.imu) {
-    imu.WriteRow({s.t_s, s.specific_force_B.x(), s.specific_force_B.y(), s.specific_force_B.z(),
-                  s.omega_B.x(), s.omega_B.y(), s.omega_B.z()});
-  }
-  imu.Close();
+  const std::unique_ptr<output::CsvWriter> imu = MakeImuCsv(out.Path("imu.csv"));
+  for (const perception::ImuSample& sample : result.imu) WriteImuRow(*imu, sample);
+  imu->Close();
 }
 
 void AddSitlCommandPlots(const sim::SitlResult& result, output::HtmlReport* report) {

@@ -4,24 +4,32 @@
 # aperture::<folder>. A folder without sources yet is an INTERFACE target so the layering holds.
 # PRIVATE_DEPS are linked privately: their headers must not appear in the folder's public headers
 # (servo's ViSP), so its dependents neither see nor link them directly.
+# Every module is installed the same way (`cmake --install`): the library into lib/, its headers
+# under include/aperture/<folder>/ (consumers keep the same #include lines) and the target into
+# the `apertureTargets` export as aperture::<folder> (cmake/apertureConfig.cmake.in).
 function(aperture_add_module name)
   cmake_parse_arguments(ARG "" "" "DEPS;PRIVATE_DEPS" ${ARGN})
   file(GLOB_RECURSE sources CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/${name}/*.cc)
   set(target aperture_${name})
+  set(include_root $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>
+                   $<INSTALL_INTERFACE:${APERTURE_INSTALL_INCLUDEDIR}>)
   if(sources)
     add_library(${target} STATIC ${sources})
-    target_include_directories(${target} PUBLIC ${PROJECT_SOURCE_DIR})
-    target_link_libraries(${target} PUBLIC ${ARG_DEPS})
-    if(ARG_PRIVATE_DEPS)
-      target_link_libraries(${target} PRIVATE ${ARG_PRIVATE_DEPS})
-    endif()
+    target_include_directories(${target} PUBLIC ${include_root})
+    target_link_libraries(${target} PUBLIC ${ARG_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
     target_compile_options(${target} PRIVATE -Wall -Wextra)
   else()
     add_library(${target} INTERFACE)
-    target_include_directories(${target} INTERFACE ${PROJECT_SOURCE_DIR})
+    target_include_directories(${target} INTERFACE ${include_root})
     target_link_libraries(${target} INTERFACE ${ARG_DEPS})
   endif()
   add_library(aperture::${name} ALIAS ${target})
+  set_target_properties(${target} PROPERTIES EXPORT_NAME ${name})
+  install(TARGETS ${target} EXPORT apertureTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+  if(EXISTS ${PROJECT_SOURCE_DIR}/${name})
+    install(DIRECTORY ${PROJECT_SOURCE_DIR}/${name}/ DESTINATION ${APERTURE_INSTALL_INCLUDEDIR}/${name}
+            FILES_MATCHING PATTERN "*.h")
+  endif()
 endfunction()
 
 # aperture_add_test_suite(<folder> DEPS <targets...> [SOURCES <files...>] [LABELS <labels...>])

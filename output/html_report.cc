@@ -27,6 +27,12 @@ figure { margin: 1em 0; }
 figure svg, figure img { max-width: 100%; height: auto; border: 1px solid #ddd; }
 figcaption { font-size: 0.9em; color: #555; margin-top: 0.3em; }
 caption { caption-side: top; text-align: left; font-weight: bold; padding-bottom: 0.3em; }
+.outcome { border: 2px solid #888; border-radius: 6px; padding: 0.2em 1em 0.6em; margin: 1em 0; }
+.outcome.passed { border-color: #2a7d2a; background: #f0f8f0; }
+.outcome.failed { border-color: #b22222; background: #fbf0f0; }
+.outcome h2 { margin-top: 0.4em; border: none; }
+details { margin: 0.8em 0; }
+summary { cursor: pointer; font-weight: bold; }
 )css";
 
 std::string FormatCell(const nlohmann::json& value, bool* is_number) {
@@ -65,19 +71,7 @@ std::string Figure(const std::string& content, const std::string& caption) {
          "</figure>\n";
 }
 
-}  // namespace
-
-HtmlReport::HtmlReport(std::string title) : title_(std::move(title)) {}
-
-void HtmlReport::AddSection(const std::string& heading) {
-  blocks_.push_back("<h2>" + EscapeXml(heading) + "</h2>\n");
-}
-
-void HtmlReport::AddParagraph(const std::string& text) {
-  blocks_.push_back("<p>" + EscapeXml(text) + "</p>\n");
-}
-
-void HtmlReport::AddTable(const nlohmann::json& data, const std::string& caption) {
+std::string TableHtml(const nlohmann::json& data, const std::string& caption) {
   std::ostringstream html;
   html << "<table>";
   if (!caption.empty()) html << "<caption>" << EscapeXml(caption) << "</caption>";
@@ -109,7 +103,56 @@ void HtmlReport::AddTable(const nlohmann::json& data, const std::string& caption
     html << "<tr>" << Cell(data) << "</tr>\n";
   }
   html << "</table>\n";
-  blocks_.push_back(html.str());
+  return html.str();
+}
+
+}  // namespace
+
+HtmlReport::HtmlReport(std::string title) : title_(std::move(title)) {}
+
+void HtmlReport::AddSection(const std::string& heading) {
+  blocks_.push_back("<h2>" + EscapeXml(heading) + "</h2>\n");
+}
+
+void HtmlReport::AddParagraph(const std::string& text) {
+  blocks_.push_back("<p>" + EscapeXml(text) + "</p>\n");
+}
+
+void HtmlReport::AddTable(const nlohmann::json& data, const std::string& caption) {
+  blocks_.push_back(TableHtml(data, caption));
+}
+
+void HtmlReport::AddCollapsedTable(const nlohmann::json& data, const std::string& label) {
+  blocks_.push_back("<details><summary>" + EscapeXml(label) + "</summary>\n" + TableHtml(data, "") +
+                    "</details>\n");
+}
+
+void HtmlReport::AddOutcome(const ReportOutcome& outcome) {
+  std::string html = "<section class=\"outcome " + EscapeXml(outcome.verdict) +
+                     "\"><h2>Outcome: " + EscapeXml(outcome.verdict) + "</h2>\n<p>" +
+                     EscapeXml(outcome.headline) + "</p>\n";
+  if (!outcome.figures.empty()) {
+    html += "<table><tr><th>figure</th><th>value</th><th>target</th></tr>\n";
+    for (const ReportFigure& figure : outcome.figures) {
+      html += "<tr><td>" + EscapeXml(figure.name) + "</td><td>" + EscapeXml(figure.value) +
+              "</td><td>" + EscapeXml(figure.target) + "</td></tr>\n";
+    }
+    html += "</table>\n";
+  }
+  outcome_html_ = html + "</section>\n";
+}
+
+void HtmlReport::AddRunDescription(const nlohmann::json& summary, double wall_time_s) {
+  char wall_time[64];
+  std::snprintf(wall_time, sizeof(wall_time), "%.1f s", wall_time_s);
+  nlohmann::json run = {{"command", "aperture " + summary.value("command", std::string("?"))},
+                        {"wall time", wall_time}};
+  if (summary.contains("inputs")) run["inputs"] = summary["inputs"];
+  run_html_ = "<h2>What was run</h2>\n" + TableHtml(run, "");
+  if (summary.contains("config")) {
+    run_html_ += "<details><summary>Configuration (every effective parameter)</summary>\n" +
+                 TableHtml(summary["config"], "") + "</details>\n";
+  }
 }
 
 void HtmlReport::AddSvg(const std::string& svg, const std::string& caption) {
@@ -148,6 +191,7 @@ std::string HtmlReport::ToHtml() const {
       "<title>" +
       EscapeXml(title_) + "</title>\n<style>" + kStyle + "</style>\n</head>\n<body>\n<h1>" +
       EscapeXml(title_) + "</h1>\n";
+  html += outcome_html_ + run_html_;
   for (const std::string& block : blocks_) html += block;
   return html + "</body>\n</html>\n";
 }

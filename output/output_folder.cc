@@ -37,6 +37,10 @@ std::string OutputFolder::Path(const std::string& name) const {
   return (std::filesystem::path(directory_) / name).string();
 }
 
+double OutputFolder::ElapsedSeconds() const {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+}
+
 std::string OutputFolder::WriteSummary(RunStatus status, const std::string& error) {
   if (status == RunStatus::kFailed && error.empty()) {
     throw std::invalid_argument("WriteSummary(kFailed) needs an error message for summary.json");
@@ -47,8 +51,7 @@ std::string OutputFolder::WriteSummary(RunStatus status, const std::string& erro
   } else {
     summary_.erase("error");
   }
-  summary_["wall_time_s"] =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  summary_["wall_time_s"] = ElapsedSeconds();
   const std::string path = Path(kSummaryFileName);
   WriteFileAtomically(
       path, summary_.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");

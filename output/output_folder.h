@@ -30,6 +30,8 @@ class OutputFolder {
 
   nlohmann::json& summary() { return summary_; }
   const nlohmann::json& summary() const { return summary_; }
+  // Seconds since the folder was opened (the run's wall time so far).
+  double ElapsedSeconds() const;
 
   // Writes summary.json (atomically). `error` is required for kFailed and ignored for kOk.
   // Returns the path written.

@@ -10,8 +10,11 @@ packages=(
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libnlopt-cxx-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libapriltag-dev libopengv-dev
+  librosbag-dev librosbag-storage-dev libsensor-msgs-dev
+  pybind11-dev python3-dev python3-numpy python3-pytest
   libvisp-dev
   visp-images-data
+  chromium
 )
 
 missing=()

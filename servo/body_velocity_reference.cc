@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "perception/led/se3_twist.h"
+#include "control/so3.h"
 
 namespace aperture::servo {
 
@@ -14,12 +14,7 @@ std::ostream& operator<<(std::ostream& os, const BodyVelocityReference& referenc
 }
 
 Eigen::Matrix<double, 6, 6> VelocityTwistMatrix(const Eigen::Isometry3d& T_AB) {
-  const Eigen::Matrix3d R_AB = T_AB.linear();
-  Eigen::Matrix<double, 6, 6> V = Eigen::Matrix<double, 6, 6>::Zero();
-  V.topLeftCorner<3, 3>() = R_AB;
-  V.topRightCorner<3, 3>() = perception::Skew(T_AB.translation()) * R_AB;
-  V.bottomRightCorner<3, 3>() = R_AB;
-  return V;
+  return control::AdjointSe3(T_AB);  // [R, [t]x R; 0, R]
 }
 
 BodyVelocityReference BodyVelocityFromCameraTwist(const Twist& twist_C,

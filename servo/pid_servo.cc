@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "control/require.h"
+
 namespace aperture::servo {
 namespace {
 
@@ -13,13 +15,6 @@ constexpr double kMaxForwardPitchDeg = 30.0;
 // x_B must lie this far in front of the image plane (z_C component of the unit x_B) to have a
 // usable image: 0.1 = within ~84 deg of the optical axis.
 constexpr double kMinBodyAxisDepth = 0.1;
-
-void RequireNonNegative(double value, const char* name) {
-  if (!std::isfinite(value) || value < 0.0) {
-    throw std::invalid_argument(std::string("PidServoParams.") + name + " = " +
-                                std::to_string(value) + " must be finite and >= 0");
-  }
-}
 
 // Unit direction of the image axis `axis_B` with its x_B component removed.
 Eigen::Vector3d LateralDirection(const Eigen::Vector3d& axis_B) {
@@ -31,9 +26,9 @@ Eigen::Vector3d LateralDirection(const Eigen::Vector3d& axis_B) {
 }  // namespace
 
 void PidServoParams::Validate() const {
-  RequireNonNegative(kp_mps, "kp_mps");
-  RequireNonNegative(ki_mps2, "ki_mps2");
-  RequireNonNegative(kd_m, "kd_m");
+  control::RequireNonNegative(kp_mps, "PidServoParams.kp_mps");
+  control::RequireNonNegative(ki_mps2, "PidServoParams.ki_mps2");
+  control::RequireNonNegative(kd_m, "PidServoParams.kd_m");
   if (!std::isfinite(max_speed_mps) || max_speed_mps <= 0.0) {
     throw std::invalid_argument("PidServoParams.max_speed_mps = " + std::to_string(max_speed_mps) +
                                 " must be finite and > 0 [m/s]");

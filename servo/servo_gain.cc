@@ -4,22 +4,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "control/require.h"
+
 namespace aperture::servo {
-namespace {
-
-void RequirePositive(double value, const char* name) {
-  if (!std::isfinite(value) || value <= 0.0) {
-    throw std::invalid_argument(std::string("ServoGain.") + name + " = " + std::to_string(value) +
-                                " must be finite and > 0 [1/s]");
-  }
-}
-
-}  // namespace
-
 void ServoGain::Validate() const {
-  RequirePositive(at_zero_per_s, "at_zero_per_s");
-  RequirePositive(at_infinity_per_s, "at_infinity_per_s");
-  RequirePositive(slope_at_zero_per_s, "slope_at_zero_per_s");
+  control::RequirePositive(at_zero_per_s, "ServoGain.at_zero_per_s");
+  control::RequirePositive(at_infinity_per_s, "ServoGain.at_infinity_per_s");
+  control::RequirePositive(slope_at_zero_per_s, "ServoGain.slope_at_zero_per_s");
   if (at_infinity_per_s > at_zero_per_s) {
     throw std::invalid_argument(
         "ServoGain.at_infinity_per_s = " + std::to_string(at_infinity_per_s) +

@@ -135,16 +135,28 @@ std::string Describe(const GapTrialRecord& r) {
   return buffer;
 }
 
+// Seed 000 Sec. IV-B: "a success rate of 80%" over gap orientations up to 45 deg.
+constexpr double kPaperSuccessRate = 0.8;
+
+output::ReportOutcome Outcome(const nlohmann::json& summary) {
+  const double rate = summary["success_rate"].get<double>();
+  char headline[160], value[64];
+  std::snprintf(headline, sizeof(headline),
+                "%d of %d trials passed through the gap and recovered "
+                "to a hover (success as in seed 000 Sec. IV-B).",
+                summary["successes"].get<int>(), summary["trials"].get<int>());
+  std::snprintf(value, sizeof(value), "%.0f %%", 100.0 * rate);
+  return {rate >= kPaperSuccessRate ? "passed" : "failed",
+          headline,
+          {{"success rate", value, ">= 80 % (seed 000 Sec. IV-B)"}}};
+}
+
 void WriteReport(const GapBenchResult& result, const nlohmann::json& summary,
-                 const std::string& path) {
+                 output::OutputFolder& out) {
   output::HtmlReport report("aperture bench gap");
-  report.AddSection("Summary");
-  nlohmann::json figures = {{"trials", summary["trials"]},
-                            {"successes", summary["successes"]},
-                            {"success_rate", summary["success_rate"]},
-                            {"autopilot", result.autopilot_name},
-                            {"seed", result.options.seed}};
-  report.AddTable(figures);
+  report.AddOutcome(Outcome(summary));
+  report.AddRunDescription(out.summary(), out.ElapsedSeconds());
+  report.AddSection("Results");
   nlohmann::json table_i = summary["error_at_gap"];
   table_i.erase("definition");
   report.AddTable(table_i, "Error at the gap (Table I analog): " +
@@ -210,7 +222,8 @@ void WriteReport(const GapBenchResult& result, const nlohmann::json& summary,
     report.AddSection("Failed trials");
     report.AddTable(failed);
   }
-  report.Write(path);
+  report.AddCollapsedTable(out.summary(), "Every figure of summary.json");
+  report.Write(out.Path("report.html"));
 }
 
 }  // namespace
@@ -248,7 +261,7 @@ void WriteGapBenchOutputs(const GapBenchResult& result, output::OutputFolder& ou
   const nlohmann::json figures = SummarizeGapBench(result);
   for (const auto& [key, value] : figures.items()) summary[key] = value;
   WriteTrialsCsv(result, out.Path("trials.csv"));
-  WriteReport(result, figures, out.Path("report.html"));
+  WriteReport(result, figures, out);
   summary["outputs"] = {{"trials", "trials.csv"}, {"report", "report.html"}};
 }
 

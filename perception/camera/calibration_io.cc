@@ -283,30 +283,44 @@ void EmitRosMatrix(YAML::Emitter& out, const std::string& key, const Eigen::Matr
 
 // ---------------------------------------------------------------- ROS camera_info ------------
 
+// The camera fields every ROS camera_info carries, in our names; "" or a plumb_bob with zero
+// coefficients is what ROS writes for a camera without distortion.
+ParsedCalibration ParseRosCamera(int width, int height, const FlatMatrix& K,
+                                 const std::string& distortion_model, const FlatMatrix& D,
+                                 const std::string& path) {
+  ParsedCalibration parsed;
+  parsed.width = width;
+  parsed.height = height;
+  parsed.intrinsics = IntrinsicsFromCameraMatrix(K, path, "camera_matrix");
+  if (distortion_model == "plumb_bob") {
+    parsed.model = "radtan";
+  } else if (distortion_model == "equidistant") {
+    parsed.model = "equidistant";
+  } else if (distortion_model.empty() && D.data.empty()) {
+    parsed.model = "pinhole";
+    return parsed;
+  } else {
+    Fail(path, "distortion_model",
+         "unsupported model '" + distortion_model + "'; expected plumb_bob or equidistant");
+  }
+  parsed.distortion = VectorFromMatrix(D, path, "distortion_coefficients");
+  return parsed;
+}
+
 CameraCalibration LoadRos(const std::string& path) {
   const YAML::Node root = LoadYaml(path);
-  ParsedCalibration parsed;
-  parsed.width =
+  const int width =
       As<int>(Require(root, "image_width", path, "image_width"), path, "image_width", "an integer");
-  parsed.height = As<int>(Require(root, "image_height", path, "image_height"), path, "image_height",
-                          "an integer");
-  if (root["camera_name"])
-    parsed.name = As<std::string>(root["camera_name"], path, "camera_name", "a string");
-  parsed.intrinsics =
-      IntrinsicsFromCameraMatrix(ReadRosMatrix(root, "camera_matrix", path), path, "camera_matrix");
+  const int height = As<int>(Require(root, "image_height", path, "image_height"), path,
+                             "image_height", "an integer");
   const std::string model =
       As<std::string>(Require(root, "distortion_model", path, "distortion_model"), path,
                       "distortion_model", "a string");
-  if (model == "plumb_bob") {
-    parsed.model = "radtan";
-  } else if (model == "equidistant") {
-    parsed.model = "equidistant";
-  } else {
-    Fail(path, "distortion_model",
-         "unsupported model '" + model + "'; expected plumb_bob or equidistant");
-  }
-  parsed.distortion = VectorFromMatrix(ReadRosMatrix(root, "distortion_coefficients", path), path,
-                                       "distortion_coefficients");
+  ParsedCalibration parsed =
+      ParseRosCamera(width, height, ReadRosMatrix(root, "camera_matrix", path), model,
+                     ReadRosMatrix(root, "distortion_coefficients", path), path);
+  if (root["camera_name"])
+    parsed.name = As<std::string>(root["camera_name"], path, "camera_name", "a string");
   if (root["T_BC"])
     parsed.T_BC = TransformFromMatrix(ReadRosMatrix(root, "T_BC", path), path, "T_BC");
   return Build(parsed, path);
@@ -506,6 +520,16 @@ void CheckCalibrationImageSize(const CameraCalibration& calib, int width, int he
       std::to_string(width) + "x" + std::to_string(height) +
       ": pass the calibration of this camera, or scale it with CameraModel::Scaled(" +
       std::to_string(width) + ", " + std::to_string(height) + ") if the images were resized");
+}
+
+CameraCalibration CalibrationFromRosCameraInfo(const RosCameraInfo& info,
+                                               const std::string& source) {
+  const FlatMatrix K{3, 3, info.K};
+  const FlatMatrix D{1, static_cast<int>(info.D.size()), info.D};
+  ParsedCalibration parsed =
+      ParseRosCamera(info.width, info.height, K, info.distortion_model, D, source);
+  parsed.name = info.name;
+  return Build(parsed, source);
 }
 
 }  // namespace aperture::perception

@@ -20,6 +20,7 @@
 #include <Eigen/Geometry>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "perception/camera/camera_model.h"
 
@@ -56,5 +57,22 @@ void SaveCameraCalibration(const CameraCalibration& calib, const std::string& pa
 // Throws std::invalid_argument naming the calibration file and both sizes when the calibration
 // was made for another image size than width x height.
 void CheckCalibrationImageSize(const CameraCalibration& calib, int width, int height);
+
+// The fields of a ROS sensor_msgs/CameraInfo message that define the camera (a bag's camera_info
+// topic; perception/io/rosbag_source.h reads them): K row-major 3x3, D, distortion_model
+// plumb_bob -> radtan, equidistant -> equidistant, "" with no D -> pinhole.
+struct RosCameraInfo {
+  int width = 0;
+  int height = 0;
+  std::vector<double> K;
+  std::string distortion_model;
+  std::vector<double> D;
+  std::string name;  // e.g. the message's frame_id
+};
+
+// Throws std::invalid_argument naming `source` (e.g. "bag 'x.bag' topic '/cam0/camera_info'")
+// and the field, like LoadCameraCalibration does for a file.
+CameraCalibration CalibrationFromRosCameraInfo(const RosCameraInfo& info,
+                                               const std::string& source);
 
 }  // namespace aperture::perception

@@ -37,6 +37,10 @@ struct FrameSourceOptions {
   // Skip (and record) corrupt, truncated or wrong-size frames instead of throwing.
   bool skip_bad_frames = false;
   int camera_id = 0;  // copied into Frame::camera_id
+  // ROS bags only (rosbag_source.h): the sensor_msgs/Image or CompressedImage topic to read
+  // (required for a bag) and an optional sensor_msgs/Imu topic ("" = none).
+  std::string image_topic;
+  std::string imu_topic;
 };
 
 // A frame the source left out, and why.
@@ -58,6 +62,10 @@ class FrameSource {
   virtual std::optional<size_t> SizeHint() const = 0;
 
   const std::vector<SkippedFrame>& SkippedFrames() const { return skipped_; }
+
+  // IMU samples the source recorded up to the frame Next() returned last, oldest first, each
+  // returned once (a ROS bag with an IMU topic); empty for sources without an IMU.
+  virtual std::vector<ImuSample> TakeImuSamples() { return {}; }
 
  protected:
   // Records a skipped frame and prints "warning: <source>: skipping <item>: <reason>" to stderr.

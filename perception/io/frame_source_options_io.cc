@@ -21,6 +21,8 @@ void LoadParams(config::ParamReader& reader, FrameSourceOptions* options) {
   reader.Read("fps", &options->fps);
   reader.Read("skip_bad_frames", &options->skip_bad_frames);
   reader.Read("camera_id", &options->camera_id);
+  reader.Read("image_topic", &options->image_topic);
+  reader.Read("imu_topic", &options->imu_topic);
   reader.RejectUnknownKeys();
   try {
     CheckFrameSourceOptions(*options);

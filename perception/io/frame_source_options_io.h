@@ -7,6 +7,8 @@
 //     fps: 0                  # Hz, 0 = unset
 //     skip_bad_frames: false
 //     camera_id: 0
+//     image_topic: ""         # ROS bags: sensor_msgs/Image or CompressedImage topic
+//     imu_topic: ""           # ROS bags: sensor_msgs/Imu topic, "" = none
 //
 // Absent keys keep the in-class defaults; unknown keys, a bad colour mode or a negative fps throw
 // std::invalid_argument naming where the value is and what is expected.

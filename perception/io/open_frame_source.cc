@@ -6,6 +6,7 @@
 #include "perception/io/camera_device_source.h"
 #include "perception/io/image_file_reader.h"
 #include "perception/io/image_folder_source.h"
+#include "perception/io/rosbag_source.h"
 #include "perception/io/video_file_source.h"
 
 namespace aperture::perception {
@@ -42,8 +43,8 @@ std::unique_ptr<FrameSource> OpenFrameSource(const std::string& spec,
   const fs::path path(spec);
   if (!fs::exists(path)) {
     throw std::runtime_error("frame source '" + spec +
-                             "' does not exist; give an image folder, a video file or "
-                             "camera:<N>");
+                             "' does not exist; give an image folder, a video file, a ROS bag "
+                             "or camera:<N>");
   }
   if (fs::is_directory(path)) {
     // A dataset folder (as `aperture render` writes) keeps its frames in images/.
@@ -58,6 +59,7 @@ std::unique_ptr<FrameSource> OpenFrameSource(const std::string& spec,
                                 "' is a single image; give the folder that holds the sequence (" +
                                 path.parent_path().string() + ")");
   }
+  if (path.extension() == ".bag") return std::make_unique<RosbagSource>(path, options);
   return std::make_unique<VideoFileSource>(path, options);
 }
 

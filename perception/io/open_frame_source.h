@@ -6,6 +6,7 @@
 //   <folder>          ImageFolderSource (see image_folder_source.h for timestamps); a dataset
 //                     folder without images of its own but with an images/ subfolder (the
 //                     layout `aperture render` writes) reads images/
+//   <file>.bag        RosbagSource (ROS1 bag; options.image_topic, options.imu_topic)
 //   <file>            VideoFileSource (any container the installed OpenCV decodes)
 //
 // Throws std::invalid_argument for a malformed camera spec or a single image file given instead

@@ -523,6 +523,40 @@ TEST_F(OutputTest, HtmlReportEmbedsPngThatDecodesToTheSameImage) {
   EXPECT_THROW(report.AddImage(cv::Mat(), "missing frame"), std::invalid_argument);
 }
 
+TEST_F(OutputTest, HtmlReportOpensWithTheOutcomeThenTheRunAndFoldsTheFullTable) {
+  HtmlReport report("aperture sim: gap");
+  report.AddSection("Path");
+  const nlohmann::json summary = {{"command", "sim"},
+                                  {"inputs", {{"scenario", "gap"}}},
+                                  {"config", {{"gap", {{"roll_deg", 30}}}}},
+                                  {"mission", {{"passed", true}}}};
+  report.AddCollapsedTable(summary, "Every figure of summary.json");
+  // Added last, shown first: the outcome is known at the end of a run.
+  report.AddRunDescription(summary, 12.34);
+  report.AddOutcome(
+      {"passed", "gap mission: passed the gap", {{"position error at the gap", "1.0 cm", "4 cm"}}});
+  const std::string html = report.ToHtml();
+  const size_t outcome = html.find("<section class=\"outcome passed\"><h2>Outcome: passed</h2>");
+  const size_t run = html.find("<h2>What was run</h2>");
+  const size_t path = html.find("<h2>Path</h2>");
+  const size_t full_table = html.find("<details><summary>Every figure of summary.json</summary>");
+  ASSERT_NE(outcome, std::string::npos) << html;
+  ASSERT_NE(full_table, std::string::npos) << html;
+  EXPECT_LT(outcome, run);
+  EXPECT_LT(run, path);
+  EXPECT_LT(path, full_table);
+  EXPECT_THAT(html, HasSubstr("<td>position error at the gap</td><td>1.0 cm</td><td>4 cm</td>"));
+  EXPECT_THAT(html, HasSubstr("<th>command</th><td>aperture sim</td>"));
+  EXPECT_THAT(html, HasSubstr("<th>wall time</th><td>12.3 s</td>"));
+  EXPECT_THAT(html, HasSubstr("<details><summary>Configuration (every effective parameter)"
+                              "</summary>\n<table><tr><th>gap.roll_deg</th>"));
+  EXPECT_THAT(html.substr(full_table), HasSubstr("<th>mission.passed</th><td>true</td>"));
+
+  report.AddOutcome({"failed", "replaced", {}});  // a second outcome replaces the first
+  EXPECT_EQ(CountOccurrences(report.ToHtml(), "Outcome: "), 1);
+  EXPECT_THAT(report.ToHtml(), HasSubstr("Outcome: failed"));
+}
+
 TEST_F(OutputTest, HtmlReportEmbedsJpegKeyFramesCloseToTheImage) {
   // A smooth frame with an edge, like a rendered view: JPEG at quality 85 stays within a few
   // grey levels on average (its 8x8 DCT quantization), at a fraction of the PNG's size.
