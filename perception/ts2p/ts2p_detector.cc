@@ -7,6 +7,7 @@
 #include <ctime>
 #include <limits>
 #include <opencv2/imgproc.hpp>
+#include <opencv2/ximgproc/edge_filter.hpp>
 #include <stdexcept>
 
 namespace aperture::perception {
@@ -86,6 +87,27 @@ cv::Mat CentralComponent(const cv::Mat& mask) {
 
 }  // namespace
 
+cv::Mat Ts2pDetector::EdgeAwareSmooth(const cv::Mat& guide, const cv::Mat& values) const {
+  // Step 3b: fast global smoother (Min et al. 2014). NaN (derotated rays that left the model)
+  // would spread: smooth the finite values and their indicator and divide (normalized
+  // smoothing), NaN stays NaN.
+  const cv::Mat finite = values == values;
+  const bool all_finite = cv::countNonZero(finite) == static_cast<int>(values.total());
+  cv::Mat filled = values.clone();
+  if (!all_finite) filled.setTo(0.0f, ~finite);
+  cv::Mat smooth;
+  cv::ximgproc::fastGlobalSmootherFilter(guide, filled, smooth, params_.edge_aware_lambda,
+                                         params_.edge_aware_sigma_color);
+  if (all_finite) return smooth;
+  cv::Mat weight, smooth_weight;
+  finite.convertTo(weight, CV_32F, 1.0 / 255.0);
+  cv::ximgproc::fastGlobalSmootherFilter(guide, weight, smooth_weight, params_.edge_aware_lambda,
+                                         params_.edge_aware_sigma_color);
+  cv::divide(smooth, cv::max(smooth_weight, 1e-6), smooth);
+  smooth.setTo(std::numeric_limits<float>::quiet_NaN(), ~finite);
+  return smooth;
+}
+
 void Ts2pParams::Validate() const {
   flow.Validate();
   if (!(flow_scale > 0.0 && flow_scale <= 1.0)) {
@@ -104,6 +126,13 @@ void Ts2pParams::Validate() const {
         "threshold_fraction in (0, 1) and "
         "min_area_fraction in [0, 1)");
   }
+  if (!(edge_aware_lambda >= 0.0 && std::isfinite(edge_aware_lambda)) ||
+      !(edge_aware_sigma_color > 0.0)) {
+    throw std::invalid_argument(
+        "ts2p.edge_aware_lambda must be >= 0 (0 = no edge-aware refinement) and "
+        "edge_aware_sigma_color > 0 [gray levels], got " +
+        std::to_string(edge_aware_lambda) + " and " + std::to_string(edge_aware_sigma_color));
+  }
   if (!(canny_low > 0.0 && canny_high >= canny_low) || weiszfeld_iterations < 1) {
     throw std::invalid_argument(
         "ts2p.canny_low must be > 0 and <= canny_high, weiszfeld_iterations >= 1");
@@ -118,6 +147,8 @@ void LoadParams(config::ParamReader& reader, Ts2pParams* params) {
   reader.Read("morphology_radius_px", &params->morphology_radius_px);
   reader.Read("threshold_fraction", &params->threshold_fraction);
   reader.Read("min_area_fraction", &params->min_area_fraction);
+  reader.Read("edge_aware_lambda", &params->edge_aware_lambda);
+  reader.Read("edge_aware_sigma_color", &params->edge_aware_sigma_color);
   reader.Read("canny_low", &params->canny_low);
   reader.Read("canny_high", &params->canny_high);
   reader.Read("weiszfeld_iterations", &params->weiszfeld_iterations);
@@ -344,6 +375,13 @@ Ts2pDetection Ts2pDetector::Detect(const cv::Mat& reference, const std::vector<c
   // Back to full-resolution pixels (flow magnitudes scale with the image).
   cv::Mat mean_flow = sum / (static_cast<double>(frames.size()) * scale);
   if (scale != 1.0) cv::resize(mean_flow, mean_flow, full, 0, 0, cv::INTER_LINEAR);
+  detection.timing.stacking_ms += MsSince(stage);
+  if (params_.edge_aware_lambda > 0.0) {
+    stage = Clock::now();
+    mean_flow = EdgeAwareSmooth(ToGray(reference), mean_flow);
+    detection.timing.edge_aware_ms = MsSince(stage);
+  }
+  stage = Clock::now();
   cv::Mat inverse_flow;
   cv::divide(1.0, cv::max(mean_flow, 1e-3), inverse_flow, CV_32F);
   cv::Mat dx, dy;
