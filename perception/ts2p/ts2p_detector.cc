@@ -279,6 +279,29 @@ cv::Mat Ts2pDetector::RotationalFlow(const Eigen::Matrix3d& R_CkCr) {
   return flow;
 }
 
+cv::Mat Ts2pDetector::Derotate(const cv::Mat& frame, const Eigen::Matrix3d& R_CkCr,
+                               cv::Mat* unseen) {
+  const cv::Mat rotational = RotationalFlow(R_CkCr);
+  // Absolute sampling positions x + rotational(x); NaN (ray left the model) samples the border.
+  cv::Mat map(rotational.size(), CV_32FC2);
+  for (int y = 0; y < map.rows; ++y) {
+    const cv::Vec2f* d = rotational.ptr<cv::Vec2f>(y);
+    cv::Vec2f* m = map.ptr<cv::Vec2f>(y);
+    for (int x = 0; x < map.cols; ++x) m[x] = cv::Vec2f(x + d[x][0], y + d[x][1]);
+  }
+  cv::Mat derotated;
+  cv::remap(frame, derotated, map, cv::noArray(), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+  if (unseen) {
+    std::vector<cv::Mat> xy;
+    cv::split(map, xy);
+    // Outside [0, size - 1] (NaN compares false, so it counts as outside).
+    const cv::Mat inside = (xy[0] >= 0.0f) & (xy[0] <= frame.cols - 1.0f) & (xy[1] >= 0.0f) &
+                           (xy[1] <= frame.rows - 1.0f);
+    *unseen = ~inside;
+  }
+  return derotated;
+}
+
 cv::Mat Ts2pDetector::SegmentRegion(const cv::Mat& mean_flow, double threshold) const {
   const int radius = MorphologyRadius(mean_flow.cols);
   cv::Mat low = mean_flow < threshold;  // NaN compares false: not part of O
@@ -351,23 +374,21 @@ Ts2pDetection Ts2pDetector::Detect(const cv::Mat& reference, const std::vector<c
   cv::Mat sum = cv::Mat::zeros(reference_small.size(), CV_32F);
   for (std::size_t k = 0; k < frames.size(); ++k) {
     auto stage = Clock::now();
-    cv::Mat flow = flow_.Compute(reference_small, resize(frames[k]));
-    detection.timing.flow_ms += MsSince(stage);
+    cv::Mat frame = frames[k], unseen;
     if (!R_CkCr.empty()) {
-      stage = Clock::now();
-      cv::Mat rotational = RotationalFlow(R_CkCr[k]);
-      if (scale != 1.0) {
-        cv::resize(rotational, rotational, flow.size(), 0, 0, cv::INTER_LINEAR);
-        rotational *= scale;
-      }
-      flow = flow - rotational;
+      frame = Derotate(frames[k], R_CkCr[k], &unseen);
+      if (scale != 1.0) cv::resize(unseen, unseen, reference_small.size(), 0, 0, cv::INTER_NEAREST);
       detection.timing.derotation_ms += MsSince(stage);
+      stage = Clock::now();
     }
+    const cv::Mat flow = flow_.Compute(reference_small, resize(frame));
+    detection.timing.flow_ms += MsSince(stage);
     stage = Clock::now();
     std::vector<cv::Mat> uv;
     cv::split(flow, uv);
     cv::Mat magnitude;
     cv::magnitude(uv[0], uv[1], magnitude);
+    if (!unseen.empty()) magnitude.setTo(std::numeric_limits<float>::quiet_NaN(), unseen);
     sum += magnitude;
     detection.timing.stacking_ms += MsSince(stage);
   }

@@ -6,9 +6,12 @@
 // B seen through the opening.
 //
 //   1. dense flow reference -> each frame (DenseFlow, by name);
-//   2. optional gyro derotation (beyond the paper): subtract the rotational flow
-//      Project(R_CkCr * Unproject(x)) - x predicted through the camera model, so the scan need
-//      not be rotation-free (only when R_CkCr is given; off for sequences without an IMU);
+//   2. optional gyro derotation (beyond the paper), before the flow: each frame is resampled
+//      into the reference camera's orientation, pixel x taking the frame's value at
+//      Project(R_CkCr * Unproject(x)) (the rotational flow predicted through the camera model),
+//      so the flow method sees the translational parallax only and the scan need not be
+//      rotation-free (only when R_CkCr is given; off for sequences without an IMU). Pixels whose
+//      rotated ray leaves the frame carry no parallax (NaN in the stack);
 //   3. stacked mean magnitude ||xi_i p_x|| = (1/N) sum_k ||flow_k(x)|| (Sec. II: noise ~ N^-1/2),
 //      its inverse and the spatial derivative Xi = |grad ||xi_i p_x||^-1| (Sec. II);
 //   3b. edge-aware refinement of the stacked magnitude (beyond the paper): the fast global
@@ -128,6 +131,11 @@ class Ts2pDetector {
   // Rotational flow of every reference pixel for the rotation R_CkCr (CV_32FC2 [px], the
   // camera's size): Project(R_CkCr Unproject(x)) - x; NaN where the rotated ray leaves the model.
   cv::Mat RotationalFlow(const Eigen::Matrix3d& R_CkCr);
+
+  // Step 2: `frame` (8-bit, the camera's size) resampled into the reference orientation
+  // (bilinear); a pure rotation's frame becomes the reference image. *unseen (optional, CV_8UC1)
+  // = 255 where the rotated ray falls outside the frame.
+  cv::Mat Derotate(const cv::Mat& frame, const Eigen::Matrix3d& R_CkCr, cv::Mat* unseen = nullptr);
 
   const Ts2pParams& params() const { return params_; }
   std::string FlowName() const { return flow_.Describe(); }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <opencv2/core.hpp>
 
 #include "experiments/ts2p/ts2p_scan.h"
 #include "perception/ts2p/opening_score.h"
@@ -71,8 +72,26 @@ TEST(Ts2pEdgeAwareTest, RecoversTheSpikesOfAStar) {
   EXPECT_THROW(perception::Ts2pDetector{params}, std::invalid_argument);
 }
 
-// A pure rotation (no baseline) moves every pixel by the rotational flow alone, so flow minus the
-// derotation map predicted through the camera model is the flow method's error only.
+// Mean flow magnitude [px] over the pixels whose derotated ray stays in the frame.
+double MeanFlowPx(const cv::Mat& flow, const cv::Mat& unseen) {
+  double sum = 0.0;
+  int count = 0;
+  for (int y = 0; y < flow.rows; ++y) {
+    for (int x = 0; x < flow.cols; ++x) {
+      if (unseen.at<uchar>(y, x)) continue;
+      const cv::Vec2f v = flow.at<cv::Vec2f>(y, x);
+      sum += std::hypot(v[0], v[1]);
+      ++count;
+    }
+  }
+  return sum / count;
+}
+
+// A pure rotation (no baseline): the frame derotated through the camera model is the reference
+// image again, so the flow between them is what derotation leaves (issue 13: < 0.1 px mean).
+// DeepFlow measures it (0.017 px; its floor on two renders of one pose is 0.014 px). DIS-medium,
+// the detector's flow, has a floor of ~0.2 px on that same-pose pair (sensor noise on the
+// blank parts of the walls): derotation must add nothing beyond it.
 TEST(Ts2pDerotationTest, PureRotationLeavesSubpixelResidual) {
   Ts2pScanConfig config;
   config.stack = 1;
@@ -80,29 +99,23 @@ TEST(Ts2pDerotationTest, PureRotationLeavesSubpixelResidual) {
   config.rotation_per_step_deg = Eigen::Vector3d(0.5, 1.0, 1.5);  // roll, pitch, yaw
   sim::RayCaster caster;
   const Ts2pScan scan = RenderTs2pScan(config, caster);
-  perception::Ts2pParams params;
-  perception::Ts2pDetector detector(params, scan.camera);
-  perception::DenseFlowParams flow_params;
-  flow_params.variational_refinement = true;
-  perception::DenseFlow flow(flow_params);
-  const cv::Mat measured = flow.Compute(scan.reference, scan.frames[0]);
-  const cv::Mat predicted = detector.RotationalFlow(scan.R_CkCr[0]);
-  double residual = 0.0, rotational = 0.0;
-  int count = 0;
-  const int border = 24;  // pixels that rotate out of view have no flow to measure
-  for (int y = border; y < measured.rows - border; ++y) {
-    for (int x = border; x < measured.cols - border; ++x) {
-      const cv::Vec2f m = measured.at<cv::Vec2f>(y, x), p = predicted.at<cv::Vec2f>(y, x);
-      residual += std::hypot(m[0] - p[0], m[1] - p[1]);
-      rotational += std::hypot(p[0], p[1]);
-      ++count;
-    }
-  }
-  EXPECT_GT(rotational / count, 5.0);  // the rotation is large against the tolerance
-  // Issue 13 asks for < 0.1 px; DIS-medium + variational refinement leaves ~0.16 px on this
-  // rendered pair (sensor noise, no supersampling), so 0.2 px here; a wrong rotation direction
-  // or frame convention leaves the full ~9 px, a wrong axis several px.
-  EXPECT_LT(residual / count, 0.2);
+  config.rotation_per_step_deg.setZero();
+  const Ts2pScan still = RenderTs2pScan(config, caster);  // same pose twice, own noise
+  perception::Ts2pDetector detector(perception::Ts2pParams{}, scan.camera);
+  cv::Mat unseen;
+  const cv::Mat derotated = detector.Derotate(scan.frames[0], scan.R_CkCr[0], &unseen);
+  // The rotation is large against the tolerance: ~9 px of rotational flow.
+  EXPECT_GT(MeanFlowPx(detector.RotationalFlow(scan.R_CkCr[0]), unseen), 5.0);
+  EXPECT_LT(cv::countNonZero(unseen), 0.1 * unseen.total());
+
+  perception::DenseFlowParams accurate;
+  accurate.method = "deepflow";
+  EXPECT_LT(MeanFlowPx(perception::DenseFlow(accurate).Compute(scan.reference, derotated), unseen),
+            0.1);
+  perception::DenseFlow dis(perception::DenseFlowParams{});
+  const double floor_px = MeanFlowPx(dis.Compute(still.reference, still.frames[0]), unseen);
+  EXPECT_LT(MeanFlowPx(dis.Compute(scan.reference, derotated), unseen), floor_px + 0.05);
+
   // Without derotation the rotation looks like parallax; derotated, there is none to detect.
   const perception::Ts2pDetection raw = detector.Detect(scan.reference, scan.frames);
   EXPECT_GT(raw.foreground_flow_px, 5.0);
