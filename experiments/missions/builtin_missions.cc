@@ -6,7 +6,9 @@
 #include <optional>
 #include <vector>
 
+#include "config/yaml_write_archive.h"
 #include "experiments/led/led_hover_flight.h"
+#include "experiments/led/led_hover_flight_params_io.h"
 #include "experiments/missions/gap_mission_flight.h"
 #include "sim/sitl/ground_truth_autopilot.h"
 
@@ -29,8 +31,8 @@ class HoverFlight final : public MissionFlight {
 
   MissionEvaluation Evaluate(const sim::SitlResult& result) override {
     MissionEvaluation out;
-    const HoverMetrics hover = ComputeHoverMetrics(result.trajectory, p_set_W_, {},
-                                                   kHoverMaxErrorM, /*recovery_hold_s=*/1.0);
+    const HoverMetrics hover = ComputeHoverMetrics(result.trajectory, p_set_W_, {}, kHoverMaxErrorM,
+                                                   /*recovery_hold_s=*/1.0);
     out.figures["hover_error_m"] = {{"max", hover.max_error_m}, {"rms", hover.rms_error_m}};
     out.passed = !result.collision && hover.max_error_m <= kHoverMaxErrorM;
     char line[120];
@@ -44,8 +46,8 @@ class HoverFlight final : public MissionFlight {
   static sim::GroundTruthAutopilotParams Params(const MissionContext& context) {
     const Eigen::Matrix3d R_WB = context.scenario.T_WB_start().linear();
     sim::GroundTruthAutopilotParams params;
-    params.waypoints.push_back(sim::Waypoint{context.sitl.initial_state.p_WB,
-                                             std::atan2(R_WB(1, 0), R_WB(0, 0)), 0.0});
+    params.waypoints.push_back(
+        sim::Waypoint{context.sitl.initial_state.p_WB, std::atan2(R_WB(1, 0), R_WB(0, 0)), 0.0});
     return params;
   }
 
@@ -65,9 +67,12 @@ class LedHoverMission final : public MissionFlight {
   static constexpr double kPushRecoveryBudgetS = 3.0;
 
   explicit LedHoverMission(const MissionContext& context)
-      : pushes_(context.sitl.disturbances.pushes), flight_(context.scenario, context.sitl) {}
+      : pushes_(context.sitl.disturbances.pushes),
+        params_(LoadedParams(context)),
+        flight_(context.scenario, context.sitl, params_) {}
 
   perception::Autopilot& autopilot() override { return flight_.autopilot(); }
+  YAML::Node EffectiveParams() const override { return config::DumpParams(params_); }
   void DrawOverlay(cv::Mat& onboard_bgr) const override { flight_.DrawOverlay(onboard_bgr); }
 
   MissionEvaluation Evaluate(const sim::SitlResult& result) override {
@@ -93,14 +98,20 @@ class LedHoverMission final : public MissionFlight {
     return out;
   }
 
-  void AddReportSections(const MissionEvaluation& /*evaluation*/,
-                         const sim::SitlResult& /*result*/,
+  void AddReportSections(const MissionEvaluation& /*evaluation*/, const sim::SitlResult& /*result*/,
                          output::HtmlReport* report) const override {
     if (result_) AddLedHoverReport(*result_, report);
   }
 
  private:
+  static LedHoverFlightParams LoadedParams(const MissionContext& context) {
+    LedHoverFlightParams params;
+    LoadParams(context.params, &params);  // config::LoadParams: reads, rejects, validates
+    return params;
+  }
+
   std::vector<sim::Push> pushes_;
+  LedHoverFlightParams params_;
   LedHoverFlight flight_;
   std::optional<LedHoverFlightResult> result_;  // of Evaluate
 };
@@ -112,11 +123,11 @@ void RegisterBuiltinMissions(MissionRegistry& registry) {
                     "vision gap mission (seed 000): detect, plan, approach, traverse the "
                     "patterned gap, recover",
                     {"gap"}, MakeGapMissionFlight);
-  registry.Register(
-      "led_hover", "LED-stabilized hover (thesis C.4.3): LED pose from the ground camera + IMU",
-      {"led"}, [](const MissionContext& context) -> std::unique_ptr<MissionFlight> {
-        return std::make_unique<LedHoverMission>(context);
-      });
+  registry.Register("led_hover",
+                    "LED-stabilized hover (thesis C.4.3): LED pose from the ground camera + IMU",
+                    {"led"}, [](const MissionContext& context) -> std::unique_ptr<MissionFlight> {
+                      return std::make_unique<LedHoverMission>(context);
+                    });
   registry.Register("hover", "hover at the start pose on ground truth (reference flight)",
                     {"gapflyt", "tags", "forest"},
                     [](const MissionContext& context) -> std::unique_ptr<MissionFlight> {
