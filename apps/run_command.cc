@@ -7,7 +7,7 @@
 // timing, metric statistics), OUT/frames.csv (one row per frame: t_s, index, every node metric),
 // OUT/report.html (metric plots, timing, key frames with overlays) and with --video the overlay
 // video OUT/overlay.mp4 (or .avi); a source with an IMU (a bag with --imu-topic) adds OUT/imu.csv.
-// Front ends may add their own files (FrontEndResources::output_dir), e.g. ts2p:
+// Front ends may add their own files (FrontEndResources::output_directory), e.g. ts2p:
 // OUT/openings/<index>.png and OUT/ts2p.csv; gap_tracker: OUT/gap_tracker.csv.
 #include <algorithm>
 #include <filesystem>
@@ -32,6 +32,7 @@
 #include "perception/graph/source_run.h"
 #include "perception/io/open_frame_source.h"
 #include "perception/io/rosbag_source.h"
+#include "servo/visp_tag_detector.h"
 
 namespace aperture::apps {
 namespace {
@@ -55,7 +56,6 @@ void RunFrontEnds(const RunOptions& options, output::OutputFolder& out) {
   const std::vector<std::string> front_end_names =
       perception::SplitFrontEndList(options.front_ends);
   perception::FrontEndResources resources;
-  resources.output_dir = out.directory();
   if (!options.calibration_path.empty() && !options.camera_info_topic.empty()) {
     throw std::invalid_argument(
         "give the calibration either as --calib FILE or as "
@@ -67,6 +67,8 @@ void RunFrontEnds(const RunOptions& options, output::OutputFolder& out) {
     resources.calibration =
         perception::LoadCameraInfoFromBag(options.source, options.camera_info_topic);
   }
+  resources.output_directory = out.directory();
+  resources.tag_detectors.Register(servo::kVispTagDetectorName, &servo::CreateVispTagDetector);
   perception::FrontEndRegistry registry;
   perception::RegisterBuiltinFrontEnds(registry);
   // Each front end reads the config section named after it; any other section is a typo.
@@ -153,6 +155,7 @@ void RunFrontEnds(const RunOptions& options, output::OutputFolder& out) {
       });
   progress.Finish();
   csv->Close();
+  const std::map<std::string, std::string> front_end_files = graph.Finish();
 
   summary["frames"] = record.frame_count();
   summary["skipped_frames"] = source->SkippedFrames().size();
@@ -165,6 +168,7 @@ void RunFrontEnds(const RunOptions& options, output::OutputFolder& out) {
   summary["timing"] = TimingJson(executor->Timing(), executor->FrameTiming());
   summary["metrics"] = record.MetricStatistics(metric_names);
   nlohmann::json outputs = {{"csv", "frames.csv"}, {"report", "report.html"}};
+  for (const auto& [key, file] : front_end_files) outputs[key] = file;
   summary["poses"] = pose_streams.Close();
   if (imu_csv) {
     imu_csv->Close();

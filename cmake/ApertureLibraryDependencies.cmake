@@ -25,10 +25,14 @@ aperture_find_package(NLopt)
 # libvisp-dev 3.5 (visual servoing): imported targets per module; servo/ links them PRIVATE (a
 # consumer of the installed servo library links them too) and the servo tests add visp_robot for
 # the vpSimulatorCamera free-camera simulation.
-aperture_find_package(VISP 3.5 COMPONENTS visp_core visp_visual_features visp_vs visp_robot)
-set(APERTURE_VISP visp_vs visp_visual_features visp_core)
+aperture_find_package(VISP 3.5 COMPONENTS visp_core visp_visual_features visp_vs visp_robot
+                      visp_detection)
+# visp_detection: vpDetectorAprilTag (servo/visp_tag_detector.cc).
+set(APERTURE_VISP visp_vs visp_visual_features visp_detection visp_core)
 # libapriltag-dev ships a CMake config (target apriltag::apriltag, includes <apriltag/...>).
 aperture_find_package(apriltag)
+# libceres-dev: the tag map's pose graph (perception/tags/tag_map.cc).
+aperture_find_package(Ceres)
 
 # yaml-cpp 0.7 on Debian exports the plain target name `yaml-cpp`.
 set(APERTURE_OPENCV_CORE opencv_core opencv_imgproc opencv_imgcodecs)

@@ -9,7 +9,7 @@ packages=(
   libeigen3-dev libopencv-dev libopencv-contrib-dev libtbb-dev
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libnlopt-cxx-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libapriltag-dev libopengv-dev
+  libapriltag-dev libopengv-dev libceres-dev
   librosbag-dev librosbag-storage-dev libsensor-msgs-dev
   pybind11-dev python3-dev python3-numpy python3-pytest
   libvisp-dev

@@ -1,14 +1,19 @@
 #include "perception/graph/builtin_front_ends.h"
 
 #include "perception/gap/gap_node.h"
-#include "perception/ts2p/gap_tracker_node.h"
 #include "perception/led/led_tracker_node.h"
 #include "perception/quality/image_quality_node.h"
+#include "perception/tags/april_tag_node.h"
+#include "perception/ts2p/gap_tracker_node.h"
 #include "perception/ts2p/ts2p_node.h"
 
 namespace aperture::perception {
 
 void RegisterBuiltinFrontEnds(FrontEndRegistry& registry) {
+  registry.Register(AprilTagNode::kName,
+                    "AprilTag poses T_CT per tag with covariance and flip resolution, tags.csv, "
+                    "optional tag map (seed 001 paper D); needs --calib and apriltag.size_m",
+                    &AprilTagNode::Create);
   registry.Register(GapNode::kName,
                     "patterned gap detector (seed 000): pose T_GC with covariance; needs --calib",
                     &GapNode::Create);

@@ -199,6 +199,16 @@ std::vector<PoseObservation> FrameGraph::CollectPoses(const FrameSlots& slots) c
   return poses;
 }
 
+std::map<std::string, std::string> FrameGraph::Finish() {
+  std::map<std::string, std::string> files;
+  for (std::size_t index : topological_order_) {
+    for (const auto& [key, file] : nodes_[index]->Finish()) {
+      files[nodes_[index]->Name() + "." + key] = file;
+    }
+  }
+  return files;
+}
+
 void FrameGraph::DrawOverlays(const FrameSlots& slots, cv::Mat& bgr) const {
   for (std::size_t index : topological_order_) {
     // DrawOverlay receives a const context: it cannot Set, so the const_cast never writes.

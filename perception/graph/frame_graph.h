@@ -49,6 +49,8 @@ class FrameGraph {
   std::map<std::string, double> CollectMetrics(const FrameSlots& slots) const;
   // After a frame ran: every node's pose observations (nodes in topological order).
   std::vector<PoseObservation> CollectPoses(const FrameSlots& slots) const;
+  // After the last frame: every node's Finish, keyed "<node>.<key>" (file names).
+  std::map<std::string, std::string> Finish();
   // After a frame ran: every node's DrawOverlay in topological order onto `bgr` (CV_8UC3).
   void DrawOverlays(const FrameSlots& slots, cv::Mat& bgr) const;
   // A BGR copy of the frame's image (gray is expanded) with every overlay drawn: one frame of the

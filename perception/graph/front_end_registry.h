@@ -17,10 +17,11 @@
 #include <string>
 #include <vector>
 
-#include "perception/graph/frame_graph.h"
-#include "perception/graph/node.h"
 #include "config/param_reader.h"
 #include "perception/camera/calibration_io.h"
+#include "perception/graph/frame_graph.h"
+#include "perception/graph/node.h"
+#include "perception/tags/tag_detector_registry.h"
 
 namespace aperture::perception {
 
@@ -28,9 +29,12 @@ namespace aperture::perception {
 struct FrontEndResources {
   // The camera calibration (`aperture run --calib`), when one was given.
   std::optional<CameraCalibration> calibration;
-  // The run's output folder (`aperture run --out`): front ends that write per-detection files
-  // (e.g. ts2p's openings/<index>.png) put them here; empty = write no files (tests, SITL).
-  std::string output_dir;
+  // The run's output folder, where a front end may write its own files (Node::Finish); empty:
+  // write none (tests, SITL).
+  std::string output_directory;
+  // Tag detectors by name for the `apriltag` front end; the application adds those of higher
+  // layers (servo/'s ViSP detector).
+  TagDetectorRegistry tag_detectors = TagDetectorRegistry::WithBuiltins();
 
   // The calibration, or std::invalid_argument telling the user that `front_end` needs --calib.
   const CameraCalibration& RequireCalibration(const std::string& front_end) const;

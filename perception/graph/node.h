@@ -10,6 +10,7 @@
 //    runs concurrently with itself, so Run may keep per-node state (trackers, buffers).
 //  - Metrics, Poses and DrawOverlay are called after the whole graph ran on a frame, with
 //    read-only access to the node's inputs and outputs.
+//  - Finish is called once after the last frame (never concurrently with Run).
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <map>
@@ -43,6 +44,11 @@ class Node {
   virtual std::vector<PoseObservation> Poses(const NodeContext& /*context*/) const { return {}; }
   // Draws this node's results on `bgr` (CV_8UC3, the frame's size) for the overlay video.
   virtual void DrawOverlay(const NodeContext& /*context*/, cv::Mat& /*bgr*/) const {}
+
+  // Completes the files the node writes itself into FrontEndResources::output_directory (tables
+  // and maps beyond metrics and poses) and returns their names for summary.json, keyed by what
+  // they hold (e.g. {"detections": "tags.csv"}). Nothing when the run gave no directory.
+  virtual std::map<std::string, std::string> Finish() { return {}; }
 };
 
 }  // namespace aperture::perception

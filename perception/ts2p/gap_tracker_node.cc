@@ -33,7 +33,7 @@ std::unique_ptr<Node> GapTrackerNode::Create(config::ParamReader& params,
                                              const FrontEndResources& resources) {
   LabelTrackerParams tracker_params;
   LoadParams(params, &tracker_params);
-  return std::make_unique<GapTrackerNode>(tracker_params, resources.output_dir);
+  return std::make_unique<GapTrackerNode>(tracker_params, resources.output_directory);
 }
 
 std::vector<SlotSpec> GapTrackerNode::Inputs() const {

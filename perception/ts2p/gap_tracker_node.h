@@ -7,7 +7,7 @@
 //   writes:  "gap_tracker" (OpeningTrack, opening_track.h)
 //   metrics: valid, safe_u_px, safe_v_px, foe_u_px, foe_v_px, divergence, foreground_corners,
 //            background_corners, propagation_ms, klt_ms (NaN before the first detection).
-//   files:   (with FrontEndResources::output_dir) gap_tracker.csv, one row per frame: t_s,
+//   files:   (with FrontEndResources::output_directory) gap_tracker.csv, one row per frame: t_s,
 //            index, valid, x_s (filtered and measured), source (F/B), FOE, divergence, corner
 //            counts, resets, time per stage.
 //   overlay: F corners (blue), B corners (green), the propagated contour (yellow), x_s (red).

@@ -49,7 +49,7 @@ std::unique_ptr<Node> Ts2pNode::Create(config::ParamReader& params,
                                        const FrontEndResources& resources) {
   Ts2pNodeParams node_params;
   LoadParams(params, &node_params);
-  return std::make_unique<Ts2pNode>(node_params, resources.output_dir);
+  return std::make_unique<Ts2pNode>(node_params, resources.output_directory);
 }
 
 std::vector<SlotSpec> Ts2pNode::Inputs() const { return {MakeSlot<Frame>(kFrameSlot)}; }

@@ -10,7 +10,8 @@
 //   metrics: detected (1 when a new opening was reported this frame, 0 when a detection found
 //            none, NaN between detections), area_px, safe_u_px, safe_v_px, reference_index,
 //            total_ms (NaN unless a detection ran this frame).
-//   files:   (with FrontEndResources::output_dir) openings/<reference index>.png (8-bit, 255 =
+//   files:   (with FrontEndResources::output_directory) openings/<reference index>.png (8-bit, 255
+//   =
 //            O), ts2p.csv (t_s, index, valid, area_px, safe_u_px, safe_v_px, stack, flow, time per
 //            stage [ms]) — one row per detection.
 //   overlay: the latest contour C (green) and safe point x_s (red cross).

@@ -1,54 +1,15 @@
 #include "sim/scene/apriltag_object.h"
 
-#include <apriltag/apriltag.h>
-#include <apriltag/tag16h5.h>
-#include <apriltag/tag25h9.h>
-#include <apriltag/tag36h11.h>
-#include <apriltag/tagCircle21h7.h>
-#include <apriltag/tagCircle49h12.h>
-#include <apriltag/tagCustom48h12.h>
-#include <apriltag/tagStandard41h12.h>
-#include <apriltag/tagStandard52h13.h>
-
 #include <memory>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
+#include "perception/tags/apriltag_family.h"
+
 namespace aperture::sim {
-namespace {
-
-struct FamilyFunctions {
-  const char* name;
-  apriltag_family_t* (*create)();
-  void (*destroy)(apriltag_family_t*);
-};
-
-constexpr FamilyFunctions kFamilies[] = {
-    {"tag36h11", tag36h11_create, tag36h11_destroy},
-    {"tag25h9", tag25h9_create, tag25h9_destroy},
-    {"tag16h5", tag16h5_create, tag16h5_destroy},
-    {"tagStandard41h12", tagStandard41h12_create, tagStandard41h12_destroy},
-    {"tagStandard52h13", tagStandard52h13_create, tagStandard52h13_destroy},
-    {"tagCircle21h7", tagCircle21h7_create, tagCircle21h7_destroy},
-    {"tagCircle49h12", tagCircle49h12_create, tagCircle49h12_destroy},
-    {"tagCustom48h12", tagCustom48h12_create, tagCustom48h12_destroy},
-};
-
-using FamilyPtr = std::unique_ptr<apriltag_family_t, void (*)(apriltag_family_t*)>;
-
-FamilyPtr CreateFamily(const std::string& family) {
-  for (const FamilyFunctions& f : kFamilies) {
-    if (family == f.name) return FamilyPtr(f.create(), f.destroy);
-  }
-  std::string known;
-  for (const FamilyFunctions& f : kFamilies) known += std::string(known.empty() ? "" : ", ") + f.name;
-  throw std::invalid_argument("AprilTag family '" + family + "' unknown; use one of " + known);
-}
-
-}  // namespace
 
 cv::Mat MakeAprilTagImage(const std::string& family, int id) {
-  const FamilyPtr fam = CreateFamily(family);
+  const perception::AprilTagFamilyPtr fam = perception::CreateAprilTagFamily(family);
   if (id < 0 || id >= static_cast<int>(fam->ncodes)) {
     throw std::invalid_argument("AprilTag id " + std::to_string(id) + " outside family " + family +
                                 " (ids 0.." + std::to_string(fam->ncodes - 1) + ")");
@@ -58,9 +19,10 @@ cv::Mat MakeAprilTagImage(const std::string& family, int id) {
   // White ring just outside the black border (inside it for reversed-border families).
   const int white_border_width = fam->width_at_border + (fam->reversed_border ? 0 : 2);
   const int white_border_start = (total - white_border_width) / 2;
-  cv::rectangle(image, cv::Rect(white_border_start, white_border_start, white_border_width,
-                                white_border_width),
-                cv::Scalar(255), 1);
+  cv::rectangle(
+      image,
+      cv::Rect(white_border_start, white_border_start, white_border_width, white_border_width),
+      cv::Scalar(255), 1);
   // Data bits: most significant bit first, at (bit_x, bit_y) from the black border's corner.
   const int border_start = (total - fam->width_at_border) / 2;
   const uint64_t code = fam->codes[id];
@@ -74,7 +36,7 @@ cv::Mat MakeAprilTagImage(const std::string& family, int id) {
 }
 
 double AprilTagPatternSize(const std::string& family, double tag_size_m) {
-  const FamilyPtr fam = CreateFamily(family);
+  const perception::AprilTagFamilyPtr fam = perception::CreateAprilTagFamily(family);
   return tag_size_m * fam->total_width / fam->width_at_border;
 }
 

@@ -16,9 +16,8 @@
 namespace aperture::sim {
 
 // Tag image, total_width x total_width texels, CV_8UC1 (0 black, 255 white).
-// family: "tag36h11", "tag25h9", "tag16h5", "tagStandard41h12", "tagStandard52h13",
-// "tagCircle21h7", "tagCircle49h12", "tagCustom48h12". Throws std::invalid_argument for an
-// unknown family or an id outside [0, ncodes).
+// family: a library or short name of perception/tags/apriltag_family.h ("tag36h11", "41h12").
+// Throws std::invalid_argument for an unknown family or an id outside [0, ncodes).
 cv::Mat MakeAprilTagImage(const std::string& family, int id);
 
 // Rectangle object named "tag<id>" showing the tag (white texels albedo 0.95, black 0.05).

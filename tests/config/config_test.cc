@@ -11,6 +11,7 @@
 #include "config/config_tree.h"
 #include "config/param_reader.h"
 #include "tests/support/message_of.h"
+#include "tests/support/temp_directory_test.h"
 
 namespace aperture::config {
 namespace {
@@ -69,24 +70,7 @@ TestParams LoadVehicle(const ConfigTree& tree) {
   return params;
 }
 
-class ConfigFileTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    directory_ = std::filesystem::temp_directory_path() /
-                 ("aperture_config_test_" +
-                  std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    std::filesystem::create_directories(directory_);
-  }
-  void TearDown() override { std::filesystem::remove_all(directory_); }
-
-  std::string WriteFile(const std::string& name, const std::string& text) {
-    const std::string path = (directory_ / name).string();
-    std::ofstream(path) << text;
-    return path;
-  }
-
-  std::filesystem::path directory_;
-};
+class ConfigFileTest : public aperture::testing::TempDirectoryTest {};
 
 TEST_F(ConfigFileTest, EmptyTreeKeepsStructDefaults) {
   const TestParams params = LoadVehicle(ConfigTree());

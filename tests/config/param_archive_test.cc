@@ -18,6 +18,7 @@
 #include "config/yaml_write_archive.h"
 #include "tests/support/message_of.h"
 #include "tests/support/param_round_trip.h"
+#include "tests/support/temp_directory_test.h"
 
 namespace aperture::config {
 namespace {
@@ -176,22 +177,7 @@ TEST(ParamArchive, NumericLookingStringsStayStrings) {
   EXPECT_EQ(loaded.camera, "1.5");
 }
 
-class SummaryAsConfigTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    directory_ = std::filesystem::temp_directory_path() /
-                 ("aperture_param_archive_test_" +
-                  std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    std::filesystem::create_directories(directory_);
-  }
-  void TearDown() override { std::filesystem::remove_all(directory_); }
-  std::string WriteFile(const std::string& name, const std::string& text) {
-    const std::string path = (directory_ / name).string();
-    std::ofstream(path) << text;
-    return path;
-  }
-  std::filesystem::path directory_;
-};
+class SummaryAsConfigTest : public aperture::testing::TempDirectoryTest {};
 
 // A run's summary.json given to --config contributes its "config" section only: the effective
 // configuration the run wrote with PutParams and ToJson loads back to the same struct.

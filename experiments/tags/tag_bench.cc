@@ -1,0 +1,394 @@
+#include "experiments/tags/tag_bench.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <random>
+
+#include "control/so3.h"
+#include "output/csv_writer.h"
+#include "output/svg_plot.h"
+#include "perception/camera/pinhole_camera.h"
+#include "perception/tags/tag_front_end.h"
+#include "perception/tags/tag_map.h"
+#include "sim/render/camera_effects.h"
+#include "sim/scenario/scenario.h"
+#include "sim/scene/apriltag_object.h"
+
+namespace aperture::experiments {
+namespace {
+
+using perception::TagPoseCandidate;
+
+constexpr double kDetectionTagSize_m = 0.16;
+constexpr double kFlipThreshold_deg = 10.0;  // a chosen rotation further off is a flip
+const char* const kFamilies[] = {"tag36h11", "tag16h5", "tag25h9", "tagStandard41h12"};
+
+double RotationErrorDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+  return control::LogSo3(a.linear().transpose() * b.linear()).norm() * 180.0 / M_PI;
+}
+
+double Median(std::vector<double> values) {
+  if (values.empty()) return std::nan("");
+  std::sort(values.begin(), values.end());
+  return values[values.size() / 2];
+}
+
+double Percentile90(std::vector<double> values) {
+  if (values.empty()) return std::nan("");
+  std::sort(values.begin(), values.end());
+  return values[static_cast<std::size_t>(0.9 * (values.size() - 1))];
+}
+
+const TagPoseCandidate& Nearest(const perception::TagPose& pose, const Eigen::Isometry3d& T_CT) {
+  if (pose.alternative &&
+      RotationErrorDeg(pose.alternative->T_CT, T_CT) < RotationErrorDeg(pose.best.T_CT, T_CT)) {
+    return *pose.alternative;
+  }
+  return pose.best;
+}
+
+// ---- detection ----------------------------------------------------------------------------------
+
+struct DetectionFrame {
+  std::string family;
+  int id;
+  double distance_m, angle_deg;
+  bool blur;
+  Eigen::Isometry3d T_CT;
+  cv::Mat image;
+};
+
+// One tag (on a white sheet twice its size) seen at distance and view angle, the camera aimed at
+// a random point up to 0.3 of the half field of view off the tag.
+DetectionFrame RenderDetectionFrame(const std::string& family, int id, std::mt19937* rng,
+                                    const perception::CameraModel& camera, sim::RayCaster* caster) {
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  DetectionFrame frame;
+  frame.family = family;
+  frame.id = id;
+  frame.distance_m = 0.5 + 5.5 * uniform(*rng);
+  frame.angle_deg = 70.0 * uniform(*rng);
+  frame.blur = uniform(*rng) < 1.0 / 3.0;
+  sim::Scene scene;
+  scene.lighting.ambient = 0.8f;
+  scene.lighting.directional = 0.2f;
+  const double pattern_m = sim::AprilTagPatternSize(family, kDetectionTagSize_m);
+  sim::Material paper;
+  paper.color = sim::Rgb::Constant(0.9f);
+  Eigen::Isometry3d T_W_paper = Eigen::Isometry3d::Identity();
+  T_W_paper.translation().z() = 0.001;  // behind the tag (z_O points into it)
+  scene.AddObject({"paper", sim::Rectangle{Eigen::Vector2d::Constant(2.0 * pattern_m), {}, {}},
+                   paper, T_W_paper});
+  scene.AddObject(
+      sim::MakeAprilTagObject(family, id, kDetectionTagSize_m, Eigen::Isometry3d::Identity()));
+  // Camera on the tag's front side (-z_O), `angle` off the normal, looking at the aim point.
+  const double azimuth = 2.0 * M_PI * uniform(*rng);
+  const double angle = frame.angle_deg * M_PI / 180.0;
+  const Eigen::Vector3d p_WC =
+      frame.distance_m * Eigen::Vector3d(std::sin(angle) * std::cos(azimuth),
+                                         std::sin(angle) * std::sin(azimuth), -std::cos(angle));
+  const double off = 0.3 * frame.distance_m * std::tan(M_PI / 4.0);
+  const Eigen::Vector3d aim(off * (2 * uniform(*rng) - 1), off * (2 * uniform(*rng) - 1), 0.0);
+  const Eigen::Vector3d z_C = (aim - p_WC).normalized();
+  Eigen::Vector3d x_C = z_C.cross(Eigen::Vector3d::UnitZ());
+  if (x_C.norm() < 1e-6) x_C = Eigen::Vector3d::UnitX();
+  x_C.normalize();
+  const double roll = 2.0 * M_PI * uniform(*rng);
+  x_C = Eigen::AngleAxisd(roll, z_C) * x_C;
+  Eigen::Isometry3d T_WC = Eigen::Isometry3d::Identity();
+  T_WC.linear() << x_C, z_C.cross(x_C), z_C;
+  T_WC.translation() = p_WC;
+  frame.T_CT = T_WC.inverse();  // the tag sits at W's origin
+  sim::CameraEffectsParams effects;
+  effects.read_noise_sigma = 0.004;
+  effects.full_well_electrons = 5000;
+  effects.seed = (*rng)();
+  if (frame.blur) {
+    effects.exposure_s = 0.01;
+    effects.motion_blur_subframes = 5;
+  }
+  const auto T_WC_at = [&](double t_s) {
+    Eigen::Isometry3d T = T_WC;
+    T.translation() += T_WC.linear() * Eigen::Vector3d(1.0 * t_s, 0.0, 0.0);  // 1 m/s along x_C
+    return T;
+  };
+  frame.image =
+      sim::CameraEffects(effects).Capture(*caster, scene, camera, T_WC_at, 0.0, 0).frame.image;
+  return frame;
+}
+
+void RunDetection(const TagBenchOptions& options, nlohmann::json* summary,
+                  output::HtmlReport* report) {
+  const perception::PinholeCamera camera(640, 480, {320.0, 320.0, 319.5, 239.5});
+  std::mt19937 rng(static_cast<std::uint32_t>(options.seed));
+  sim::RayCaster caster;
+  const int frames_per_family = options.quick ? 6 : 60;
+  std::vector<DetectionFrame> frames;
+  for (const char* family : kFamilies) {
+    for (int k = 0; k < frames_per_family; ++k) {
+      frames.push_back(RenderDetectionFrame(family, k % 20, &rng, camera, &caster));
+    }
+  }
+  std::unique_ptr<output::CsvWriter> csv;
+  if (!options.frames_csv_path.empty()) {
+    csv = std::make_unique<output::CsvWriter>(
+        options.frames_csv_path,
+        std::vector<std::string>{"detector", "family", "distance_m", "angle_deg", "blur",
+                                 "detected", "translation_error_m", "rotation_error_deg", "ms"});
+  }
+  nlohmann::json section = nlohmann::json::object();
+  std::vector<output::NamedValues> time_groups;
+  for (const std::string& name : options.detectors.Names()) {
+    for (const char* family : kFamilies) {
+      perception::TagDetectorParams params;
+      params.families = {family};
+      std::unique_ptr<perception::TagDetector> detector;
+      try {
+        detector = options.detectors.Create(name, params);
+      } catch (const std::invalid_argument& error) {
+        section[name][family] = {{"supported", false}, {"reason", error.what()}};
+        continue;
+      }
+      std::vector<double> translation_errors, rotation_errors, times_ms;
+      int detected = 0, total = 0, false_detections = 0;
+      std::map<std::string, std::pair<int, int>> by_distance;  // bin -> (detected, total)
+      for (const DetectionFrame& frame : frames) {
+        if (frame.family != family) continue;
+        ++total;
+        const auto start = std::chrono::steady_clock::now();
+        std::optional<perception::TagPose> pose;
+        for (const perception::TagDetection& detection : detector->Detect(frame.image)) {
+          if (detection.id != frame.id) {  // one tag in view: any other id is false
+            ++false_detections;
+            continue;
+          }
+          pose = perception::EstimateTagPose(camera, detection.corners_px, kDetectionTagSize_m);
+        }
+        const double ms =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                .count();
+        times_ms.push_back(ms);
+        const std::string bin = frame.distance_m < 2   ? "0.5-2m"
+                                : frame.distance_m < 4 ? "2-4m"
+                                                       : "4-6m";
+        ++by_distance[bin].second;
+        double t_error = std::nan(""), r_error = std::nan("");
+        if (pose) {
+          ++detected;
+          ++by_distance[bin].first;
+          const TagPoseCandidate& nearest = Nearest(*pose, frame.T_CT);
+          t_error = (nearest.T_CT.translation() - frame.T_CT.translation()).norm();
+          r_error = RotationErrorDeg(nearest.T_CT, frame.T_CT);
+          translation_errors.push_back(t_error);
+          rotation_errors.push_back(r_error);
+        }
+        if (csv) {
+          csv->WriteCells({name, std::string(family), frame.distance_m, frame.angle_deg,
+                           double(frame.blur), double(pose.has_value()), t_error, r_error, ms});
+        }
+      }
+      nlohmann::json rates = nlohmann::json::object();
+      for (const auto& [bin, counts] : by_distance) {
+        rates[bin] = counts.second ? double(counts.first) / counts.second : 0.0;
+      }
+      section[name][family] = {
+          {"supported", true},
+          {"frames", total},
+          {"detection_rate", total ? double(detected) / total : 0.0},
+          {"false_detections", false_detections},
+          {"detection_rate_by_distance", rates},
+          {"median_translation_error_m", Median(translation_errors)},
+          {"p90_translation_error_m", Percentile90(translation_errors)},
+          {"median_rotation_error_deg", Median(rotation_errors)},
+          {"median_ms", Median(times_ms)},
+      };
+      time_groups.push_back({name + " " + family, times_ms});
+    }
+  }
+  if (csv) csv->Close();
+  (*summary)["detection"] = section;
+  report->AddSection("Detection per detector and family");
+  report->AddParagraph("Single " + std::to_string(kDetectionTagSize_m) +
+                       " m tags at 0.5-6 m, 0-70 deg, a third with motion blur; 640x480, f = "
+                       "320 px. Errors of the candidate nearer the truth.");
+  report->AddTable(section);
+  report->AddSvg(output::SvgPlot::BoxPlot({"Detection + pose time", "", "ms"}, time_groups));
+}
+
+// ---- mapping ------------------------------------------------------------------------------------
+
+struct MapEvaluation {
+  double rms_before_m = 0, rms_after_m = 0;
+  int flipped = 0, tags = 0;
+  nlohmann::json per_tag = nlohmann::json::array();
+};
+
+MapEvaluation EvaluateMap(const perception::TagMap& map, const sim::Scenario& scenario,
+                          const Eigen::Isometry3d& T_W0_true) {
+  MapEvaluation evaluation;
+  const Eigen::Isometry3d T_W0 = map.params().T_W_origin();
+  for (const perception::MappedTag& tag : map.Tags()) {
+    const Eigen::Isometry3d T_0T_true =
+        T_W0_true.inverse() * scenario.scene().object("tag" + std::to_string(tag.id)).T_WO;
+    const Eigen::Isometry3d T_0T = T_W0.inverse() * tag.T_WT;
+    const Eigen::Isometry3d T_0T_before = T_W0.inverse() * tag.T_WT_initial;
+    evaluation.rms_after_m += (T_0T.translation() - T_0T_true.translation()).squaredNorm();
+    evaluation.rms_before_m += (T_0T_before.translation() - T_0T_true.translation()).squaredNorm();
+    evaluation.flipped += RotationErrorDeg(T_0T, T_0T_true) > kFlipThreshold_deg;
+    const Eigen::Vector3d error = T_0T.translation() - T_0T_true.translation();
+    evaluation.per_tag.push_back(
+        {{"id", tag.id},
+         {"error_m", {error.x(), error.y(), error.z()}},
+         {"error_before_m", (T_0T_before.translation() - T_0T_true.translation()).norm()},
+         {"rotation_error_deg", RotationErrorDeg(T_0T, T_0T_true)},
+         {"sigma_m",
+          tag.has_covariance ? std::sqrt(tag.covariance.topLeftCorner<3, 3>().trace()) : 0.0},
+         {"observations", tag.observations},
+         {"rejected", tag.rejected}});
+    ++evaluation.tags;
+  }
+  if (evaluation.tags > 0) {
+    evaluation.rms_after_m = std::sqrt(evaluation.rms_after_m / evaluation.tags);
+    evaluation.rms_before_m = std::sqrt(evaluation.rms_before_m / evaluation.tags);
+  }
+  return evaluation;
+}
+
+void RunMapping(const TagBenchOptions& options, nlohmann::json* summary,
+                output::HtmlReport* report) {
+  sim::Scenario scenario = sim::BuildScenario(sim::LoadScenarioParams(
+      sim::ScenarioConfig("tags", {}, {"seed=" + std::to_string(options.seed)})));
+  const sim::TagsSceneParams& field = scenario.params().tags;
+  const sim::ScenarioCamera& camera = scenario.camera("down");
+  perception::TagFrontEndParams params;
+  params.size_m = field.tag_size_m;
+  const int first_movable = 3 + field.fixed_obstacles;
+  for (int k = 0; k < field.movable_obstacles; ++k) {
+    params.sizes[first_movable + k] = field.movable_tag_size_m;
+  }
+  params.detection.quad_decimate = 1.0;  // the 0.1 m movable tags are ~13 px at 2.5 m
+  // The rendered corners' error against the projected truth (corner_error_*_px below): median
+  // ~0.17 px, 90 % ~0.4 px; the default 1 px would weight the tags 1/25 against gravity.
+  params.pose.refiner.detection_sigma_px = 0.3;
+  perception::TagFrontEnd front_end(options.detectors.Create("apriltag", params.detection),
+                                    camera.model, params);
+  perception::TagFlipResolverParams disabled;
+  disabled.enabled = false;
+  perception::TagFlipResolver lowest_error(disabled);
+  perception::TagMap resolved_map, unresolved_map;
+  const int frames_per_lane = options.quick ? 20 : 40;
+  // 2.5 m (the scenario's start height): the 90 deg camera sees 5 x 3.75 m, so the first lane,
+  // over the origin tag, also sees the tags up to ~2.3 m beside and ~3.4 m ahead of it (the map
+  // grows only from images that see a mapped tag).
+  const double height_m = 2.5;
+  const double lanes_x_m[] = {0.0, 4.0 / 3.0, 8.0 / 3.0, 4.0};
+  sim::RayCaster caster;
+  std::mt19937 rng(options.seed);
+  std::normal_distribution<double> normal;
+  int flips_resolved = 0, flips_unresolved = 0, posed = 0, frame_index = 0;
+  std::vector<double> t_axis, detections_per_frame, corner_errors_px;
+  for (int lane = 0; lane < 4; ++lane) {
+    for (int k = 0; k < frames_per_lane; ++k, ++frame_index) {
+      const double along = -0.5 + 7.0 * k / (frames_per_lane - 1);
+      const double y = lane % 2 ? field.area_m.y() - along : along;
+      Eigen::Isometry3d T_WB = Eigen::Isometry3d::Identity();
+      T_WB.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+      T_WB.translation() = Eigen::Vector3d(lanes_x_m[lane], y, height_m);
+      const Eigen::Isometry3d T_WC = camera.T_WC(T_WB);
+      const double t_s = frame_index / camera.rate_hz;
+      const cv::Mat image = camera.effects
+                                .Capture(
+                                    caster, scenario.scene(), *camera.model,
+                                    [&](double) { return T_WC; }, t_s, frame_index, camera.render)
+                                .frame.image;
+      const perception::TagFrameResult result = front_end.Process(image, t_s);
+      std::vector<perception::TagPoseInImage> posed_tags;
+      std::vector<perception::TagMapObservation> resolved, unresolved;
+      std::vector<Eigen::Isometry3d> truth;
+      for (const perception::TagResult& tag : result.tags) {
+        const int object = scenario.scene().FindId("tag" + std::to_string(tag.detection.id));
+        if (!tag.pose || object < 0) continue;
+        posed_tags.push_back({tag.detection.family, tag.detection.id, *tag.pose});
+        truth.push_back(T_WC.inverse() * scenario.scene().object(object).T_WO);
+        for (int c = 0; c < 4; ++c) {  // detected corners against the projected truth
+          Eigen::Vector2d corner_px;
+          if (camera.model->Project(truth.back() * perception::TagCorner(c, tag.size_m),
+                                    &corner_px)) {
+            corner_errors_px.push_back((corner_px - tag.detection.corners_px[c]).norm());
+          }
+        }
+        resolved.push_back({tag.detection.family, tag.detection.id, tag.size_m, tag.chosen().T_CT,
+                            tag.chosen().covariance});
+      }
+      const std::vector<perception::FlipChoice> baseline = lowest_error.Resolve(t_s, posed_tags);
+      for (std::size_t i = 0; i < posed_tags.size(); ++i) {
+        const TagPoseCandidate& plain =
+            baseline[i].use_alternative ? *posed_tags[i].pose.alternative : posed_tags[i].pose.best;
+        unresolved.push_back({posed_tags[i].family, posed_tags[i].id, resolved[i].tag_size_m,
+                              plain.T_CT, plain.covariance});
+        flips_resolved += RotationErrorDeg(resolved[i].T_CT, truth[i]) > kFlipThreshold_deg;
+        flips_unresolved += RotationErrorDeg(plain.T_CT, truth[i]) > kFlipThreshold_deg;
+        ++posed;
+      }
+      // Gravity in C as the vehicle's attitude estimate gives it: the true direction, off by
+      // N(0, gravity_sigma_deg) per axis (the map's own assumption).
+      const Eigen::Vector3d tilt_noise(normal(rng), normal(rng), normal(rng));
+      const Eigen::Vector3d down_C =
+          control::ExpSo3(tilt_noise * resolved_map.params().gravity_sigma_deg * M_PI / 180.0) *
+          T_WC.linear().transpose() * -Eigen::Vector3d::UnitZ();
+      resolved_map.AddImage(t_s, resolved, down_C);
+      unresolved_map.AddImage(t_s, unresolved, down_C);
+      t_axis.push_back(t_s);
+      detections_per_frame.push_back(static_cast<double>(result.tags.size()));
+    }
+  }
+  const perception::TagMapSolveSummary solve = resolved_map.Optimize();
+  unresolved_map.Optimize();
+  const Eigen::Isometry3d T_W0_true = scenario.scene().object("tag0").T_WO;
+  const MapEvaluation resolved_eval = EvaluateMap(resolved_map, scenario, T_W0_true);
+  const MapEvaluation unresolved_eval = EvaluateMap(unresolved_map, scenario, T_W0_true);
+  const int tags_in_scene = 3 + field.fixed_obstacles + field.movable_obstacles;
+  nlohmann::json section = {
+      {"frames", frame_index},
+      {"posed_tag_observations", posed},
+      {"corner_error_median_px", Median(corner_errors_px)},
+      {"corner_error_p90_px", Percentile90(corner_errors_px)},
+      {"flip_rate_resolved", posed ? double(flips_resolved) / posed : 0.0},
+      {"flip_rate_lowest_error", posed ? double(flips_unresolved) / posed : 0.0},
+      {"tags_in_scene", tags_in_scene},
+      {"tags_mapped", resolved_eval.tags},
+      {"map_rms_before_m", resolved_eval.rms_before_m},
+      {"map_rms_after_m", resolved_eval.rms_after_m},
+      {"map_flipped_tags", resolved_eval.flipped},
+      {"map_rejected_observations", solve.rejected_observations},
+      {"map_solve_time_s", solve.solve_time_s},
+      {"unresolved_map_rms_after_m", unresolved_eval.rms_after_m},
+      {"unresolved_map_flipped_tags", unresolved_eval.flipped},
+      {"map_tags", resolved_eval.per_tag},
+  };
+  (*summary)["mapping"] = section;
+  (*summary)["acceptance"] = {
+      {"map_rms_within_2cm", resolved_eval.rms_after_m <= 0.02},
+      {"no_flipped_tag_in_map", resolved_eval.flipped == 0},
+      {"all_tags_mapped", resolved_eval.tags == tags_in_scene},
+  };
+  report->AddSection("Mapping pass over the tags scenario");
+  report->AddParagraph("Lawn-mower: 4 lanes at 2.5 m; map errors in the origin tag's frame.");
+  report->AddTable(section);
+  report->AddSvg(output::SvgPlot({"Tags detected per frame", "t [s]", "tags"})
+                     .AddLine("detections", t_axis, detections_per_frame)
+                     .Render());
+}
+
+}  // namespace
+
+void RunTagBench(const TagBenchOptions& options, nlohmann::json* summary,
+                 output::HtmlReport* report) {
+  RunDetection(options, summary, report);
+  RunMapping(options, summary, report);
+}
+
+}  // namespace aperture::experiments

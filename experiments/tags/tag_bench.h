@@ -1,0 +1,33 @@
+#pragma once
+// `aperture bench tags` (issue 15): the AprilTag front end on frames ray-traced by the simulator
+// against their ground truth. Sections, each under its own summary key:
+//   detection  per detector (every registered one) and family (36h11, 16h5, 25h9, 41h12):
+//              single 0.16 m tags at 0.5-6 m, view angles 0-70 deg, a third with motion blur
+//              (10 ms exposure at 1 m/s); detection rate, translation / rotation error (the
+//              candidate nearer the truth, so flips do not count here), ms per frame
+//   mapping    a lawn-mower pass (4 lanes, 2.5 m height, gravity per image 1 deg off) over the `tags` scenario (4 x 6 m,
+//              paper D): flip rate of the chosen pose with and without TagFlipResolver; the
+//              TagMap from the resolved observations: tag position RMS before (chained
+//              initialisation) and after optimization, in the origin tag's frame; tags whose
+//              mapped rotation is > 10 deg off (flipped) for resolved and unresolved inputs
+//   acceptance booleans: map RMS <= 2 cm, no flipped tag in the map
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "output/html_report.h"
+#include "perception/tags/tag_detector_registry.h"
+
+namespace aperture::experiments {
+
+struct TagBenchOptions {
+  std::uint64_t seed = 1;
+  bool quick = false;  // fewer frames, same code paths (ctest smoke test)
+  perception::TagDetectorRegistry detectors = perception::TagDetectorRegistry::WithBuiltins();
+  std::string frames_csv_path;  // per detection frame of the detection section; empty = none
+};
+
+void RunTagBench(const TagBenchOptions& options, nlohmann::json* summary,
+                 output::HtmlReport* report);
+
+}  // namespace aperture::experiments
