@@ -23,6 +23,7 @@ void AddSimRecoveryCommand(CLI::App& sim, int* exit_code);
 void AddBenchControlCommand(CLI::App& bench, int* exit_code);
 void AddBenchGapCommand(CLI::App& bench, int* exit_code);
 void AddBenchMononavCommand(CLI::App& bench, int* exit_code);
+void AddBenchTs2pCommand(CLI::App& bench, int* exit_code);
 void AddBenchTagsCommand(CLI::App& bench, int* exit_code);
 
 }  // namespace aperture::apps

@@ -7,6 +7,8 @@
 // timing, metric statistics), OUT/frames.csv (one row per frame: t_s, index, every node metric),
 // OUT/report.html (metric plots, timing, key frames with overlays) and with --video the overlay
 // video OUT/overlay.mp4 (or .avi); a source with an IMU (a bag with --imu-topic) adds OUT/imu.csv.
+// Front ends may add their own files (FrontEndResources::output_directory), e.g. ts2p:
+// OUT/openings/<index>.png and OUT/ts2p.csv; gap_tracker: OUT/gap_tracker.csv.
 #include <algorithm>
 #include <filesystem>
 #include <iostream>

@@ -6,7 +6,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config ccache
-  libeigen3-dev libopencv-dev libtbb-dev
+  libeigen3-dev libopencv-dev libopencv-contrib-dev libtbb-dev
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libnlopt-cxx-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libapriltag-dev libopengv-dev libceres-dev liblinear-dev libpcl-dev

@@ -5,6 +5,8 @@
 #include "perception/mono_depth/mono_depth_node.h"
 #include "perception/quality/image_quality_node.h"
 #include "perception/tags/april_tag_node.h"
+#include "perception/ts2p/gap_tracker_node.h"
+#include "perception/ts2p/ts2p_node.h"
 
 namespace aperture::perception {
 
@@ -26,6 +28,14 @@ void RegisterBuiltinFrontEnds(FrontEndRegistry& registry) {
                     "monocular depth map per colour frame (seed 003 patch SVM; needs --color); "
                     "Table I errors when depth/ is beside the images",
                     &MonoDepthNode::Create);
+  registry.Register(Ts2pNode::kName,
+                    "TS2P unknown-gap detection from stacked flow parallax (seed 002): "
+                    "openings/<index>.png, ts2p.csv",
+                    &Ts2pNode::Create);
+  registry.Register(GapTrackerNode::kName,
+                    "KLT label tracking of the ts2p opening under FOE constraints (seed 002 "
+                    "Alg. 1): safe point x_s, FOE, divergence; needs ts2p",
+                    &GapTrackerNode::Create);
 }
 
 }  // namespace aperture::perception
