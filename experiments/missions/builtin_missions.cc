@@ -8,6 +8,7 @@
 
 #include "experiments/led/led_hover_flight.h"
 #include "experiments/missions/gap_mission_flight.h"
+#include "experiments/missions/gapflyt_flight.h"
 #include "sim/sitl/ground_truth_autopilot.h"
 
 namespace aperture::experiments {
@@ -29,8 +30,8 @@ class HoverFlight final : public MissionFlight {
 
   MissionEvaluation Evaluate(const sim::SitlResult& result) override {
     MissionEvaluation out;
-    const HoverMetrics hover = ComputeHoverMetrics(result.trajectory, p_set_W_, {},
-                                                   kHoverMaxErrorM, /*recovery_hold_s=*/1.0);
+    const HoverMetrics hover = ComputeHoverMetrics(result.trajectory, p_set_W_, {}, kHoverMaxErrorM,
+                                                   /*recovery_hold_s=*/1.0);
     out.figures["hover_error_m"] = {{"max", hover.max_error_m}, {"rms", hover.rms_error_m}};
     out.passed = !result.collision && hover.max_error_m <= kHoverMaxErrorM;
     char line[120];
@@ -44,8 +45,8 @@ class HoverFlight final : public MissionFlight {
   static sim::GroundTruthAutopilotParams Params(const MissionContext& context) {
     const Eigen::Matrix3d R_WB = context.scenario.T_WB_start().linear();
     sim::GroundTruthAutopilotParams params;
-    params.waypoints.push_back(sim::Waypoint{context.sitl.initial_state.p_WB,
-                                             std::atan2(R_WB(1, 0), R_WB(0, 0)), 0.0});
+    params.waypoints.push_back(
+        sim::Waypoint{context.sitl.initial_state.p_WB, std::atan2(R_WB(1, 0), R_WB(0, 0)), 0.0});
     return params;
   }
 
@@ -93,8 +94,7 @@ class LedHoverMission final : public MissionFlight {
     return out;
   }
 
-  void AddReportSections(const MissionEvaluation& /*evaluation*/,
-                         const sim::SitlResult& /*result*/,
+  void AddReportSections(const MissionEvaluation& /*evaluation*/, const sim::SitlResult& /*result*/,
                          output::HtmlReport* report) const override {
     if (result_) AddLedHoverReport(*result_, report);
   }
@@ -112,13 +112,17 @@ void RegisterBuiltinMissions(MissionRegistry& registry) {
                     "vision gap mission (seed 000): detect, plan, approach, traverse the "
                     "patterned gap, recover",
                     {"gap"}, MakeGapMissionFlight);
-  registry.Register(
-      "led_hover", "LED-stabilized hover (thesis C.4.3): LED pose from the ground camera + IMU",
-      {"led"}, [](const MissionContext& context) -> std::unique_ptr<MissionFlight> {
-        return std::make_unique<LedHoverMission>(context);
-      });
+  registry.Register("gapflyt",
+                    "GapFlyt (seed 002): active scan, TS2P detection, label tracking, servo "
+                    "(servo.law moments | pid) through the unknown opening",
+                    {"gapflyt"}, MakeGapflytFlight);
+  registry.Register("led_hover",
+                    "LED-stabilized hover (thesis C.4.3): LED pose from the ground camera + IMU",
+                    {"led"}, [](const MissionContext& context) -> std::unique_ptr<MissionFlight> {
+                      return std::make_unique<LedHoverMission>(context);
+                    });
   registry.Register("hover", "hover at the start pose on ground truth (reference flight)",
-                    {"gapflyt", "tags", "forest"},
+                    {"tags", "forest"},
                     [](const MissionContext& context) -> std::unique_ptr<MissionFlight> {
                       return std::make_unique<HoverFlight>(context);
                     });

@@ -1,0 +1,203 @@
+#pragma once
+// The GapFlyt mission (Sanket et al., RA-L 2018, seed 002) as a perception::Autopilot: fly through
+// an opening of unknown shape, size and position with a forward monocular camera, the IMU and the
+// downward range sensor only (no map, no known structure, nothing from sim/).
+//
+//   calibrate  hover thrust, zero body rates while the odometry averages the IMU biases at rest
+//              (control/drag_aided_odometry.h); the odometry frame W starts here.
+//   settle     position hold at the start for settle_s (the odometry's velocity settles).
+//   scan       active vision (Sec. II, IV-A: "a fixed diagonal straight line trajectory in the
+//              X_W - Z_W plane ... while taking a number of images"): a rest-to-rest minimum-jerk
+//              line of scan_displacement_m in the lateral/vertical plane (y_B, z_B of the start),
+//              heading held. The frames around its fastest part (the ts2p window of
+//              stack * stride + 1 frames centred on the scan's mid-time) go to the front ends: one
+//              TS²P detection (Sec. II) whose reference frame is at the scan's peak speed.
+//              No detection (or an invalid one): the scan runs back the other way, up to
+//              max_scans times, then the mission aborts.
+//   servo      label tracking (Sec. III, Alg. 1: gap_tracker) from the detection on, every frame;
+//              the tracked contour C and safe point x_s (normalized, re-projected into the level
+//              camera with the attitude estimate, servo/level_view.h) drive servo::GapServo
+//              (`servo.law`): the moment servo towards the commit view (the detected contour
+//              centred on the body axis's image and scaled to commit_area_fraction of the image,
+//              at the nominal depth commit_depth_m: the opening's size is unknown, so a_n is the
+//              depth up to the unknown scale and the goal is a view, not a distance), or the
+//              paper's PID on x_s with the forward speed of theta_0 (Sec. III-B). Its body velocity
+//              reference goes to the flatness/position controller (velocity tracking: the
+//              position reference follows the estimate).
+//   go_through (commit) when the tracked contour reaches commit_border_px of the image border (the
+//              opening is about to fill the view), the moment servo's error is below
+//              commit_error, or the track is lost within commit_area_fraction's view: straight
+//              along the heading at go_through_speed_mps for go_through_distance_m on the
+//              odometry, height held. Blind, as in the paper once the gap fills the view.
+//   stop       position hold where go_through ended for stop_hold_s, then done.
+//   aborted    no opening after max_scans scans, or the track lost before the commit: position
+//              hold where it happened (the run ends on its duration).
+//
+// Front ends: `ts2p` (perception::Ts2pNode) and `gap_tracker` (perception::GapTrackerNode), the
+// nodes `aperture run --frontends ts2p,gap_tracker` runs, hosted in a perception::FrontEndRunner.
+// The ts2p interval is forced to "never again" (the tracker must not be re-initialized by a
+// detection on the approach, whose flow is an expansion, not the scan's parallax).
+// State estimate: control::DragAidedOdometry (attitude, range height, rotor-drag velocity); no
+// PoseFusion: GapFlyt measures no pose. Times are on the sensor clock.
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "control/drag_aided_odometry.h"
+#include "control/position_controller.h"
+#include "control/quad_state.h"
+#include "control/vehicle_parameters.h"
+#include "perception/autopilot.h"
+#include "perception/camera/camera_model.h"
+#include "perception/graph/front_end_runner.h"
+#include "perception/ts2p/label_tracker.h"
+#include "perception/ts2p/opening_track.h"
+#include "perception/ts2p/ts2p_node.h"
+#include "planning/motion_primitive.h"
+#include "servo/gap_servo.h"
+
+namespace aperture::planning {
+
+struct GapflytMissionParams {
+  int camera_id = 0;  // Frame::camera_id of the forward camera; other cameras are ignored
+  double camera_rate_hz = 30.0;  // its frame rate: places the ts2p window on the scan [Hz]
+  control::DragAidedOdometryParams odometry;
+  control::PositionControllerParams controller;  // Table A.2 gains
+  perception::Ts2pNodeParams ts2p;               // its interval is overridden (see above)
+  perception::LabelTrackerParams tracker;
+  servo::GapServoParams servo;  // `servo.law`: moments | pid
+  // Hold after the calibration [s]: the drag velocity's time constant (0.3 s) a few times over.
+  double settle_s = 1.0;
+  // Scan line in the start's (y_B, z_B) plane [m]: 0.3 m left and 0.3 m up, 0.42 m diagonal in
+  // scan_duration_s = 1.2 s peaks at 0.66 m/s, ~4.4 cm between frames two apart at 30 Hz (the
+  // ts2p bench's 5 cm scan step; seed 002 Fig. 7's diagonal).
+  Eigen::Vector2d scan_displacement_m = Eigen::Vector2d(0.3, 0.3);
+  double scan_duration_s = 1.2;
+  int max_scans = 3;
+  // Moment law goal view: the detected contour centred on the body axis's image with this
+  // fraction of the normalized image area (0.3: a 1.0 x 0.8 m opening ~0.95 m ahead with an 80
+  // deg camera, where the label sets still hold their corners), at this nominal depth [m].
+  double commit_area_fraction = 0.3;
+  double commit_depth_m = 1.0;
+  // Moment law: commit when |s - s*|_2 falls below this (a_n in the nominal depth's metres).
+  double commit_error = 0.05;
+  // Commit when the tracked contour comes within this many pixels of the image border.
+  double commit_border_px = 4.0;
+  // Speed limit of the servo's velocity reference [m/s] (the moment law's first steps are large).
+  double max_servo_speed_mps = 1.2;
+  double go_through_speed_mps = 1.0;
+  // Blind distance after the commit [m]: past a wall the commit view puts at ~0.6-1 m, short of a
+  // background ~2 m behind it (seed 002: 0Z_B - 0Z_F ~ 3.1 m).
+  double go_through_distance_m = 1.8;
+  double stop_hold_s = 1.0;
+  // Frames without a valid track before the commit that abort the mission (3 = 0.1 s at 30 Hz).
+  int max_lost_frames = 3;
+
+  // Throws std::invalid_argument naming the field (and via the components' Validate()).
+  void Validate() const;
+};
+
+enum class GapflytPhase { kCalibrate, kSettle, kScan, kServo, kGoThrough, kStop, kDone, kAborted };
+// "calibrate", "settle", "scan", "servo", "go_through", "stop", "done", "aborted".
+const char* ToString(GapflytPhase phase);
+
+struct GapflytPhaseChange {
+  double t_s = 0.0;
+  GapflytPhase phase = GapflytPhase::kCalibrate;  // entered at t_s
+};
+
+class GapflytMission : public perception::Autopilot {
+ public:
+  // camera: the forward camera's model (normalizes the tracked pixels); T_BC its mount; vehicle:
+  // the controller's model (its rotor drag d_x, d_y also feed the odometry and the PID's speed).
+  // Throws std::invalid_argument for invalid params, a null camera or a non-rigid T_BC.
+  GapflytMission(const GapflytMissionParams& params,
+                 std::shared_ptr<const perception::CameraModel> camera,
+                 const Eigen::Isometry3d& T_BC, const control::VehicleParameters& vehicle);
+
+  std::string name() const override { return "gapflyt_mission"; }
+  void OnImu(const perception::ImuSample& sample) override;
+  void OnFrame(const perception::Frame& frame) override;
+  void OnRange(const perception::RangeReading& reading) override;
+  perception::AutopilotCommand Step(double t_s) override;
+  // "<phase>" plus details, e.g. "scan 1/3", "servo (pid) |e| 0.021", "aborted: no opening".
+  std::string status() const override;
+
+  GapflytPhase phase() const { return phase_; }
+  const std::vector<GapflytPhaseChange>& phase_changes() const { return phase_changes_; }
+  const std::string& reason() const { return reason_; }  // why it aborted / committed
+  control::QuadState estimate() const { return odometry_.estimate(); }
+  servo::GapServoLaw law() const { return params_.servo.law; }
+  int scans() const { return scans_; }
+  int frames_tracked() const { return frames_tracked_; }
+  // The detection the servo started from (null before).
+  const std::shared_ptr<const perception::Ts2pDetection>& detection() const { return detection_; }
+  // Sensor-clock time of that detection's reference frame, of the commit; NaN before.
+  double detection_t_s() const { return detection_t_s_; }
+  double commit_t_s() const { return commit_t_s_; }
+  // Latest servo step (error, reference) while servoing.
+  const std::optional<servo::ServoStepResult>& last_servo_step() const { return last_step_; }
+  // Overlay of the latest processed frame: the front ends' (contour, safe point, F/B corners),
+  // the FOE, the body axis's image and the phase.
+  void DrawOverlay(cv::Mat& bgr) const;
+
+ private:
+  std::optional<perception::AutopilotCommand> StepCalibrate(double t_s);
+  std::optional<perception::AutopilotCommand> StepSettle(double t_s);
+  std::optional<perception::AutopilotCommand> StepScan(double t_s);
+  std::optional<perception::AutopilotCommand> StepServo(double t_s);
+  std::optional<perception::AutopilotCommand> StepGoThrough(double t_s);
+  perception::AutopilotCommand StepHold(double t_s);  // stop, done, aborted
+
+  void EnterPhase(GapflytPhase phase, double t_s);
+  void Abort(const std::string& reason, double t_s);
+  void StartScan(double t_s);
+  void StartServo(const perception::Ts2pOutput& detection);
+  void Commit(const std::string& reason, double t_s);
+  // A frame of the servo phase: one servo step on the track.
+  void ServoOnFrame(const perception::OpeningTrack& track);
+  bool TouchesBorder(const std::vector<Eigen::Vector2d>& contour_px) const;
+  // Pixels -> normalized coordinates of the level camera (servo/level_view.h).
+  std::optional<std::vector<Eigen::Vector2d>> LevelNormalized(
+      const std::vector<Eigen::Vector2d>& px) const;
+  perception::AutopilotCommand Track(const control::TrajectoryPoint& reference) const;
+  perception::AutopilotCommand TrackBodyVelocity(double t_s, const Eigen::Vector3d& v_B) const;
+  control::TrajectoryPoint HoldReference(double t_s) const;
+
+  GapflytMissionParams params_;
+  std::shared_ptr<const perception::CameraModel> camera_;
+  Eigen::Isometry3d T_BC_;
+  control::VehicleParameters vehicle_;
+  control::DragAidedOdometry odometry_;
+  control::PositionController controller_;
+  servo::GapServo servo_;
+  std::unique_ptr<perception::FrontEndRunner> front_ends_;  // new for every scan
+
+  GapflytPhase phase_ = GapflytPhase::kCalibrate;
+  double phase_start_t_s_ = 0.0;
+  std::vector<GapflytPhaseChange> phase_changes_;
+  std::string reason_;
+  double heading_rad_ = 0.0;  // held throughout (odometry frame: 0)
+  Eigen::Vector3d hold_p_W_ = Eigen::Vector3d::Zero();
+  MotionPrimitive scan_;
+  int scans_ = 0;
+  double scan_feed_start_t_s_ = 0.0;  // frames from here on go to the front ends
+  bool detection_tried_ = false;      // the ts2p node reported its one detection of this scan
+  std::shared_ptr<const perception::Ts2pDetection> detection_;
+  double detection_t_s_ = std::numeric_limits<double>::quiet_NaN();
+  double commit_t_s_ = std::numeric_limits<double>::quiet_NaN();
+  bool desired_set_ = false;
+  Eigen::Vector3d servo_v_B_ = Eigen::Vector3d::Zero();
+  std::optional<servo::ServoStepResult> last_step_;
+  std::optional<perception::OpeningTrack> last_track_;
+  int lost_frames_ = 0;
+  int frames_tracked_ = 0;
+  Eigen::Vector3d go_through_start_W_ = Eigen::Vector3d::Zero();
+  double last_imu_t_s_ = std::numeric_limits<double>::quiet_NaN();
+};
+
+}  // namespace aperture::planning
