@@ -1,6 +1,7 @@
 #include "control/drag_aided_odometry.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -15,6 +16,7 @@ void DragAidedOdometryParams::Validate() const {
   RequirePositive(rotor_drag_xy_per_s.y(), "DragAidedOdometryParams.rotor_drag_xy_per_s.y");
   RequirePositive(velocity_time_constant_s, "DragAidedOdometryParams.velocity_time_constant_s");
   RequirePositive(calibration_s, "DragAidedOdometryParams.calibration_s");
+  RequirePositive(max_range_innovation_m, "DragAidedOdometryParams.max_range_innovation_m");
 }
 
 DragAidedOdometry::DragAidedOdometry(const DragAidedOdometryParams& params)
@@ -74,6 +76,10 @@ void DragAidedOdometry::AddRange(double range_m) {
     p_W_ = Eigen::Vector3d(0.0, 0.0, *z_m);
     v_W_.setZero();
     started_ = true;
+    return;
+  }
+  if (std::abs(*z_m - height_.estimate().z_m) > params_.max_range_innovation_m) {
+    ++ranges_rejected_;
     return;
   }
   height_.Update(*z_m);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
@@ -32,10 +33,15 @@ void GapflytMissionParams::Validate() const {
   tracker.Validate();
   servo.Validate();
   control::RequireNonNegative(settle_s, "GapflytMissionParams.settle_s");
-  control::RequireFinite(scan_displacement_m, "GapflytMissionParams.scan_displacement_m");
-  control::Require(scan_displacement_m.norm() > 0.0, "GapflytMissionParams.scan_displacement_m",
+  control::RequireFinite(scan_direction, "GapflytMissionParams.scan_direction");
+  control::Require(scan_direction.norm() > 0.0, "GapflytMissionParams.scan_direction",
                    "must not be zero: the scan's parallax is what TS2P detects");
-  control::RequirePositive(scan_duration_s, "GapflytMissionParams.scan_duration_s");
+  control::RequirePositive(scan_speed_mps, "GapflytMissionParams.scan_speed_mps");
+  control::RequirePositive(scan_ramp_s, "GapflytMissionParams.scan_ramp_s");
+  control::RequirePositive(scan_cruise_s, "GapflytMissionParams.scan_cruise_s");
+  control::Require(scan_cruise_s * camera_rate_hz >= ts2p.stack * ts2p.stride,
+                   "GapflytMissionParams.scan_cruise_s", scan_cruise_s,
+                   "must hold the ts2p window (stack * stride frame periods)");
   control::RequireAtLeast(max_scans, 1, "GapflytMissionParams.max_scans");
   control::RequireInRange(commit_area_fraction, 0.01, 1.0,
                           "GapflytMissionParams.commit_area_fraction");
@@ -147,19 +153,24 @@ void GapflytMission::StartScan(double t_s) {
   nodes.push_back(std::make_unique<perception::Ts2pNode>(params_.ts2p, ""));
   nodes.push_back(std::make_unique<perception::GapTrackerNode>(params_.tracker, ""));
   front_ends_ = std::make_unique<perception::FrontEndRunner>(std::move(nodes));
-  // Odd scans go along scan_displacement_m, even ones back.
+  // Odd scans go along scan_direction, even ones back.
   const double sign = scans_ % 2 == 1 ? 1.0 : -1.0;
-  const Eigen::Vector3d start_W = hold_p_W_;
-  const Eigen::Matrix3d R_W_heading =
-      Eigen::AngleAxisd(heading_rad_, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  const Eigen::Vector3d end_W = start_W + sign * R_W_heading *
-                                              Eigen::Vector3d(0.0, params_.scan_displacement_m.x(),
-                                                              params_.scan_displacement_m.y());
+  const Eigen::Vector2d d = params_.scan_direction.normalized();
+  const Eigen::Vector3d v_W = sign * params_.scan_speed_mps *
+                              (Eigen::AngleAxisd(heading_rad_, Eigen::Vector3d::UnitZ()) *
+                               Eigen::Vector3d(0.0, d.x(), d.y()));
   const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
-  scan_ = MotionPrimitive(start_W, zero, zero, end_W, zero, zero, params_.scan_duration_s);
-  // The ts2p window (stack * stride frame periods) centred on the scan's mid-time.
+  const double ramp_s = params_.scan_ramp_s, cruise_s = params_.scan_cruise_s;
+  const Eigen::Vector3d p0 = hold_p_W_;
+  const Eigen::Vector3d p1 = p0 + 0.5 * ramp_s * v_W;  // a symmetric ramp covers half of v T
+  const Eigen::Vector3d p2 = p1 + cruise_s * v_W;
+  const Eigen::Vector3d p3 = p2 + 0.5 * ramp_s * v_W;
+  scan_segments_ = {MotionPrimitive(p0, zero, zero, p1, v_W, zero, ramp_s),
+                    MotionPrimitive(p1, v_W, zero, p2, v_W, zero, cruise_s),
+                    MotionPrimitive(p2, v_W, zero, p3, zero, zero, ramp_s)};
+  // The ts2p window (stack * stride frame periods) centred on the cruise.
   const double window_s = params_.ts2p.stack * params_.ts2p.stride / params_.camera_rate_hz;
-  scan_feed_start_t_s_ = t_s + 0.5 * (params_.scan_duration_s - window_s);
+  scan_feed_start_t_s_ = t_s + ramp_s + 0.5 * (cruise_s - window_s);
   EnterPhase(GapflytPhase::kScan, t_s);
 }
 
@@ -185,6 +196,12 @@ std::optional<std::vector<Eigen::Vector2d>> GapflytMission::LevelNormalized(
 }
 
 bool GapflytMission::TouchesBorder(const std::vector<Eigen::Vector2d>& contour_px) const {
+  // Only a contour near the goal view's size: a far opening whose detection bled into the
+  // border is not one about to fill the view.
+  std::vector<cv::Point2f> points;
+  for (const Eigen::Vector2d& p : contour_px) points.emplace_back(p.x(), p.y());
+  const double image_area_px = static_cast<double>(camera_->width()) * camera_->height();
+  if (cv::contourArea(points) < 0.5 * params_.commit_area_fraction * image_area_px) return false;
   const double margin = params_.commit_border_px;
   // Pixel centres run from 0 to size - 1 (camera_model.h).
   const double max_u = camera_->width() - 1.0 - margin, max_v = camera_->height() - 1.0 - margin;
@@ -282,6 +299,12 @@ control::TrajectoryPoint GapflytMission::HoldReference(double t_s) const {
 }
 
 perception::AutopilotCommand GapflytMission::Step(double t_s) {
+  if (std::getenv("GF_DEBUG") && std::fmod(t_s + 1e-6, 0.1) < 0.009) {  // DEBUG
+    const control::QuadState x = estimate();
+    std::fprintf(stderr, "DBG %.2f %s p %.2f %.2f %.2f v %.2f %.2f %.2f ref %.2f %.2f %.2f e %.3f\n", t_s, ToString(phase_),
+                 x.p_WB.x(), x.p_WB.y(), x.p_WB.z(), x.v_W.x(), x.v_W.y(), x.v_W.z(), servo_v_B_.x(),
+                 servo_v_B_.y(), servo_v_B_.z(), last_step_ ? last_step_->error_norm : 0.0);
+  }
   for (;;) {
     std::optional<perception::AutopilotCommand> command;
     switch (phase_) {
@@ -331,10 +354,25 @@ std::optional<perception::AutopilotCommand> GapflytMission::StepSettle(double t_
   return Track(HoldReference(t_s));
 }
 
+double GapflytMission::ScanDuration() const {
+  return 2.0 * params_.scan_ramp_s + params_.scan_cruise_s;
+}
+
+control::TrajectoryPoint GapflytMission::ScanReference(double t_rel) const {
+  double t = std::clamp(t_rel, 0.0, ScanDuration());
+  for (std::size_t i = 0; i < scan_segments_.size(); ++i) {
+    if (t <= scan_segments_[i].duration_s() || i + 1 == scan_segments_.size()) {
+      return scan_segments_[i].Sample(std::min(t, scan_segments_[i].duration_s()));
+    }
+    t -= scan_segments_[i].duration_s();
+  }
+  return {};
+}
+
 std::optional<perception::AutopilotCommand> GapflytMission::StepScan(double t_s) {
   const double t_rel = t_s - phase_start_t_s_;
-  if (t_rel >= params_.scan_duration_s) {
-    hold_p_W_ = scan_.Position(params_.scan_duration_s);
+  if (t_rel >= ScanDuration()) {
+    hold_p_W_ = scan_segments_.back().Position(scan_segments_.back().duration_s());
     if (scans_ >= params_.max_scans) {
       Abort("no opening detected in " + std::to_string(scans_) + " scans", t_s);
       return std::nullopt;
@@ -342,7 +380,7 @@ std::optional<perception::AutopilotCommand> GapflytMission::StepScan(double t_s)
     StartScan(t_s);
     return std::nullopt;
   }
-  control::TrajectoryPoint reference = scan_.Sample(t_rel);
+  control::TrajectoryPoint reference = ScanReference(t_rel);
   reference.t_s = t_s;
   reference.heading_rad = heading_rad_;
   return Track(reference);

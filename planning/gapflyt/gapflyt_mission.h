@@ -7,13 +7,15 @@
 //              (control/drag_aided_odometry.h); the odometry frame W starts here.
 //   settle     position hold at the start for settle_s (the odometry's velocity settles).
 //   scan       active vision (Sec. II, IV-A: "a fixed diagonal straight line trajectory in the
-//              X_W - Z_W plane ... while taking a number of images"): a rest-to-rest minimum-jerk
-//              line of scan_displacement_m in the lateral/vertical plane (y_B, z_B of the start),
-//              heading held. The frames around its fastest part (the ts2p window of
-//              stack * stride + 1 frames centred on the scan's mid-time) go to the front ends: one
-//              TS²P detection (Sec. II) whose reference frame is at the scan's peak speed.
-//              No detection (or an invalid one): the scan runs back the other way, up to
-//              max_scans times, then the mission aborts.
+//              X_W - Z_W plane ... while taking a number of images"): a straight line along
+//              scan_direction in the lateral/vertical plane (y_B, z_B of the start), heading held:
+//              a minimum-jerk ramp to scan_speed_mps, a cruise at that constant velocity for
+//              scan_cruise_s, a ramp back to rest. Only the cruise's frames go to the front ends
+//              (the ts2p window of stack * stride + 1 frames centred on the cruise): at constant
+//              velocity the attitude is constant (drag balance), so the stack holds the rotation-
+//              free parallax TS²P assumes (Sec. II: Omega ~ 0) without derotation; one TS²P
+//              detection (Sec. II). No detection (or an invalid one): the scan runs back the other
+//              way, up to max_scans times, then the mission aborts.
 //   servo      label tracking (Sec. III, Alg. 1: gap_tracker) from the detection on, every frame;
 //              the tracked contour C and safe point x_s (normalized, re-projected into the level
 //              camera with the attitude estimate, servo/level_view.h) drive servo::GapServo
@@ -69,14 +71,29 @@ struct GapflytMissionParams {
   control::PositionControllerParams controller;  // Table A.2 gains
   perception::Ts2pNodeParams ts2p;               // its interval is overridden (see above)
   perception::LabelTrackerParams tracker;
-  servo::GapServoParams servo;  // `servo.law`: moments | pid
+  // `servo.law`: moments | pid. The moment law's gain is raised from ViSP's drone defaults (1.5 /
+  // 0.7 /s) to 2.0 / 1.2 /s: its error decays exponentially, and at 0.7 /s the ~1.5 m from the
+  // scan to the commit view took ~8 s in SITL; at 1.2 /s the first reference (~0.8 m/s forward)
+  // stays below max_servo_speed_mps.
+  servo::GapServoParams servo = [] {
+    servo::GapServoParams p;
+    p.moments.gain.at_zero_per_s = 2.0;
+    p.moments.gain.at_infinity_per_s = 1.2;
+    return p;
+  }();
   // Hold after the calibration [s]: the drag velocity's time constant (0.3 s) a few times over.
   double settle_s = 1.0;
-  // Scan line in the start's (y_B, z_B) plane [m]: 0.3 m left and 0.3 m up, 0.42 m diagonal in
-  // scan_duration_s = 1.2 s peaks at 0.66 m/s, ~4.4 cm between frames two apart at 30 Hz (the
-  // ts2p bench's 5 cm scan step; seed 002 Fig. 7's diagonal).
-  Eigen::Vector2d scan_displacement_m = Eigen::Vector2d(0.3, 0.3);
-  double scan_duration_s = 1.2;
+  // Scan direction in the start's (y_B, z_B) plane (left, up; normalized): seed 002 Fig. 7's
+  // diagonal.
+  Eigen::Vector2d scan_direction = Eigen::Vector2d(1.0, 1.0);
+  // Cruise speed [m/s]: 0.6 m/s at 30 Hz moves the camera 4 cm between frames two apart (the
+  // ts2p stride), the ts2p bench's 5 cm scan step order.
+  double scan_speed_mps = 0.6;
+  // Ramps to and from the cruise [s]: the minimum-jerk ramp peaks at 1.875 v / T = 2.25 m/s^2.
+  double scan_ramp_s = 0.5;
+  // Cruise [s]: the ts2p window (4 * 2 + 1 frames = 0.27 s at 30 Hz) plus ~0.15 s on each side
+  // for the attitude to settle after the ramp.
+  double scan_cruise_s = 0.6;
   int max_scans = 3;
   // Moment law goal view: the detected contour centred on the body axis's image with this
   // fraction of the normalized image area (0.3: a 1.0 x 0.8 m opening ~0.95 m ahead with an 80
@@ -84,8 +101,11 @@ struct GapflytMissionParams {
   double commit_area_fraction = 0.3;
   double commit_depth_m = 1.0;
   // Moment law: commit when |s - s*|_2 falls below this (a_n in the nominal depth's metres).
-  double commit_error = 0.05;
-  // Commit when the tracked contour comes within this many pixels of the image border.
+  // 0.1: the velocity estimate's bias (a few cm/s) holds the error at ~0.06 in SITL, where the
+  // servo's reference no longer moves the vehicle.
+  double commit_error = 0.1;
+  // Commit when the tracked contour comes within this many pixels of the image border while it
+  // covers at least half the goal view's commit_area_fraction (a nearby opening filling the view).
   double commit_border_px = 4.0;
   // Speed limit of the servo's velocity reference [m/s] (the moment law's first steps are large).
   double max_servo_speed_mps = 1.2;
@@ -183,7 +203,10 @@ class GapflytMission : public perception::Autopilot {
   std::string reason_;
   double heading_rad_ = 0.0;  // held throughout (odometry frame: 0)
   Eigen::Vector3d hold_p_W_ = Eigen::Vector3d::Zero();
-  MotionPrimitive scan_;
+  // The scan's ramp up, cruise, ramp down (each starting at its own t = 0).
+  std::vector<MotionPrimitive> scan_segments_;
+  double ScanDuration() const;
+  control::TrajectoryPoint ScanReference(double t_rel) const;
   int scans_ = 0;
   double scan_feed_start_t_s_ = 0.0;  // frames from here on go to the front ends
   bool detection_tried_ = false;      // the ts2p node reported its one detection of this scan

@@ -17,8 +17,10 @@ void LoadOdometry(config::ParamReader& reader, control::DragAidedOdometryParams*
 
 void LoadParams(config::ParamReader& reader, GapflytMissionParams* params) {
   reader.Read("settle_s", &params->settle_s);
-  reader.Read("scan_displacement_m", &params->scan_displacement_m);
-  reader.Read("scan_duration_s", &params->scan_duration_s);
+  reader.Read("scan_direction", &params->scan_direction);
+  reader.Read("scan_speed_mps", &params->scan_speed_mps);
+  reader.Read("scan_ramp_s", &params->scan_ramp_s);
+  reader.Read("scan_cruise_s", &params->scan_cruise_s);
   reader.Read("max_scans", &params->max_scans);
   reader.Read("commit_area_fraction", &params->commit_area_fraction);
   reader.Read("commit_depth_m", &params->commit_depth_m);

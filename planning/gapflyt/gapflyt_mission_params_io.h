@@ -5,8 +5,10 @@
 //
 //   mission:
 //     settle_s: 1.0
-//     scan_displacement_m: [0.3, 0.3]     # (left, up) of the start [m]
-//     scan_duration_s: 1.2
+//     scan_direction: [1, 1]      # (left, up) of the start
+//     scan_speed_mps: 0.6
+//     scan_ramp_s: 0.5
+//     scan_cruise_s: 0.6
 //     max_scans: 3
 //     commit_area_fraction: 0.3
 //     commit_depth_m: 1.0
