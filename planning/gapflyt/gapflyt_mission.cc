@@ -49,6 +49,7 @@ void GapflytMissionParams::Validate() const {
   control::RequirePositive(commit_error, "GapflytMissionParams.commit_error");
   control::RequireNonNegative(commit_border_px, "GapflytMissionParams.commit_border_px");
   control::RequirePositive(max_servo_speed_mps, "GapflytMissionParams.max_servo_speed_mps");
+  control::RequirePositive(max_servo_accel_mps2, "GapflytMissionParams.max_servo_accel_mps2");
   control::RequirePositive(go_through_speed_mps, "GapflytMissionParams.go_through_speed_mps");
   control::RequirePositive(go_through_distance_m, "GapflytMissionParams.go_through_distance_m");
   control::RequireNonNegative(stop_hold_s, "GapflytMissionParams.stop_hold_s");
@@ -301,9 +302,10 @@ control::TrajectoryPoint GapflytMission::HoldReference(double t_s) const {
 perception::AutopilotCommand GapflytMission::Step(double t_s) {
   if (std::getenv("GF_DEBUG") && std::fmod(t_s + 1e-6, 0.1) < 0.009) {  // DEBUG
     const control::QuadState x = estimate();
-    std::fprintf(stderr, "DBG %.2f %s p %.2f %.2f %.2f v %.2f %.2f %.2f ref %.2f %.2f %.2f e %.3f\n", t_s, ToString(phase_),
-                 x.p_WB.x(), x.p_WB.y(), x.p_WB.z(), x.v_W.x(), x.v_W.y(), x.v_W.z(), servo_v_B_.x(),
-                 servo_v_B_.y(), servo_v_B_.z(), last_step_ ? last_step_->error_norm : 0.0);
+    std::fprintf(
+        stderr, "DBG %.2f %s p %.2f %.2f %.2f v %.2f %.2f %.2f ref %.2f %.2f %.2f e %.3f\n", t_s,
+        ToString(phase_), x.p_WB.x(), x.p_WB.y(), x.p_WB.z(), x.v_W.x(), x.v_W.y(), x.v_W.z(),
+        servo_v_B_.x(), servo_v_B_.y(), servo_v_B_.z(), last_step_ ? last_step_->error_norm : 0.0);
   }
   for (;;) {
     std::optional<perception::AutopilotCommand> command;
@@ -387,7 +389,17 @@ std::optional<perception::AutopilotCommand> GapflytMission::StepScan(double t_s)
 }
 
 std::optional<perception::AutopilotCommand> GapflytMission::StepServo(double t_s) {
-  return TrackBodyVelocity(t_s, servo_v_B_);
+  if (std::isnan(last_servo_step_t_s_)) {
+    // Start from the velocity the scan left the vehicle with (in the heading frame).
+    reference_v_B_ = Eigen::AngleAxisd(-heading_rad_, Eigen::Vector3d::UnitZ()) * estimate().v_W;
+  } else {
+    // Forward only: lateral and vertical follow the servo at once (a lag there overshoots).
+    const double max_change = params_.max_servo_accel_mps2 * (t_s - last_servo_step_t_s_);
+    reference_v_B_.x() += std::clamp(servo_v_B_.x() - reference_v_B_.x(), -max_change, max_change);
+    reference_v_B_.tail<2>() = servo_v_B_.tail<2>();
+  }
+  last_servo_step_t_s_ = t_s;
+  return TrackBodyVelocity(t_s, reference_v_B_);
 }
 
 std::optional<perception::AutopilotCommand> GapflytMission::StepGoThrough(double t_s) {

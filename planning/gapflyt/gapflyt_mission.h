@@ -109,6 +109,11 @@ struct GapflytMissionParams {
   double commit_border_px = 4.0;
   // Speed limit of the servo's velocity reference [m/s] (the moment law's first steps are large).
   double max_servo_speed_mps = 1.2;
+  // Rate limit of the servo's forward velocity reference [m/s^2]: the PID's forward speed (theta_0)
+  // is a step, and the tilt a step in velocity asks for rotates the image faster than the label
+  // tracker follows (the tracked contour blew up within 0.3 s in SITL); 1 m/s^2 (~6 deg of tilt)
+  // reaches the PID's 1 m/s in 1 s.
+  double max_servo_accel_mps2 = 1.0;
   double go_through_speed_mps = 1.0;
   // Blind distance after the commit [m]: past a wall the commit view puts at ~0.6-1 m, short of a
   // background ~2 m behind it (seed 002: 0Z_B - 0Z_F ~ 3.1 m).
@@ -214,7 +219,9 @@ class GapflytMission : public perception::Autopilot {
   double detection_t_s_ = std::numeric_limits<double>::quiet_NaN();
   double commit_t_s_ = std::numeric_limits<double>::quiet_NaN();
   bool desired_set_ = false;
-  Eigen::Vector3d servo_v_B_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d servo_v_B_ = Eigen::Vector3d::Zero();      // the servo's (limited) reference
+  Eigen::Vector3d reference_v_B_ = Eigen::Vector3d::Zero();  // rate-limited towards servo_v_B_
+  double last_servo_step_t_s_ = std::numeric_limits<double>::quiet_NaN();
   std::optional<servo::ServoStepResult> last_step_;
   std::optional<perception::OpeningTrack> last_track_;
   int lost_frames_ = 0;

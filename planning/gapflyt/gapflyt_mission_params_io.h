@@ -15,6 +15,7 @@
 //     commit_error: 0.05
 //     commit_border_px: 4
 //     max_servo_speed_mps: 1.2
+//     max_servo_accel_mps2: 1.0
 //     go_through_speed_mps: 1.0
 //     go_through_distance_m: 1.8
 //     stop_hold_s: 1.0
