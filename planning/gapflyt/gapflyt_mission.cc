@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
@@ -300,13 +299,6 @@ control::TrajectoryPoint GapflytMission::HoldReference(double t_s) const {
 }
 
 perception::AutopilotCommand GapflytMission::Step(double t_s) {
-  if (std::getenv("GF_DEBUG") && std::fmod(t_s + 1e-6, 0.1) < 0.009) {  // DEBUG
-    const control::QuadState x = estimate();
-    std::fprintf(
-        stderr, "DBG %.2f %s p %.2f %.2f %.2f v %.2f %.2f %.2f ref %.2f %.2f %.2f e %.3f\n", t_s,
-        ToString(phase_), x.p_WB.x(), x.p_WB.y(), x.p_WB.z(), x.v_W.x(), x.v_W.y(), x.v_W.z(),
-        servo_v_B_.x(), servo_v_B_.y(), servo_v_B_.z(), last_step_ ? last_step_->error_norm : 0.0);
-  }
   for (;;) {
     std::optional<perception::AutopilotCommand> command;
     switch (phase_) {

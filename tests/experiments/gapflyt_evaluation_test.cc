@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
@@ -48,11 +49,13 @@ TEST(GapflytEvaluationTest, CentredCrossingPassesWithTheFootprintsClearance) {
   EXPECT_NEAR(e.crossing->t_s, 2.6, 1e-9);  // x = 2.6 m at 1 m/s
   EXPECT_NEAR(e.crossing->p_O.norm(), 0.0, 1e-9);
   EXPECT_NEAR(e.crossing->centre_to_edge_m, 0.4, 1e-9);  // the nearer (horizontal) edges
-  // Level X-configuration: rotors at (+-a, +-a) / sqrt(2) in B; in the wall plane their lateral
-  // offset is a / sqrt(2) and their height 0, so the top and bottom edges (0.4 m away) are the
-  // nearest: 0.4 - propeller radius; the body sphere leaves 0.4 - body radius.
+  // Level X-configuration: rotors at (+-a, +-a) / sqrt(2) in B, so in the wall plane at a lateral
+  // offset a / sqrt(2) and height 0: a rotor disk is 0.5 - a / sqrt(2) - r_p from a side edge and
+  // 0.4 - r_p from the top and bottom; the body sphere 0.4 - r_b from the top and bottom.
+  const double rotor_lateral = vehicle.arm_length_m / std::sqrt(2.0);
   const double expected =
-      std::min(0.4 - collision.body_radius_m, 0.4 - collision.propeller_radius_m);
+      std::min({0.4 - collision.body_radius_m, 0.5 - rotor_lateral - collision.propeller_radius_m,
+                0.4 - collision.propeller_radius_m});
   EXPECT_NEAR(e.crossing->clearance_m, expected, 1e-9);
   EXPECT_NEAR(e.crossing->offset_from_centroid_m.norm(), 0.0, 1e-9);
 }
