@@ -8,6 +8,7 @@
 #include "experiments/gap/gap_trial_evaluation.h"
 #include "experiments/gapflyt/gapflyt_evaluation.h"
 #include "output/json_eigen.h"
+#include "output/svg_plot.h"
 #include "planning/gapflyt/gapflyt_mission.h"
 #include "planning/gapflyt/gapflyt_mission_params_io.h"
 
@@ -33,6 +34,30 @@ class GapflytFlight final : public MissionFlight {
 
   perception::Autopilot& autopilot() override { return *mission_; }
   void DrawOverlay(cv::Mat& onboard_bgr) const override { mission_->DrawOverlay(onboard_bgr); }
+
+  void AddReportSections(const MissionEvaluation& /*evaluation*/, const sim::SitlResult& /*result*/,
+                         output::HtmlReport* report) const override {
+    const std::vector<planning::GapflytServoSample>& trace = mission_->servo_trace();
+    if (trace.empty()) return;
+    std::vector<double> t, error, vx, vy, vz;
+    for (const planning::GapflytServoSample& s : trace) {
+      t.push_back(s.t_s);
+      error.push_back(s.error_norm);
+      vx.push_back(s.v_B.x());
+      vy.push_back(s.v_B.y());
+      vz.push_back(s.v_B.z());
+    }
+    const std::string law = servo::ToString(mission_->law());
+    report->AddSection("GapFlyt servo (" + law + ")");
+    output::SvgPlot error_plot({"Servo feature error |s - s*|", "t [s]", "error"});
+    error_plot.AddLine(law, t, error);
+    report->AddSvg(error_plot.Render(),
+                   law == "pid" ? "Safe-point error e = x_s - x_B (normalized image units)"
+                                : "Moment features [x_n, y_n, a_n] to the commit view");
+    output::SvgPlot velocity_plot({"Body velocity reference", "t [s]", "v_B [m/s]"});
+    velocity_plot.AddLine("forward x_B", t, vx).AddLine("left y_B", t, vy).AddLine("up z_B", t, vz);
+    report->AddSvg(velocity_plot.Render(), "The servo's reference to the position controller");
+  }
 
   MissionEvaluation Evaluate(const sim::SitlResult& result) override {
     const planning::GapflytMission& m = *mission_;

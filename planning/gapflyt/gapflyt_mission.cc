@@ -258,6 +258,7 @@ void GapflytMission::ServoOnFrame(const perception::OpeningTrack& track) {
   Eigen::Vector3d v_B = step.reference.v_B;
   if (v_B.norm() > params_.max_servo_speed_mps) v_B *= params_.max_servo_speed_mps / v_B.norm();
   servo_v_B_ = v_B;
+  servo_trace_.push_back({t_s, step.error_norm, v_B});
   if (servo_.law() == servo::GapServoLaw::kMoments && step.error_norm < params_.commit_error) {
     Commit("moment servo converged", last_imu_t_s_);
   }

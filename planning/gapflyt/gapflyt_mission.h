@@ -130,6 +130,13 @@ enum class GapflytPhase { kCalibrate, kSettle, kScan, kServo, kGoThrough, kStop,
 // "calibrate", "settle", "scan", "servo", "go_through", "stop", "done", "aborted".
 const char* ToString(GapflytPhase phase);
 
+// One servo step (for plots): the frame time, |s - s*| and the body velocity reference it gave.
+struct GapflytServoSample {
+  double t_s = 0.0;
+  double error_norm = 0.0;
+  Eigen::Vector3d v_B = Eigen::Vector3d::Zero();  // after the speed limit [m/s]
+};
+
 struct GapflytPhaseChange {
   double t_s = 0.0;
   GapflytPhase phase = GapflytPhase::kCalibrate;  // entered at t_s
@@ -166,6 +173,7 @@ class GapflytMission : public perception::Autopilot {
   double commit_t_s() const { return commit_t_s_; }
   // Latest servo step (error, reference) while servoing.
   const std::optional<servo::ServoStepResult>& last_servo_step() const { return last_step_; }
+  const std::vector<GapflytServoSample>& servo_trace() const { return servo_trace_; }
   // Overlay of the latest processed frame: the front ends' (contour, safe point, F/B corners),
   // the FOE, the body axis's image and the phase.
   void DrawOverlay(cv::Mat& bgr) const;
@@ -223,6 +231,7 @@ class GapflytMission : public perception::Autopilot {
   Eigen::Vector3d reference_v_B_ = Eigen::Vector3d::Zero();  // rate-limited towards servo_v_B_
   double last_servo_step_t_s_ = std::numeric_limits<double>::quiet_NaN();
   std::optional<servo::ServoStepResult> last_step_;
+  std::vector<GapflytServoSample> servo_trace_;
   std::optional<perception::OpeningTrack> last_track_;
   int lost_frames_ = 0;
   int frames_tracked_ = 0;
