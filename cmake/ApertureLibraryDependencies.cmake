@@ -14,9 +14,10 @@ else()
 endif()
 
 aperture_find_package(Eigen3 3.4 NO_MODULE)
-# optflow comes from libopencv-contrib-dev (DeepFlow, DualTVL1, RLOF, PCAFlow, SparseToDense).
+# optflow and ximgproc come from libopencv-contrib-dev (DeepFlow, DualTVL1, RLOF, PCAFlow,
+# SparseToDense; the fast global smoother of TS²P's edge-aware flow refinement).
 aperture_find_package(OpenCV 4 COMPONENTS core imgproc imgcodecs videoio calib3d features2d video
-                      optflow)
+                      optflow ximgproc)
 aperture_find_package(TBB)
 aperture_find_package(yaml-cpp)
 aperture_find_package(nlohmann_json 3)
@@ -32,7 +33,7 @@ aperture_find_package(apriltag)
 # yaml-cpp 0.7 on Debian exports the plain target name `yaml-cpp`.
 set(APERTURE_OPENCV_CORE opencv_core opencv_imgproc opencv_imgcodecs)
 set(APERTURE_OPENCV_ALL opencv_core opencv_imgproc opencv_imgcodecs opencv_videoio opencv_calib3d
-    opencv_features2d opencv_video opencv_optflow)
+    opencv_features2d opencv_video opencv_optflow opencv_ximgproc)
 
 # libopengv-dev ships no CMake config: wrap the library in an imported target.
 find_path(OPENGV_INCLUDE_DIR opengv/absolute_pose/methods.hpp REQUIRED)

@@ -121,10 +121,11 @@ Ts2pTrackingRun RunTracking(const Ts2pBenchOptions& options, const Ts2pScanConfi
 }
 
 nlohmann::json SeriesJson(const Ts2pSeries& series) {
-  std::vector<double> flow, stacking, segmentation, safe_point;
+  std::vector<double> flow, stacking, edge_aware, segmentation, safe_point;
   for (const auto& o : series.outcomes) {
     flow.push_back(o.timing.flow_ms);
     stacking.push_back(o.timing.stacking_ms);
+    edge_aware.push_back(o.timing.edge_aware_ms);
     segmentation.push_back(o.timing.segmentation_ms);
     safe_point.push_back(o.timing.safe_point_ms);
   }
@@ -150,6 +151,7 @@ nlohmann::json SeriesJson(const Ts2pSeries& series) {
             {"total_mean", series.MeanTotalMs()},
             {"flow_mean", Mean(flow)},
             {"stacking_mean", Mean(stacking)},
+            {"edge_aware_mean", Mean(edge_aware)},
             {"segmentation_mean", Mean(segmentation)},
             {"safe_point_mean", Mean(safe_point)}}},
           {"dr_by_shape", by_shape}};
@@ -399,17 +401,17 @@ void WriteTs2pBenchOutputs(const Ts2pBenchResult& result, output::OutputFolder& 
   const nlohmann::json figures = SummarizeTs2pBench(result);
   for (const auto& [key, value] : figures.items()) out.summary()[key] = value;
 
-  output::CsvWriter csv(
-      out.Path("trials.csv"),
-      {"series", "trial", "shape", "valid", "overlap", "false_negative", "false_positive",
-       "flow_ms", "stacking_ms", "segmentation_ms", "safe_point_ms", "total_ms", "cpu_ms"});
+  output::CsvWriter csv(out.Path("trials.csv"),
+                        {"series", "trial", "shape", "valid", "overlap", "false_negative",
+                         "false_positive", "flow_ms", "stacking_ms", "edge_aware_ms",
+                         "segmentation_ms", "safe_point_ms", "total_ms", "cpu_ms"});
   for (const auto* group : {&result.methods, &result.stacks, &result.sizes, &result.depths}) {
     for (const Ts2pSeries& series : *group) {
       for (const Ts2pTrialOutcome& o : series.outcomes) {
         csv.WriteCells({series.name, double(o.trial), o.shape, o.valid ? 1.0 : 0.0, o.score.overlap,
                         o.score.false_negative, o.score.false_positive, o.timing.flow_ms,
-                        o.timing.stacking_ms, o.timing.segmentation_ms, o.timing.safe_point_ms,
-                        o.timing.total_ms, o.timing.cpu_ms});
+                        o.timing.stacking_ms, o.timing.edge_aware_ms, o.timing.segmentation_ms,
+                        o.timing.safe_point_ms, o.timing.total_ms, o.timing.cpu_ms});
       }
     }
   }

@@ -7,6 +7,7 @@
 #include <ctime>
 #include <limits>
 #include <opencv2/imgproc.hpp>
+#include <opencv2/ximgproc/edge_filter.hpp>
 #include <stdexcept>
 
 namespace aperture::perception {
@@ -86,6 +87,27 @@ cv::Mat CentralComponent(const cv::Mat& mask) {
 
 }  // namespace
 
+cv::Mat Ts2pDetector::EdgeAwareSmooth(const cv::Mat& guide, const cv::Mat& values) const {
+  // Step 3b: fast global smoother (Min et al. 2014). NaN (derotated rays that left the model)
+  // would spread: smooth the finite values and their indicator and divide (normalized
+  // smoothing), NaN stays NaN.
+  const cv::Mat finite = values == values;
+  const bool all_finite = cv::countNonZero(finite) == static_cast<int>(values.total());
+  cv::Mat filled = values.clone();
+  if (!all_finite) filled.setTo(0.0f, ~finite);
+  cv::Mat smooth;
+  cv::ximgproc::fastGlobalSmootherFilter(guide, filled, smooth, params_.edge_aware_lambda,
+                                         params_.edge_aware_sigma_color);
+  if (all_finite) return smooth;
+  cv::Mat weight, smooth_weight;
+  finite.convertTo(weight, CV_32F, 1.0 / 255.0);
+  cv::ximgproc::fastGlobalSmootherFilter(guide, weight, smooth_weight, params_.edge_aware_lambda,
+                                         params_.edge_aware_sigma_color);
+  cv::divide(smooth, cv::max(smooth_weight, 1e-6), smooth);
+  smooth.setTo(std::numeric_limits<float>::quiet_NaN(), ~finite);
+  return smooth;
+}
+
 void Ts2pParams::Validate() const {
   flow.Validate();
   if (!(flow_scale > 0.0 && flow_scale <= 1.0)) {
@@ -104,6 +126,13 @@ void Ts2pParams::Validate() const {
         "threshold_fraction in (0, 1) and "
         "min_area_fraction in [0, 1)");
   }
+  if (!(edge_aware_lambda >= 0.0 && std::isfinite(edge_aware_lambda)) ||
+      !(edge_aware_sigma_color > 0.0)) {
+    throw std::invalid_argument(
+        "ts2p.edge_aware_lambda must be >= 0 (0 = no edge-aware refinement) and "
+        "edge_aware_sigma_color > 0 [gray levels], got " +
+        std::to_string(edge_aware_lambda) + " and " + std::to_string(edge_aware_sigma_color));
+  }
   if (!(canny_low > 0.0 && canny_high >= canny_low) || weiszfeld_iterations < 1) {
     throw std::invalid_argument(
         "ts2p.canny_low must be > 0 and <= canny_high, weiszfeld_iterations >= 1");
@@ -118,6 +147,8 @@ void LoadParams(config::ParamReader& reader, Ts2pParams* params) {
   reader.Read("morphology_radius_px", &params->morphology_radius_px);
   reader.Read("threshold_fraction", &params->threshold_fraction);
   reader.Read("min_area_fraction", &params->min_area_fraction);
+  reader.Read("edge_aware_lambda", &params->edge_aware_lambda);
+  reader.Read("edge_aware_sigma_color", &params->edge_aware_sigma_color);
   reader.Read("canny_low", &params->canny_low);
   reader.Read("canny_high", &params->canny_high);
   reader.Read("weiszfeld_iterations", &params->weiszfeld_iterations);
@@ -248,6 +279,29 @@ cv::Mat Ts2pDetector::RotationalFlow(const Eigen::Matrix3d& R_CkCr) {
   return flow;
 }
 
+cv::Mat Ts2pDetector::Derotate(const cv::Mat& frame, const Eigen::Matrix3d& R_CkCr,
+                               cv::Mat* unseen) {
+  const cv::Mat rotational = RotationalFlow(R_CkCr);
+  // Absolute sampling positions x + rotational(x); NaN (ray left the model) samples the border.
+  cv::Mat map(rotational.size(), CV_32FC2);
+  for (int y = 0; y < map.rows; ++y) {
+    const cv::Vec2f* d = rotational.ptr<cv::Vec2f>(y);
+    cv::Vec2f* m = map.ptr<cv::Vec2f>(y);
+    for (int x = 0; x < map.cols; ++x) m[x] = cv::Vec2f(x + d[x][0], y + d[x][1]);
+  }
+  cv::Mat derotated;
+  cv::remap(frame, derotated, map, cv::noArray(), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+  if (unseen) {
+    std::vector<cv::Mat> xy;
+    cv::split(map, xy);
+    // Outside [0, size - 1] (NaN compares false, so it counts as outside).
+    const cv::Mat inside = (xy[0] >= 0.0f) & (xy[0] <= frame.cols - 1.0f) & (xy[1] >= 0.0f) &
+                           (xy[1] <= frame.rows - 1.0f);
+    *unseen = ~inside;
+  }
+  return derotated;
+}
+
 cv::Mat Ts2pDetector::SegmentRegion(const cv::Mat& mean_flow, double threshold) const {
   const int radius = MorphologyRadius(mean_flow.cols);
   cv::Mat low = mean_flow < threshold;  // NaN compares false: not part of O
@@ -320,23 +374,21 @@ Ts2pDetection Ts2pDetector::Detect(const cv::Mat& reference, const std::vector<c
   cv::Mat sum = cv::Mat::zeros(reference_small.size(), CV_32F);
   for (std::size_t k = 0; k < frames.size(); ++k) {
     auto stage = Clock::now();
-    cv::Mat flow = flow_.Compute(reference_small, resize(frames[k]));
-    detection.timing.flow_ms += MsSince(stage);
+    cv::Mat frame = frames[k], unseen;
     if (!R_CkCr.empty()) {
-      stage = Clock::now();
-      cv::Mat rotational = RotationalFlow(R_CkCr[k]);
-      if (scale != 1.0) {
-        cv::resize(rotational, rotational, flow.size(), 0, 0, cv::INTER_LINEAR);
-        rotational *= scale;
-      }
-      flow = flow - rotational;
+      frame = Derotate(frames[k], R_CkCr[k], &unseen);
+      if (scale != 1.0) cv::resize(unseen, unseen, reference_small.size(), 0, 0, cv::INTER_NEAREST);
       detection.timing.derotation_ms += MsSince(stage);
+      stage = Clock::now();
     }
+    const cv::Mat flow = flow_.Compute(reference_small, resize(frame));
+    detection.timing.flow_ms += MsSince(stage);
     stage = Clock::now();
     std::vector<cv::Mat> uv;
     cv::split(flow, uv);
     cv::Mat magnitude;
     cv::magnitude(uv[0], uv[1], magnitude);
+    if (!unseen.empty()) magnitude.setTo(std::numeric_limits<float>::quiet_NaN(), unseen);
     sum += magnitude;
     detection.timing.stacking_ms += MsSince(stage);
   }
@@ -344,6 +396,13 @@ Ts2pDetection Ts2pDetector::Detect(const cv::Mat& reference, const std::vector<c
   // Back to full-resolution pixels (flow magnitudes scale with the image).
   cv::Mat mean_flow = sum / (static_cast<double>(frames.size()) * scale);
   if (scale != 1.0) cv::resize(mean_flow, mean_flow, full, 0, 0, cv::INTER_LINEAR);
+  detection.timing.stacking_ms += MsSince(stage);
+  if (params_.edge_aware_lambda > 0.0) {
+    stage = Clock::now();
+    mean_flow = EdgeAwareSmooth(ToGray(reference), mean_flow);
+    detection.timing.edge_aware_ms = MsSince(stage);
+  }
+  stage = Clock::now();
   cv::Mat inverse_flow;
   cv::divide(1.0, cv::max(mean_flow, 1e-3), inverse_flow, CV_32F);
   cv::Mat dx, dy;

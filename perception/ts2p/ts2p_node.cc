@@ -41,7 +41,7 @@ Ts2pNode::Ts2pNode(const Ts2pNodeParams& params, const std::string& output_dir)
         (std::filesystem::path(output_dir_) / "ts2p.csv").string(),
         std::vector<std::string>{"t_s", "index", "valid", "area_px", "safe_u_px", "safe_v_px",
                                  "stack", "flow", "flow_ms", "derotation_ms", "stacking_ms",
-                                 "segmentation_ms", "safe_point_ms", "total_ms"});
+                                 "edge_aware_ms", "segmentation_ms", "safe_point_ms", "total_ms"});
   }
 }
 
@@ -106,7 +106,8 @@ void Ts2pNode::Write(const Ts2pOutput& output) {
                     d.area_px, d.valid ? d.safe_point_px.x() : nan,
                     d.valid ? d.safe_point_px.y() : nan, double(d.stack_size), detector_.FlowName(),
                     d.timing.flow_ms, d.timing.derotation_ms, d.timing.stacking_ms,
-                    d.timing.segmentation_ms, d.timing.safe_point_ms, d.timing.total_ms});
+                    d.timing.edge_aware_ms, d.timing.segmentation_ms, d.timing.safe_point_ms,
+                    d.timing.total_ms});
 }
 
 std::map<std::string, double> Ts2pNode::Metrics(const NodeContext& context) const {

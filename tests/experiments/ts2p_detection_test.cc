@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <opencv2/core.hpp>
 
 #include "experiments/ts2p/ts2p_scan.h"
 #include "perception/ts2p/opening_score.h"
@@ -34,15 +35,63 @@ TEST_P(Ts2pShapeTest, DetectsTheOpeningOfEveryShape) {
   const cv::Point x_s(static_cast<int>(std::lround(d.safe_point_px.x())),
                       static_cast<int>(std::lround(d.safe_point_px.y())));
   EXPECT_NE(scan.truth.at<uchar>(x_s), 0) << "x_s " << d.safe_point_px.transpose();
-  // The modes are the two walls' stacked parallax: F moves more than B.
-  EXPECT_GT(d.foreground_flow_px, 1.5 * d.background_flow_px);
+  // The F mode is the wall's stacked parallax f * mean|baseline| / Z_F (offsets +-1, +-2 scan
+  // steps: mean 1.5 steps); B moves less (Z_B / Z_F = 2.2, but flow bleeding from the wall into a
+  // small opening raises its mode, up to 1.5x the true value on the star).
+  const double f_px = scan.camera->intrinsics().x();
+  const double parallax_F_px = f_px * 1.5 * config.scan_step_m / config.foreground_depth_m;
+  EXPECT_NEAR(d.foreground_flow_px, parallax_F_px, 0.05 * parallax_F_px);
+  EXPECT_GT(d.foreground_flow_px, 1.3 * d.background_flow_px);
 }
 
 INSTANTIATE_TEST_SUITE_P(FiveShapes, Ts2pShapeTest, ::testing::ValuesIn(kTs2pShapes),
                          [](const auto& info) { return info.param; });
 
-// A pure rotation (no baseline) moves every pixel by the rotational flow alone, so flow minus the
-// derotation map predicted through the camera model is the flow method's error only.
+// The star's spikes show the smooth background wall through a few pixels: patch-based flow
+// fills them from the wall's edge (F). The edge-aware refinement (step 3b) fills them from the
+// similar-looking opening instead; without it the overlap drops towards seed 002's 0.75 limit.
+TEST(Ts2pEdgeAwareTest, RecoversTheSpikesOfAStar) {
+  Ts2pScanConfig config;
+  config.shape = "star";
+  config.seed = 11;
+  sim::RayCaster caster;
+  const Ts2pScan scan = RenderTs2pScan(config, caster);
+  perception::Ts2pParams params;
+  perception::Ts2pDetector refined(params);
+  const perception::OpeningScore with =
+      perception::ScoreOpening(refined.Detect(scan.reference, scan.frames).opening, scan.truth);
+  params.edge_aware_lambda = 0.0;
+  perception::Ts2pDetector raw(params);
+  const perception::OpeningScore without =
+      perception::ScoreOpening(raw.Detect(scan.reference, scan.frames).opening, scan.truth);
+  EXPECT_GE(with.overlap, 0.9);
+  EXPECT_LE(with.false_positive, 0.01);
+  EXPECT_GT(with.overlap, without.overlap + 0.1);
+
+  params.edge_aware_lambda = -1.0;
+  EXPECT_THROW(perception::Ts2pDetector{params}, std::invalid_argument);
+}
+
+// Mean flow magnitude [px] over the pixels whose derotated ray stays in the frame.
+double MeanFlowPx(const cv::Mat& flow, const cv::Mat& unseen) {
+  double sum = 0.0;
+  int count = 0;
+  for (int y = 0; y < flow.rows; ++y) {
+    for (int x = 0; x < flow.cols; ++x) {
+      if (unseen.at<uchar>(y, x)) continue;
+      const cv::Vec2f v = flow.at<cv::Vec2f>(y, x);
+      sum += std::hypot(v[0], v[1]);
+      ++count;
+    }
+  }
+  return sum / count;
+}
+
+// A pure rotation (no baseline): the frame derotated through the camera model is the reference
+// image again, so the flow between them is what derotation leaves (issue 13: < 0.1 px mean).
+// DeepFlow measures it (0.017 px; its floor on two renders of one pose is 0.014 px). DIS-medium,
+// the detector's flow, has a floor of ~0.2 px on that same-pose pair (sensor noise on the
+// blank parts of the walls): derotation must add nothing beyond it.
 TEST(Ts2pDerotationTest, PureRotationLeavesSubpixelResidual) {
   Ts2pScanConfig config;
   config.stack = 1;
@@ -50,29 +99,23 @@ TEST(Ts2pDerotationTest, PureRotationLeavesSubpixelResidual) {
   config.rotation_per_step_deg = Eigen::Vector3d(0.5, 1.0, 1.5);  // roll, pitch, yaw
   sim::RayCaster caster;
   const Ts2pScan scan = RenderTs2pScan(config, caster);
-  perception::Ts2pParams params;
-  perception::Ts2pDetector detector(params, scan.camera);
-  perception::DenseFlowParams flow_params;
-  flow_params.variational_refinement = true;
-  perception::DenseFlow flow(flow_params);
-  const cv::Mat measured = flow.Compute(scan.reference, scan.frames[0]);
-  const cv::Mat predicted = detector.RotationalFlow(scan.R_CkCr[0]);
-  double residual = 0.0, rotational = 0.0;
-  int count = 0;
-  const int border = 24;  // pixels that rotate out of view have no flow to measure
-  for (int y = border; y < measured.rows - border; ++y) {
-    for (int x = border; x < measured.cols - border; ++x) {
-      const cv::Vec2f m = measured.at<cv::Vec2f>(y, x), p = predicted.at<cv::Vec2f>(y, x);
-      residual += std::hypot(m[0] - p[0], m[1] - p[1]);
-      rotational += std::hypot(p[0], p[1]);
-      ++count;
-    }
-  }
-  EXPECT_GT(rotational / count, 5.0);  // the rotation is large against the tolerance
-  // Issue 13 asks for < 0.1 px; DIS-medium + variational refinement leaves ~0.16 px on this
-  // rendered pair (sensor noise, no supersampling), so 0.2 px here; a wrong rotation direction
-  // or frame convention leaves the full ~9 px, a wrong axis several px.
-  EXPECT_LT(residual / count, 0.2);
+  config.rotation_per_step_deg.setZero();
+  const Ts2pScan still = RenderTs2pScan(config, caster);  // same pose twice, own noise
+  perception::Ts2pDetector detector(perception::Ts2pParams{}, scan.camera);
+  cv::Mat unseen;
+  const cv::Mat derotated = detector.Derotate(scan.frames[0], scan.R_CkCr[0], &unseen);
+  // The rotation is large against the tolerance: ~9 px of rotational flow.
+  EXPECT_GT(MeanFlowPx(detector.RotationalFlow(scan.R_CkCr[0]), unseen), 5.0);
+  EXPECT_LT(cv::countNonZero(unseen), 0.1 * unseen.total());
+
+  perception::DenseFlowParams accurate;
+  accurate.method = "deepflow";
+  EXPECT_LT(MeanFlowPx(perception::DenseFlow(accurate).Compute(scan.reference, derotated), unseen),
+            0.1);
+  perception::DenseFlow dis(perception::DenseFlowParams{});
+  const double floor_px = MeanFlowPx(dis.Compute(still.reference, still.frames[0]), unseen);
+  EXPECT_LT(MeanFlowPx(dis.Compute(scan.reference, derotated), unseen), floor_px + 0.05);
+
   // Without derotation the rotation looks like parallax; derotated, there is none to detect.
   const perception::Ts2pDetection raw = detector.Detect(scan.reference, scan.frames);
   EXPECT_GT(raw.foreground_flow_px, 5.0);
