@@ -4,7 +4,7 @@
 //   aperture bench gapflyt [--trials N] [--seed S] [--laws moments,pid] [--width W --height H]
 //                          [--tight-every K] [--quick] [--set mission.key=value ...] --out DIR
 //
-// --quick: one polygon trial per law (a smoke test of ~10 s). Writes DIR/summary.json,
+// --quick: one trial (the ellipse) per law (a smoke test of ~10 s). Writes DIR/summary.json,
 // DIR/trials.csv, DIR/report.html.
 #include <iostream>
 #include <memory>
@@ -35,7 +35,7 @@ void RunBenchGapflyt(BenchGapflytOptions options, output::OutputFolder& out) {
                                 "'); the scene is drawn per trial");
   }
   if (!options.laws.empty()) options.bench.laws = perception::SplitFrontEndList(options.laws);
-  if (options.quick) options.bench.trials = 1;  // trial 0: the polygon
+  if (options.quick) options.bench.trials = 1;  // trial 0: the ellipse
   const int total = options.bench.trials * static_cast<int>(options.bench.laws.size());
   output::ProgressBar progress("gapflyt flights", static_cast<std::size_t>(std::max(total, 1)));
   const experiments::GapflytBenchResult result = experiments::RunGapflytBench(
@@ -68,7 +68,7 @@ void AddBenchGapflytCommand(CLI::App& bench, int* exit_code) {
       ->add_option("--tight-every", options->bench.tight_every,
                    "Every K-th round of the five shapes is tight (0: none)")
       ->check(CLI::NonNegativeNumber);
-  command->add_flag("--quick", options->quick, "One polygon trial per law (smoke test)");
+  command->add_flag("--quick", options->quick, "One trial (the ellipse) per law (smoke test)");
   AddCommonOptions(command, &options->common);
   command->callback([options, exit_code] {
     output::OutputFolder out(options->common.out_dir);

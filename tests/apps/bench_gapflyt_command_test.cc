@@ -1,5 +1,5 @@
 // `aperture bench gapflyt --quick` end to end (the smoke run of the Table III analog): one
-// closed-loop flight through the polygon opening with the moment servo, its figures scored on
+// closed-loop flight through the ellipse opening (trial 0) with the moment servo, its figures scored on
 // ground truth in summary.json, trials.csv and report.html; bad options named.
 #include <gtest/gtest.h>
 
@@ -25,7 +25,7 @@ TEST(BenchGapflytCommand, QuickRunFliesThroughTheTrueOpening) {
   EXPECT_EQ(moments["trials"], 1);
   ASSERT_EQ(summary["per_trial"].size(), 1u);
   const nlohmann::json& trial = summary["per_trial"][0];
-  EXPECT_EQ(trial["shape"], "polygon");
+  EXPECT_EQ(trial["shape"], "ellipse");  // trial 0
   const nlohmann::json& f = trial["figures"];
   // Against ground truth: crossed the wall plane inside the true opening without a collision,
   // every part of the footprint clear of its edge, from a detection overlapping the true opening

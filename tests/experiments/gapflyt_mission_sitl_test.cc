@@ -72,5 +72,36 @@ INSTANTIATE_TEST_SUITE_P(Shapes, GapflytMissionSitlTest,
                          ::testing::Values(GapflytCase{"polygon", "moments"},
                                            GapflytCase{"ellipse", "pid"}));
 
+// The `mission` section is strict: unknown keys, invalid values and the wrong scenario are named.
+TEST(GapflytMissionParamsTest, BadParametersAndScenariosAreNamed) {
+  const auto create = [](const std::string& scenario_name, const std::string& item) {
+    sim::Scenario scenario =
+        sim::BuildScenario(sim::LoadScenarioParams(sim::ScenarioConfig(scenario_name)));
+    sim::SitlRunnerParams params;
+    sim::ConfigureSitlFromScenario(scenario, &params);
+    MissionRegistry missions;
+    RegisterBuiltinMissions(missions);
+    const config::ConfigTree tree = config::ConfigTree::FromCommandLine("", {}, {item});
+    config::ParamReader root = tree.Reader();
+    config::ParamReader section = root.Section("mission");
+    return missions.Create("gapflyt", {scenario, params, section});
+  };
+  EXPECT_EQ(create("gapflyt", "mission.servo.law=pid")->autopilot().name(), "gapflyt_mission");
+  const auto expect_error = [&](const std::string& scenario, const std::string& item,
+                                const std::string& named) {
+    try {
+      create(scenario, item);
+      ADD_FAILURE() << item << " was accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(named), std::string::npos) << e.what();
+    }
+  };
+  expect_error("gapflyt", "mission.scan_sped_mps=0.6", "scan_sped_mps");
+  expect_error("gapflyt", "mission.scan_speed_mps=-1", "scan_speed_mps");
+  expect_error("gapflyt", "mission.servo.law=visual", "visual");
+  expect_error("gapflyt", "mission.scan_cruise_s=0.1", "scan_cruise_s");  // < the ts2p window
+  expect_error("gap", "mission.settle_s=1", "gapflyt scenario");
+}
+
 }  // namespace
 }  // namespace aperture::experiments
