@@ -199,6 +199,7 @@ nlohmann::json SummarizeGapflytBench(const GapflytBenchResult& result) {
                            {"trial", t.config.trial},
                            {"shape", t.config.shape},
                            {"tight", t.config.tight},
+                           {"scene_seed", t.config.scene_seed},
                            {"passed", t.passed},
                            {"seed002_success", t.seed002_success},
                            {"figures", t.figures}});

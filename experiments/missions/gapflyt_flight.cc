@@ -77,6 +77,7 @@ class GapflytFlight final : public MissionFlight {
     }
     f["phase_starts"] = phases;
     f["scans"] = m.scans();
+    f["scan_statuses"] = m.scan_statuses();
     f["frames_tracked"] = m.frames_tracked();
     if (m.detection() && !result.trajectory.empty()) {
       const control::QuadState truth = GroundTruthAt(result.trajectory, m.detection_t_s());

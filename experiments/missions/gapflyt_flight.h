@@ -5,7 +5,7 @@
 // EvaluateGapflytFlight (experiments/gapflyt/gapflyt_evaluation.h), the evaluator `aperture bench
 // gapflyt` and the tests use too.
 //
-// Figures (summary.json "mission"): law, phase, status, reason, phase_starts, scans,
+// Figures (summary.json "mission"): law, phase, status, reason, phase_starts, scans, scan_statuses,
 // frames_tracked, detection {t_s, overlap, false_negative, false_positive, detected (>= 0.75)},
 // crossed, inside_opening, clearance_m (footprint to the edge), centre_to_edge_m,
 // crossing_offset_m (from the opening's centroid, in the wall: right, down), time_to_cross_s

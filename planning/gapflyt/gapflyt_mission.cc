@@ -137,6 +137,7 @@ void GapflytMission::OnFrame(const perception::Frame& frame) {
         front_ends_->Latest<perception::Ts2pOutput>(perception::Ts2pNode::kOutputSlot);
     if (!ts2p || !ts2p->fresh) return;
     detection_tried_ = true;
+    scan_statuses_.push_back(ts2p->detection->status);
     if (ts2p->detection->valid) StartServo(*ts2p);
     return;
   }

@@ -165,6 +165,8 @@ class GapflytMission : public perception::Autopilot {
   control::QuadState estimate() const { return odometry_.estimate(); }
   servo::GapServoLaw law() const { return params_.servo.law; }
   int scans() const { return scans_; }
+  // The TS²P detector's status of each scan's detection ("ok" or why there was no opening).
+  const std::vector<std::string>& scan_statuses() const { return scan_statuses_; }
   int frames_tracked() const { return frames_tracked_; }
   // The detection the servo started from (null before).
   const std::shared_ptr<const perception::Ts2pDetection>& detection() const { return detection_; }
@@ -221,6 +223,7 @@ class GapflytMission : public perception::Autopilot {
   double ScanDuration() const;
   control::TrajectoryPoint ScanReference(double t_rel) const;
   int scans_ = 0;
+  std::vector<std::string> scan_statuses_;
   double scan_feed_start_t_s_ = 0.0;  // frames from here on go to the front ends
   bool detection_tried_ = false;      // the ts2p node reported its one detection of this scan
   std::shared_ptr<const perception::Ts2pDetection> detection_;
