@@ -7,7 +7,9 @@
 //                      [--autopilot mission|ground_truth] [--duration S] [--threads T]
 //                      [--config FILE] [--set key=value ...] --out DIR
 //
-// --config/--set override the built-in `gap` scenario (e.g. --set cameras.front.supersampling=1).
+// --config/--set override the built-in `gap` scenario (e.g. --set cameras.front.supersampling=1)
+// and the mission's parameters (--set mission.hover_s=1, section `mission`); summary.json "config"
+// holds the full effective configuration, which `--config OUT/summary.json` flies again.
 // Writes DIR/summary.json (success_rate, error_at_gap.*, per_trial), DIR/trials.csv and
 // DIR/report.html (experiments/gap/gap_bench.h).
 #include <iostream>

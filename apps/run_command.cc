@@ -29,6 +29,7 @@
 #include "perception/graph/front_end_registry.h"
 #include "perception/graph/parallel_executor.h"
 #include "perception/graph/serial_executor.h"
+#include "perception/graph/source_run.h"
 #include "perception/io/open_frame_source.h"
 #include "perception/io/rosbag_source.h"
 
@@ -111,58 +112,46 @@ void RunFrontEnds(const RunOptions& options, output::OutputFolder& out) {
   std::size_t imu_samples = 0;
   PoseStreams pose_streams(out);
   RunRecord record;
-  std::optional<perception::FrameSlots> slots;
-  while (options.max_frames <= 0 || record.frame_count() < size_t(options.max_frames)) {
-    std::optional<perception::Frame> frame = source->Next();
-    if (!frame) break;
-    if (!slots) {
-      slots = graph.MakeSlots(*frame);
-      if (resources.calibration) {
-        perception::CheckCalibrationImageSize(*resources.calibration, frame->image.cols,
-                                              frame->image.rows);
-      }
-    }
-    for (const perception::ImuSample& imu : source->TakeImuSamples()) {
-      if (!imu_csv) imu_csv = MakeImuCsv(out.Path("imu.csv"));
-      WriteImuRow(*imu_csv, imu);
-      ++imu_samples;
-    }
-    executor->Run(*frame, *slots);
-    const std::map<std::string, double> metrics = graph.CollectMetrics(*slots);
-    if (!csv) {
-      std::vector<std::string> columns{"t_s", "index"};
-      for (const auto& [name, value] : metrics) metric_names.push_back(name);
-      columns.insert(columns.end(), metric_names.begin(), metric_names.end());
-      csv = std::make_unique<output::CsvWriter>(out.Path("frames.csv"), columns);
-    }
-    std::vector<double> row{frame->t_s, double(frame->index)};
-    for (const std::string& name : metric_names) {
-      const auto it = metrics.find(name);
-      if (it == metrics.end()) {
-        throw std::logic_error("front end metric '" + name + "' missing at frame " +
-                               std::to_string(frame->index) + " (metrics must be emitted every frame)");
-      }
-      row.push_back(it->second);
-    }
-    csv->WriteRow(row);
-    pose_streams.Write(frame->t_s, graph.CollectPoses(*slots));
-    const cv::Mat overlay = graph.RenderOverlay(*slots);
-    if (options.video) {
-      if (!video) {
-        // Sequences without a rate play back at 30 Hz, a typical camera rate.
-        video = std::make_unique<output::VideoWriter>(out.Path("overlay"),
-                                                      options.fps > 0 ? options.fps : 30.0);
-      }
-      video->Write(overlay);
-    }
-    record.Add(*frame, row, overlay, expected);
-    progress.Update(record.frame_count());
-  }
+  perception::RunSource(
+      *source, graph, *executor, resources, options.max_frames,
+      [&](const perception::Frame& frame, const perception::FrameSlots& slots) {
+        for (const perception::ImuSample& imu : source->TakeImuSamples()) {
+          if (!imu_csv) imu_csv = MakeImuCsv(out.Path("imu.csv"));
+          WriteImuRow(*imu_csv, imu);
+          ++imu_samples;
+        }
+        const std::map<std::string, double> metrics = graph.CollectMetrics(slots);
+        if (!csv) {
+          std::vector<std::string> columns{"t_s", "index"};
+          for (const auto& [name, value] : metrics) metric_names.push_back(name);
+          columns.insert(columns.end(), metric_names.begin(), metric_names.end());
+          csv = std::make_unique<output::CsvWriter>(out.Path("frames.csv"), columns);
+        }
+        std::vector<double> row{frame.t_s, double(frame.index)};
+        for (const std::string& name : metric_names) {
+          const auto it = metrics.find(name);
+          if (it == metrics.end()) {
+            throw std::logic_error("front end metric '" + name + "' missing at frame " +
+                                   std::to_string(frame.index) +
+                                   " (metrics must be emitted every frame)");
+          }
+          row.push_back(it->second);
+        }
+        csv->WriteRow(row);
+        pose_streams.Write(frame.t_s, graph.CollectPoses(slots));
+        const cv::Mat overlay = graph.RenderOverlay(slots);
+        if (options.video) {
+          if (!video) {
+            // Sequences without a rate play back at 30 Hz, a typical camera rate.
+            video = std::make_unique<output::VideoWriter>(out.Path("overlay"),
+                                                          options.fps > 0 ? options.fps : 30.0);
+          }
+          video->Write(overlay);
+        }
+        record.Add(frame, row, overlay, expected);
+        progress.Update(record.frame_count());
+      });
   progress.Finish();
-  if (record.frame_count() == 0) {
-    throw std::runtime_error("source '" + options.source + "' produced no frames (" +
-                             source->Describe() + ")");
-  }
   csv->Close();
 
   summary["frames"] = record.frame_count();
@@ -214,15 +203,15 @@ void AddRunCommand(CLI::App& app, int* exit_code) {
   for (const std::string& name : registry.Names()) known += (known.empty() ? "" : ", ") + name;
   command->add_option("--frontends", options->front_ends,
                       "Comma-separated front ends to run (known: " + known + ")");
-  command->add_option("--fps", options->fps,
-                      "Frame rate [Hz] for sources without timestamps")
+  command->add_option("--fps", options->fps, "Frame rate [Hz] for sources without timestamps")
       ->check(CLI::PositiveNumber);
   command->add_flag("--color", options->color, "Read colour (BGR) frames instead of gray");
   command->add_flag("--skip-bad-frames", options->skip_bad_frames,
                     "Skip corrupt, truncated or wrong-size frames with a warning (counted in "
                     "summary.json) instead of failing");
-  command->add_option("--calib", options->calibration_path,
-                      "Camera calibration (OpenCV, ROS camera_info or Kalibr YAML)")
+  command
+      ->add_option("--calib", options->calibration_path,
+                   "Camera calibration (OpenCV, ROS camera_info or Kalibr YAML)")
       ->check(CLI::ExistingFile);
   command->add_flag("--parallel", options->parallel,
                     "Run independent front ends concurrently (oneTBB)");

@@ -3,13 +3,14 @@
 //   aperture sim NAME [--config FILE] [--set key=value ...] [--seed N] [--duration S] --out DIR
 //   aperture sim tracking ... | aperture sim recovery ...   (sim_tracking/recovery_command.cc)
 //
-// NAME is a built-in scenario (sim/scenario); --config/--set override its keys. The vehicle starts
-// at the scenario's start pose and flies a mission of the registry
-// (experiments/missions/builtin_missions.h): --mission, or the scenario's default (`gap`: the
-// vision gap mission, `led`: the LED-stabilized hover, others: a ground-truth hover), with its
-// parameters from --set mission.<key>=<value>; its ground-truth evaluation goes into
-// summary.json "mission" (name, passed, its figures) and its report sections into report.html.
-// Writes OUT/summary.json (outcome, crash reason and
+// NAME is a built-in scenario (sim/scenario); --config/--set override its keys (a summary.json of
+// an earlier run as --config: its full effective configuration, the same flight). The vehicle
+// starts at the scenario's start pose and flies a mission of the registry
+// (experiments/missions/builtin_missions.h): --mission (or mission.name), else the scenario's
+// default (`gap`: the vision gap mission, `led`: the LED-stabilized hover, others: a ground-truth
+// hover), with its parameters from the `mission` section (--set mission.<key>=<value>); its
+// ground-truth evaluation goes into summary.json "mission" (name, passed, its figures) and its
+// report sections into report.html. Writes OUT/summary.json (outcome, crash reason and
 // contact point, real_time_factor, timing, hover errors, frame statistics), OUT/trajectory.csv
 // and OUT/trajectory.tum (ground truth), OUT/commands.csv, OUT/imu.csv, OUT/sim.mp4 (or .avi: the
 // onboard camera with overlays beside a third-person view from behind the vehicle) and
@@ -37,6 +38,7 @@
 #include "output/svg_plot.h"
 #include "sim/scenario/scenario.h"
 #include "sim/scenario/scenario_sitl.h"
+#include "sim/sim_params_io.h"
 #include "sim/sitl/sitl_runner.h"
 
 namespace aperture::apps {
@@ -144,11 +146,17 @@ void WriteReport(const sim::SitlResult& result, const std::vector<cv::Mat>& key_
 
 void RunSim(const SimOptions& options, output::OutputFolder& out) {
   std::vector<std::string> set_items = options.common.set_items;
-  const std::vector<std::string> mission_items = experiments::TakeMissionSetItems(&set_items);
   if (options.seed) set_items.push_back("seed=" + std::to_string(*options.seed));
-  const config::ConfigTree tree =
+  config::ConfigTree tree =
       sim::ScenarioConfig(options.scenario, options.common.config_files, set_items);
-  const sim::ScenarioParams scenario_params = sim::LoadScenarioParams(tree);
+  config::ParamReader root = tree.Reader();
+  sim::ScenarioParams scenario_params;
+  LoadParams(root, &scenario_params);
+  // The `mission` section: which mission (`name`; --mission wins) and its parameters.
+  config::ParamReader mission_params = root.Section("mission");
+  root.RejectUnknownKeys();
+  std::string mission_name = options.mission;
+  if (mission_name.empty()) mission_params.Read("name", &mission_name);
   sim::Scenario scenario = sim::BuildScenario(scenario_params);
 
   sim::SitlRunnerParams params;
@@ -169,15 +177,9 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
 
   experiments::MissionRegistry missions;
   experiments::RegisterBuiltinMissions(missions);
-  const std::string mission_name =
-      options.mission.empty() ? missions.DefaultFor(scenario_params.scenario) : options.mission;
-  const config::ConfigTree mission_tree =
-      config::ConfigTree::FromCommandLine("", {}, mission_items);
-  config::ParamReader mission_root = mission_tree.Reader();
-  config::ParamReader mission_params = mission_root.Section("mission");
+  if (mission_name.empty()) mission_name = missions.DefaultFor(scenario_params.scenario);
   const std::unique_ptr<experiments::MissionFlight> flight =
       missions.Create(mission_name, {scenario, params, mission_params});
-  mission_root.RejectUnknownKeys();
   perception::Autopilot& autopilot = flight->autopilot();
   sim::SitlRunner runner(params, &scenario.scene());
 
@@ -230,6 +232,13 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
                        {"seed", scenario_params.seed},
                        {"duration_s", options.duration_s},
                        {"autopilot", result.autopilot_name}};
+  // The full effective configuration: `--config OUT/summary.json` flies this run again.
+  sim::PutEffectiveSitlBlocks(scenario_params, &tree);
+  tree.PutParams("imu", params.imu);  // with the noise seeds SetSeed derived from `seed`
+  tree.PutParams("range", params.range);
+  YAML::Node mission_config = flight->EffectiveParams();
+  mission_config["name"] = mission_name;
+  tree.Put("mission", mission_config, "effective configuration");
   summary["config"] = nlohmann::json::parse(tree.ToJson());
   AddSitlRunSummary(result, &summary);
   summary["timing"]["chase_render_s"] = chase.render_s();  // part of hooks_s

@@ -77,7 +77,7 @@ void WriteRecoveryReport(const sim::RecoveryFlightResult& flight, output::Output
 }
 
 void RunRecovery(const RecoveryOptions& options, output::OutputFolder& out) {
-  const config::ConfigTree tree = LoadConfig(options.common, "");
+  config::ConfigTree tree = LoadConfig(options.common, "");
   config::ParamReader root = tree.Reader();
   sim::RecoveryFlightParams params;
   root.ReadSection("control", &params.control);
@@ -96,6 +96,10 @@ void RunRecovery(const RecoveryOptions& options, output::OutputFolder& out) {
   summary["inputs"] = {{"seed", options.seed},
                        {"duration_s", options.duration_s},
                        {"autopilot", flight.sitl.autopilot_name}};
+  tree.PutParams("control", params.control);
+  tree.PutParams("dynamics", params.dynamics);
+  tree.PutParams("imu", params.imu);
+  tree.PutParams("range", params.range);
   summary["config"] = nlohmann::json::parse(tree.ToJson());
   summary["throw"] = {{"tilt_deg", TiltRad(params.hand_throw.q_WB) * kRadToDeg},
                       {"v_W_mps", output::EigenToJson(params.hand_throw.v_W)},

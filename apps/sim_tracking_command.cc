@@ -105,7 +105,7 @@ void WriteTrackingReport(const sim::TrackingFlightResult& flight, const std::str
 }
 
 void RunTracking(const TrackingOptions& options, output::OutputFolder& out) {
-  const config::ConfigTree tree = LoadConfig(options.common, kDefaultsYaml);
+  config::ConfigTree tree = LoadConfig(options.common, kDefaultsYaml);
   config::ParamReader root = tree.Reader();
   sim::TrackingFlightParams params;
   root.ReadSection("control", &params.control);
@@ -127,6 +127,9 @@ void RunTracking(const TrackingOptions& options, output::OutputFolder& out) {
   summary["inputs"] = {{"trajectory", options.trajectory},
                        {"seed", options.seed},
                        {"autopilot", flight.sitl.autopilot_name}};
+  tree.PutParams("control", params.control);
+  tree.PutParams("dynamics", params.dynamics);
+  tree.PutParams("imu", params.imu);
   summary["config"] = nlohmann::json::parse(tree.ToJson());
   summary["control"] = {
       {"drag_compensation", params.control.position.compensate_rotor_drag},

@@ -63,6 +63,15 @@ std::string JsonScalar(const YAML::Node& node) {
   if (node.Tag() == "!") return JsonString(text);
   if (text == "true" || text == "false") return text;
   if (text.empty() || text == "null" || text == "~") return "null";
+  // Integers exactly, up to the full 64-bit range of a seed (which a double would round); larger
+  // ones fall through to the decimal form.
+  static const std::regex kInteger(R"([-+]?[0-9]{1,20})");
+  if (std::regex_match(text, kInteger)) {
+    try {
+      return text[0] == '-' ? std::to_string(std::stoll(text)) : std::to_string(std::stoull(text));
+    } catch (const std::out_of_range&) {
+    }
+  }
   static const std::regex kDecimal(R"([-+]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][-+]?[0-9]+)?)");
   if (std::regex_match(text, kDecimal)) {
     // Re-print so YAML spellings JSON rejects ("+1", ".5", "1.") come out valid.
@@ -131,6 +140,10 @@ void ConfigTree::MergeYaml(const std::string& yaml_text, const std::string& sour
                                 std::to_string(e.mark.column + 1) + ": invalid YAML (" + e.msg +
                                 "); fix the syntax of " + source);
   }
+  MergeDocument(document, source);
+}
+
+void ConfigTree::MergeDocument(const YAML::Node& document, const std::string& source) {
   if (document.IsNull()) return;  // an empty file changes nothing
   if (!document.IsMap()) {
     throw std::invalid_argument(source +
@@ -149,7 +162,25 @@ void ConfigTree::MergeFile(const std::string& path) {
   }
   std::ostringstream text;
   text << file.rdbuf();
-  MergeYaml(text.str(), path);
+  YAML::Node document;
+  try {
+    document = YAML::Load(text.str());
+  } catch (const YAML::Exception&) {
+    MergeYaml(text.str(), path);  // reports the syntax error with its line
+    return;
+  }
+  const YAML::Node& view = document;
+  if (view.IsMap() && view["command"] && view["config"] && view["config"].IsMap()) {
+    MergeDocument(view["config"], path);  // a summary.json of an earlier run
+    return;
+  }
+  MergeDocument(document, path);
+}
+
+void ConfigTree::Put(const std::string& key, const YAML::Node& value, const std::string& source) {
+  root_.remove(key);
+  root_[key] = value;
+  RecordOrigin(key, ValueOrigin{source, false});
 }
 
 void ConfigTree::ApplySet(const std::string& item) {

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "config/param_reader.h"
+#include "config/yaml_write_archive.h"
 
 namespace aperture::config {
 
@@ -33,12 +34,25 @@ class ConfigTree {
   // path or e.g. "built-in defaults"); line numbers refer to `yaml_text`. Throws
   // std::invalid_argument on a YAML syntax error or a non-map document, naming `source`.
   void MergeYaml(const std::string& yaml_text, const std::string& source);
-  // Reads and merges a YAML file. std::runtime_error when it cannot be read (names the path).
+  // Reads and merges a YAML file. A run's summary.json (a JSON map with "command" and a "config"
+  // map) contributes its "config" section: the full effective configuration that run used, so
+  // `--config OUT/summary.json` repeats it. std::runtime_error when it cannot be read (names the
+  // path).
   void MergeFile(const std::string& path);
   // Applies one "dotted.key=value" override; the value is parsed as YAML ("30", "lqr",
   // "[[0,0,0],[1,0,0]]"). std::invalid_argument naming the item when there is no '=', the key is
   // empty or has an empty segment ("a..b"), or the value is not valid YAML.
   void ApplySet(const std::string& item);
+
+  // Replaces the value at top-level `key` by `value` (e.g. the dump of a parameter struct's
+  // effective values, config::DumpParams); `source` labels it in error messages.
+  void Put(const std::string& key, const YAML::Node& value, const std::string& source);
+  // Every field of a Serialize-described struct (config::DumpParams) as section `key`: how a
+  // command records the effective values it ran with (summary.json "config").
+  template <typename T>
+  void PutParams(const std::string& key, const T& params) {
+    Put(key, DumpParams(params), "effective configuration");
+  }
 
   ParamReader Reader() const;
   // Effective configuration as YAML text (for logs or a config.yaml next to the results).
@@ -52,6 +66,7 @@ class ConfigTree {
   const YAML::Node& root() const { return root_; }
 
  private:
+  void MergeDocument(const YAML::Node& document, const std::string& source);
   void MergeNode(YAML::Node destination, const YAML::Node& source, const std::string& path,
                  const ValueOrigin& origin);
   void RecordOrigin(const std::string& path, const ValueOrigin& origin);

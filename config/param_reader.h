@@ -15,9 +15,9 @@
 // full dotted key and what was expected (the type, the allowed enum values, or the known keys).
 //
 // Supported field types: double, float, int, unsigned, std::size_t, bool, std::string, fixed-size
-// Eigen matrices of double (vectors from a flat sequence, matrices from a sequence of rows or a
-// flat row-major sequence), Eigen::VectorXd, std::vector<T> of any supported T, enums via ReadEnum,
-// nested structs via ReadSection/Section.
+// Eigen matrices of double or int (vectors from a flat sequence, matrices from a sequence of rows
+// or a flat row-major sequence), Eigen::VectorXd, std::vector<T> of any supported T, enums via
+// ReadEnum, nested structs via ReadSection/Section.
 #include <yaml-cpp/yaml.h>
 
 #include <Eigen/Core>
@@ -28,6 +28,8 @@
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "config/param_archive.h"
 
 namespace aperture::config {
 
@@ -67,8 +69,9 @@ class ParamReader {
   template <typename T>
   void ReadSection(const std::string& key, T* value);
 
-  // Calls params.Validate() and re-throws its std::invalid_argument prefixed with the location
-  // and name of this section, so a non-physical value names the file (or --set item) it came from.
+  // Validates `params` (ValidateLoaded: its ValidateParams hook or Validate() member) and re-throws
+  // the std::invalid_argument prefixed with the location and name of this section, so a
+  // non-physical value names the file (or --set item) it came from.
   template <typename Params>
   void Validate(const Params& params) const;
 
@@ -128,11 +131,11 @@ void ConvertNode(const YAML::Node& node, const ValueContext& context, std::vecto
   *value = std::move(result);
 }
 
-// Fixed-size Eigen: a vector (one column) from [x, y, z]; a matrix from [[row0], [row1], ..] or a
-// flat row-major list of Rows*Cols numbers.
-template <int Rows, int Cols, int Options>
+// Fixed-size Eigen of double or int: a vector (one column) from [x, y, z]; a matrix from [[row0],
+// [row1], ..] or a flat row-major list of Rows*Cols numbers.
+template <typename Scalar, int Rows, int Cols, int Options>
 void ConvertNode(const YAML::Node& node, const ValueContext& context,
-                 Eigen::Matrix<double, Rows, Cols, Options, Rows, Cols>* value) {
+                 Eigen::Matrix<Scalar, Rows, Cols, Options, Rows, Cols>* value) {
   static_assert(Rows > 0 && Cols > 0, "use Eigen::VectorXd or std::vector for dynamic sizes");
   const std::string shape = Cols == 1 ? "a sequence of " + std::to_string(Rows) + " numbers"
                                       : "a " + std::to_string(Rows) + "x" + std::to_string(Cols) +
@@ -140,7 +143,7 @@ void ConvertNode(const YAML::Node& node, const ValueContext& context,
                                             std::to_string(Cols) + " numbers or " +
                                             std::to_string(Rows * Cols) + " numbers row-major";
   if (!node.IsSequence()) ThrowTypeError(context, node, shape);
-  Eigen::Matrix<double, Rows, Cols, Options, Rows, Cols> result;
+  Eigen::Matrix<Scalar, Rows, Cols, Options, Rows, Cols> result;
   if (node.size() == static_cast<std::size_t>(Rows * Cols) &&
       (Cols == 1 || !node[0].IsSequence())) {
     for (int i = 0; i < Rows * Cols; ++i) {
@@ -200,7 +203,7 @@ void ParamReader::ReadEnum(const std::string& key, Enum* value,
 template <typename Params>
 void ParamReader::Validate(const Params& params) const {
   try {
-    params.Validate();
+    ValidateLoaded(params);
   } catch (const std::invalid_argument& e) {
     std::string section = FullKey("");
     if (!section.empty()) section.pop_back();  // FullKey("") ends in the separating '.'

@@ -11,6 +11,7 @@
 #include "perception/graph/builtin_front_ends.h"
 #include "perception/graph/front_end_registry.h"
 #include "perception/graph/serial_executor.h"
+#include "perception/graph/source_run.h"
 #include "perception/io/open_frame_source.h"
 #include "python/bindings.h"
 
@@ -53,33 +54,20 @@ RunRecord RunFrontEnds(const std::string& source_spec, const std::vector<std::st
 
   RunRecord record;
   record.source_description = source->Describe();
-  std::optional<perception::FrameSlots> slots;
-  while (max_frames <= 0 || record.t_s.size() < size_t(max_frames)) {
-    std::optional<perception::Frame> frame = source->Next();
-    if (!frame) break;
-    if (!slots) {
-      slots = graph.MakeSlots(*frame);
-      if (resources.calibration) {
-        perception::CheckCalibrationImageSize(*resources.calibration, frame->image.cols,
-                                              frame->image.rows);
-      }
-    }
-    executor.Run(*frame, *slots);
-    record.t_s.push_back(frame->t_s);
-    record.index.push_back(frame->index);
-    for (const auto& [name, value] : graph.CollectMetrics(*slots)) {
-      record.metrics[name].push_back(value);
-    }
-    for (const perception::PoseObservation& pose : graph.CollectPoses(*slots)) {
-      PoseStream& stream = record.poses[pose.stream];  // what <stream>.csv of `aperture run` holds
-      stream.t_s.push_back(frame->t_s);
-      stream.T.push_back(pose.T_fixed_moving().matrix());
-    }
-  }
-  if (record.t_s.empty()) {
-    throw std::runtime_error("source '" + source_spec + "' produced no frames (" +
-                             record.source_description + ")");
-  }
+  perception::RunSource(
+      *source, graph, executor, resources, max_frames,
+      [&](const perception::Frame& frame, const perception::FrameSlots& slots) {
+        record.t_s.push_back(frame.t_s);
+        record.index.push_back(frame.index);
+        for (const auto& [name, value] : graph.CollectMetrics(slots)) {
+          record.metrics[name].push_back(value);
+        }
+        for (const perception::PoseObservation& pose : graph.CollectPoses(slots)) {
+          PoseStream& stream = record.poses[pose.stream];  // what <stream>.csv of `aperture run`
+          stream.t_s.push_back(frame.t_s);
+          stream.T.push_back(pose.T_fixed_moving().matrix());
+        }
+      });
   record.skipped = source->SkippedFrames();
   return record;
 }

@@ -1,12 +1,13 @@
 #pragma once
 // The control stack of one SITL flight as configuration (issue 4): the high-level position
 // controller (Faessler thesis F.31-F.38, attitude law of paper B) that an autopilot runs, and the
-// flight controller's body-rate law, mixer and saturation (App. G). control/ is Eigen-only, so the
-// YAML loader (config::ParamReader, STYLE.md 6) lives here beside sim_params_io.h.
+// flight controller's body-rate law, mixer and saturation (App. G). Described once by Serialize
+// (config/param_archive.h): LoadParams(reader, &params) loads, config::DumpParams dumps.
 //
 //   control:
 //     drag_compensation: true      # F.7.4: false = "not considering drag" (D = 0, k_h = 0)
 //     body_rate: lqr               # lqr (G.12) | p_low | p_high (P law B.21, Table G.1 (a), (b))
+//                                  # | p_custom with p_rate_gains_per_s: [k_p, k_q, k_r]
 //     mixer: iterative             # iterative (G.4) | one_shot (Table G.2 baseline)
 //     saturation: prioritized      # prioritized (Algorithm 4) | clipping
 //     assured_yaw_torque_Nm: 0.0   # eta_z,assured of Algorithm 4 (0: off)
@@ -18,7 +19,8 @@
 // is allowed; the loader ends with ControlStackParams::Validate().
 #include <string>
 
-#include "config/param_reader.h"
+#include "config/yaml_read_archive.h"
+#include "control/control_params_io.h"
 #include "control/low_level_controller.h"
 #include "control/position_controller.h"
 
@@ -40,6 +42,32 @@ std::string BodyRateName(const control::LowLevelControllerParameters& params);
 const char* ToString(control::MixerParameters::Mixing mixing);          // "iterative", "one_shot"
 const char* ToString(control::MixerParameters::Saturation saturation);  // "prioritized", "clipping"
 
-void LoadParams(config::ParamReader& reader, ControlStackParams* params);
+// The body-rate law as one name: a preset of ProportionalBodyRateParameters or custom P gains.
+enum class BodyRatePreset { kLqr, kProportionalLowGain, kProportionalHighGain, kCustom };
+BodyRatePreset PresetOf(const control::LowLevelControllerParameters& params);
+// Sets the law (and for p_low / p_high the gains) of a preset; kCustom: the P law, gains kept.
+void ApplyPreset(BodyRatePreset preset, control::LowLevelControllerParameters* params);
+const config::EnumNames<BodyRatePreset>& BodyRatePresetNames();
+const config::EnumNames<control::MixerParameters::Mixing>& MixingNames();
+const config::EnumNames<control::MixerParameters::Saturation>& SaturationNames();
+
+template <typename Archive>
+void Serialize(Archive* a, ControlStackParams* p) {
+  a->Visit("drag_compensation", &p->position.compensate_rotor_drag);
+  // The law is a name; custom P gains (p_custom) are the only gains written beside it, so a
+  // `--set control.body_rate=p_high` over a dumped configuration is not undone by stale gains.
+  BodyRatePreset preset = PresetOf(p->low_level);
+  a->Visit("body_rate", &preset, BodyRatePresetNames());
+  if constexpr (Archive::kLoading) ApplyPreset(preset, &p->low_level);
+  if (preset == BodyRatePreset::kCustom) {
+    a->Visit("p_rate_gains_per_s", &p->low_level.proportional.rate_gains_per_s);
+  }
+  a->Visit("mixer", &p->low_level.mixer.mixing, MixingNames());
+  a->Visit("saturation", &p->low_level.mixer.saturation, SaturationNames());
+  a->Visit("assured_yaw_torque_Nm", &p->low_level.mixer.assured_yaw_torque_Nm);
+  a->VisitSection("position",
+                  [p](auto* section) { control::SerializePositionGains(section, &p->position); });
+  a->Visit("lqr", &p->low_level.lqr);
+}
 
 }  // namespace aperture::sim

@@ -10,15 +10,30 @@
 #include <string>
 
 #include "output/html_report.h"
+#include "sim/sitl/recovery_flight.h"
+#include "sim/sitl/tracking_flight.h"
 
 namespace aperture::experiments {
 
 struct ControlBenchOptions {
-  std::uint64_t seed = 1;    // every random stream of every section derives from it
+  std::uint64_t seed = 1;     // every random stream of every section derives from it
   int recovery_trials = 100;  // random throws of the recovery section (B.4)
   // Shorter flights and fewer trials with the same code paths: for tests and quick looks.
   bool quick = false;
+  // The bench vehicle and its control stack (`--config`/`--set` sections control, dynamics, imu,
+  // range): every flight of every section starts from these and changes only what its comparison
+  // varies (the drag switch, the body-rate law, the mixing, the saturation, the thrust limits).
+  sim::ControlStackParams control;
+  sim::QuadrotorDynamicsParams dynamics;
+  sim::ImuSensorParams imu;
+  sim::RangeSensorParams range;  // the throws' height sensor (recovery section)
 };
+
+// A tracking flight of the bench vehicle and control stack (reference, duration and error window
+// are the section's), every random stream from options.seed.
+sim::TrackingFlightParams BenchTrackingFlight(const ControlBenchOptions& options);
+// A throw of the bench vehicle and control stack (the throw and the seed are the section's).
+sim::RecoveryFlightParams BenchRecoveryFlight(const ControlBenchOptions& options);
 
 struct ControlBenchSection {
   std::string key;  // summary key, e.g. "drag", "mixer"

@@ -1,9 +1,8 @@
 #include "experiments/control/drag_sections.h"
 
-#include <nlopt.hpp>
-
 #include <cmath>
 #include <memory>
+#include <nlopt.hpp>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -34,11 +33,10 @@ std::shared_ptr<const control::ReferenceTrajectory> MakeReference(const std::str
 // A flight of `reference` with E_a measured over its full-speed loops (between the ramps).
 sim::TrackingFlightParams FullSpeedFlight(std::shared_ptr<const control::ReferenceTrajectory> ref,
                                           const ControlBenchOptions& options) {
-  sim::TrackingFlightParams params;
+  sim::TrackingFlightParams params = BenchTrackingFlight(options);
   params.error_begin_s = kRampS;
   params.error_end_s = ref->EndTimeS() - kRampS;
   params.reference = std::move(ref);
-  params.seed = options.seed;
   return params;
 }
 
@@ -58,10 +56,9 @@ void RunSpeedRamp(const std::string& name, const ControlBenchOptions& options, n
   output::SvgPlot plot({name + ": error over speed on the 0 -> 5 m/s ramp (Figs. F.6, F.7 analog)",
                         "reference speed [m/s]", "|p - p_ref| [m]"});
   for (const bool compensate : {false, true}) {
-    sim::TrackingFlightParams params;
+    sim::TrackingFlightParams params = BenchTrackingFlight(options);
     params.reference = reference;
     params.duration_s = kRampEndS;
-    params.seed = options.seed;
     params.control.position.compensate_rotor_drag = compensate;
     const sim::TrackingFlightResult flight = sim::FlyTrackingFlight(params);
     const std::string tag = compensate ? "on" : "off";
@@ -88,8 +85,8 @@ void RunDrag(const ControlBenchOptions& options, nlohmann::json* summary,
     const auto reference = MakeReference(name, loops);
     nlohmann::json& out = (*summary)["drag"][name];
     output::SvgPlot paths({name + ": x-y path (Figs. F.4, F.5 analog)", "x [m]", "y [m]"});
-    output::SvgPlot errors({name + ": position error (Figs. F.6, F.7 analog)", "t [s]",
-                            "|p - p_ref| [m]"});
+    output::SvgPlot errors(
+        {name + ": position error (Figs. F.6, F.7 analog)", "t [s]", "|p - p_ref| [m]"});
     double E_a_off = 0.0;
     for (const bool compensate : {false, true}) {
       sim::TrackingFlightParams params = FullSpeedFlight(reference, options);
@@ -201,17 +198,17 @@ void RunDragId(const ControlBenchOptions& options, nlohmann::json* summary,
   report->AddSection("Rotor-drag identification (thesis F.6, F.7.3)");
   report->AddParagraph(
       "Nelder-Mead (NLopt LN_NELDERMEAD) over the controller's d_x, d_y, each evaluation one SITL "
-      "flight of the circle (" + std::string(options.quick ? "one loop" : "two loops") +
+      "flight of the circle (" +
+      std::string(options.quick ? "one loop" : "two loops") +
       " at 4 m/s) with cost E_a (F.39), starting from the drag-free model.");
-  report->AddSvg(output::SvgPlot({"Best drag coefficients per evaluation (Fig. F.3 analog)",
-                                  "evaluation", "d [1/s]"})
-                     .AddLine("d_x", problem.evaluation, problem.best_dx)
-                     .AddLine("d_y", problem.evaluation, problem.best_dy)
-                     .AddLine("true d_x", {1.0, double(problem.evaluations)},
-                              {true_D.x(), true_D.x()})
-                     .AddLine("true d_y", {1.0, double(problem.evaluations)},
-                              {true_D.y(), true_D.y()})
-                     .Render());
+  report->AddSvg(
+      output::SvgPlot(
+          {"Best drag coefficients per evaluation (Fig. F.3 analog)", "evaluation", "d [1/s]"})
+          .AddLine("d_x", problem.evaluation, problem.best_dx)
+          .AddLine("d_y", problem.evaluation, problem.best_dy)
+          .AddLine("true d_x", {1.0, double(problem.evaluations)}, {true_D.x(), true_D.x()})
+          .AddLine("true d_y", {1.0, double(problem.evaluations)}, {true_D.y(), true_D.y()})
+          .Render());
   report->AddSvg(output::SvgPlot({"Best E_a per evaluation", "evaluation", "E_a [m]"})
                      .AddLine("E_a", problem.evaluation, problem.best_E_a)
                      .Render());

@@ -7,12 +7,12 @@
 #include <string>
 #include <vector>
 
-#include "control/position_controller.h"
 #include "control/low_level_controller.h"
 #include "control/mixer.h"
+#include "control/position_controller.h"
 #include "control/quad_state.h"
-#include "output/svg_plot.h"
 #include "control/reference_trajectories.h"
+#include "output/svg_plot.h"
 #include "sim/sitl/ground_truth_autopilot.h"
 #include "sim/sitl/sitl_runner.h"
 #include "sim/sitl/tracking_flight.h"
@@ -62,23 +62,34 @@ double MaxAbs(const std::vector<double>& values) {
   return m;
 }
 
-// SITL run of the bench vehicle starting in hover at p_W: no cameras, no range sensor, the
-// default noisy IMU, every random stream from `seed`.
-sim::SitlRunnerParams BenchRunParams(std::uint64_t seed, double duration_s,
+// SITL run of the bench vehicle and flight controller starting in hover at p_W: no cameras, no
+// range sensor, the bench IMU, every random stream from options.seed.
+sim::SitlRunnerParams BenchRunParams(const ControlBenchOptions& options, double duration_s,
                                      const Eigen::Vector3d& p_W) {
   sim::SitlRunnerParams params;
+  params.dynamics = options.dynamics;
+  params.imu = options.imu;
+  params.flight_controller.low_level = options.control.low_level;
   params.duration_s = duration_s;
   params.control_rate_hz = kControlRate_hz;
   params.initial_state.p_WB = p_W;
   params.range_enabled = false;
   params.trajectory_decimation =
       static_cast<int>(std::lround(params.dynamics_rate_hz / kRecordRate_hz));
-  params.SetSeed(seed);
+  params.SetSeed(options.seed);
   return params;
 }
 
-sim::SitlResult FlyHover(const sim::SitlRunnerParams& params, double heading_rad = 0.0) {
-  sim::GroundTruthAutopilotParams autopilot_params;
+// Position control on ground truth with the bench's gains and drag switch.
+sim::GroundTruthAutopilotParams BenchAutopilot(const ControlBenchOptions& options) {
+  sim::GroundTruthAutopilotParams params;
+  params.controller = options.control.position;
+  return params;
+}
+
+sim::SitlResult FlyHover(const sim::SitlRunnerParams& params, const ControlBenchOptions& options,
+                         double heading_rad = 0.0) {
+  sim::GroundTruthAutopilotParams autopilot_params = BenchAutopilot(options);
   autopilot_params.waypoints.push_back({params.initial_state.p_WB, heading_rad, 0.0});
   sim::GroundTruthAutopilot autopilot(params.dynamics.vehicle, autopilot_params);
   sim::SitlRunner runner(params, nullptr);
@@ -94,16 +105,18 @@ struct BodyRateController {
   control::LowLevelControllerParameters params;
 };
 
-std::vector<BodyRateController> BodyRateControllers() {
+// The three laws of Table G.1 on the bench's flight controller (its mixer and LQR weights).
+std::vector<BodyRateController> BodyRateControllers(const ControlBenchOptions& options) {
   using Law = control::LowLevelControllerParameters::BodyRateLaw;
-  BodyRateController p_low{"p_low", "(a) P low gain", {}};
+  const control::LowLevelControllerParameters& base = options.control.low_level;
+  BodyRateController p_low{"p_low", "(a) P low gain", base};
   p_low.params.body_rate_law = Law::kProportional;
   p_low.params.proportional = control::ProportionalBodyRateParameters::LowGain();
-  BodyRateController p_high{"p_high", "(b) P high gain", {}};
+  BodyRateController p_high{"p_high", "(b) P high gain", base};
   p_high.params.body_rate_law = Law::kProportional;
   p_high.params.proportional = control::ProportionalBodyRateParameters::HighGain();
   // The default LQR weights give rate gains equal to (b) (G.6.2 "equivalent gains to (b)").
-  BodyRateController lqr{"lqr", "(c) LQR", {}};
+  BodyRateController lqr{"lqr", "(c) LQR", base};
   lqr.params.body_rate_law = Law::kLqr;
   return {p_low, p_high, lqr};
 }
@@ -112,7 +125,7 @@ std::vector<BodyRateController> BodyRateControllers() {
 // peak (~200 deg/s, ~10 deg) reduced to about a tenth; measured until it holds for good.
 constexpr double kSettledRate_radps = 0.35;
 constexpr double kSettledTilt_rad = 2.0 * kPi / 180.0;
-constexpr double kHitSpacing_s = 2.5;  // hover time between hits: all three controllers settle
+constexpr double kHitSpacing_s = 2.5;    // hover time between hits: all three controllers settle
 constexpr double kHitImpulse_Ns = 0.02;  // upward, +-25 % (seeded): ~2.5 rad/s per roll/pitch axis
 
 struct HitResponse {
@@ -123,7 +136,7 @@ struct HitResponse {
 
 HitResponse FlyHits(const BodyRateController& controller, const ControlBenchOptions& options) {
   const int hits = options.quick ? 2 : 10;  // Fig. G.5 averages over 10 disturbances
-  sim::SitlRunnerParams params = BenchRunParams(options.seed, 1.0 + hits * kHitSpacing_s,
+  sim::SitlRunnerParams params = BenchRunParams(options, 1.0 + hits * kHitSpacing_s,
                                                 Eigen::Vector3d(0.0, 0.0, kHoverHeight_m));
   params.flight_controller.low_level = controller.params;
   std::mt19937_64 rng(options.seed * 7919 + 17);
@@ -140,7 +153,7 @@ HitResponse FlyHits(const BodyRateController& controller, const ControlBenchOpti
     params.disturbances.pushes.push_back(push);
     hit_times_s.push_back(push.t_s);
   }
-  const sim::SitlResult result = FlyHover(params);
+  const sim::SitlResult result = FlyHover(params, options);
   HitResponse response;
   for (double t_hit : hit_times_s) {
     double last_unsettled_s = t_hit;
@@ -176,10 +189,9 @@ TrackingResponse FlyBackAndForth(const BodyRateController& controller,
   control::BackAndForthTrajectoryParams reference;
   reference.start_W = Eigen::Vector3d(0.0, 0.0, kHoverHeight_m);
   if (options.quick) reference.num_round_trips = 1;
-  sim::TrackingFlightParams params;
+  sim::TrackingFlightParams params = BenchTrackingFlight(options);
   params.reference = std::make_shared<control::BackAndForthTrajectory>(reference);
   params.control.low_level = controller.params;
-  params.seed = options.seed;
   params.control_rate_hz = kControlRate_hz;
   params.error_end_s = params.reference->EndTimeS();
   const sim::TrackingFlightResult flight = sim::FlyTrackingFlight(params);
@@ -216,7 +228,7 @@ void RunBodyRate(const ControlBenchOptions& options, nlohmann::json* summary,
                                "omega_y,des - omega_y [rad/s]"});
   output::SvgPlot x_errors({"Back-and-forth: position error in x", "t [s]", "e_x [m]"});
   nlohmann::json& out = (*summary)["body_rate"];
-  for (const BodyRateController& controller : BodyRateControllers()) {
+  for (const BodyRateController& controller : BodyRateControllers(options)) {
     const TrackingResponse tracking = FlyBackAndForth(controller, options);
     out[controller.key]["rate_rmse"] = tracking.rate_rmse_radps;
     out[controller.key]["pitch_rate_rmse"] = tracking.pitch_rate_rmse_radps;
@@ -261,10 +273,10 @@ struct YawTrace {
 YawTrace FlyMixerHover(control::MixerParameters::Mixing mixing, const ControlBenchOptions& options,
                        double duration_s) {
   sim::SitlRunnerParams params =
-      BenchRunParams(options.seed, duration_s, Eigen::Vector3d(0.0, 0.0, kHoverHeight_m));
+      BenchRunParams(options, duration_s, Eigen::Vector3d(0.0, 0.0, kHoverHeight_m));
   params.flight_controller.low_level.mixer.mixing = mixing;
   params.disturbances.torque_B_Nm = CentreOfMassOffsetTorque(params.dynamics.vehicle);
-  const sim::SitlResult result = FlyHover(params);
+  const sim::SitlResult result = FlyHover(params, options);
   const control::PositionController controller(params.dynamics.vehicle);
   control::TrajectoryPoint hover;
   hover.p_W = params.initial_state.p_WB;  // heading 0
@@ -323,7 +335,7 @@ struct SaturationFlight {
 
 SaturationFlight FlySaturationStep(control::MixerParameters::Saturation saturation,
                                    const ControlBenchOptions& options) {
-  sim::SitlRunnerParams params = BenchRunParams(options.seed, kStepTime_s + (options.quick ? 4.0 : 6.0),
+  sim::SitlRunnerParams params = BenchRunParams(options, kStepTime_s + (options.quick ? 4.0 : 6.0),
                                                 Eigen::Vector3d(0.0, 0.0, kStepStartHeight_m));
   // G.6.4: single-rotor thrust limited to 0.8 / 1.6 N around 1.25 N hover: the same fractions of
   // our hover thrust, imposed through the motor command range (flight controller and motors).
@@ -338,7 +350,7 @@ SaturationFlight FlySaturationStep(control::MixerParameters::Saturation saturati
   // which clipping gives up while saturated.
   params.disturbances.torque_B_Nm = CentreOfMassOffsetTorque(vehicle);
 
-  sim::GroundTruthAutopilotParams autopilot_params;
+  sim::GroundTruthAutopilotParams autopilot_params = BenchAutopilot(options);
   const Eigen::Vector3d start_W = params.initial_state.p_WB;
   // Hover until the imbalance transient has decayed, then the step (time-triggered: the arrival
   // radius is far larger than the transient's excursion of ~0.2 m).

@@ -41,8 +41,8 @@ struct ThrowOutcome {
   double end_time_s = 0.0;  // crash or end of the flight
 };
 
-ThrowOutcome FlyThrow(std::uint64_t seed) {
-  sim::RecoveryFlightParams params;  // the bench vehicle, LQR + iterative mixer + prioritized
+ThrowOutcome FlyThrow(std::uint64_t seed, const ControlBenchOptions& options) {
+  sim::RecoveryFlightParams params = BenchRecoveryFlight(options);
   params.hand_throw = sim::SampleHandThrow(seed, BenchThrowRanges());
   params.seed = seed;
   params.duration_s = kTimeLimit_s;
@@ -50,8 +50,8 @@ ThrowOutcome FlyThrow(std::uint64_t seed) {
   ThrowOutcome outcome;
   outcome.success = flight.recovered();
   outcome.crashed = flight.outcome == "crashed";
-  outcome.held_tilt_rad = std::acos(
-      std::clamp((params.hand_throw.q_WB * Eigen::Vector3d::UnitZ()).z(), -1.0, 1.0));
+  outcome.held_tilt_rad =
+      std::acos(std::clamp((params.hand_throw.q_WB * Eigen::Vector3d::UnitZ()).z(), -1.0, 1.0));
   for (const control::RecoveryTransition& transition : flight.transitions) {
     if (transition.to == control::RecoveryStage::kPosition) {
       outcome.recovery_time_s = transition.t_s;  // the release is at t = 0
@@ -69,7 +69,7 @@ void RunRecovery(const ControlBenchOptions& options, nlohmann::json* summary,
   std::vector<ThrowOutcome> outcomes(static_cast<size_t>(std::max(trials, 0)));
   tbb::parallel_for(tbb::blocked_range<int>(0, trials), [&](const tbb::blocked_range<int>& range) {
     for (int i = range.begin(); i < range.end(); ++i) {
-      outcomes[i] = FlyThrow(options.seed * 1000003 + static_cast<std::uint64_t>(i));
+      outcomes[i] = FlyThrow(options.seed * 1000003 + static_cast<std::uint64_t>(i), options);
     }
   });
 
@@ -107,16 +107,17 @@ void RunRecovery(const ControlBenchOptions& options, nlohmann::json* summary,
       "alone (vision emulated 1 s after the height stage starts). Success: no ground contact and "
       "the position stage held for 4 s within 10 s of the release.");
   report->AddTable(out, "recovery figures (SI units)");
-  report->AddSvg(output::SvgPlot::Histogram({"Time from release to position hold (successful)",
-                                             "t [s]", "throws"},
-                                            {{"recovery time", times_s}}),
+  report->AddSvg(output::SvgPlot::Histogram(
+                     {"Time from release to position hold (successful)", "t [s]", "throws"},
+                     {{"recovery time", times_s}}),
                  "Recovery times");
   output::SvgPlot scatter({"Outcome by attitude in the hand", "tilt when thrown [deg]",
                            "recovery time / time of failure [s]"});
   scatter.AddScatter("success", ok_tilt_deg, ok_time_s);
   scatter.AddScatter("failure", failed_tilt_deg, failed_time_s);
-  report->AddSvg(scatter.Render(), "Each throw: held tilt vs recovery time (failures: when they "
-                                   "crashed or the time limit)");
+  report->AddSvg(scatter.Render(),
+                 "Each throw: held tilt vs recovery time (failures: when they "
+                 "crashed or the time limit)");
 }
 
 }  // namespace

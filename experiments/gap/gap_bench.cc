@@ -11,7 +11,9 @@
 #include <mutex>
 #include <stdexcept>
 
+#include "experiments/gap/gap_mission_factory.h"
 #include "output/json_eigen.h"
+#include "planning/gap_mission/gap_mission_params_io.h"
 #include "sim/scenario/scenario.h"
 #include "sim/scenario/scenario_sitl.h"
 
@@ -156,6 +158,19 @@ nlohmann::json TrialJson(const GapTrialRecord& record) {
   return trial;
 }
 
+// The mission parameters every trial flies: the base scenario's camera and pattern sizes and the
+// nominal IMU of its SITL configuration (GapMissionParamsFor; the trials change none of these),
+// then the `mission` section.
+planning::GapMissionParams BaseMissionParams(const sim::ScenarioParams& base,
+                                             config::ParamReader& mission_config) {
+  const sim::Scenario scenario = sim::BuildScenario(base);
+  sim::SitlRunnerParams sitl;
+  sim::ConfigureSitlFromScenario(scenario, &sitl);
+  planning::GapMissionParams mission = GapMissionParamsFor(scenario, sitl.imu);
+  LoadParams(mission_config, &mission);
+  return mission;
+}
+
 }  // namespace
 
 void GapBenchOptions::Validate() const {
@@ -176,7 +191,8 @@ void GapBenchOptions::Validate() const {
 }
 
 GapTrialRecord RunGapTrial(const GapBenchOptions& options, const sim::ScenarioParams& base,
-                           const GapTrialConfig& trial, const GapTrialAutopilotFactory& factory) {
+                           const planning::GapMissionParams& mission, const GapTrialConfig& trial,
+                           const GapTrialAutopilotFactory& factory) {
   const auto wall_start = std::chrono::steady_clock::now();
   GapTrialRecord record;
   record.config = trial;
@@ -203,6 +219,7 @@ GapTrialRecord RunGapTrial(const GapBenchOptions& options, const sim::ScenarioPa
     setup.initial_state = params.initial_state;
     setup.control_rate_hz = params.control_rate_hz;
     setup.imu = nominal_imu;
+    setup.mission = mission;
     const std::unique_ptr<GapTrialAutopilot> autopilot = factory(setup);
     RecordingAutopilot recorder(autopilot.get(), gap.T_WG);
     sim::SitlRunner runner(params, &scenario.scene());
@@ -235,15 +252,21 @@ GapTrialRecord RunGapTrial(const GapBenchOptions& options, const sim::ScenarioPa
 GapBenchResult RunGapBench(const GapBenchOptions& options, const GapTrialAutopilotFactory& factory,
                            const std::function<void(int)>& on_trial_done) {
   options.Validate();
-  const config::ConfigTree tree =
-      sim::ScenarioConfig("gap", options.config_files, options.set_items);
-  const sim::ScenarioParams base = sim::LoadScenarioParams(tree);
+  config::ConfigTree tree = sim::ScenarioConfig("gap", options.config_files, options.set_items);
+  config::ParamReader root = tree.Reader();
+  sim::ScenarioParams base;
+  LoadParams(root, &base);
+  config::ParamReader mission_config = root.Section("mission");
+  root.RejectUnknownKeys();
   if (base.scenario != "gap") {
     throw std::invalid_argument("aperture bench gap: the scenario overrides set scenario: " +
                                 base.scenario + "; only the gap scenario can be benchmarked");
   }
   GapBenchResult result;
   result.options = options;
+  result.mission = BaseMissionParams(base, mission_config);
+  sim::PutEffectiveSitlBlocks(base, &tree);
+  tree.PutParams("mission", result.mission);
   result.scenario_config = nlohmann::json::parse(tree.ToJson());
   std::vector<GapTrialConfig> configs;
   for (int i = 0; i < options.trials; ++i) {
@@ -257,7 +280,7 @@ GapBenchResult RunGapBench(const GapBenchOptions& options, const GapTrialAutopil
                                             : tbb::task_arena::automatic);
   arena.execute([&] {
     tbb::parallel_for(0, options.trials, [&](int i) {
-      result.trials[i] = RunGapTrial(options, base, configs[i], factory);
+      result.trials[i] = RunGapTrial(options, base, result.mission, configs[i], factory);
       const std::lock_guard<std::mutex> lock(mutex);
       ++done;
       if (on_trial_done) on_trial_done(done);

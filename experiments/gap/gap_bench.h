@@ -39,7 +39,9 @@ struct GapBenchOptions {
   double duration_s = 15.0;
   int threads = 0;           // concurrent trials; 0 = oneTBB's default (all cores)
   HoverCriteria hover;
-  // Overrides of the built-in `gap` scenario (sim/scenario), e.g. "cameras.front.supersampling=1".
+  // Overrides of the built-in `gap` scenario (sim/scenario), e.g. "cameras.front.supersampling=1",
+  // and of the mission's parameters (section `mission`,
+  // planning/gap_mission/gap_mission_params_io.h).
   std::vector<std::string> config_files;
   std::vector<std::string> set_items;
   // false: the SITL renders no camera (for ground-truth autopilots, which need none).
@@ -70,15 +72,19 @@ struct GapTrialRecord {
 
 struct GapBenchResult {
   GapBenchOptions options;
-  std::string autopilot_name;      // of the first trial that ran
-  nlohmann::json scenario_config;  // the effective base scenario (before per-trial changes)
+  std::string autopilot_name;  // of the first trial that ran
+  // The effective configuration (before per-trial changes): the base scenario, its SITL blocks
+  // in full and the mission parameters (`mission`); `--config OUT/summary.json` repeats the run.
+  nlohmann::json scenario_config;
+  planning::GapMissionParams mission;  // GapTrialSetup::mission of every trial
   std::vector<GapTrialRecord> trials;  // in trial order
 };
 
 // Flies one trial. Exceptions of the autopilot or the simulator are caught and recorded as the
 // failure reason ("error: ...") so that one broken trial does not end a long run.
 GapTrialRecord RunGapTrial(const GapBenchOptions& options, const sim::ScenarioParams& base,
-                           const GapTrialConfig& trial, const GapTrialAutopilotFactory& factory);
+                           const planning::GapMissionParams& mission, const GapTrialConfig& trial,
+                           const GapTrialAutopilotFactory& factory);
 
 // All trials; `on_trial_done(done_count)` is called (serialized) after each trial finishes.
 // Throws std::invalid_argument for invalid options or scenario overrides.

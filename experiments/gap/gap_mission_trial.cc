@@ -30,11 +30,10 @@ class GapMissionTrial : public GapTrialAutopilot {
 
 }  // namespace
 
-GapTrialAutopilotFactory MakeGapMissionTrialFactory(const planning::GapMissionParams& base) {
-  return [base](const GapTrialSetup& setup) -> std::unique_ptr<GapTrialAutopilot> {
+GapTrialAutopilotFactory MakeGapMissionTrialFactory() {
+  return [](const GapTrialSetup& setup) -> std::unique_ptr<GapTrialAutopilot> {
     return std::make_unique<GapMissionTrial>(
-        MakeGapMission(*setup.scenario, setup.vehicle,
-                       GapMissionParamsFor(*setup.scenario, setup.imu, base)));
+        MakeGapMission(*setup.scenario, setup.vehicle, setup.mission));
   };
 }
 

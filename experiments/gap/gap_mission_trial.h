@@ -7,8 +7,8 @@
 
 namespace aperture::experiments {
 
-// Each trial's mission gets `base` with the scenario's camera, pattern sizes and the nominal IMU
-// noise specification (GapMissionParamsFor).
-GapTrialAutopilotFactory MakeGapMissionTrialFactory(const planning::GapMissionParams& base = {});
+// Each trial's mission flies GapTrialSetup::mission: the scenario's camera, pattern sizes and
+// nominal IMU noise specification (GapMissionParamsFor) with the bench's `mission` section.
+GapTrialAutopilotFactory MakeGapMissionTrialFactory();
 
 }  // namespace aperture::experiments

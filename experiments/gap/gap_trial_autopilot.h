@@ -10,6 +10,7 @@
 #include "control/quad_state.h"
 #include "control/vehicle_parameters.h"
 #include "perception/autopilot.h"
+#include "planning/gap_mission/gap_mission.h"
 #include "planning/traverse_trajectory.h"
 #include "sim/scenario/scenario.h"
 #include "sim/sensors/imu_sensor.h"
@@ -46,6 +47,9 @@ struct GapTrialSetup {
   // The IMU's specification (noise densities, random walks) as a datasheet gives it: the
   // nominal sim::ImuSensorParams, not the trial's randomized noise and biases.
   sim::ImuSensorParams imu;
+  // The vision mission's effective parameters (the same for every trial of a bench): what the base
+  // scenario defines (GapMissionParamsFor) with the `mission` configuration section applied.
+  planning::GapMissionParams mission;
 };
 
 using GapTrialAutopilotFactory =

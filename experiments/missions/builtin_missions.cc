@@ -6,7 +6,9 @@
 #include <optional>
 #include <vector>
 
+#include "config/yaml_write_archive.h"
 #include "experiments/led/led_hover_flight.h"
+#include "experiments/led/led_hover_flight_params_io.h"
 #include "experiments/missions/gap_mission_flight.h"
 #include "experiments/missions/gapflyt_flight.h"
 #include "sim/sitl/ground_truth_autopilot.h"
@@ -66,9 +68,12 @@ class LedHoverMission final : public MissionFlight {
   static constexpr double kPushRecoveryBudgetS = 3.0;
 
   explicit LedHoverMission(const MissionContext& context)
-      : pushes_(context.sitl.disturbances.pushes), flight_(context.scenario, context.sitl) {}
+      : pushes_(context.sitl.disturbances.pushes),
+        params_(LoadedParams(context)),
+        flight_(context.scenario, context.sitl, params_) {}
 
   perception::Autopilot& autopilot() override { return flight_.autopilot(); }
+  YAML::Node EffectiveParams() const override { return config::DumpParams(params_); }
   void DrawOverlay(cv::Mat& onboard_bgr) const override { flight_.DrawOverlay(onboard_bgr); }
 
   MissionEvaluation Evaluate(const sim::SitlResult& result) override {
@@ -100,7 +105,14 @@ class LedHoverMission final : public MissionFlight {
   }
 
  private:
+  static LedHoverFlightParams LoadedParams(const MissionContext& context) {
+    LedHoverFlightParams params;
+    LoadParams(context.params, &params);  // config::LoadParams: reads, rejects, validates
+    return params;
+  }
+
   std::vector<sim::Push> pushes_;
+  LedHoverFlightParams params_;
   LedHoverFlight flight_;
   std::optional<LedHoverFlightResult> result_;  // of Evaluate
 };

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <optional>
 
+#include "config/yaml_write_archive.h"
 #include "experiments/gap/gap_mission_factory.h"
 #include "experiments/gap/gap_trial_evaluation.h"
 #include "output/json_eigen.h"
@@ -14,14 +15,15 @@ namespace {
 
 class GapMissionFlight final : public MissionFlight {
  public:
-  explicit GapMissionFlight(const MissionContext& context) : scenario_(context.scenario) {
-    planning::GapMissionParams params = GapMissionParamsFor(context.scenario, context.sitl.imu);
-    planning::LoadParams(context.params, &params);
-    context.params.Validate(params);
-    mission_ = MakeGapMission(context.scenario, context.sitl.dynamics.vehicle, params);
+  explicit GapMissionFlight(const MissionContext& context)
+      : scenario_(context.scenario),
+        params_(GapMissionParamsFor(context.scenario, context.sitl.imu)) {
+    LoadParams(context.params, &params_);  // config::LoadParams: reads, rejects, validates
+    mission_ = MakeGapMission(context.scenario, context.sitl.dynamics.vehicle, params_);
   }
 
   perception::Autopilot& autopilot() override { return *mission_; }
+  YAML::Node EffectiveParams() const override { return config::DumpParams(params_); }
   void DrawOverlay(cv::Mat& onboard_bgr) const override { mission_->DrawOverlay(onboard_bgr); }
 
   MissionEvaluation Evaluate(const sim::SitlResult& result) override {
@@ -85,8 +87,8 @@ class GapMissionFlight final : public MissionFlight {
       line[0] = '\0';
     }
     out.outcome = std::string("gap mission: ") +
-                  (out.passed ? "passed the gap" : "did NOT pass the gap (" +
-                                                       evaluation.failure_reason + ")") +
+                  (out.passed ? "passed the gap"
+                              : "did NOT pass the gap (" + evaluation.failure_reason + ")") +
                   ", phase " + planning::ToString(m.phase()) + line;
     return out;
   }
@@ -113,6 +115,7 @@ class GapMissionFlight final : public MissionFlight {
   }
 
   const sim::Scenario& scenario_;
+  planning::GapMissionParams params_;
   std::unique_ptr<planning::GapMission> mission_;
 };
 

@@ -65,13 +65,4 @@ std::unique_ptr<MissionFlight> MissionRegistry::Create(const std::string& name,
   return flight;
 }
 
-std::vector<std::string> TakeMissionSetItems(std::vector<std::string>* set_items) {
-  std::vector<std::string> mission_items, rest;
-  for (const std::string& item : *set_items) {
-    (item.rfind("mission.", 0) == 0 ? mission_items : rest).push_back(item);
-  }
-  *set_items = rest;
-  return mission_items;
-}
-
 }  // namespace aperture::experiments

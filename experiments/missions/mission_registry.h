@@ -12,6 +12,8 @@
 //
 // Autopilots themselves live in planning/ (flown from sensors only) or, for ground-truth
 // references, in sim/; a MissionFlight only builds one and scores its flight.
+#include <yaml-cpp/yaml.h>
+
 #include <functional>
 #include <map>
 #include <memory>
@@ -42,7 +44,7 @@ struct MissionContext {
 // A mission's outcome on ground truth.
 struct MissionEvaluation {
   bool passed = false;
-  std::string outcome;    // one line for the terminal, e.g. "passed the gap, error [...] m"
+  std::string outcome;     // one line for the terminal, e.g. "passed the gap, error [...] m"
   nlohmann::json figures;  // summary.json "mission" (with "passed" added by the caller)
 };
 
@@ -52,6 +54,9 @@ class MissionFlight {
   virtual ~MissionFlight() = default;
   // The autopilot the SITL flies; lives as long as this object.
   virtual perception::Autopilot& autopilot() = 0;
+  // The mission's effective parameters, every field (config::DumpParams of its parameter struct):
+  // the `mission` section of summary.json "config", which `--config summary.json` reads back.
+  virtual YAML::Node EffectiveParams() const { return YAML::Node(YAML::NodeType::Map); }
   // Draws the mission's perception on the onboard camera image of the latest frame (the video).
   virtual void DrawOverlay(cv::Mat& /*onboard_bgr*/) const {}
   // Scores the finished run on ground truth (once, after the run).
@@ -94,9 +99,5 @@ class MissionRegistry {
   std::map<std::string, Entry> entries_;
   std::map<std::string, std::string> default_for_scenario_;
 };
-
-// Moves the `mission.*` items out of *set_items (the scenario loader rejects unknown sections)
-// and returns them with the prefix kept, for config::ConfigTree::FromCommandLine.
-std::vector<std::string> TakeMissionSetItems(std::vector<std::string>* set_items);
 
 }  // namespace aperture::experiments

@@ -1,8 +1,9 @@
 #pragma once
-// YAML loader (config::ParamReader, STYLE.md 6) for PoseImuFilterParams. Keys are the field names
-// (they carry their units); absent keys keep the in-class defaults; unknown keys are rejected with
-// the location and the list of known keys; the loaded struct is validated (errors name the
-// location and the field).
+// Configuration description (Serialize, config/param_archive.h) of PoseImuFilterParams: the
+// loader LoadParams(reader, &params) (config/yaml_read_archive.h) and the dump
+// config::DumpParams(params). Keys are the field names (they carry their units); absent keys keep
+// the in-class defaults; unknown keys are rejected with the location and the list of known keys;
+// the loaded struct is validated (errors name the location and the field).
 //
 //   pose_imu_filter:
 //     accel_noise_density: 3.9e-3       # m/s^2/sqrt(Hz)
@@ -17,11 +18,25 @@
 //     initial_gyro_bias_sigma_radps: 0.01
 //     history_duration_s: 0.5
 //     mahalanobis_gate: 22.46           # .inf disables gating
-#include "config/param_reader.h"
+#include "config/yaml_read_archive.h"
 #include "perception/estimation/pose_imu_filter.h"
 
 namespace aperture::perception {
 
-void LoadParams(config::ParamReader& reader, PoseImuFilterParams* params);
+template <typename Archive>
+void Serialize(Archive* a, PoseImuFilterParams* p) {
+  a->Visit(APERTURE_NVP(p, accel_noise_density));
+  a->Visit(APERTURE_NVP(p, gyro_noise_density));
+  a->Visit(APERTURE_NVP(p, accel_bias_random_walk));
+  a->Visit(APERTURE_NVP(p, gyro_bias_random_walk));
+  a->Visit(APERTURE_NVP(p, gravity_mps2));
+  a->Visit(APERTURE_NVP(p, initial_position_sigma_m));
+  a->Visit(APERTURE_NVP(p, initial_velocity_sigma_mps));
+  a->Visit(APERTURE_NVP(p, initial_attitude_sigma_rad));
+  a->Visit(APERTURE_NVP(p, initial_accel_bias_sigma_mps2));
+  a->Visit(APERTURE_NVP(p, initial_gyro_bias_sigma_radps));
+  a->Visit(APERTURE_NVP(p, history_duration_s));
+  a->Visit(APERTURE_NVP(p, mahalanobis_gate));
+}
 
 }  // namespace aperture::perception

@@ -1,8 +1,9 @@
 #pragma once
-// YAML loader (config::ParamReader, STYLE.md 6) for GapMissionParams, the `mission` section of
-// `aperture sim gap` (`--set mission.hover_s=0.5`). Keys are the field names; absent keys keep
-// the defaults (or what the caller set before, e.g. the scenario's pattern sizes); unknown keys
-// are rejected with their location and the known keys.
+// Configuration description (Serialize, config/param_archive.h) of GapMissionParams, the `mission`
+// section of `aperture sim gap` and `aperture bench gap` (`--set mission.hover_s=0.5`): loaded by
+// LoadParams(reader, &params) (config/yaml_read_archive.h), dumped by config::DumpParams. Keys are
+// the field names; absent keys keep the defaults (or what the caller set before, e.g. the
+// scenario's pattern sizes); unknown keys are rejected with their location and the known keys.
 //
 //   mission:
 //     hover_s: 1.0
@@ -12,14 +13,44 @@
 //     traverse: {max_start_speed_mps: 3} # TraverseParameters (planning)
 //     approach: {duration_min_s: 1.0}    # ApproachPlannerParameters (planning)
 //     fallback_limits: {max_body_rate_radps: 10}  # FeasibilityLimits of the second attempt
+//     controller: {p_xy_per_s2: 5}       # PositionControllerParams, Table A.2 (control)
+//     recovery: {max_vertical_speed_mps: 0.3, controller: {d_z_per_s: 6}}  # RecoveryParams, B.3.2
 //
-// The controller and recovery gains keep their Table A.2 defaults (no keys). Ends with
-// GapMissionParams::Validate(); throws std::invalid_argument naming where the bad value is.
-#include "config/param_reader.h"
+// Loading ends with GapMissionParams::Validate(); errors are std::invalid_argument naming where
+// the bad value is.
+#include "control/control_params_io.h"
+#include "perception/estimation/pose_imu_filter_params_io.h"
+#include "perception/gap/gap_detector_params_io.h"
 #include "planning/gap_mission/gap_mission.h"
+#include "planning/planning_params_io.h"
 
 namespace aperture::planning {
 
-void LoadParams(config::ParamReader& reader, GapMissionParams* params);
+template <typename Archive>
+void Serialize(Archive* a, GapMissionParams* p) {
+  a->Visit(APERTURE_NVP(p, camera_id));
+  a->Visit(APERTURE_NVP(p, init_detections));
+  a->Visit(APERTURE_NVP(p, gravity_samples));
+  a->Visit(APERTURE_NVP(p, detection_covariance_scale));
+  a->Visit(APERTURE_NVP(p, max_consecutive_rejections));
+  a->Visit(APERTURE_NVP(p, min_ground_clearance_m));
+  a->Visit(APERTURE_NVP(p, hover_s));
+  a->Visit(APERTURE_NVP(p, init_max_relative_sigma));
+  a->Visit(APERTURE_NVP(p, transfer_speed_mps));
+  a->Visit(APERTURE_NVP(p, min_transfer_s));
+  a->Visit(APERTURE_NVP(p, start_hold_s));
+  a->Visit(APERTURE_NVP(p, lead_in_s));
+  a->Visit(APERTURE_NVP(p, min_replan_remaining_s));
+  a->Visit(APERTURE_NVP(p, detection_timeout_s));
+  a->Visit(APERTURE_NVP(p, approach_commit_s));
+  a->Visit(APERTURE_NVP(p, recovered_hold_s));
+  a->Visit(APERTURE_NVP(p, detector));
+  a->Visit(APERTURE_NVP(p, filter));
+  a->Visit(APERTURE_NVP(p, traverse));
+  a->Visit(APERTURE_NVP(p, approach));
+  a->Visit(APERTURE_NVP(p, fallback_limits));
+  a->Visit(APERTURE_NVP(p, controller));
+  a->Visit(APERTURE_NVP(p, recovery));
+}
 
 }  // namespace aperture::planning

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "sim/scenario/scenario.h"
+#include "sim/sim_params_io.h"
 
 namespace aperture::sim {
 namespace {
@@ -171,6 +172,16 @@ ScenarioParams LoadScenarioParams(const config::ConfigTree& tree) {
   LoadParams(root, &params);
   root.RejectUnknownKeys();
   return params;
+}
+
+void PutEffectiveSitlBlocks(const ScenarioParams& params, config::ConfigTree* tree) {
+  const SitlRunnerParams defaults;
+  tree->PutParams("disturbances", params.disturbances);
+  tree->PutParams("dynamics", params.dynamics.value_or(defaults.dynamics));
+  tree->PutParams("imu", params.imu.value_or(defaults.imu));
+  tree->PutParams("range", params.range.value_or(defaults.range));
+  tree->PutParams("collision", params.collision.value_or(defaults.collision));
+  tree->PutParams("sitl", params.sitl.value_or(defaults));
 }
 
 }  // namespace aperture::sim

@@ -101,4 +101,10 @@ config::ConfigTree ScenarioConfig(const std::string& name,
 // Strictly loads the whole tree (unknown keys throw with file:line and the known keys).
 ScenarioParams LoadScenarioParams(const config::ConfigTree& tree);
 
+// Writes into `tree` the effective SITL blocks of `params` in full (scenario_params.h:
+// disturbances, dynamics, imu, range, collision and the sitl loop fields; a block the scenario
+// does not have: the in-class defaults ConfigureSitlFromScenario keeps), so that the tree names
+// every simulator value a run used and loads back to the same ScenarioParams blocks.
+void PutEffectiveSitlBlocks(const ScenarioParams& params, config::ConfigTree* tree);
+
 }  // namespace aperture::sim

@@ -38,6 +38,36 @@ TEST(BenchControlCommand, QuickRunWritesTheDragKeysAndReport) {
   EXPECT_TRUE(fs::exists(out / "report.html"));
 }
 
+// The vehicle comes from the configuration: the identification finds the drag set with --set,
+// and summary.json carries the full effective vehicle and control stack.
+TEST(BenchControlCommand, ConfiguredVehicleIsTheOneTheSectionsFly) {
+  TempFolder temp("bench_control_config");
+  const fs::path out = fs::path(temp.path()) / "out";
+  const CommandResult result = RunAperture(
+      "bench control --quick --only drag_id --set 'dynamics.vehicle.rotor_drag_D_per_s=[0.3, "
+      "0.2, 0]' --set control.mixer=one_shot --out " +
+      out.string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const nlohmann::json summary = ReadJson(out / "summary.json");
+  EXPECT_DOUBLE_EQ(summary["drag_id"]["true"]["dx"].get<double>(), 0.3);
+  EXPECT_DOUBLE_EQ(summary["drag_id"]["true"]["dy"].get<double>(), 0.2);
+  EXPECT_NEAR(summary["drag_id"]["estimated"]["dx"].get<double>(), 0.3, 0.03);
+  EXPECT_NEAR(summary["drag_id"]["estimated"]["dy"].get<double>(), 0.2, 0.02);
+  const nlohmann::json& config = summary["config"];
+  EXPECT_EQ(config["control"]["mixer"], "one_shot");
+  EXPECT_EQ(config["dynamics"]["vehicle"]["rotor_drag_D_per_s"],
+            nlohmann::json::array({0.3, 0.2, 0}));
+  EXPECT_EQ(config["control"]["position"]["p_xy_per_s2"], 5);  // defaults are written too
+  EXPECT_TRUE(config.contains("imu"));
+  EXPECT_TRUE(config.contains("range"));
+
+  const CommandResult typo =
+      RunAperture("bench control --only drag_id --set control.mixr=x --out " +
+                  (fs::path(temp.path()) / "typo").string());
+  EXPECT_NE(typo.exit_code, 0);
+  EXPECT_NE(typo.output.find("control.mixr"), std::string::npos) << typo.output;
+}
+
 TEST(BenchControlCommand, UnknownSectionIsNamed) {
   TempFolder temp("bench_control_bad");
   const CommandResult result =

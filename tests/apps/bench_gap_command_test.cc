@@ -86,5 +86,31 @@ TEST(BenchGapCommand, RejectsAnInclinationRangeOutOfBounds) {
   EXPECT_NE(result.output.find("--max-roll-deg"), std::string::npos) << result.output;
 }
 
+// Every mission parameter is settable in the bench (`mission` section) and reaches each trial's
+// mission: a camera_id the scenario does not have fails every trial naming it, before a frame.
+TEST(BenchGapCommand, MissionSectionReachesTheTrialsAndIsRecorded) {
+  TempFolder temp("bench_gap_mission_config");
+  const fs::path out = fs::path(temp.path()) / "out";
+  const CommandResult result = RunAperture(
+      "bench gap --trials 1 --duration 1 --set mission.camera_id=5 "
+      "--set mission.recovery.max_vertical_speed_mps=0.4 --out " +
+      out.string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const nlohmann::json summary = ReadJson(out / "summary.json");
+  EXPECT_EQ(summary["successes"], 0);
+  EXPECT_NE(summary["per_trial"][0]["failure_reason"].get<std::string>().find("camera_id 5"),
+            std::string::npos)
+      << summary["per_trial"][0];
+  const nlohmann::json& mission = summary["config"]["mission"];
+  EXPECT_EQ(mission["camera_id"], 5);
+  EXPECT_EQ(mission["recovery"]["max_vertical_speed_mps"], 0.4);
+  EXPECT_EQ(mission["detector"]["outer_size_m"], nlohmann::json::array({1.3, 0.78}));
+
+  const CommandResult typo = RunAperture("bench gap --trials 1 --set mission.hover_sec=1 --out " +
+                                         (fs::path(temp.path()) / "typo").string());
+  EXPECT_NE(typo.exit_code, 0);
+  EXPECT_NE(typo.output.find("mission.hover_sec"), std::string::npos) << typo.output;
+}
+
 }  // namespace
 }  // namespace aperture::apps::testing

@@ -50,7 +50,7 @@ int WriteBagFromFolder(const fs::path& folder, const fs::path& bag_path) {
     bag.WriteImu("/imu0", kBagStartS + t, Eigen::Vector3d(0.0, 0.0, 9.81), Eigen::Vector3d::Zero());
   }
   for (size_t i = 0; i < t_s.size(); ++i) {
-    char name[16];
+    char name[32];
     std::snprintf(name, sizeof(name), "%06zu.png", i);
     const cv::Mat image =
         perception::ReadImageFile(folder / "images" / name, perception::ColorMode::kGray);

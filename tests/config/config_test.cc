@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -10,6 +11,7 @@
 #include "config/config_tree.h"
 #include "config/param_reader.h"
 #include "tests/support/message_of.h"
+#include "tests/support/temp_directory_test.h"
 
 namespace aperture::config {
 namespace {
@@ -68,24 +70,7 @@ TestParams LoadVehicle(const ConfigTree& tree) {
   return params;
 }
 
-class ConfigFileTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    directory_ = std::filesystem::temp_directory_path() /
-                 ("aperture_config_test_" +
-                  std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    std::filesystem::create_directories(directory_);
-  }
-  void TearDown() override { std::filesystem::remove_all(directory_); }
-
-  std::string WriteFile(const std::string& name, const std::string& text) {
-    const std::string path = (directory_ / name).string();
-    std::ofstream(path) << text;
-    return path;
-  }
-
-  std::filesystem::path directory_;
-};
+class ConfigFileTest : public aperture::testing::TempDirectoryTest {};
 
 TEST_F(ConfigFileTest, EmptyTreeKeepsStructDefaults) {
   const TestParams params = LoadVehicle(ConfigTree());
@@ -279,6 +264,21 @@ TEST_F(ConfigFileTest, ToJsonTypesScalarsAndKeepsQuotedStrings) {
   tree.ApplySet("g=1e3");
   EXPECT_EQ(tree.ToJson(),
             R"({"a":{"b":1,"c":"x","d":0.5,"e":"3"},"f":[true,null,"q\"s",".nan"],"g":1000})");
+}
+
+// 64-bit seeds (SetSeed derives them by hashing) must come back exactly from summary.json: every
+// integer of the uint64/int64 range is written as an integer, not a rounded double.
+TEST_F(ConfigFileTest, ToJsonKeepsSixtyFourBitIntegersExact) {
+  ConfigTree tree;
+  tree.MergeYaml(
+      "max: 18446744073709551615\nseed: 13787848793156545019\nlow: -9223372036854775808\n"
+      "huge: 99999999999999999999\n",
+      "inline");
+  EXPECT_EQ(tree.ToJson(), R"({"max":18446744073709551615,"seed":13787848793156545019,)"
+                           R"("low":-9223372036854775808,"huge":1e+20})");
+  std::uint64_t seed = 0;
+  ParamReader(YAML::Load(tree.ToJson()), "json").Read("seed", &seed);
+  EXPECT_EQ(seed, 13787848793156545019ull);
 }
 
 TEST_F(ConfigFileTest, StandaloneReaderNamesItsSource) {

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "tests/support/message_of.h"
+#include "tests/support/param_round_trip.h"
 
 namespace aperture::perception {
 namespace {
@@ -57,6 +58,10 @@ TEST(FrameSourceOptionsIo, ParsesColorModeWords) {
     EXPECT_THAT(e.what(), HasSubstr("'grey'"));
     EXPECT_THAT(e.what(), HasSubstr("gray or color"));
   }
+}
+
+TEST(FrameSourceOptionsIo, RoundTripsThroughItsDump) {
+  test_support::ExpectRoundTrip(FrameSourceOptions{});
 }
 
 }  // namespace

@@ -7,7 +7,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "perception/gap/gap_detector_params_io.h"
 #include "tests/support/message_of.h"
+#include "tests/support/param_round_trip.h"
 
 namespace aperture::perception {
 namespace {
@@ -45,6 +47,17 @@ TEST(PoseImuFilterParamsIoTest, RejectsUnknownKeysAndInvalidValuesNamingThem) {
   const std::string invalid = ErrorOf("history_duration_s: -1\n");
   EXPECT_NE(invalid.find("history_duration_s"), std::string::npos) << invalid;
   EXPECT_NE(invalid.find("filter.yaml"), std::string::npos) << invalid;
+}
+
+TEST(PoseImuFilterParamsIo, RoundTripsThroughItsDump) {
+  test_support::ExpectRoundTrip(PoseImuFilterParams{});
+}
+
+TEST(GapDetectorParamsIo, RoundTripsThroughItsDumpAndValidates) {
+  test_support::ExpectRoundTrip(GapDetectorParams{});
+  config::ParamReader reader(YAML::Load("{canny_low: -4}"), "detector.yaml");
+  GapDetectorParams params;
+  EXPECT_THROW(LoadParams(reader, &params), std::invalid_argument);
 }
 
 }  // namespace

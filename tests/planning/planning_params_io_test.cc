@@ -6,6 +6,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "planning/gap_mission/gap_mission_params_io.h"
+#include "tests/support/param_round_trip.h"
+
 namespace aperture::planning {
 namespace {
 
@@ -55,6 +58,32 @@ TEST(PlanningParamsIo, RejectsBadValuesNamingTheKey) {
   EXPECT_NE(message_of("approach: {limits: {max_thrust_mps2: 1.0}}").find("max_thrust_mps2"),
             std::string::npos);
   EXPECT_NE(message_of("approach: {duration_count: 0}").find("planning.yaml"), std::string::npos);
+}
+
+TEST(PlanningParamsIo, EveryStructRoundTripsThroughItsDump) {
+  test_support::ExpectRoundTrip(FeasibilityLimits{});
+  test_support::ExpectRoundTrip(TraverseParameters{});
+  ApproachPlannerParameters approach;
+  approach.min_height_m = 0.3;  // the default -inf has no perturbation
+  test_support::ExpectRoundTrip(approach);
+}
+
+// The mission's whole configuration, including the controller and recovery gains the loader used
+// to skip.
+TEST(GapMissionParamsIo, RoundTripsWithControllerAndRecovery) {
+  GapMissionParams mission;
+  mission.approach.min_height_m = 0.3;
+  test_support::ExpectRoundTrip(mission);
+  config::ParamReader reader(
+      YAML::Load("{controller: {p_xy_per_s2: 7}, recovery: {max_vertical_speed_mps: 0.4, "
+                 "controller: {d_z_per_s: 5}}}"),
+      "mission.yaml");
+  GapMissionParams loaded;
+  LoadParams(reader, &loaded);
+  EXPECT_EQ(loaded.controller.p_xy_per_s2, 7.0);
+  EXPECT_EQ(loaded.recovery.max_vertical_speed_mps, 0.4);
+  EXPECT_EQ(loaded.recovery.controller.d_z_per_s, 5.0);
+  EXPECT_EQ(loaded.controller.p_z_per_s2, control::PositionControllerParams().p_z_per_s2);
 }
 
 }  // namespace

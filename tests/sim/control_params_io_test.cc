@@ -8,6 +8,7 @@
 #include <string>
 
 #include "tests/support/message_of.h"
+#include "tests/support/param_round_trip.h"
 
 namespace aperture::sim {
 namespace {
@@ -89,6 +90,30 @@ TEST(ControlParamsIoTest, NonPhysicalValuesAreRejectedWithTheirName) {
             std::string::npos);
   EXPECT_NE(MessageOf([] { Load("assured_yaw_torque_Nm: -1"); }).find("assured_yaw_torque_Nm"),
             std::string::npos);
+}
+
+TEST(ControlParamsIoTest, RoundTripsThroughItsDump) {
+  test_support::ExpectRoundTrip(ControlStackParams{});  // lqr -> p_low by the perturbation
+  ControlStackParams custom;
+  custom.low_level.body_rate_law = BodyRateLaw::kProportional;
+  custom.low_level.proportional.rate_gains_per_s = Eigen::Vector3d(21.0, 22.0, 9.0);
+  const std::string yaml = config::DumpYaml(custom);
+  EXPECT_NE(yaml.find("body_rate: p_custom"), std::string::npos) << yaml;
+  const ControlStackParams loaded = Load(yaml);
+  EXPECT_EQ(loaded.low_level.body_rate_law, BodyRateLaw::kProportional);
+  EXPECT_EQ(loaded.low_level.proportional.rate_gains_per_s, Eigen::Vector3d(21.0, 22.0, 9.0));
+}
+
+// A preset set over a dumped configuration wins: the dump of a preset carries no gains.
+TEST(ControlParamsIoTest, PresetOverADumpedPresetTakesEffect) {
+  ControlStackParams low = Load("body_rate: p_low");
+  YAML::Node dump = config::DumpParams(low);
+  EXPECT_FALSE(dump["p_rate_gains_per_s"]);
+  dump["body_rate"] = "p_high";
+  config::ParamReader reader(dump, "dump.yaml");
+  ControlStackParams loaded;
+  LoadParams(reader, &loaded);
+  EXPECT_EQ(BodyRateName(loaded.low_level), "p_high");
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "tests/support/message_of.h"
+#include "tests/support/param_round_trip.h"
 
 namespace aperture::sim {
 namespace {
@@ -85,6 +86,33 @@ TEST(SimParamsIoTest, RejectsUnknownKeysMalformedRowsAndInvalidValuesNamingThem)
   EXPECT_NE(mass_error.find("mass_kg"), std::string::npos) << mass_error;
   EXPECT_NE(MessageOf([] { Load<RangeSensorParams>("{seed: -3}"); }).find("seed"),
             std::string::npos);
+}
+
+// Dump -> load -> dump with every field off its default (tests/support/param_round_trip.h).
+TEST(SimParamsIoTest, EveryStructRoundTripsThroughItsDump) {
+  QuadrotorDynamicsParams dynamics;
+  dynamics.vehicle.rotor_fitness = Eigen::Vector4d(0.9, 0.8, 0.95, 0.7);  // at most 1
+  test_support::ExpectRoundTrip(dynamics);
+  DisturbanceParams disturbances;
+  disturbances.gusts.push_back({1.0, 0.5, Eigen::Vector3d(1.0, -2.0, 0.1)});
+  disturbances.pushes.push_back({2.0, Eigen::Vector3d(0.1, 0.2, 0.3), Eigen::Vector3d::Zero()});
+  disturbances.pushes.push_back({3.0, Eigen::Vector3d(0.1, 0.0, 0.0), Eigen::Vector3d(0, 0, 1e-3)});
+  test_support::ExpectRoundTrip(disturbances);
+  test_support::ExpectRoundTrip(ImuSensorParams{});
+  test_support::ExpectRoundTrip(RangeSensorParams{});
+  CollisionParams collision;
+  collision.ignored_objects = {"led_target", "1"};
+  test_support::ExpectRoundTrip(collision);
+  test_support::ExpectRoundTrip(SitlRunnerParams{});
+}
+
+TEST(SimParamsIoTest, PushesDumpInTheShortFormWithoutAngularImpulse) {
+  DisturbanceParams disturbances;
+  disturbances.pushes.push_back({2.0, Eigen::Vector3d(0.5, 0.0, 0.0), Eigen::Vector3d::Zero()});
+  disturbances.gusts.push_back({1.0, 0.25, Eigen::Vector3d(3.0, 0.0, 0.0)});
+  const std::string yaml = config::DumpYaml(disturbances);
+  EXPECT_NE(yaml.find("pushes: [[2, 0.5, 0, 0]]"), std::string::npos) << yaml;
+  EXPECT_NE(yaml.find("gusts: [[1, 0.25, 3, 0, 0]]"), std::string::npos) << yaml;
 }
 
 }  // namespace
