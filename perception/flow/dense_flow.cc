@@ -46,6 +46,12 @@ void DenseFlowParams::Validate() const {
     throw std::invalid_argument("flow.method '" + method + "' is unknown; use one of " +
                                 KnownMethods());
   }
+  if (dis_refinement_iterations < -1) {
+    throw std::invalid_argument(
+        "flow.dis_refinement_iterations must be >= 0 or -1 (the preset's), "
+        "got " +
+        std::to_string(dis_refinement_iterations));
+  }
   if (refinement_fixed_point_iterations < 1 || refinement_sor_iterations < 1) {
     throw std::invalid_argument(
         "flow.refinement_fixed_point_iterations and refinement_sor_iterations must be >= 1");
@@ -54,6 +60,7 @@ void DenseFlowParams::Validate() const {
 
 void LoadParams(config::ParamReader& reader, DenseFlowParams* params) {
   reader.Read("method", &params->method);
+  reader.Read("dis_refinement_iterations", &params->dis_refinement_iterations);
   reader.Read("variational_refinement", &params->variational_refinement);
   reader.Read("refinement_fixed_point_iterations", &params->refinement_fixed_point_iterations);
   reader.Read("refinement_sor_iterations", &params->refinement_sor_iterations);
@@ -70,6 +77,10 @@ const std::vector<std::string>& DenseFlowMethodNames() {
 DenseFlow::DenseFlow(const DenseFlowParams& params) : params_(params) {
   params_.Validate();
   method_ = MakeMethod(params_.method);
+  if (auto dis = method_.dynamicCast<cv::DISOpticalFlow>();
+      dis && params_.dis_refinement_iterations >= 0) {
+    dis->setVariationalRefinementIterations(params_.dis_refinement_iterations);
+  }
   needs_color_ = params_.method == "rlof";
   if (params_.variational_refinement) {
     cv::Ptr<cv::VariationalRefinement> refinement = cv::VariationalRefinement::create();
@@ -84,7 +95,11 @@ DenseFlow::DenseFlow(DenseFlow&&) noexcept = default;
 DenseFlow& DenseFlow::operator=(DenseFlow&&) noexcept = default;
 
 std::string DenseFlow::Describe() const {
-  return params_.method + (params_.variational_refinement ? "+variational" : "");
+  const bool dis_override =
+      params_.dis_refinement_iterations >= 0 && params_.method.rfind("dis_", 0) == 0;
+  return params_.method +
+         (dis_override ? "/refine" + std::to_string(params_.dis_refinement_iterations) : "") +
+         (params_.variational_refinement ? "+variational" : "");
 }
 
 cv::Mat DenseFlow::Compute(const cv::Mat& from, const cv::Mat& to) {

@@ -36,6 +36,10 @@ struct DenseFlowParams {
   // DIS-medium: the fastest method whose TS²P detection meets seed 002's FlowNet2 figures here
   // (docs/results/ts2p.md); dis_fast/dis_ultrafast trade edge accuracy for speed.
   std::string method = "dis_medium";
+  // DIS methods only: iterations of DIS's own variational refinement at each scale (Kroeger 2016
+  // Sec. 2.3); -1 keeps the preset's (ultrafast 0, fast and medium 5). It is most of DIS-medium's
+  // cost at the finest scale.
+  int dis_refinement_iterations = -1;
   bool variational_refinement = false;
   // cv::VariationalRefinement settings (OpenCV's defaults; used when variational_refinement).
   int refinement_fixed_point_iterations = 5;
