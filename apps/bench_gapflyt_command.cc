@@ -12,7 +12,6 @@
 #include "apps/command_support.h"
 #include "apps/commands.h"
 #include "experiments/gapflyt/gapflyt_bench.h"
-#include "experiments/missions/mission_registry.h"
 #include "output/progress_bar.h"
 #include "perception/graph/front_end_registry.h"
 
@@ -27,8 +26,10 @@ struct BenchGapflytOptions {
 };
 
 void RunBenchGapflyt(BenchGapflytOptions options, output::OutputFolder& out) {
-  std::vector<std::string> set_items = options.common.set_items;
-  options.bench.mission_set_items = experiments::TakeMissionSetItems(&set_items);
+  std::vector<std::string> set_items;
+  for (const std::string& item : options.common.set_items) {
+    (item.rfind("mission.", 0) == 0 ? options.bench.mission_set_items : set_items).push_back(item);
+  }
   if (!set_items.empty() || !options.common.config_files.empty()) {
     throw std::invalid_argument("bench gapflyt: only --set mission.<key>=<value> is read (got '" +
                                 (set_items.empty() ? std::string("--config") : set_items.front()) +
