@@ -22,6 +22,7 @@ void AddSimRecoveryCommand(CLI::App& sim, int* exit_code);
 // Benchmarks under `aperture bench` (apps/bench_<name>_command.cc).
 void AddBenchControlCommand(CLI::App& bench, int* exit_code);
 void AddBenchGapCommand(CLI::App& bench, int* exit_code);
+void AddBenchGapflytCommand(CLI::App& bench, int* exit_code);
 void AddBenchMononavCommand(CLI::App& bench, int* exit_code);
 void AddBenchTs2pCommand(CLI::App& bench, int* exit_code);
 void AddBenchTagsCommand(CLI::App& bench, int* exit_code);

@@ -15,3 +15,9 @@ out=${2:?usage: demo.sh APERTURE_BINARY OUT_DIR}
 # summary.json lists (its "outputs" holds the only string-valued "video" key).
 video=$(sed -n 's/^ *"video": *"\([^"]*\)".*/\1/p' "$out/summary.json" | head -n 1)
 echo "demo: open $out/report.html (video: ${video:+$out/}${video:-none written})"
+
+# The visual-servo demo (seed 002, GapFlyt): the unknown polygonal opening of the gapflyt scene,
+# found by an active diagonal scan (TS2P), tracked (label sets with FOE constraints) and flown
+# through on the moment servo; camera + IMU + downward range sensor only. Into $out/gapflyt.
+"$aperture" sim gapflyt --duration 12 --out "$out/gapflyt"
+echo "demo: open $out/gapflyt/report.html (GapFlyt; --set mission.servo.law=pid for the PID)"

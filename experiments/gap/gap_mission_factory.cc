@@ -5,9 +5,8 @@
 #include <vector>
 
 namespace aperture::experiments {
-namespace {
 
-int ForwardCameraIndex(const sim::Scenario& scenario) {
+int ForwardCameraIndex(const sim::Scenario& scenario, const std::string& mission) {
   const std::vector<sim::ScenarioCamera>& cameras = scenario.cameras();
   int first_on_body = -1;
   for (int i = 0; i < static_cast<int>(cameras.size()); ++i) {
@@ -17,13 +16,11 @@ int ForwardCameraIndex(const sim::Scenario& scenario) {
   }
   if (first_on_body < 0) {
     throw std::invalid_argument("scenario '" + scenario.kind() +
-                                "' has no body-mounted camera for the gap mission: add a "
-                                "forward camera (cameras.front)");
+                                "' has no body-mounted camera for the " + mission +
+                                " mission: add a forward camera (cameras.front)");
   }
   return first_on_body;
 }
-
-}  // namespace
 
 planning::GapMissionParams GapMissionParamsFor(const sim::Scenario& scenario,
                                                const sim::ImuSensorParams& imu,
@@ -31,7 +28,7 @@ planning::GapMissionParams GapMissionParamsFor(const sim::Scenario& scenario,
   planning::GapMissionParams params = base;
   const sim::GapParams& gap = scenario.params().gap;
   static_cast<perception::GapPattern&>(params.detector) = gap.Pattern();  // tuning kept
-  params.camera_id = ForwardCameraIndex(scenario);
+  params.camera_id = ForwardCameraIndex(scenario, "gap");
   params.filter.accel_noise_density = imu.accel_noise_density;
   params.filter.gyro_noise_density = imu.gyro_noise_density;
   params.filter.accel_bias_random_walk = imu.accel_bias_random_walk;

@@ -11,6 +11,7 @@
 //   std::unique_ptr<planning::GapMission> mission =
 //       MakeGapMission(scenario, sitl_params.dynamics.vehicle, params);
 #include <memory>
+#include <string>
 
 #include "control/vehicle_parameters.h"
 #include "planning/gap_mission/gap_mission.h"
@@ -18,6 +19,11 @@
 #include "sim/sensors/imu_sensor.h"
 
 namespace aperture::experiments {
+
+// Index of the camera named "front", else of the first body-mounted one (the forward camera a
+// vision mission flies with). Throws std::invalid_argument naming the scenario and `mission`
+// when the scenario has no body-mounted camera.
+int ForwardCameraIndex(const sim::Scenario& scenario, const std::string& mission);
 
 // `base` with the scenario-derived fields replaced: detector pattern sizes (gap.opening_m,
 // pattern_inner_m, pattern_outer_m), camera_id (the camera named "front", else the first

@@ -11,6 +11,7 @@
 #include "experiments/led/led_hover_flight_params_io.h"
 #include "experiments/missions/forest_flight.h"
 #include "experiments/missions/gap_mission_flight.h"
+#include "experiments/missions/gapflyt_flight.h"
 #include "sim/sitl/ground_truth_autopilot.h"
 
 namespace aperture::experiments {
@@ -124,6 +125,10 @@ void RegisterBuiltinMissions(MissionRegistry& registry) {
                     "vision gap mission (seed 000): detect, plan, approach, traverse the "
                     "patterned gap, recover",
                     {"gap"}, MakeGapMissionFlight);
+  registry.Register("gapflyt",
+                    "GapFlyt (seed 002): active scan, TS2P detection, label tracking, servo "
+                    "(servo.law moments | pid) through the unknown opening",
+                    {"gapflyt"}, MakeGapflytFlight);
   registry.Register("led_hover",
                     "LED-stabilized hover (thesis C.4.3): LED pose from the ground camera + IMU",
                     {"led"}, [](const MissionContext& context) -> std::unique_ptr<MissionFlight> {
@@ -134,7 +139,7 @@ void RegisterBuiltinMissions(MissionRegistry& registry) {
                     "minimum-time B-spline, replanned every frame, to forest.goal_m",
                     {"forest"}, MakeForestFlight);
   registry.Register("hover", "hover at the start pose on ground truth (reference flight)",
-                    {"gapflyt", "tags"},
+                    {"tags"},
                     [](const MissionContext& context) -> std::unique_ptr<MissionFlight> {
                       return std::make_unique<HoverFlight>(context);
                     });

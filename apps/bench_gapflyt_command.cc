@@ -1,0 +1,81 @@
+// aperture bench gapflyt: closed-loop GapFlyt flights through randomized unknown openings per
+// servo law (issue 14; seed 002 Sec. IV analog; experiments/gapflyt/gapflyt_bench.h).
+//
+//   aperture bench gapflyt [--trials N] [--seed S] [--laws moments,pid] [--width W --height H]
+//                          [--tight-every K] [--quick] [--set mission.key=value ...] --out DIR
+//
+// --quick: one trial (the ellipse) per law (a smoke test of ~10 s). Writes DIR/summary.json,
+// DIR/trials.csv, DIR/report.html.
+#include <iostream>
+#include <memory>
+
+#include "apps/command_support.h"
+#include "apps/commands.h"
+#include "experiments/gapflyt/gapflyt_bench.h"
+#include "output/progress_bar.h"
+#include "perception/graph/front_end_registry.h"
+
+namespace aperture::apps {
+namespace {
+
+struct BenchGapflytOptions {
+  CommonOptions common;
+  experiments::GapflytBenchOptions bench;
+  std::string laws;
+  bool quick = false;
+};
+
+void RunBenchGapflyt(BenchGapflytOptions options, output::OutputFolder& out) {
+  std::vector<std::string> set_items;
+  for (const std::string& item : options.common.set_items) {
+    (item.rfind("mission.", 0) == 0 ? options.bench.mission_set_items : set_items).push_back(item);
+  }
+  if (!set_items.empty() || !options.common.config_files.empty()) {
+    throw std::invalid_argument("bench gapflyt: only --set mission.<key>=<value> is read (got '" +
+                                (set_items.empty() ? std::string("--config") : set_items.front()) +
+                                "'); the scene is drawn per trial");
+  }
+  if (!options.laws.empty()) options.bench.laws = perception::SplitFrontEndList(options.laws);
+  if (options.quick) options.bench.trials = 1;  // trial 0: the ellipse
+  const int total = options.bench.trials * static_cast<int>(options.bench.laws.size());
+  output::ProgressBar progress("gapflyt flights", static_cast<std::size_t>(std::max(total, 1)));
+  const experiments::GapflytBenchResult result = experiments::RunGapflytBench(
+      options.bench, [&](int done, int) { progress.Update(static_cast<std::size_t>(done)); });
+  progress.Finish();
+  out.summary()["command"] = "bench gapflyt";
+  out.summary()["quick"] = options.quick;
+  experiments::WriteGapflytBenchOutputs(result, out);
+  for (const auto& [law, l] : out.summary()["laws"].items()) {
+    std::cout << "aperture bench gapflyt: " << law << " passed " << l["passed"].get<int>() << "/"
+              << l["trials"].get<int>() << " (seed 002 success "
+              << l["seed002_success_rate"].get<double>() << ")\n";
+  }
+}
+
+}  // namespace
+
+void AddBenchGapflytCommand(CLI::App& bench, int* exit_code) {
+  auto options = std::make_shared<BenchGapflytOptions>();
+  CLI::App* command = bench.add_subcommand(
+      "gapflyt",
+      "GapFlyt flights through randomized unknown openings per servo law (seed 002 Sec. IV)");
+  command->add_option("--trials", options->bench.trials, "Trials per law (shapes cycle)")
+      ->check(CLI::PositiveNumber);
+  command->add_option("--seed", options->bench.seed, "Seed of every trial's random choices");
+  command->add_option("--laws", options->laws, "Comma-separated servo laws (moments,pid)");
+  command->add_option("--width", options->bench.width, "Forward camera image width [px]");
+  command->add_option("--height", options->bench.height, "Forward camera image height [px]");
+  command
+      ->add_option("--tight-every", options->bench.tight_every,
+                   "Every K-th round of the five shapes is tight (0: none)")
+      ->check(CLI::NonNegativeNumber);
+  command->add_flag("--quick", options->quick, "One trial (the ellipse) per law (smoke test)");
+  AddCommonOptions(command, &options->common);
+  command->callback([options, exit_code] {
+    output::OutputFolder out(options->common.out_dir);
+    output::RunAndWriteSummary(out, [&] { RunBenchGapflyt(*options, out); });
+    *exit_code = 0;
+  });
+}
+
+}  // namespace aperture::apps

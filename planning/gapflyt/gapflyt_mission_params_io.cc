@@ -1,0 +1,46 @@
+#include "planning/gapflyt/gapflyt_mission_params_io.h"
+
+#include "perception/ts2p/label_tracker.h"
+#include "perception/ts2p/ts2p_node.h"
+#include "servo/servo_params_io.h"
+
+namespace aperture::planning {
+namespace {
+
+void LoadOdometry(config::ParamReader& reader, control::DragAidedOdometryParams* params) {
+  reader.Read("velocity_time_constant_s", &params->velocity_time_constant_s);
+  reader.Read("calibration_s", &params->calibration_s);
+  reader.RejectUnknownKeys();
+}
+
+}  // namespace
+
+void LoadParams(config::ParamReader& reader, GapflytMissionParams* params) {
+  reader.Read("settle_s", &params->settle_s);
+  reader.Read("scan_direction", &params->scan_direction);
+  reader.Read("scan_speed_mps", &params->scan_speed_mps);
+  reader.Read("scan_ramp_s", &params->scan_ramp_s);
+  reader.Read("scan_cruise_s", &params->scan_cruise_s);
+  reader.Read("max_scans", &params->max_scans);
+  reader.Read("commit_area_fraction", &params->commit_area_fraction);
+  reader.Read("commit_depth_m", &params->commit_depth_m);
+  reader.Read("commit_error", &params->commit_error);
+  reader.Read("commit_border_px", &params->commit_border_px);
+  reader.Read("max_servo_speed_mps", &params->max_servo_speed_mps);
+  reader.Read("max_servo_accel_mps2", &params->max_servo_accel_mps2);
+  reader.Read("go_through_speed_mps", &params->go_through_speed_mps);
+  reader.Read("go_through_distance_m", &params->go_through_distance_m);
+  reader.Read("stop_hold_s", &params->stop_hold_s);
+  reader.Read("max_lost_frames", &params->max_lost_frames);
+  if (reader.Has("odometry")) {
+    config::ParamReader odometry = reader.Section("odometry");
+    LoadOdometry(odometry, &params->odometry);
+  }
+  reader.ReadSection("ts2p", &params->ts2p);
+  reader.ReadSection("gap_tracker", &params->tracker);
+  reader.ReadSection("servo", &params->servo);
+  reader.RejectUnknownKeys();
+  reader.Validate(*params);
+}
+
+}  // namespace aperture::planning
