@@ -13,8 +13,9 @@ namespace {
 TEST(AttitudeCommand, ThrustAxisPointsAlongAccelerationPlusGravity) {
   const double g = 9.81;
   for (const double psi : {0.0, 0.7, -2.1, 3.0}) {
-    for (const Eigen::Vector3d a : {Eigen::Vector3d(1.5, 0.0, 0.0), Eigen::Vector3d(0.0, -2.0, 0.5),
-                                    Eigen::Vector3d(-3.0, 2.5, -4.0)}) {
+    for (const Eigen::Vector3d& a :
+         {Eigen::Vector3d(1.5, 0.0, 0.0), Eigen::Vector3d(0.0, -2.0, 0.5),
+          Eigen::Vector3d(-3.0, 2.5, -4.0)}) {
       const std::optional<AttitudeCommand> command = AttitudeFromAcceleration(a, psi, g);
       ASSERT_TRUE(command.has_value());
       const Eigen::Matrix3d R_WB =
