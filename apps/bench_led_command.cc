@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 
+#include "apps/acceptance_outcome.h"
 #include "apps/commands.h"
 #include "experiments/led/led_bench.h"
 #include "output/html_report.h"
@@ -23,20 +24,6 @@ struct BenchLedOptions {
 };
 
 // Passed when every acceptance check (thesis C.4 analogs, experiments/led/led_bench.h) holds.
-output::ReportOutcome AcceptanceOutcome(const nlohmann::json& acceptance) {
-  output::ReportOutcome outcome{"passed", "", {}};
-  int met = 0;
-  for (const auto& [check, value] : acceptance.items()) {
-    const bool ok = value.is_boolean() && value.get<bool>();
-    met += ok;
-    if (!ok) outcome.verdict = "failed";
-    outcome.figures.push_back({check, ok ? "met" : "NOT met", "met"});
-  }
-  outcome.headline =
-      std::to_string(met) + " of " + std::to_string(acceptance.size()) + " acceptance checks met.";
-  return outcome;
-}
-
 }  // namespace
 
 void AddBenchLedCommand(CLI::App& bench, int* exit_code) {

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/acceptance_outcome.h"
 #include "apps/commands.h"
 #include "experiments/mononav/mononav_bench.h"
 #include "output/html_report.h"
@@ -26,20 +27,6 @@ struct BenchMononavOptions {
   bool quick = false;
   std::vector<std::string> set_items;
 };
-
-output::ReportOutcome AcceptanceOutcome(const nlohmann::json& acceptance) {
-  output::ReportOutcome outcome{"passed", "", {}};
-  int met = 0;
-  for (const auto& [check, value] : acceptance.items()) {
-    const bool ok = value.is_boolean() && value.get<bool>();
-    met += ok;
-    if (!ok) outcome.verdict = "failed";
-    outcome.figures.push_back({check, ok ? "met" : "NOT met", "met"});
-  }
-  outcome.headline =
-      std::to_string(met) + " of " + std::to_string(acceptance.size()) + " acceptance checks met.";
-  return outcome;
-}
 
 }  // namespace
 
