@@ -2,6 +2,7 @@
 // II and IV and the per-module timing).
 //
 //   aperture bench mononav --out DIR [--trials 40] [--seed S] [--duration S] [--quick]
+//                          [--configurations edt,no_edt,random_waypoint]
 //                          [--set forest.KEY=V] [--set mission.KEY=V]
 //
 // Writes DIR/summary.json (table_iv, table_ii, timing, acceptance; see
@@ -25,6 +26,7 @@ struct BenchMononavOptions {
   long long seed = 1;
   double duration_s = 60.0;
   bool quick = false;
+  std::vector<std::string> configurations;
   std::vector<std::string> set_items;
 };
 
@@ -43,6 +45,11 @@ void AddBenchMononavCommand(CLI::App& bench, int* exit_code) {
       ->check(CLI::PositiveNumber);
   command->add_flag("--quick", options->quick,
                     "One short flight (4 m, one trunk on the line), EDT only (same code paths)");
+  command
+      ->add_option("--configurations", options->configurations,
+                    "Configurations flown on every layout: edt,no_edt,random_waypoint (default "
+                    "all; edt is always needed)")
+      ->delimiter(',');
   command->add_option(
       "--set", options->set_items,
       "Scenario or mission override, e.g. forest.trees=30, mission.max_speed_mps=1");
@@ -54,6 +61,7 @@ void AddBenchMononavCommand(CLI::App& bench, int* exit_code) {
                                  {"seed", options->seed},
                                  {"duration_s", options->duration_s},
                                  {"quick", options->quick},
+                                 {"configurations", options->configurations},
                                  {"set", options->set_items}};
       output::HtmlReport report("aperture bench mononav");
       experiments::MononavBenchOptions bench_options;
@@ -61,6 +69,7 @@ void AddBenchMononavCommand(CLI::App& bench, int* exit_code) {
       bench_options.first_seed = static_cast<std::uint64_t>(options->seed);
       bench_options.duration_s = options->duration_s;
       bench_options.quick = options->quick;
+      bench_options.configurations = options->configurations;
       bench_options.set_items = options->set_items;
       bench_options.flights_csv_path = out.Path("flights.csv");
       experiments::RunMononavBench(bench_options, &out.summary(), &report);

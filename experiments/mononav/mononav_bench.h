@@ -25,6 +25,9 @@ struct MononavBenchOptions {
   // One flight, the EDT configuration only, on a short course (goal 4 m away, one trunk 2 m
   // ahead on the line): the same code paths for tests and quick looks.
   bool quick = false;
+  // Which configurations to fly on every layout (edt | no_edt | random_waypoint); Table IV needs
+  // edt and no_edt, Table II edt and random_waypoint. Empty = all three.
+  std::vector<std::string> configurations;
   // Overrides of the `forest` scenario and of the mission (`mission.*`), applied to every flight.
   std::vector<std::string> set_items;
   std::string flights_csv_path;  // one row per flight; empty = none
