@@ -8,6 +8,7 @@ void LoadParams(config::ParamReader& reader, TagDetectorParams* params) {
   reader.Read("families", &params->families);
   reader.Read("quad_decimate", &params->quad_decimate);
   reader.Read("quad_sigma", &params->quad_sigma);
+  reader.Read("min_white_black_diff", &params->min_white_black_diff);
   reader.Read("threads", &params->threads);
   reader.Read("refine_edges", &params->refine_edges);
   reader.Read("decode_sharpening", &params->decode_sharpening);

@@ -7,6 +7,7 @@
 //     families: [tag36h11]          # library or short names (36h11, 16h5, 25h9, 41h12, ...)
 //     quad_decimate: 2.0
 //     quad_sigma: 0.0
+//     min_white_black_diff: 20      # local contrast [gray levels] the threshold segments
 //     threads: 1
 //     refine_edges: true
 //     decode_sharpening: 0.25
