@@ -356,8 +356,8 @@ void RunMapping(const TagBenchOptions& options, nlohmann::json* summary,
         const double step_m = T_step.translation().norm();
         T_step.translation() +=
             map_params.odometry_sigma_m_per_sqrt_m * std::sqrt(step_m) * gaussian();
-        T_step.linear() = control::ExpSo3(map_params.odometry_sigma_deg_per_sqrt_m * M_PI /
-                                          180.0 * std::sqrt(step_m) * gaussian()) *
+        T_step.linear() = control::ExpSo3(map_params.odometry_sigma_deg_per_sqrt_m * M_PI / 180.0 *
+                                          std::sqrt(step_m) * gaussian()) *
                           T_step.linear();
         T_OC = *T_OC * T_step;
       }

@@ -25,10 +25,10 @@
 // Incremental: an image joins the graph once it sees a tag already in the map (its camera pose is
 // initialised from the most certain such tag, its new tags from the camera: the "before
 // optimization" map) or, with odometry, once the image before or after it is in the graph (its
-// pose chained through the odometry); images that do not (yet) connect wait. Every solve_every images the graph is
-// re-solved from the current estimate; Optimize() solves to convergence, drops observations whose
-// whitened error exceeds outlier_chi2 (flipped poses the resolver missed) and re-solves, then
-// computes the tags' marginal covariances.
+// pose chained through the odometry); images that do not (yet) connect wait. Every solve_every
+// images the graph is re-solved from the current estimate; Optimize() solves to convergence, drops
+// observations whose whitened error exceeds outlier_chi2 (flipped poses the resolver missed) and
+// re-solves, then computes the tags' marginal covariances.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>

@@ -10,9 +10,9 @@
 //                                       frame: detection, pose (corner undistortion, IPPE, both
 //                                       candidates refined by Gauss-Newton with covariance) and
 //                                       flip resolution
-//   PoseStage/<stage>                   the pose of the 12 detections (per tag: time / 12) by stage: 0 corner
-//                                       undistortion (CameraModel::Unproject), 1 IPPE
-//                                       (cv::solvePnPGeneric), 2 EstimateTagPose (everything)
+//   PoseStage/<stage>                   the pose of the 12 detections (per tag: time / 12) by
+//                                       stage: 0 corner undistortion (CameraModel::Unproject),
+//                                       1 IPPE (cv::solvePnPGeneric), 2 EstimateTagPose (all)
 // Run on an idle core (`uptime`; optionally `taskset -c 1`) and report the load.
 #include <benchmark/benchmark.h>
 
@@ -144,9 +144,7 @@ void Configure(benchmark::internal::Benchmark* benchmark) {
 }
 // Detect: <decimate x10>/<min_white_black_diff>: the library's default contrast (5) against ours
 // (20); ViSP cannot set it (keeps 5).
-BENCHMARK_CAPTURE(BM_Detect, apriltag, false)
-    ->ArgsProduct({{10, 20}, {5, 20}})
-    ->Apply(Configure);
+BENCHMARK_CAPTURE(BM_Detect, apriltag, false)->ArgsProduct({{10, 20}, {5, 20}})->Apply(Configure);
 BENCHMARK_CAPTURE(BM_Detect, visp, true)->ArgsProduct({{10, 20}, {5}})->Apply(Configure);
 // FrontEnd: <decimate x10>, every other setting the front end's default.
 BENCHMARK_CAPTURE(BM_FrontEnd, apriltag, false)->Arg(10)->Arg(20)->Apply(Configure);

@@ -93,9 +93,9 @@ Field MakeField(std::uint32_t seed, int flip_every) {
       const Eigen::Vector3d n_p(draw(), draw(), draw());
       const Eigen::Vector3d n_R(draw(), draw(), draw());
       T_step.translation() += map_params.odometry_sigma_m_per_sqrt_m * sqrt_step * n_p;
-      T_step.linear() = control::ExpSo3(map_params.odometry_sigma_deg_per_sqrt_m * M_PI / 180 *
-                                        sqrt_step * n_R) *
-                        T_step.linear();
+      T_step.linear() =
+          control::ExpSo3(map_params.odometry_sigma_deg_per_sqrt_m * M_PI / 180 * sqrt_step * n_R) *
+          T_step.linear();
       field.T_OC.push_back(field.T_OC.back() * T_step);
     }
     T_WC_previous = T_WC;
