@@ -50,6 +50,7 @@ void GapflytMissionParams::Validate() const {
   control::RequirePositive(max_servo_speed_mps, "GapflytMissionParams.max_servo_speed_mps");
   control::RequirePositive(max_servo_accel_mps2, "GapflytMissionParams.max_servo_accel_mps2");
   control::RequirePositive(go_through_speed_mps, "GapflytMissionParams.go_through_speed_mps");
+  control::RequireNonNegative(max_aim_correction_m, "GapflytMissionParams.max_aim_correction_m");
   control::RequirePositive(go_through_distance_m, "GapflytMissionParams.go_through_distance_m");
   control::RequireNonNegative(stop_hold_s, "GapflytMissionParams.stop_hold_s");
   control::RequireAtLeast(max_lost_frames, 1, "GapflytMissionParams.max_lost_frames");
@@ -178,6 +179,7 @@ void GapflytMission::StartScan(double t_s) {
 void GapflytMission::StartServo(const perception::Ts2pOutput& detection) {
   detection_ = detection.detection;
   detection_t_s_ = detection.reference_t_s;
+  detection_p_W_ = estimate().p_WB;
   desired_set_ = false;
   lost_frames_ = 0;
   EnterPhase(GapflytPhase::kServo, last_imu_t_s_);
@@ -265,10 +267,41 @@ void GapflytMission::ServoOnFrame(const perception::OpeningTrack& track) {
   }
 }
 
+Eigen::Vector3d GapflytMission::AimCorrection() const {
+  const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
+  if (params_.max_aim_correction_m <= 0.0 || !detection_ || !last_track_) return zero;
+  // Wall distance at the scan: the stacked mean flow of the wall (F mode) is f |b| / Z_F over the
+  // stack's mean baseline, offsets +-stride .. +-(N/2) stride frames at the scan's speed
+  // (seed 002 Sec. II: flow magnitude = inverse depth times the baseline).
+  const int half_stack = params_.ts2p.stack / 2;
+  const double mean_baseline_m = params_.scan_speed_mps / params_.camera_rate_hz *
+                                 params_.ts2p.stride * 0.5 * (half_stack + 1);
+  const double f_px = camera_->intrinsics().x();
+  if (!(detection_->foreground_flow_px > 0.0)) return zero;
+  const double wall_at_scan_m = f_px * mean_baseline_m / detection_->foreground_flow_px;
+  const Eigen::Vector3d forward_W =
+      Eigen::AngleAxisd(heading_rad_, Eigen::Vector3d::UnitZ()) * Eigen::Vector3d::UnitX();
+  const double wall_m = wall_at_scan_m - (estimate().p_WB - detection_p_W_).dot(forward_W);
+  const std::optional<std::vector<Eigen::Vector2d>> safe_n =
+      LevelNormalized({last_track_->safe_point_px});
+  if (!safe_n || !(wall_m > 0.0)) return zero;
+  // The safe point's level-camera ray in the level body (heading) frame, scaled to the wall.
+  const Eigen::Vector3d ray_B = T_BC_.linear() * safe_n->front().homogeneous();
+  if (!(ray_B.x() > 1e-6)) return zero;
+  // From the camera's optical centre (its lever arm on the body) along the ray to the wall.
+  Eigen::Vector3d offset_B = T_BC_.translation() + ray_B * (wall_m / ray_B.x());
+  offset_B.x() = 0.0;  // only sideways and vertically: the line still runs along the heading
+  if (offset_B.norm() > params_.max_aim_correction_m) {
+    offset_B *= params_.max_aim_correction_m / offset_B.norm();
+  }
+  return Eigen::AngleAxisd(heading_rad_, Eigen::Vector3d::UnitZ()) * offset_B;
+}
+
 void GapflytMission::Commit(const std::string& reason, double t_s) {
   reason_ = reason;
   commit_t_s_ = t_s;
-  go_through_start_W_ = estimate().p_WB;
+  aim_correction_W_ = AimCorrection();
+  go_through_start_W_ = estimate().p_WB + aim_correction_W_;
   hold_p_W_ = go_through_start_W_;
   EnterPhase(GapflytPhase::kGoThrough, t_s);
 }

@@ -30,7 +30,8 @@
 //              opening is about to fill the view), the moment servo's error is below
 //              commit_error, or the track is lost within commit_area_fraction's view: straight
 //              along the heading at go_through_speed_mps for go_through_distance_m on the
-//              odometry, height held. Blind, as in the paper once the gap fills the view.
+//              odometry, on a line aimed through the last safe point (max_aim_correction_m).
+//              Blind, as in the paper once the gap fills the view.
 //   stop       position hold where go_through ended for stop_hold_s, then done.
 //   aborted    no opening after max_scans scans, or the track lost before the commit: position
 //              hold where it happened (the run ends on its duration).
@@ -123,6 +124,11 @@ struct GapflytMissionParams {
   // reaches the PID's 1 m/s in 1 s.
   double max_servo_accel_mps2 = 1.0;
   double go_through_speed_mps = 1.0;
+  // At the commit the blind line is aimed through the last tracked safe point: its level-view
+  // bearing times the wall's distance (TS²P's wall parallax over the scan's mean baseline, minus
+  // the odometry's forward travel since) moves the line sideways and vertically by at most this
+  // much [m] (0 = straight ahead from where the vehicle committed, as the paper).
+  double max_aim_correction_m = 0.15;
   // Blind distance after the commit [m]: past a wall the commit view puts at ~0.6-1 m, short of a
   // background ~2 m behind it (seed 002: 0Z_B - 0Z_F ~ 3.1 m).
   double go_through_distance_m = 1.8;
@@ -184,6 +190,8 @@ class GapflytMission : public perception::Autopilot {
   // Latest servo step (error, reference) while servoing.
   const std::optional<servo::ServoStepResult>& last_servo_step() const { return last_step_; }
   const std::vector<GapflytServoSample>& servo_trace() const { return servo_trace_; }
+  // The aim correction applied at the commit (odometry frame) [m].
+  const Eigen::Vector3d& aim_correction_W() const { return aim_correction_W_; }
   // Overlay of the latest processed frame: the front ends' (contour, safe point, F/B corners),
   // the FOE, the body axis's image and the phase.
   void DrawOverlay(cv::Mat& bgr) const;
@@ -246,7 +254,11 @@ class GapflytMission : public perception::Autopilot {
   std::optional<perception::OpeningTrack> last_track_;
   int lost_frames_ = 0;
   int frames_tracked_ = 0;
-  Eigen::Vector3d go_through_start_W_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d go_through_start_W_ = Eigen::Vector3d::Zero();  // on the aimed line
+  Eigen::Vector3d detection_p_W_ = Eigen::Vector3d::Zero();  // odometry at the detection
+  Eigen::Vector3d aim_correction_W_ = Eigen::Vector3d::Zero();
+  // The line's offset from the commit position towards the safe point (zero when unknown).
+  Eigen::Vector3d AimCorrection() const;
   double last_imu_t_s_ = std::numeric_limits<double>::quiet_NaN();
 };
 

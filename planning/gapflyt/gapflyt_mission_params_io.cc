@@ -29,6 +29,7 @@ void LoadParams(config::ParamReader& reader, GapflytMissionParams* params) {
   reader.Read("max_servo_speed_mps", &params->max_servo_speed_mps);
   reader.Read("max_servo_accel_mps2", &params->max_servo_accel_mps2);
   reader.Read("go_through_speed_mps", &params->go_through_speed_mps);
+  reader.Read("max_aim_correction_m", &params->max_aim_correction_m);
   reader.Read("go_through_distance_m", &params->go_through_distance_m);
   reader.Read("stop_hold_s", &params->stop_hold_s);
   reader.Read("max_lost_frames", &params->max_lost_frames);

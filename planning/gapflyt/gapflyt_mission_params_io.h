@@ -12,11 +12,12 @@
 //     max_scans: 3
 //     commit_area_fraction: 0.3
 //     commit_depth_m: 1.0
-//     commit_error: 0.05
+//     commit_error: 0.1
 //     commit_border_px: 4
 //     max_servo_speed_mps: 1.2
 //     max_servo_accel_mps2: 1.0
 //     go_through_speed_mps: 1.0
+//     max_aim_correction_m: 0.15   # 0 = straight ahead from the commit (the paper)
 //     go_through_distance_m: 1.8
 //     stop_hold_s: 1.0
 //     max_lost_frames: 3
