@@ -29,7 +29,8 @@ struct LedBenchOptions {
   // Fewer frames with the same code paths (for tests and quick looks).
   bool quick = false;
   // Per-frame CSV (section, t_s, status, detections, visible_leds, p_CT_true_x/y/z,
-  // position_error_m, orientation_error_deg, position_sigma_m, rms_px); empty = none.
+  // position_error_m, orientation_error_deg, position_sigma_m, orientation_sigma_deg, rms_px;
+  // sigmas: largest, at detection_sigma_px); empty = none.
   std::string frames_csv_path;
   // Section keys to run (LedBenchSectionKeys()); empty = all. Timing covers the sections run.
   std::vector<std::string> only;

@@ -1,6 +1,5 @@
 #include "perception/led/led_tracker.h"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <chrono>
@@ -198,12 +197,9 @@ void LedTracker::Finish(LedTrackResult* result,
       RefineLedPose(*camera_, p_T, px, T_CT_initial, params_.refiner);
   result->stage_times.refinement_s = SecondsSince(start);
   result->rms_px = refined.rms_px;
-  const double rotation_variance =
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(refined.covariance.bottomRightCorner<3, 3>())
-          .eigenvalues()
-          .maxCoeff();
   if (!refined.valid || refined.rms_px > params_.max_rms_px ||
-      !(rotation_variance <= max_rotation_sigma_rad * max_rotation_sigma_rad)) {
+      !(LargestStandardDeviation(refined.covariance.bottomRightCorner<3, 3>()) <=
+        max_rotation_sigma_rad)) {
     result->status = LedTrackStatus::kInconsistent;
     history_.clear();
     return;

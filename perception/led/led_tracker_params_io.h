@@ -14,7 +14,7 @@
 //                      min_inlier_ratio: 0.75, min_subset_ratio: 0.7}          # Algorithm 1
 //     refiner: {max_iterations: 10, step_tolerance: 1e-9, detection_sigma_px: 1}  # (C.8), (C.9)
 //     near_prediction: {gate_px: 5}                # < 4 LEDs matched while tracking
-//     max_near_prediction_rotation_sigma_deg: 10
+//     max_near_prediction_rotation_sigma_deg: 30
 #include "config/yaml_read_archive.h"
 #include "perception/led/led_tracker.h"
 #include "perception/led/p3p_solver.h"

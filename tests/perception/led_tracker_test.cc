@@ -155,6 +155,24 @@ TEST_F(LedTrackerTest, ThreeLedsFarFromThePredictionGiveNoPose) {
   EXPECT_TRUE(result.used_near_prediction);
 }
 
+TEST_F(LedTrackerTest, ThreeLedPosesLooserThanTheRotationSigmaBoundAreRejected) {
+  // Three LEDs at 1.3 m fix the rotation to ~2 deg at 1 px (C.9): with the bound below that the
+  // covariance check rejects the pose near the prediction, with the default bound it passes.
+  for (const double bound_deg : {1.0, LedTrackerParams{}.max_near_prediction_rotation_sigma_deg}) {
+    LedTrackerParams params;
+    params.max_near_prediction_rotation_sigma_deg = bound_deg;
+    LedTracker tracker(configuration_, camera_, params);
+    for (int k = 0; k < 3; ++k) {
+      ASSERT_TRUE(tracker.Track(ImageWithout(Projections(PoseAt(0.02 * k)), {}), 0.02 * k)
+                      .has_pose());
+    }
+    const LedTrackResult result =
+        tracker.Track(ImageWithout(Projections(PoseAt(0.06)), {1, 3}), 0.06);
+    EXPECT_TRUE(result.used_near_prediction);
+    EXPECT_EQ(result.has_pose(), bound_deg > 1.0) << bound_deg << " deg";
+  }
+}
+
 TEST_F(LedTrackerTest, ReportsStageTimes) {
   LedTracker tracker(configuration_, camera_);
   const cv::Mat image = test_support::BlobImage(752, 480, Projections(PoseAt(0.0)), 2.0);
