@@ -98,7 +98,6 @@ nlohmann::json FiniteOrNull(double value) {
   return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
 }
 
-
 // LEDs separately visible in the true image: projected inside the image and not merged with
 // another LED's blob.
 int VisibleLeds(const perception::CameraModel& camera, const LedConfiguration& configuration,
@@ -636,13 +635,15 @@ void RunBodyOcclusion(const SectionSizes& sizes, std::uint64_t seed, BenchContex
     const double t_s = fresh_start_frame / kRateHz;
     LedTracker fresh_tracker(configuration, camera);
     fresh_start_pose =
-        fresh_tracker.Track(renderer.Render(BodyOcclusionPose, t_s, 400000 + fresh_start_frame),
-                            t_s)
+        fresh_tracker
+            .Track(renderer.Render(BodyOcclusionPose, t_s, 400000 + fresh_start_frame), t_s)
             .has_pose();
   }
   const PoseErrorStatistics all_stats = ComputePoseErrorStatistics(Errors(records));
   nlohmann::json visible_json, used_json;
-  for (const auto& [visible, tally] : by_visible) visible_json[std::to_string(visible)] = tally.ToJson();
+  for (const auto& [visible, tally] : by_visible) {
+    visible_json[std::to_string(visible)] = tally.ToJson();
+  }
   for (const auto& [used, tally] : by_leds_used) used_json[std::to_string(used)] = tally.ToJson();
   double centroid_sum = 0.0;
   for (const double e : centroid_error_sq_px2) centroid_sum += e;
@@ -669,7 +670,8 @@ void RunBodyOcclusion(const SectionSizes& sizes, std::uint64_t seed, BenchContex
       "A 16 x 12 x 6 cm body hides the LEDs behind it (ray-cast occlusion in the renderer). "
       "Visible LEDs: in the image, not behind the body, not merged with another LED's image. "
       "by_leds_used: the frames with a pose by the number of LEDs it rests on; at_2m: the frames "
-      "with the target 1.9-2.1 m from the camera. A fresh start with three LEDs must give no pose.");
+      "with the target 1.9-2.1 m from the camera. A fresh start with three LEDs must give no "
+      "pose.");
   report->AddTable(body);
   PlotErrorsOverTime(records, "Body occlusion", report);
 }

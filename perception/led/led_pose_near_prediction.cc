@@ -18,7 +18,8 @@ struct Candidate {
   int explained;
 };
 
-std::vector<int> NearestDetections(const CameraModel& camera, const std::vector<Eigen::Vector3d>& p_T,
+std::vector<int> NearestDetections(const CameraModel& camera,
+                                   const std::vector<Eigen::Vector3d>& p_T,
                                    const std::vector<LedDetection>& detections,
                                    const Eigen::Isometry3d& T_CT, double threshold_px) {
   std::vector<int> detection_of_led(p_T.size(), -1);
@@ -41,10 +42,14 @@ std::vector<int> NearestDetections(const CameraModel& camera, const std::vector<
 
 std::string LedNearPredictionStatusName(LedNearPredictionStatus status) {
   switch (status) {
-    case LedNearPredictionStatus::kFound: return "found";
-    case LedNearPredictionStatus::kTooFewDetections: return "too_few_detections";
-    case LedNearPredictionStatus::kNoCandidateInGate: return "no_candidate_in_gate";
-    case LedNearPredictionStatus::kAmbiguous: return "ambiguous";
+    case LedNearPredictionStatus::kFound:
+      return "found";
+    case LedNearPredictionStatus::kTooFewDetections:
+      return "too_few_detections";
+    case LedNearPredictionStatus::kNoCandidateInGate:
+      return "no_candidate_in_gate";
+    case LedNearPredictionStatus::kAmbiguous:
+      return "ambiguous";
   }
   return "unknown";
 }
@@ -92,9 +97,9 @@ LedNearPredictionResult FindLedPoseNearPrediction(const std::vector<Eigen::Vecto
                 if (!(distance_px <= params.gate_px)) continue;
                 std::vector<int> detection_of_led = NearestDetections(
                     camera, p_T, detections, T_CT, correspondence.reprojection_threshold_px);
-                const int explained = static_cast<int>(
-                    std::count_if(detection_of_led.begin(), detection_of_led.end(),
-                                  [](int d) { return d >= 0; }));
+                const int explained =
+                    static_cast<int>(std::count_if(detection_of_led.begin(), detection_of_led.end(),
+                                                   [](int d) { return d >= 0; }));
                 in_gate.push_back({T_CT, distance_px, std::move(detection_of_led), explained});
               }
             }
@@ -108,8 +113,8 @@ LedNearPredictionResult FindLedPoseNearPrediction(const std::vector<Eigen::Vecto
     result.status = LedNearPredictionStatus::kNoCandidateInGate;
     return result;
   }
-  const auto best = std::min_element(
-      in_gate.begin(), in_gate.end(), [](const Candidate& x, const Candidate& y) {
+  const auto best =
+      std::min_element(in_gate.begin(), in_gate.end(), [](const Candidate& x, const Candidate& y) {
         return x.explained != y.explained ? x.explained > y.explained
                                           : x.distance_px < y.distance_px;
       });

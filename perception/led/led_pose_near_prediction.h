@@ -40,7 +40,7 @@ struct LedNearPredictionParams {
 
 enum class LedNearPredictionStatus {
   kFound,
-  kTooFewDetections,  // fewer than 3 detections
+  kTooFewDetections,   // fewer than 3 detections
   kNoCandidateInGate,  // no P3P candidate within gate_px of the prediction
   kAmbiguous,          // two labellings explain the frame equally well inside the gate
 };

@@ -1,8 +1,8 @@
 #include "perception/led/led_tracker.h"
 
 #include <algorithm>
-#include <cmath>
 #include <chrono>
+#include <cmath>
 #include <map>
 #include <stdexcept>
 
@@ -159,8 +159,8 @@ bool LedTracker::TrackNearPrediction(LedTrackResult* result,
   result->used_near_prediction = true;
   const Clock::time_point start = Clock::now();
   const LedNearPredictionResult found =
-      FindLedPoseNearPrediction(configuration_.p_T(), result->detections, *camera_,
-                                T_CT_predicted, params_.correspondence, params_.near_prediction);
+      FindLedPoseNearPrediction(configuration_.p_T(), result->detections, *camera_, T_CT_predicted,
+                                params_.correspondence, params_.near_prediction);
   result->stage_times.near_prediction_s = SecondsSince(start);
   if (found.status != LedNearPredictionStatus::kFound) return false;
   result->status = LedTrackStatus::kTrackedNearPrediction;
@@ -171,8 +171,8 @@ bool LedTracker::TrackNearPrediction(LedTrackResult* result,
 
 void LedTracker::Finish(LedTrackResult* result,
                         const std::vector<LedCorrespondence>& correspondences,
-                        const Eigen::Isometry3d& T_CT_initial, double t_s,
-                        int min_correspondences, double max_rotation_sigma_rad) {
+                        const Eigen::Isometry3d& T_CT_initial, double t_s, int min_correspondences,
+                        double max_rotation_sigma_rad) {
   // A blob claimed by several LEDs (merged LEDs, Section C.4.2) has a centroid between them:
   // drop it instead of pulling the pose towards it.
   std::map<int, int> claims;

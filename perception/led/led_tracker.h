@@ -40,7 +40,8 @@ struct LedTrackerParams {
   double prediction_match_px = 5.0;  // prediction -> nearest detection gate (thesis: 5 px)
   int roi_half_size_px = 24;         // ROI around each predicted LED; blob radius + motion
   double max_rms_px = 2.0;           // refined reprojection RMS above: inconsistent frame
-  LedNearPredictionParams near_prediction;  // pose from < 4 matched LEDs while tracking
+  // Pose from fewer than 4 matched LEDs while tracking.
+  LedNearPredictionParams near_prediction;
   // Largest rotation standard deviation (C.9 at detection_sigma_px) a pose near the prediction
   // may have [deg]: beyond it the LEDs barely fix the rotation and the prediction, not the
   // image, would pick the pose. At 1 px, `bench led` body_occlusion's three-LED poses at
@@ -57,7 +58,8 @@ enum class LedTrackStatus {
   kAmbiguous,           // blobs shared by several LEDs leave < 4 unique correspondences
   kInconsistent,        // refinement failed, reprojection RMS > max_rms_px, or (near the
                         // prediction) rotation sigma > max_near_prediction_rotation_sigma_deg
-  kTrackedNearPrediction,  // < 4 predicted LEDs matched; P3P candidate near the prediction, refined
+  // < 4 predicted LEDs matched: P3P candidate near the prediction, refined (issue 22).
+  kTrackedNearPrediction,
 };
 std::string LedTrackStatusName(LedTrackStatus status);
 
@@ -68,7 +70,8 @@ struct LedStageTimes {
   double prediction_s = 0.0;   // (C.6), (C.7), nearest-detection matching and verification
   double brute_force_s = 0.0;  // Algorithm 1
   double refinement_s = 0.0;   // Gauss-Newton and covariance (C.8), (C.9)
-  double near_prediction_s = 0.0;  // P3P candidates near the prediction (< 4 LEDs matched)
+  // P3P candidates near the prediction (< 4 LEDs matched).
+  double near_prediction_s = 0.0;
 };
 
 struct LedTrackResult {
@@ -81,7 +84,8 @@ struct LedTrackResult {
   double rms_px = 0.0;
   bool used_roi = false;      // detection ran on ROIs around the prediction
   bool used_brute_force = false;
-  bool used_near_prediction = false;  // the P3P search near the prediction ran
+  // The P3P search near the prediction ran.
+  bool used_near_prediction = false;
   std::string warning;        // e.g. the detector's blob cap
   LedStageTimes stage_times;
   bool has_pose() const { return T_CT.has_value(); }

@@ -16,10 +16,12 @@ TEST(LedTargetRendererTest, TheBodyHidesTheLedsBehindItAndOnlyThose) {
   // camera 1.5 m below (looking along +z_T) sees it past the edge, but with the target turned
   // by -30 deg about y_T the camera lies towards -x and the body's top is in the way. The
   // others stick out beyond the body's sides or hang below it: always visible.
-  const perception::LedConfiguration configuration(
-      {{0.09, 0.0, 0.05}, {0.12, 0.01, 0.0}, {-0.02, 0.11, 0.0}, {-0.10, -0.06, -0.04},
-       {0.03, -0.09, -0.05}},
-      "test target");
+  const perception::LedConfiguration configuration({{0.09, 0.0, 0.05},
+                                                    {0.12, 0.01, 0.0},
+                                                    {-0.02, 0.11, 0.0},
+                                                    {-0.10, -0.06, -0.04},
+                                                    {0.03, -0.09, -0.05}},
+                                                   "test target");
   const auto camera = std::make_shared<perception::PinholeCamera>(
       752, 480, perception::PinholeIntrinsics{376.0, 376.0, 375.5, 239.5});
   LedTargetRenderParams params;
@@ -28,8 +30,8 @@ TEST(LedTargetRendererTest, TheBodyHidesTheLedsBehindItAndOnlyThose) {
   LedTargetRenderer renderer(configuration, camera, params);
   for (const double tilt_deg : {0.0, -30.0}) {
     Eigen::Isometry3d T_CT = Eigen::Isometry3d::Identity();
-    T_CT.linear() = Eigen::AngleAxisd(tilt_deg * M_PI / 180.0, Eigen::Vector3d::UnitY())
-                        .toRotationMatrix();
+    T_CT.linear() =
+        Eigen::AngleAxisd(tilt_deg * M_PI / 180.0, Eigen::Vector3d::UnitY()).toRotationMatrix();
     T_CT.translation() = Eigen::Vector3d(0.0, 0.0, 1.5);
     const std::vector<int> occluded = renderer.OccludedLeds(T_CT);
     EXPECT_EQ(occluded, tilt_deg == 0.0 ? std::vector<int>{} : std::vector<int>{0})

@@ -70,14 +70,15 @@ TEST_F(LedPoseNearPredictionTest, ThreeLedsNearThePredictionGiveTheTruePoseForEv
   // P3P on the three visible LEDs, every labelling, must come back to the true labelling and
   // pose.
   const Eigen::Isometry3d T_CT_predicted =
-      control::ExpSe3((control::Vector6d() << 0.002, -0.001, 0.001, 0.003, 0.0, -0.002).finished()) *
+      control::ExpSe3(
+          (control::Vector6d() << 0.002, -0.001, 0.001, 0.003, 0.0, -0.002).finished()) *
       T_CT_true_;
   for (int a = 0; a < configuration_.size(); ++a) {
     for (int b = a + 1; b < configuration_.size(); ++b) {
       const std::vector<int> hidden{a, b};
       const LedNearPredictionResult result =
-          FindLedPoseNearPrediction(configuration_.p_T(), Detections(T_CT_true_, hidden),
-                                    *camera_, T_CT_predicted, correspondence_);
+          FindLedPoseNearPrediction(configuration_.p_T(), Detections(T_CT_true_, hidden), *camera_,
+                                    T_CT_predicted, correspondence_);
       ASSERT_EQ(result.status, LedNearPredictionStatus::kFound)
           << "hidden " << a << ", " << b << ": " << LedNearPredictionStatusName(result.status);
       const std::vector<int> visible = Visible(hidden);
@@ -117,7 +118,8 @@ TEST_F(LedPoseNearPredictionTest, EveryWrongAssignmentAndMirrorSolutionFailsTheG
                  {configuration_.p_T()[i], configuration_.p_T()[j], configuration_.p_T()[l]},
                  &solutions);
         for (const Eigen::Isometry3d& T_CT : solutions) {
-          const double distance = LedImageDistance(*camera_, configuration_.p_T(), T_CT, T_CT_true_);
+          const double distance =
+              LedImageDistance(*camera_, configuration_.p_T(), T_CT, T_CT_true_);
           const bool is_truth = (T_CT.translation() - T_CT_true_.translation()).norm() < 1e-6;
           if (true_labelling && is_truth) {
             EXPECT_LT(distance, 1e-3);
@@ -141,8 +143,8 @@ TEST_F(LedPoseNearPredictionTest, APredictionFarFromTheTruthFindsNothing) {
   Eigen::Isometry3d shifted = T_CT_true_;
   shifted.translation().x() += 0.03;
   Eigen::Isometry3d turned = T_CT_true_;
-  turned.linear() = Eigen::AngleAxisd(15.0 * M_PI / 180.0, Eigen::Vector3d::UnitX()) *
-                    T_CT_true_.linear();
+  turned.linear() =
+      Eigen::AngleAxisd(15.0 * M_PI / 180.0, Eigen::Vector3d::UnitX()) * T_CT_true_.linear();
   for (const Eigen::Isometry3d& prediction : {shifted, turned}) {
     ASSERT_GT(LedImageDistance(*camera_, configuration_.p_T(), prediction, T_CT_true_),
               LedNearPredictionParams{}.gate_px);
@@ -190,17 +192,17 @@ TEST_F(LedPoseNearPredictionTest, TwoLedImagesWithinTheGateOfEachOtherAreAmbiguo
   const double separation_px = (detections[1].px - detections[2].px).norm();
   ASSERT_GT(separation_px, 1.0);
   ASSERT_LT(separation_px, LedNearPredictionParams{}.gate_px);
-  const LedNearPredictionResult result = FindLedPoseNearPrediction(
-      configuration_.p_T(), detections, *camera_, T_CT, correspondence_);
+  const LedNearPredictionResult result =
+      FindLedPoseNearPrediction(configuration_.p_T(), detections, *camera_, T_CT, correspondence_);
   EXPECT_EQ(result.status, LedNearPredictionStatus::kAmbiguous)
       << LedNearPredictionStatusName(result.status) << ", images " << separation_px << " px apart";
   EXPECT_FALSE(result.T_CT.has_value());
 }
 
 TEST_F(LedPoseNearPredictionTest, FewerThanThreeDetectionsFindNothing) {
-  const LedNearPredictionResult result = FindLedPoseNearPrediction(
-      configuration_.p_T(), Detections(T_CT_true_, {0, 1, 2}), *camera_, T_CT_true_,
-      correspondence_);
+  const LedNearPredictionResult result =
+      FindLedPoseNearPrediction(configuration_.p_T(), Detections(T_CT_true_, {0, 1, 2}), *camera_,
+                                T_CT_true_, correspondence_);
   EXPECT_EQ(result.status, LedNearPredictionStatus::kTooFewDetections);
   EXPECT_EQ(result.pose_candidates, 0);
 }

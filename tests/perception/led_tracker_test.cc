@@ -1,8 +1,9 @@
 #include "perception/led/led_tracker.h"
 
-#include <algorithm>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include <algorithm>
 
 #include "control/so3.h"
 #include "led_test_images.h"
@@ -100,8 +101,8 @@ TEST_F(LedTrackerTest, TwoHiddenLedsKeepThePoseFromThreeWhileTracking) {
     const double t_s = 0.02 * k;
     const bool hidden = k >= 3 && k < 9;
     const LedTrackResult result =
-        tracker.Track(ImageWithout(Projections(PoseAt(t_s)), hidden ? std::vector<int>{1, 3}
-                                                                    : std::vector<int>{}),
+        tracker.Track(ImageWithout(Projections(PoseAt(t_s)),
+                                   hidden ? std::vector<int>{1, 3} : std::vector<int>{}),
                       t_s);
     ASSERT_TRUE(result.has_pose()) << "frame " << k << " " << LedTrackStatusName(result.status);
     if (!hidden) {
@@ -132,7 +133,8 @@ TEST_F(LedTrackerTest, FreshStartWithThreeLedsGivesNoPose) {
   for (int a = 0; a < configuration_.size(); ++a) {
     for (int b = a + 1; b < configuration_.size(); ++b) {
       LedTracker tracker(configuration_, camera_);
-      const LedTrackResult result = tracker.Track(ImageWithout(Projections(PoseAt(0.0)), {a, b}), 0.0);
+      const LedTrackResult result =
+          tracker.Track(ImageWithout(Projections(PoseAt(0.0)), {a, b}), 0.0);
       EXPECT_FALSE(result.has_pose()) << "hidden " << a << ", " << b;
       EXPECT_FALSE(result.used_near_prediction);
     }
@@ -163,8 +165,8 @@ TEST_F(LedTrackerTest, ThreeLedPosesLooserThanTheRotationSigmaBoundAreRejected) 
     params.max_near_prediction_rotation_sigma_deg = bound_deg;
     LedTracker tracker(configuration_, camera_, params);
     for (int k = 0; k < 3; ++k) {
-      ASSERT_TRUE(tracker.Track(ImageWithout(Projections(PoseAt(0.02 * k)), {}), 0.02 * k)
-                      .has_pose());
+      ASSERT_TRUE(
+          tracker.Track(ImageWithout(Projections(PoseAt(0.02 * k)), {}), 0.02 * k).has_pose());
     }
     const LedTrackResult result =
         tracker.Track(ImageWithout(Projections(PoseAt(0.06)), {1, 3}), 0.06);
