@@ -106,24 +106,28 @@ LedTrackResult LedTracker::Track(const cv::Mat& image, double t_s) {
         });
         if (claims == 1) unique.push_back(match);
       }
-      if (unique.size() < matches.size() && unique.size() < 4) {
-        // Predicted LEDs converge on shared blobs (merging, Section C.4.2): too few left.
+      // Predicted LEDs converging on shared blobs (merging, Section C.4.2, or a hidden LED
+      // predicted onto a visible one's blob) leave fewer than four unique correspondences.
+      const bool shared_blobs = unique.size() < matches.size() && unique.size() < 4;
+      if (!shared_blobs) {
+        const LedCorrespondenceResult verified =
+            search_.Verify(unique, result.detections, *camera_);
+        if (verified.verified) {
+          times.prediction_s += SecondsSince(start);
+          result.status = LedTrackStatus::kTracked;
+          Finish(&result, matches, *prediction, t_s);
+          return result;
+        }
+      }
+      times.prediction_s += SecondsSince(start);
+      if (unique.size() < 4 && TrackNearPrediction(&result, *prediction, t_s)) return result;
+      if (shared_blobs) {
         result.status = LedTrackStatus::kAmbiguous;
         result.correspondences = matches;
         result.merged_detections = static_cast<int>(matches.size() - unique.size());
-        times.prediction_s += SecondsSince(start);
         history_.clear();
         return result;
       }
-      const LedCorrespondenceResult verified =
-          search_.Verify(unique, result.detections, *camera_);
-      times.prediction_s += SecondsSince(start);
-      if (verified.verified) {
-        result.status = LedTrackStatus::kTracked;
-        Finish(&result, matches, *prediction, t_s);
-        return result;
-      }
-      if (unique.size() < 4 && TrackNearPrediction(&result, *prediction, t_s)) return result;
     }
   }
   // Lost (or never found): full image and brute force.
