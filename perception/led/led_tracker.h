@@ -4,15 +4,17 @@
 // verification (C.3.5) -> brute-force correspondence search (Algorithm 1) only when that fails ->
 // Gauss-Newton refinement with covariance (C.8), (C.9).
 // Beyond the thesis (issue 22): while tracking, when fewer than four predicted LEDs find a
-// detection (the body hides LEDs), the pose comes from three or more detections through P3P
+// detection of their own (the body hides LEDs, or LEDs share a blob: merged, or a hidden LED
+// predicted onto a visible one's blob), the pose comes from three or more detections through P3P
 // candidates near the prediction (led_pose_near_prediction.h), refined, and kept only when its
 // covariance bounds the rotation within max_near_prediction_rotation_sigma_deg. A fresh start
 // still needs four LEDs (Algorithm 1).
 //
 // Output: T_CT (p_C = T_CT * p_T) with its 6x6 covariance [p_CT; rotation in C], or no pose with
-// the reason. Frames whose correspondences are ambiguous (one blob serving several LEDs, e.g. two
-// LEDs merged, leaving fewer than 4 unique correspondences) or whose refined reprojection error
-// exceeds max_rms_px are rejected rather than answered with a confident wrong pose.
+// the reason. A blob serving several LEDs (e.g. two LEDs merged) is never used; frames left with
+// too few unique correspondences (< 4 on a fresh start, < 3 near the prediction) or whose refined
+// reprojection error exceeds max_rms_px are rejected rather than answered with a confident wrong
+// pose.
 // Not thread-safe (keeps the pose history and buffers); one tracker per camera.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -55,7 +57,7 @@ enum class LedTrackStatus {
   kReinitialized,       // brute-force correspondences, refined
   kNoDetections,        // fewer than 3 blobs (also: nothing in the image)
   kNoCorrespondences,   // brute force found < 4 LEDs or no pose candidate fits
-  kAmbiguous,           // blobs shared by several LEDs leave < 4 unique correspondences
+  kAmbiguous,           // blobs shared by several LEDs leave too few unique correspondences
   kInconsistent,        // refinement failed, reprojection RMS > max_rms_px, or (near the
                         // prediction) rotation sigma > max_near_prediction_rotation_sigma_deg
   // < 4 predicted LEDs matched: P3P candidate near the prediction, refined (issue 22).
