@@ -1,12 +1,13 @@
 // aperture bench led: the infrared-LED tracker against rendered ground truth (issue 6).
 //
-//   aperture bench led --out DIR [--seed S] [--quick]
+//   aperture bench led --out DIR [--seed S] [--quick] [--only body_occlusion,merged]
 //
-// Writes DIR/summary.json (sections accuracy, sweep, occlusion, merged, timing, acceptance; see
-// experiments/led/led_bench.h), DIR/frames.csv (every tracked frame with its errors) and
-// DIR/report.html (error plots, box plots per distance).
+// Writes DIR/summary.json (sections accuracy, sweep, occlusion, merged, body_occlusion, timing,
+// acceptance; see experiments/led/led_bench.h; --only runs the sections named), DIR/frames.csv
+// (every tracked frame with its errors) and DIR/report.html (error plots, box plots per distance).
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "apps/acceptance_outcome.h"
 #include "apps/commands.h"
@@ -21,6 +22,7 @@ struct BenchLedOptions {
   std::string out_dir;
   long long seed = 1;
   bool quick = false;
+  std::vector<std::string> only;
 };
 
 // Passed when every acceptance check (thesis C.4 analogs, experiments/led/led_bench.h) holds.
@@ -34,15 +36,20 @@ void AddBenchLedCommand(CLI::App& bench, int* exit_code) {
   command->add_option("--seed", options->seed, "Seed of the random poses and sensor noise")
       ->check(CLI::NonNegativeNumber);
   command->add_flag("--quick", options->quick, "Fewer frames per section (same code paths)");
+  command->add_option("--only", options->only, "Run only these sections (comma-separated keys)")
+      ->delimiter(',')
+      ->check(CLI::IsMember(experiments::LedBenchSectionKeys()));
   command->callback([options, exit_code] {
     output::OutputFolder out(options->out_dir);
     output::RunAndWriteSummary(out, [&] {
       out.summary()["command"] = "bench led";
-      out.summary()["inputs"] = {{"seed", options->seed}, {"quick", options->quick}};
+      out.summary()["inputs"] = {
+          {"seed", options->seed}, {"quick", options->quick}, {"only", options->only}};
       output::HtmlReport report("aperture bench led");
       experiments::LedBenchOptions bench_options;
       bench_options.seed = static_cast<std::uint64_t>(options->seed);
       bench_options.quick = options->quick;
+      bench_options.only = options->only;
       bench_options.frames_csv_path = out.Path("frames.csv");
       experiments::RunLedBench(bench_options, &out.summary(), &report);
       report.AddOutcome(AcceptanceOutcome(out.summary()["acceptance"]));

@@ -29,6 +29,11 @@ LedTargetRenderer::LedTargetRenderer(const perception::LedConfiguration& configu
   ceiling.texture = sim::MakeValueNoiseTexture(sim::ProceduralTextureParams{});
   scene_.AddObject({"ceiling", sim::Rectangle{{30.0, 30.0}, {}, {}}, ceiling,
                     AtPosition({0.0, 0.0, params_.ceiling_distance_m})});
+  if (params_.body_size_m.minCoeff() > 0.0) {
+    sim::Material body;
+    body.color = sim::Rgb::Constant(0.2f);  // dark plastic and carbon
+    scene_.AddObject({"body", sim::Box{params_.body_size_m}, body, Eigen::Isometry3d::Identity()});
+  }
   for (int i = 0; i < configuration_.size(); ++i) {
     led_ids_.push_back(scene_.AddObject(
         {"led" + std::to_string(i),
@@ -36,6 +41,18 @@ LedTargetRenderer::LedTargetRenderer(const perception::LedConfiguration& configu
          {},
          AtPosition(configuration_.p_T()[i])}));
   }
+}
+
+std::vector<int> LedTargetRenderer::OccludedLeds(const Eigen::Isometry3d& T_CT) const {
+  const Eigen::Vector3d p_TC = T_CT.inverse().translation();
+  std::vector<int> occluded;
+  for (int i = 0; i < configuration_.size(); ++i) {
+    const Eigen::Vector3d to_led = configuration_.p_T()[i] - p_TC;
+    if (scene_.Intersect(p_TC, to_led, 0.0, to_led.norm() - params_.led_radius_m)) {
+      occluded.push_back(i);
+    }
+  }
+  return occluded;
 }
 
 cv::Mat LedTargetRenderer::Render(const std::function<Eigen::Isometry3d(double)>& T_CT_at,

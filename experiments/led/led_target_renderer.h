@@ -4,7 +4,9 @@
 // textured ceiling behind the target, and the camera at T_WC = T_CT^-1, so the target's motion is
 // the camera's and the exposure's motion blur applies (sim::CameraEffects, infrared mode: dark
 // scene, bright LEDs, shot and read noise, 8-bit clipping). The ground truth of a frame is
-// T_CT(t_s) at mid-exposure.
+// T_CT(t_s) at mid-exposure. With a body (body_size_m > 0), a dark box centred on T's origin
+// hides the LEDs behind it as the ray caster does (an LED is drawn only when no surface lies
+// between it and the camera); OccludedLeds gives the ground truth of which.
 #include <Eigen/Geometry>
 #include <functional>
 #include <memory>
@@ -26,6 +28,9 @@ struct LedTargetRenderParams {
   double led_intensity = 150.0;
   double min_led_sigma_px = 0.8;  // lens blur of a point source (renderer floor)
   double ceiling_distance_m = 3.0;  // dark textured plane at z_T = +3 m behind the target
+  // Edge lengths of the target's body, a box centred on T's origin [m]; zero = no body (the LEDs
+  // are never occluded but by `hidden`).
+  Eigen::Vector3d body_size_m = Eigen::Vector3d::Zero();
   sim::CameraEffectsParams effects = DefaultEffects();
 
   // mvBlueFOX-like sensor behind an IR-pass filter: read noise 1 % of full scale (~2.5 gray
@@ -53,6 +58,10 @@ class LedTargetRenderer {
   // the sensor noise.
   cv::Mat Render(const std::function<Eigen::Isometry3d(double t_s)>& T_CT_at, double t_s,
                  int frame_index, const std::vector<int>& hidden = {});
+
+  // The LEDs (indices into the configuration) the body hides from the camera at T_CT: a surface
+  // between the camera and the LED's emitter.
+  std::vector<int> OccludedLeds(const Eigen::Isometry3d& T_CT) const;
 
   const perception::CameraModel& camera() const { return *camera_; }
 

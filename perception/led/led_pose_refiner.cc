@@ -1,11 +1,19 @@
 #include "perception/led/led_pose_refiner.h"
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 
 #include "control/so3.h"
 
 namespace aperture::perception {
+
+double LargestStandardDeviation(const Eigen::Matrix3d& covariance) {
+  const double largest =
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvalues().maxCoeff();
+  return std::isnan(largest) ? largest : std::sqrt(std::max(0.0, largest));
+}
 
 bool ProjectLed(const CameraModel& camera, const Eigen::Isometry3d& T_CT,
                 const Eigen::Vector3d& p_T, Eigen::Vector2d* px,

@@ -31,6 +31,11 @@ struct LedPoseRefinement {
   int iterations = 0;
 };
 
+// Square root of the largest eigenvalue of a 3x3 covariance block (e.g. the position or the
+// rotation block of LedPoseRefinement::covariance): the standard deviation along its worst
+// direction [m or rad]. NaN stays NaN; negative round-off counts as 0.
+double LargestStandardDeviation(const Eigen::Matrix3d& covariance);
+
 // Projection of p_T at T_CT and its 2x6 Jacobian w.r.t. the perturbation above. False when the
 // camera cannot project the point.
 bool ProjectLed(const CameraModel& camera, const Eigen::Isometry3d& T_CT,

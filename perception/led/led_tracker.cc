@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <map>
 #include <stdexcept>
 
@@ -26,6 +27,7 @@ std::string LedTrackStatusName(LedTrackStatus status) {
     case LedTrackStatus::kNoCorrespondences: return "no_correspondences";
     case LedTrackStatus::kAmbiguous: return "ambiguous";
     case LedTrackStatus::kInconsistent: return "inconsistent";
+    case LedTrackStatus::kTrackedNearPrediction: return "tracked_near_prediction";
   }
   return "unknown";
 }
@@ -104,21 +106,26 @@ LedTrackResult LedTracker::Track(const cv::Mat& image, double t_s) {
         });
         if (claims == 1) unique.push_back(match);
       }
-      if (unique.size() < matches.size() && unique.size() < 4) {
-        // Predicted LEDs converge on shared blobs (merging, Section C.4.2): too few left.
+      // Predicted LEDs converging on shared blobs (merging, Section C.4.2, or a hidden LED
+      // predicted onto a visible one's blob) leave fewer than four unique correspondences.
+      const bool shared_blobs = unique.size() < matches.size() && unique.size() < 4;
+      if (!shared_blobs) {
+        const LedCorrespondenceResult verified =
+            search_.Verify(unique, result.detections, *camera_);
+        if (verified.verified) {
+          times.prediction_s += SecondsSince(start);
+          result.status = LedTrackStatus::kTracked;
+          Finish(&result, matches, *prediction, t_s);
+          return result;
+        }
+      }
+      times.prediction_s += SecondsSince(start);
+      if (unique.size() < 4 && TrackNearPrediction(&result, *prediction, t_s)) return result;
+      if (shared_blobs) {
         result.status = LedTrackStatus::kAmbiguous;
         result.correspondences = matches;
         result.merged_detections = static_cast<int>(matches.size() - unique.size());
-        times.prediction_s += SecondsSince(start);
         history_.clear();
-        return result;
-      }
-      const LedCorrespondenceResult verified =
-          search_.Verify(unique, result.detections, *camera_);
-      times.prediction_s += SecondsSince(start);
-      if (verified.verified) {
-        result.status = LedTrackStatus::kTracked;
-        Finish(&result, matches, *prediction, t_s);
         return result;
       }
     }
@@ -130,6 +137,8 @@ LedTrackResult LedTracker::Track(const cv::Mat& image, double t_s) {
   result.detections = std::move(detected.detections);
   result.warning = detected.warning;
   result.used_roi = false;
+  result.correspondences.clear();  // of a failed attempt near the prediction
+  result.merged_detections = 0;
   history_.clear();
   if (result.detections.size() < 3) {
     result.status = LedTrackStatus::kNoDetections;
@@ -149,9 +158,25 @@ LedTrackResult LedTracker::Track(const cv::Mat& image, double t_s) {
   return result;
 }
 
+bool LedTracker::TrackNearPrediction(LedTrackResult* result,
+                                     const Eigen::Isometry3d& T_CT_predicted, double t_s) {
+  result->used_near_prediction = true;
+  const Clock::time_point start = Clock::now();
+  const LedNearPredictionResult found =
+      FindLedPoseNearPrediction(configuration_.p_T(), result->detections, *camera_, T_CT_predicted,
+                                params_.correspondence, params_.near_prediction);
+  result->stage_times.near_prediction_s = SecondsSince(start);
+  if (found.status != LedNearPredictionStatus::kFound) return false;
+  result->status = LedTrackStatus::kTrackedNearPrediction;
+  Finish(result, found.correspondences, *found.T_CT, t_s, /*min_correspondences=*/3,
+         params_.max_near_prediction_rotation_sigma_deg * M_PI / 180.0);
+  return result->has_pose();
+}
+
 void LedTracker::Finish(LedTrackResult* result,
                         const std::vector<LedCorrespondence>& correspondences,
-                        const Eigen::Isometry3d& T_CT_initial, double t_s) {
+                        const Eigen::Isometry3d& T_CT_initial, double t_s, int min_correspondences,
+                        double max_rotation_sigma_rad) {
   // A blob claimed by several LEDs (merged LEDs, Section C.4.2) has a centroid between them:
   // drop it instead of pulling the pose towards it.
   std::map<int, int> claims;
@@ -166,7 +191,7 @@ void LedTracker::Finish(LedTrackResult* result,
     px.push_back(result->detections[c.detection].px);
   }
   for (const auto& [detection, count] : claims) result->merged_detections += count > 1 ? 1 : 0;
-  if (p_T.size() < 4) {
+  if (static_cast<int>(p_T.size()) < min_correspondences) {
     result->status = LedTrackStatus::kAmbiguous;
     history_.clear();
     return;
@@ -176,7 +201,9 @@ void LedTracker::Finish(LedTrackResult* result,
       RefineLedPose(*camera_, p_T, px, T_CT_initial, params_.refiner);
   result->stage_times.refinement_s = SecondsSince(start);
   result->rms_px = refined.rms_px;
-  if (!refined.valid || refined.rms_px > params_.max_rms_px) {
+  if (!refined.valid || refined.rms_px > params_.max_rms_px ||
+      !(LargestStandardDeviation(refined.covariance.bottomRightCorner<3, 3>()) <=
+        max_rotation_sigma_rad)) {
     result->status = LedTrackStatus::kInconsistent;
     history_.clear();
     return;

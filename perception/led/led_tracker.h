@@ -3,15 +3,23 @@
 // detection (C.1)-(C.4) -> prediction (C.6), (C.7) with nearest-detection matching and
 // verification (C.3.5) -> brute-force correspondence search (Algorithm 1) only when that fails ->
 // Gauss-Newton refinement with covariance (C.8), (C.9).
+// Beyond the thesis (issue 22): while tracking, when fewer than four predicted LEDs find a
+// detection of their own (the body hides LEDs, or LEDs share a blob: merged, or a hidden LED
+// predicted onto a visible one's blob), the pose comes from three or more detections through P3P
+// candidates near the prediction (led_pose_near_prediction.h), refined, and kept only when its
+// covariance bounds the rotation within max_near_prediction_rotation_sigma_deg. A fresh start
+// still needs four LEDs (Algorithm 1).
 //
 // Output: T_CT (p_C = T_CT * p_T) with its 6x6 covariance [p_CT; rotation in C], or no pose with
-// the reason. Frames whose correspondences are ambiguous (one blob serving several LEDs, e.g. two
-// LEDs merged, leaving fewer than 4 unique correspondences) or whose refined reprojection error
-// exceeds max_rms_px are rejected rather than answered with a confident wrong pose.
+// the reason. A blob serving several LEDs (e.g. two LEDs merged) is never used; frames left with
+// too few unique correspondences (< 4 on a fresh start, < 3 near the prediction) or whose refined
+// reprojection error exceeds max_rms_px are rejected rather than answered with a confident wrong
+// pose.
 // Not thread-safe (keeps the pose history and buffers); one tracker per camera.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <deque>
+#include <limits>
 #include <memory>
 #include <opencv2/core/mat.hpp>
 #include <optional>
@@ -22,6 +30,7 @@
 #include "perception/led/led_configuration.h"
 #include "perception/led/led_correspondence_search.h"
 #include "perception/led/led_detector.h"
+#include "perception/led/led_pose_near_prediction.h"
 #include "perception/led/led_pose_refiner.h"
 
 namespace aperture::perception {
@@ -33,6 +42,14 @@ struct LedTrackerParams {
   double prediction_match_px = 5.0;  // prediction -> nearest detection gate (thesis: 5 px)
   int roi_half_size_px = 24;         // ROI around each predicted LED; blob radius + motion
   double max_rms_px = 2.0;           // refined reprojection RMS above: inconsistent frame
+  // Pose from fewer than 4 matched LEDs while tracking.
+  LedNearPredictionParams near_prediction;
+  // Largest rotation standard deviation (C.9 at detection_sigma_px) a pose near the prediction
+  // may have [deg]: beyond it the LEDs barely fix the rotation and the prediction, not the
+  // image, would pick the pose. At 1 px, `bench led` body_occlusion's three-LED poses at
+  // 1.8-2.5 m have 6.6-9.3 deg and its four-LED poses up to 27 deg (sigma grows with distance),
+  // so 30 deg rejects only a geometry worse than any the four-LED path meets there.
+  double max_near_prediction_rotation_sigma_deg = 30.0;
 };
 
 enum class LedTrackStatus {
@@ -40,8 +57,11 @@ enum class LedTrackStatus {
   kReinitialized,       // brute-force correspondences, refined
   kNoDetections,        // fewer than 3 blobs (also: nothing in the image)
   kNoCorrespondences,   // brute force found < 4 LEDs or no pose candidate fits
-  kAmbiguous,           // blobs shared by several LEDs leave < 4 unique correspondences
-  kInconsistent,        // refinement failed or reprojection RMS > max_rms_px
+  kAmbiguous,           // blobs shared by several LEDs leave too few unique correspondences
+  kInconsistent,        // refinement failed, reprojection RMS > max_rms_px, or (near the
+                        // prediction) rotation sigma > max_near_prediction_rotation_sigma_deg
+  // < 4 predicted LEDs matched: P3P candidate near the prediction, refined (issue 22).
+  kTrackedNearPrediction,
 };
 std::string LedTrackStatusName(LedTrackStatus status);
 
@@ -52,6 +72,8 @@ struct LedStageTimes {
   double prediction_s = 0.0;   // (C.6), (C.7), nearest-detection matching and verification
   double brute_force_s = 0.0;  // Algorithm 1
   double refinement_s = 0.0;   // Gauss-Newton and covariance (C.8), (C.9)
+  // P3P candidates near the prediction (< 4 LEDs matched).
+  double near_prediction_s = 0.0;
 };
 
 struct LedTrackResult {
@@ -64,6 +86,8 @@ struct LedTrackResult {
   double rms_px = 0.0;
   bool used_roi = false;      // detection ran on ROIs around the prediction
   bool used_brute_force = false;
+  // The P3P search near the prediction ran.
+  bool used_near_prediction = false;
   std::string warning;        // e.g. the detector's blob cap
   LedStageTimes stage_times;
   bool has_pose() const { return T_CT.has_value(); }
@@ -91,8 +115,15 @@ class LedTracker {
   // Nearest detection within prediction_match_px of every predicted LED.
   std::vector<LedCorrespondence> MatchPrediction(const Eigen::Isometry3d& T_CT_predicted,
                                                  const std::vector<LedDetection>& detections) const;
+  // Pose from fewer than 4 matched LEDs near the prediction; false when none passes.
+  bool TrackNearPrediction(LedTrackResult* result, const Eigen::Isometry3d& T_CT_predicted,
+                           double t_s);
+  // Refines T_CT_initial on the correspondences with unique detections (at least
+  // min_correspondences of them) and records the pose when the refinement's rotation sigma is
+  // at most max_rotation_sigma_rad; else sets the failure status and forgets the track.
   void Finish(LedTrackResult* result, const std::vector<LedCorrespondence>& correspondences,
-              const Eigen::Isometry3d& T_CT_initial, double t_s);
+              const Eigen::Isometry3d& T_CT_initial, double t_s, int min_correspondences = 4,
+              double max_rotation_sigma_rad = std::numeric_limits<double>::infinity());
 
   LedConfiguration configuration_;
   std::shared_ptr<const CameraModel> camera_;

@@ -13,6 +13,8 @@
 //     correspondence: {p3p_method: kneip, reprojection_threshold_px: 5, acceptance_ratio: 0.5,
 //                      min_inlier_ratio: 0.75, min_subset_ratio: 0.7}          # Algorithm 1
 //     refiner: {max_iterations: 10, step_tolerance: 1e-9, detection_sigma_px: 1}  # (C.8), (C.9)
+//     near_prediction: {gate_px: 5}                # < 4 LEDs matched while tracking
+//     max_near_prediction_rotation_sigma_deg: 30
 #include "config/yaml_read_archive.h"
 #include "perception/led/led_tracker.h"
 #include "perception/led/p3p_solver.h"
@@ -53,6 +55,11 @@ void Serialize(Archive* a, LedPoseRefinerParams* p) {
 }
 
 template <typename Archive>
+void Serialize(Archive* a, LedNearPredictionParams* p) {
+  a->Visit(APERTURE_NVP(p, gate_px));
+}
+
+template <typename Archive>
 void Serialize(Archive* a, LedTrackerParams* p) {
   a->Visit(APERTURE_NVP(p, detector));
   a->Visit(APERTURE_NVP(p, correspondence));
@@ -60,6 +67,8 @@ void Serialize(Archive* a, LedTrackerParams* p) {
   a->Visit(APERTURE_NVP(p, prediction_match_px));
   a->Visit(APERTURE_NVP(p, roi_half_size_px));
   a->Visit(APERTURE_NVP(p, max_rms_px));
+  a->Visit(APERTURE_NVP(p, near_prediction));
+  a->Visit(APERTURE_NVP(p, max_near_prediction_rotation_sigma_deg));
 }
 
 }  // namespace aperture::perception

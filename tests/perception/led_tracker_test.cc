@@ -3,6 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "control/so3.h"
 #include "led_test_images.h"
 #include "perception/camera/pinhole_camera.h"
@@ -78,6 +80,98 @@ TEST_F(LedTrackerTest, FreshStartWithFourOfFiveLedsFindsTheTruePose) {
       EXPECT_LT(Eigen::AngleAxisd(result.T_CT->linear().transpose() * PoseAt(0.0).linear()).angle(),
                 0.01);
     }
+  }
+}
+
+// Images of the LEDs not in `hidden` at T_CT (blob sigma 2 px).
+cv::Mat ImageWithout(const std::vector<Eigen::Vector2d>& px, const std::vector<int>& hidden) {
+  std::vector<Eigen::Vector2d> shown;
+  for (int led = 0; led < static_cast<int>(px.size()); ++led) {
+    if (std::find(hidden.begin(), hidden.end(), led) == hidden.end()) shown.push_back(px[led]);
+  }
+  return test_support::BlobImage(752, 480, shown, /*sigma_px=*/2.0);
+}
+
+TEST_F(LedTrackerTest, TwoHiddenLedsKeepThePoseFromThreeWhileTracking) {
+  // Tracked on five LEDs, then LEDs 1 and 3 hidden: the three left give the pose through P3P
+  // near the prediction (issue 22), with the right LEDs and millimetre errors; when the LEDs
+  // come back the tracker is on the four-LED path again.
+  LedTracker tracker(configuration_, camera_);
+  for (int k = 0; k < 12; ++k) {
+    const double t_s = 0.02 * k;
+    const bool hidden = k >= 3 && k < 9;
+    const LedTrackResult result =
+        tracker.Track(ImageWithout(Projections(PoseAt(t_s)),
+                                   hidden ? std::vector<int>{1, 3} : std::vector<int>{}),
+                      t_s);
+    ASSERT_TRUE(result.has_pose()) << "frame " << k << " " << LedTrackStatusName(result.status);
+    if (!hidden) {
+      EXPECT_NE(result.status, LedTrackStatus::kTrackedNearPrediction) << "frame " << k;
+      continue;
+    }
+    EXPECT_EQ(result.status, LedTrackStatus::kTrackedNearPrediction) << "frame " << k;
+    EXPECT_TRUE(result.used_near_prediction);
+    EXPECT_FALSE(result.used_brute_force);
+    ASSERT_EQ(result.correspondences.size(), 3u);
+    EXPECT_EQ(result.correspondences[0].led, 0);
+    EXPECT_EQ(result.correspondences[1].led, 2);
+    EXPECT_EQ(result.correspondences[2].led, 4);
+    // Three centroids within ~0.05 px fix the pose to a few mm at 1.3 m (P3P is exact; the
+    // error is the centroids', amplified by the weaker geometry of three points).
+    EXPECT_LT((result.T_CT->translation() - PoseAt(t_s).translation()).norm(), 0.005)
+        << "frame " << k;
+    EXPECT_LT(Eigen::AngleAxisd(result.T_CT->linear().transpose() * PoseAt(t_s).linear()).angle(),
+              0.01)
+        << "frame " << k;
+    EXPECT_GT(result.stage_times.near_prediction_s, 0.0);
+  }
+}
+
+TEST_F(LedTrackerTest, FreshStartWithThreeLedsGivesNoPose) {
+  // Without a prediction three LEDs do not choose among P3P's labellings: no pose, whichever
+  // two are hidden.
+  for (int a = 0; a < configuration_.size(); ++a) {
+    for (int b = a + 1; b < configuration_.size(); ++b) {
+      LedTracker tracker(configuration_, camera_);
+      const LedTrackResult result =
+          tracker.Track(ImageWithout(Projections(PoseAt(0.0)), {a, b}), 0.0);
+      EXPECT_FALSE(result.has_pose()) << "hidden " << a << ", " << b;
+      EXPECT_FALSE(result.used_near_prediction);
+    }
+  }
+}
+
+TEST_F(LedTrackerTest, ThreeLedsFarFromThePredictionGiveNoPose) {
+  // Tracked at rest, then the target jumps 4 cm sideways (~13 px at 1.3 m, beyond the 5 px
+  // gate) with two LEDs hidden: the P3P candidates of the three left are all far from the
+  // prediction, so the frame has no pose instead of a jump to a pose the prediction did not
+  // choose.
+  LedTracker tracker(configuration_, camera_);
+  for (int k = 0; k < 3; ++k) {
+    ASSERT_TRUE(tracker.Track(ImageWithout(Projections(PoseAt(0.0)), {}), 0.02 * k).has_pose());
+  }
+  Eigen::Isometry3d jumped = PoseAt(0.0);
+  jumped.translation().x() += 0.04;
+  const LedTrackResult result = tracker.Track(ImageWithout(Projections(jumped), {0, 2}), 0.06);
+  EXPECT_FALSE(result.has_pose()) << LedTrackStatusName(result.status);
+  EXPECT_TRUE(result.used_near_prediction);
+}
+
+TEST_F(LedTrackerTest, ThreeLedPosesLooserThanTheRotationSigmaBoundAreRejected) {
+  // Three LEDs at 1.3 m fix the rotation to ~2 deg at 1 px (C.9): with the bound below that the
+  // covariance check rejects the pose near the prediction, with the default bound it passes.
+  for (const double bound_deg : {1.0, LedTrackerParams{}.max_near_prediction_rotation_sigma_deg}) {
+    LedTrackerParams params;
+    params.max_near_prediction_rotation_sigma_deg = bound_deg;
+    LedTracker tracker(configuration_, camera_, params);
+    for (int k = 0; k < 3; ++k) {
+      ASSERT_TRUE(
+          tracker.Track(ImageWithout(Projections(PoseAt(0.02 * k)), {}), 0.02 * k).has_pose());
+    }
+    const LedTrackResult result =
+        tracker.Track(ImageWithout(Projections(PoseAt(0.06)), {1, 3}), 0.06);
+    EXPECT_TRUE(result.used_near_prediction);
+    EXPECT_EQ(result.has_pose(), bound_deg > 1.0) << bound_deg << " deg";
   }
 }
 

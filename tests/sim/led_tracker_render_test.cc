@@ -31,16 +31,21 @@ Eigen::Isometry3d TargetPose(const Eigen::Vector3d& p_CT, const Eigen::Vector3d&
   return T_CT;
 }
 
+// A point 20 cm in front of the LED at p_led_C, on its line of sight (a plate there hides it).
+Eigen::Vector3d InFrontOf(const Eigen::Vector3d& p_led_C) {
+  return p_led_C * (1.0 - 0.2 / p_led_C.norm());
+}
+
 double AngleError_deg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   return control::LogSo3(a.linear() * b.linear().transpose()).norm() * 180.0 / M_PI;
 }
 
 class LedTrackerRenderTest : public ::testing::Test {
  protected:
-  // Renders the target at T_CT (camera frame = world frame); `occluder_C` adds a 3 cm plate
-  // facing the camera at that point.
+  // Renders the target at T_CT (camera frame = world frame); every point of `occluders_C` adds a
+  // 3 cm plate facing the camera there.
   cv::Mat Render(const Eigen::Isometry3d& T_CT, int frame_index,
-                 const std::optional<Eigen::Vector3d>& occluder_C = std::nullopt) {
+                 const std::vector<Eigen::Vector3d>& occluders_C = {}) {
     Scene scene;
     // Peak of a resolved blob: intensity / (2 pi sigma^2) with sigma = 0.5 r f / d at 1 m
     // scaled: independent of distance. Aim at 0.8 of full scale (unsaturated).
@@ -55,9 +60,9 @@ class LedTrackerRenderTest : public ::testing::Test {
     // A wall behind the target: the dim infrared background the detector has to ignore.
     scene.AddObject({"wall", Rectangle{{20.0, 20.0}, {}, {}}, {},
                      testing::Pose({0, 0, 0}, {0.0, 0.0, T_CT.translation().z() + 1.5})});
-    if (occluder_C) {
-      scene.AddObject({"plate", Rectangle{{0.03, 0.03}, {}, {}}, {},
-                       testing::Pose({0, 0, 0}, *occluder_C)});
+    for (std::size_t i = 0; i < occluders_C.size(); ++i) {
+      scene.AddObject({"plate" + std::to_string(i), Rectangle{{0.03, 0.03}, {}, {}}, {},
+                       testing::Pose({0, 0, 0}, occluders_C[i])});
     }
     CameraEffectsParams params;
     params.infrared = true;
@@ -123,13 +128,9 @@ TEST_F(LedTrackerRenderTest, OccludingOneOfFiveLedsKeepsThePoseWithoutJumps) {
     // 5 mm and 0.5 deg per frame sideways.
     const Eigen::Isometry3d T_CT =
         TargetPose({-0.05 + 0.005 * k, 0.02, 1.4}, {0.2, -0.1, 0.3 + 0.01 * k});
-    std::optional<Eigen::Vector3d> occluder;
-    if (k >= 4) {
-      // A plate 20 cm in front of LED 2 (on its line of sight) from frame 4 on.
-      const Eigen::Vector3d p_led = T_CT * configuration_.p_T()[2];
-      occluder = p_led * (1.0 - 0.2 / p_led.norm());
-    }
-    const LedTrackResult result = tracker.Track(Render(T_CT, k, occluder), 0.05 * k);
+    std::vector<Eigen::Vector3d> occluders;
+    if (k >= 4) occluders.push_back(InFrontOf(T_CT * configuration_.p_T()[2]));
+    const LedTrackResult result = tracker.Track(Render(T_CT, k, occluders), 0.05 * k);
     ASSERT_TRUE(result.has_pose()) << "frame " << k << ": "
                                    << perception::LedTrackStatusName(result.status);
     if (k >= 4) {
@@ -148,6 +149,47 @@ TEST_F(LedTrackerRenderTest, OccludingOneOfFiveLedsKeepsThePoseWithoutJumps) {
     previous_truth = T_CT;
   }
   EXPECT_EQ(occluded_frames_with_pose, 6);
+}
+
+TEST_F(LedTrackerRenderTest, OccludingTwoOfFiveLedsKeepsThePoseFromThree) {
+  // Issue 22: while tracking, plates hide LEDs 0 and 3 from frame 4 on; the three left give the
+  // pose through P3P near the prediction, on the right LEDs and without jumps.
+  LedTracker tracker(configuration_, camera_);
+  Eigen::Isometry3d previous = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d previous_truth = Eigen::Isometry3d::Identity();
+  int three_led_frames = 0;
+  for (int k = 0; k < 10; ++k) {
+    // 5 mm and 0.5 deg per frame sideways.
+    const Eigen::Isometry3d T_CT =
+        TargetPose({-0.05 + 0.005 * k, 0.02, 1.4}, {0.2, -0.1, 0.3 + 0.01 * k});
+    std::vector<Eigen::Vector3d> occluders;
+    if (k >= 4) {
+      for (const int led : {0, 3}) occluders.push_back(InFrontOf(T_CT * configuration_.p_T()[led]));
+    }
+    const LedTrackResult result = tracker.Track(Render(T_CT, k, occluders), 0.05 * k);
+    ASSERT_TRUE(result.has_pose()) << "frame " << k << ": "
+                                   << perception::LedTrackStatusName(result.status);
+    if (k >= 4) {
+      EXPECT_EQ(result.status, LedTrackStatus::kTrackedNearPrediction) << "frame " << k;
+      ASSERT_EQ(result.correspondences.size(), 3u) << "frame " << k;
+      for (const perception::LedCorrespondence& c : result.correspondences) {
+        EXPECT_TRUE(c.led == 1 || c.led == 2 || c.led == 4) << "frame " << k;
+      }
+      ++three_led_frames;
+    }
+    if (k > 0) {
+      // As with one LED hidden: a jump beyond 2 cm would mean a wrong labelling.
+      const Eigen::Vector3d estimated_step = result.T_CT->translation() - previous.translation();
+      const Eigen::Vector3d true_step = T_CT.translation() - previous_truth.translation();
+      EXPECT_LT((estimated_step - true_step).norm(), 0.02) << "frame " << k;
+    }
+    // Three rendered blobs (centroid noise ~0.05 px) at 1.4 m: within 1 cm and 1 deg.
+    EXPECT_LT((result.T_CT->translation() - T_CT.translation()).norm(), 0.01) << "frame " << k;
+    EXPECT_LT(AngleError_deg(*result.T_CT, T_CT), 1.0) << "frame " << k;
+    previous = *result.T_CT;
+    previous_truth = T_CT;
+  }
+  EXPECT_EQ(three_led_frames, 6);
 }
 
 TEST_F(LedTrackerRenderTest, MergedLedsGiveNoConfidentWrongPose) {
