@@ -8,9 +8,9 @@
 #include <memory>
 #include <string>
 
-#include "apps/acceptance_outcome.h"
 #include "apps/commands.h"
 #include "experiments/led/led_bench.h"
+#include "output/acceptance_outcome.h"
 #include "output/html_report.h"
 #include "output/output_folder.h"
 
@@ -45,7 +45,7 @@ void AddBenchLedCommand(CLI::App& bench, int* exit_code) {
       bench_options.quick = options->quick;
       bench_options.frames_csv_path = out.Path("frames.csv");
       experiments::RunLedBench(bench_options, &out.summary(), &report);
-      report.AddOutcome(AcceptanceOutcome(out.summary()["acceptance"]));
+      report.AddOutcome(output::AcceptanceOutcome(out.summary()["acceptance"]));
       report.AddRunDescription(out.summary(), out.ElapsedSeconds());
       report.AddCollapsedTable(out.summary(), "Every figure of summary.json");
       report.Write(out.Path("report.html"));
