@@ -6,7 +6,7 @@ JOBS ?= $(shell nproc)
 DEMO_OUT ?= out/demo
 APERTURE := $(BUILD_DIR)/apps/aperture
 
-.PHONY: all deps configure build test demo python bench clean
+.PHONY: all deps configure build test test-slurm demo python bench clean
 
 all: build
 
@@ -21,6 +21,12 @@ build: configure
 
 test: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+
+# scripts/slurm/bench.sbatch for real: a 4-shard bench plus the merge on a one-node Slurm that the
+# test starts on localhost (as root) and stops, compared with the unsharded run.
+test-slurm: configure
+	@cmake --build $(BUILD_DIR) -j $(JOBS) --target aperture
+	@scripts/slurm/test-single-node.sh $(APERTURE)
 
 demo: configure
 	@cmake --build $(BUILD_DIR) -j $(JOBS) --target aperture
