@@ -8,8 +8,11 @@
 #   scripts/slurm/test-single-node.sh build/apps/aperture
 #
 # It submits a 4-shard `bench gap` of a few short ground-truth trials plus the merge, waits for
-# the merge job, runs the same bench unsharded, and compares: every figure of summary.json and
-# every cell of trials.csv equal (wall and CPU times aside). Exit 0 when they match.
+# the merge job, runs the same bench unsharded (all cores), and compares: every figure of
+# summary.json and every cell of trials.csv equal (wall and CPU times aside), and prints both wall
+# times. Exit 0 when they match. Other benches (docs/results/slurm.md measures with these):
+#   TEST_SLURM_SHARDS=4 TEST_SLURM_BENCH="gap --trials 40 --duration 2" scripts/slurm/test-single-node.sh A
+# TEST_SLURM_KEEP=DIR keeps the shards, the merge and the unsharded run in DIR.
 set -euo pipefail
 
 aperture=${1:?usage: $0 PATH/TO/aperture}
@@ -25,8 +28,8 @@ for tool in munged slurmctld slurmd sbatch squeue sinfo scontrol python3; do
 done
 
 # The bench: 4 shards of 8 ground-truth trials (no camera), 6 simulated seconds each.
-bench_args=(gap --trials 8 --seed 5 --autopilot ground_truth --duration 6)
-shards=4
+read -r -a bench_args <<<"${TEST_SLURM_BENCH:-gap --trials 8 --seed 5 --autopilot ground_truth --duration 6}"
+shards=${TEST_SLURM_SHARDS:-4}
 
 work=$(mktemp -d /tmp/aperture-slurm.XXXXXX)
 chmod 755 "$work"
@@ -39,6 +42,9 @@ teardown() {
     echo "test-slurm: failed; daemon logs:" >&2
     tail -n 20 "$work"/*.log >&2 2>/dev/null || true
     tail -n 20 "$work"/runs/*/slurm-*.out >&2 2>/dev/null || true
+  fi
+  if [[ -n "${TEST_SLURM_KEEP:-}" && -d "$work/runs" ]]; then
+    mkdir -p "$TEST_SLURM_KEEP" && cp -r "$work/runs/." "$TEST_SLURM_KEEP/"
   fi
   rm -rf "$work"
   exit "$status"
@@ -114,8 +120,8 @@ echo "test-slurm: one-node Slurm up on $host (ports $ctld_port, $((ctld_port + 1
 # The sharded bench through the script users run, from a submission folder like theirs.
 mkdir -p "$work/runs"
 start_ms=$(($(date +%s%N) / 1000000))
-(cd "$work/runs" && APERTURE="$aperture" "$here/bench.sbatch" gap "$shards" "${bench_args[@]}")
-read -r array_job merge_job <"$work/runs/gap/slurm-jobs"
+(cd "$work/runs" && APERTURE="$aperture" "$here/bench.sbatch" sharded "$shards" "${bench_args[@]}")
+read -r array_job merge_job <"$work/runs/sharded/slurm-jobs"
 for ((i = 0; i < 600; ++i)); do
   [[ -z "$(squeue -h -j "$array_job,$merge_job" 2>/dev/null)" ]] && break
   sleep 0.5
@@ -125,10 +131,13 @@ merge_state=$(scontrol show job "$merge_job" | sed -n 's/.*JobState=\([A-Z_]*\).
 [[ "$merge_state" == COMPLETED ]] || { echo "test-slurm: merge job $merge_job ended $merge_state" >&2; exit 1; }
 
 start_ms=$(($(date +%s%N) / 1000000))
-"$aperture" bench "${bench_args[@]}" --out "$work/runs/whole" >/dev/null
+"$aperture" bench "${bench_args[@]}" --out "$work/runs/whole"
 whole_ms=$(($(date +%s%N) / 1000000 - start_ms))
 
-python3 "$here/compare_bench_outputs.py" "$work/runs/whole" "$work/runs/gap/merged"
-hosts=$(python3 -c 'import json,sys; print(sorted({s["host"] for s in json.load(open(sys.argv[1]))["cost"]["shards"]}))' \
-  "$work/runs/gap/merged/summary.json")
-echo "test-slurm: passed: $shards shards on Slurm + merge ($sharded_ms ms wall, hosts $hosts) equal the unsharded run ($whole_ms ms)"
+python3 "$here/compare_bench_outputs.py" "$work/runs/whole" "$work/runs/sharded/merged"
+costs=$(python3 -c 'import json,sys
+m = json.load(open(sys.argv[1]))["cost"]; w = json.load(open(sys.argv[2]))["cost"]
+print("sharded: hosts %s, %.2f CPU s/trial; unsharded: %s threads, %.2f CPU s/trial" % (
+    sorted({s["host"] for s in m["shards"]}), m["cpu_s_per_trial"], w["threads"], w["cpu_s_per_trial"]))' \
+  "$work/runs/sharded/merged/summary.json" "$work/runs/whole/summary.json")
+echo "test-slurm: passed: $shards shards on Slurm + merge ($sharded_ms ms wall from submission) equal the unsharded run ($whole_ms ms wall); $costs"
