@@ -23,10 +23,15 @@ test: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 
 # scripts/slurm/bench.sbatch for real: a 4-shard bench plus the merge on a one-node Slurm that the
-# test starts on localhost (as root) and stops, compared with the unsharded run.
+# test starts on localhost and stops, compared with the unsharded run. The daemons need root:
+# through sudo when not root (as scripts/install-deps.sh).
 test-slurm: configure
 	@cmake --build $(BUILD_DIR) -j $(JOBS) --target aperture
-	@scripts/slurm/test-single-node.sh $(APERTURE)
+	@if [ "$$(id -u)" -ne 0 ] && command -v sudo >/dev/null; then \
+	  sudo scripts/slurm/test-single-node.sh $(APERTURE); \
+	else \
+	  scripts/slurm/test-single-node.sh $(APERTURE); \
+	fi
 
 demo: configure
 	@cmake --build $(BUILD_DIR) -j $(JOBS) --target aperture
