@@ -2,6 +2,7 @@
 // II and IV and the per-module timing).
 //
 //   aperture bench mononav --out DIR [--trials 40] [--seed S] [--duration S] [--quick]
+//                          [--configurations edt,no_edt,random_waypoint]
 //                          [--set forest.KEY=V] [--set mission.KEY=V] [--threads T] [--shard K/N]
 //
 // Writes DIR/summary.json (table_iv, table_ii, timing, acceptance; see
@@ -39,6 +40,11 @@ void AddBenchMononavCommand(CLI::App& bench, int* exit_code) {
       ->check(CLI::PositiveNumber);
   command->add_flag("--quick", options->bench.quick,
                     "One short flight (4 m, one trunk on the line), EDT only (same code paths)");
+  command
+      ->add_option("--configurations", options->bench.configurations,
+                   "Configurations flown on every layout: edt,no_edt,random_waypoint (default "
+                   "all; edt is always needed)")
+      ->delimiter(',');
   command->add_option(
       "--set", options->bench.set_items,
       "Scenario or mission override, e.g. forest.trees=30, mission.max_speed_mps=1");

@@ -93,6 +93,24 @@ GapflytTrialConfig DrawGapflytTrial(const GapflytBenchOptions& options, int tria
   return config;
 }
 
+std::string GapflytTrialSimCommand(const GapflytBenchOptions& options,
+                                   const GapflytTrialConfig& config, const std::string& law) {
+  char numbers[320];
+  std::snprintf(numbers, sizeof(numbers),
+                " --set 'gapflyt.size_m=[%.17g, %.17g]' --set 'gapflyt.center_m=[%.17g, %.17g]'"
+                " --set gapflyt.foreground_x_m=%.17g --set gapflyt.background_x_m=%.17g",
+                config.size_m.x(), config.size_m.y(), config.center_m.x(), config.center_m.y(),
+                config.foreground_x_m, config.background_x_m);
+  std::string command = "aperture sim gapflyt --seed " + std::to_string(config.scene_seed) +
+                        " --duration " + std::to_string(options.duration_s) +
+                        " --set gapflyt.shape=" + config.shape + numbers +
+                        " --set cameras.front.width=" + std::to_string(options.width) +
+                        " --set cameras.front.height=" + std::to_string(options.height) +
+                        " --set mission.servo.law=" + law;
+  for (const std::string& item : options.mission_set_items) command += " --set '" + item + "'";
+  return command + " --out trial" + std::to_string(config.trial) + "-" + law;
+}
+
 GapflytTrialRecord RunGapflytTrial(const GapflytBenchOptions& options,
                                    const GapflytTrialConfig& config, const std::string& law) {
   const auto start = std::chrono::steady_clock::now();
@@ -187,7 +205,8 @@ nlohmann::json SummarizeGapflytBench(const GapflytBenchResult& result) {
                            {"scene_seed", t.config.scene_seed},
                            {"passed", t.passed},
                            {"seed002_success", t.seed002_success},
-                           {"figures", t.figures}});
+                           {"figures", t.figures},
+                           {"reproduce", GapflytTrialSimCommand(result.options, t.config, law)}});
     }
     nlohmann::json per_shape;
     for (const auto& [shape, counts] : shapes) {

@@ -82,6 +82,11 @@ struct GapflytBenchResult {
 // Trial `trial` of a bench seeded `seed` (see the header).
 GapflytTrialConfig DrawGapflytTrial(const GapflytBenchOptions& options, int trial);
 
+// The `aperture sim gapflyt` command line that flies trial `config` with `law` again (same scene,
+// sensor noise and mission overrides; video and plots of one failure).
+std::string GapflytTrialSimCommand(const GapflytBenchOptions& options,
+                                   const GapflytTrialConfig& config, const std::string& law);
+
 // Flies one trial with one law. Exceptions inside the flight are recorded as its failure.
 GapflytTrialRecord RunGapflytTrial(const GapflytBenchOptions& options,
                                    const GapflytTrialConfig& config, const std::string& law);

@@ -28,6 +28,9 @@ struct MononavBenchOptions {
   // One flight, the EDT configuration only, on a short course (goal 4 m away, one trunk 2 m
   // ahead on the line): the same code paths for tests and quick looks.
   bool quick = false;
+  // Which configurations to fly on every layout (edt | no_edt | random_waypoint); Table IV needs
+  // edt and no_edt, Table II edt and random_waypoint. Empty = all three.
+  std::vector<std::string> configurations;
   // Overrides of the `forest` scenario and of the mission (`mission.*`), applied to every flight.
   std::vector<std::string> set_items;
   std::string flights_csv_path;  // one row per flight; empty = none
@@ -46,8 +49,9 @@ struct MononavFlight {
   double wall_time_s = 0.0;
 };
 
-// Layout `layout` (scenario seed first_seed + layout) flown in every configuration (edt; no_edt
-// and random_waypoint unless quick), in that order.
+// Layout `layout` (scenario seed first_seed + layout) flown in every chosen configuration (edt
+// only when quick, else `configurations`, empty = all), in the order edt, no_edt,
+// random_waypoint.
 std::vector<MononavFlight> FlyMononavLayout(const MononavBenchOptions& options, int layout);
 
 // From the flights of every layout (layout-major, configurations in order): fills

@@ -19,6 +19,7 @@ class MononavMonteCarloBench : public MonteCarloBench {
       options_.first_seed = o.at("first_seed").get<std::uint64_t>();
       options_.duration_s = o.at("duration_s").get<double>();
       options_.quick = o.at("quick").get<bool>();
+      options_.configurations = o.at("configurations").get<std::vector<std::string>>();
       options_.set_items = o.at("set_items").get<std::vector<std::string>>();
     } catch (const nlohmann::json::exception& e) {
       throw std::invalid_argument(std::string("bench mononav configuration: ") + e.what());
@@ -63,6 +64,7 @@ class MononavMonteCarloBench : public MonteCarloBench {
                          {"seed", options_.first_seed},
                          {"duration_s", options_.duration_s},
                          {"quick", options_.quick},
+                         {"configurations", options_.configurations},
                          {"set", options_.set_items}};
     MononavBenchOptions options = options_;
     options.flights_csv_path = out.Path("flights.csv");
@@ -93,6 +95,7 @@ nlohmann::json MononavBenchConfiguration(const MononavBenchOptions& options) {
             {"first_seed", options.first_seed},
             {"duration_s", options.duration_s},
             {"quick", options.quick},
+            {"configurations", options.configurations},
             {"set_items", options.set_items}}}};
 }
 

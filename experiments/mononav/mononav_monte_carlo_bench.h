@@ -3,7 +3,7 @@
 // sharded (`--shard K/N`) and merged through one path. Trial k is the forest layout of scenario
 // seed first_seed + k flown in every configuration; its record is
 // {"trial": k, "flights": [MononavFlightToJson per configuration]}. Configuration:
-//   {"options": {"trials", "first_seed", "duration_s", "quick", "set_items"}}
+//   {"options": {"trials", "first_seed", "duration_s", "quick", "configurations", "set_items"}}
 // The outputs are those of mononav_bench.h plus summary "inputs", flights.csv and report.html.
 #include <memory>
 #include <nlohmann/json.hpp>

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <ctime>
 #include <limits>
+#include <optional>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/ximgproc/edge_filter.hpp>
 #include <stdexcept>
@@ -203,6 +204,40 @@ double TwoMeansThreshold(const cv::Mat& values, double* low_mean, double* high_m
   if (low_mean) *low_mean = low;
   if (high_mean) *high_mean = high;
   return threshold;
+}
+
+std::optional<LowTailMode> FindLowTailMode(const cv::Mat& values, double min_fraction) {
+  CV_Assert(values.type() == CV_32FC1);
+  std::vector<float> finite;
+  finite.reserve(values.total());
+  for (int y = 0; y < values.rows; ++y) {
+    const float* row = values.ptr<float>(y);
+    for (int x = 0; x < values.cols; ++x) {
+      if (std::isfinite(row[x])) finite.push_back(row[x]);
+    }
+  }
+  if (finite.empty()) return std::nullopt;
+  const auto median = [](std::vector<float> v) {
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return static_cast<double>(v[v.size() / 2]);
+  };
+  LowTailMode mode;
+  mode.high = median(finite);
+  std::vector<float> deviations(finite.size());
+  for (std::size_t i = 0; i < finite.size(); ++i) {
+    deviations[i] = static_cast<float>(std::abs(finite[i] - mode.high));
+  }
+  const double spread = 1.4826 * median(deviations);  // the MAD of a normal distribution
+  // Below the main mode by more than kTailSpreads spreads: not the main mode's own tail.
+  constexpr double kTailSpreads = 4.0;
+  mode.cutoff = mode.high - kTailSpreads * spread;
+  std::vector<float> tail;
+  for (float v : finite) {
+    if (v < mode.cutoff) tail.push_back(v);
+  }
+  if (tail.empty() || tail.size() < min_fraction * finite.size()) return std::nullopt;
+  mode.low = median(tail);
+  return mode;
 }
 
 Eigen::Vector2d GeometricMedian(const cv::Mat& mask, int iterations) {
@@ -422,7 +457,22 @@ Ts2pDetection Ts2pDetector::Detect(const cv::Mat& reference, const std::vector<c
   cv::Mat values = mean_flow.clone();
   for (int split = 0; split < kMaxSplits; ++split) {
     TwoMeansThreshold(values, &detection.background_flow_px, &detection.foreground_flow_px);
-    const double separation = detection.foreground_flow_px - detection.background_flow_px;
+    double separation = detection.foreground_flow_px - detection.background_flow_px;
+    // The threshold stays below the main mode's own spread when the opening is a low tail.
+    double max_threshold = std::numeric_limits<double>::infinity();
+    if (!(separation >= params_.min_mode_separation_px * width_ratio)) {
+      // A small opening (a few percent of the image: a star, an opening barely wider than the
+      // vehicle, a low resolution) does not pull two-means off the wall's own spread of parallax
+      // (perspective across the view), which it then splits in two: look for the opening as a
+      // low tail below the wall's mode instead (beyond the paper).
+      if (const std::optional<LowTailMode> tail =
+              FindLowTailMode(values, params_.min_area_fraction)) {
+        detection.background_flow_px = tail->low;
+        detection.foreground_flow_px = tail->high;
+        separation = tail->high - tail->low;
+        max_threshold = tail->cutoff;
+      }
+    }
     if (!(separation >= params_.min_mode_separation_px * width_ratio)) {
       detection.status = "no parallax: flow modes " + std::to_string(detection.background_flow_px) +
                          " and " + std::to_string(detection.foreground_flow_px) +
@@ -430,7 +480,8 @@ Ts2pDetection Ts2pDetector::Detect(const cv::Mat& reference, const std::vector<c
       detection.opening.setTo(0);
       break;
     }
-    const double threshold = detection.background_flow_px + params_.threshold_fraction * separation;
+    const double threshold = std::min(
+        detection.background_flow_px + params_.threshold_fraction * separation, max_threshold);
     detection.opening = params_.segmentation == "region"
                             ? SegmentRegion(mean_flow, threshold)
                             : SegmentEdges(inverse_flow, 1.0 / detection.foreground_flow_px,

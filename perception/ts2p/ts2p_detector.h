@@ -166,6 +166,17 @@ class Ts2pDetector {
 // midpoint of the means of the two classes it separates; *low_mean / *high_mean get those means.
 double TwoMeansThreshold(const cv::Mat& values, double* low_mean, double* high_mean);
 
+// The main mode of the finite `values` (CV_32FC1) and a separate low tail below it: high = the
+// median, cutoff = high - 4 robust spreads (1.4826 x the median absolute deviation), low = the
+// median of the values below the cutoff. None when that tail holds fewer than min_fraction of the
+// values (it is then the main mode's own spread, not a second mode).
+struct LowTailMode {
+  double low = 0.0;
+  double high = 0.0;
+  double cutoff = 0.0;
+};
+std::optional<LowTailMode> FindLowTailMode(const cv::Mat& values, double min_fraction);
+
 // argmin_x sum_o ||o - x|| over the non-zero pixels of `mask` (Weiszfeld); NaN for an empty mask.
 Eigen::Vector2d GeometricMedian(const cv::Mat& mask, int iterations);
 

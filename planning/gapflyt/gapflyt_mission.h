@@ -69,7 +69,15 @@ struct GapflytMissionParams {
   double camera_rate_hz = 30.0;  // its frame rate: places the ts2p window on the scan [Hz]
   control::DragAidedOdometryParams odometry;
   control::PositionControllerParams controller;  // Table A.2 gains
-  perception::Ts2pNodeParams ts2p;               // its interval is overridden (see above)
+  // Its interval is overridden (see above). Stride 3 (the node's default is 2): at scan_speed_mps
+  // and 30 Hz the stack's baselines are 6-12 cm, and a small opening (a star, one 5 cm wider than
+  // the vehicle) at 320 x 240 stands out of the wall's parallax; at stride 2 half the stars
+  // rendered at 2.6 m gave no detection (tests/experiments/ts2p_detection_test.cc).
+  perception::Ts2pNodeParams ts2p = [] {
+    perception::Ts2pNodeParams p;
+    p.stride = 3;
+    return p;
+  }();
   perception::LabelTrackerParams tracker;
   // `servo.law`: moments | pid. The moment law's gain is raised from ViSP's drone defaults (1.5 /
   // 0.7 /s) to 2.0 / 1.2 /s: its error decays exponentially, and at 0.7 /s the ~1.5 m from the
@@ -86,12 +94,12 @@ struct GapflytMissionParams {
   // Scan direction in the start's (y_B, z_B) plane (left, up; normalized): seed 002 Fig. 7's
   // diagonal.
   Eigen::Vector2d scan_direction = Eigen::Vector2d(1.0, 1.0);
-  // Cruise speed [m/s]: 0.6 m/s at 30 Hz moves the camera 4 cm between frames two apart (the
+  // Cruise speed [m/s]: 0.6 m/s at 30 Hz moves the camera 6 cm between frames three apart (the
   // ts2p stride), the ts2p bench's 5 cm scan step order.
   double scan_speed_mps = 0.6;
   // Ramps to and from the cruise [s]: the minimum-jerk ramp peaks at 1.875 v / T = 2.25 m/s^2.
   double scan_ramp_s = 0.5;
-  // Cruise [s]: the ts2p window (4 * 2 + 1 frames = 0.27 s at 30 Hz) plus ~0.15 s on each side
+  // Cruise [s]: the ts2p window (4 * 3 + 1 frames = 0.4 s at 30 Hz) plus ~0.1 s on each side
   // for the attitude to settle after the ramp.
   double scan_cruise_s = 0.6;
   int max_scans = 3;
