@@ -4,7 +4,8 @@
 // by the application as detector "visp" (`apriltag.detector=visp`); ViSP types stay in the .cc.
 //
 // Mapping of TagDetectorParams: one vpDetectorAprilTag per family; quad_decimate, quad_sigma,
-// threads, refine_edges and decode_sharpening are passed on. ViSP 3.5 reports neither the
+// threads, refine_edges and decode_sharpening are passed on; min_white_black_diff is not (ViSP
+// 3.5 has no setter: its copy of the library keeps 5). ViSP 3.5 reports neither the
 // decision margin nor the corrected bits: decision_margin is NaN and hamming 0, so
 // min_decision_margin > 0 and max_hamming < 2 (ViSP decodes with up to 2 corrected bits) are
 // rejected. Corners come in the library's order, shifted to OpenCV pixel centres like

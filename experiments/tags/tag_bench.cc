@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <optional>
 #include <random>
 
 #include "control/so3.h"
@@ -222,6 +223,9 @@ void RunDetection(const TagBenchOptions& options, nlohmann::json* summary,
 
 struct MapEvaluation {
   double rms_before_m = 0, rms_after_m = 0;
+  // Mean error over the tags: the part of the error that is a common offset of the map against
+  // the origin tag (the gauge), which more views elsewhere cannot remove.
+  Eigen::Vector3d mean_error_m = Eigen::Vector3d::Zero();
   int flipped = 0, tags = 0;
   nlohmann::json per_tag = nlohmann::json::array();
 };
@@ -239,6 +243,7 @@ MapEvaluation EvaluateMap(const perception::TagMap& map, const sim::Scenario& sc
     evaluation.rms_before_m += (T_0T_before.translation() - T_0T_true.translation()).squaredNorm();
     evaluation.flipped += RotationErrorDeg(T_0T, T_0T_true) > kFlipThreshold_deg;
     const Eigen::Vector3d error = T_0T.translation() - T_0T_true.translation();
+    evaluation.mean_error_m += error;
     evaluation.per_tag.push_back(
         {{"id", tag.id},
          {"error_m", {error.x(), error.y(), error.z()}},
@@ -253,6 +258,7 @@ MapEvaluation EvaluateMap(const perception::TagMap& map, const sim::Scenario& sc
   if (evaluation.tags > 0) {
     evaluation.rms_after_m = std::sqrt(evaluation.rms_after_m / evaluation.tags);
     evaluation.rms_before_m = std::sqrt(evaluation.rms_before_m / evaluation.tags);
+    evaluation.mean_error_m /= evaluation.tags;
   }
   return evaluation;
 }
@@ -278,7 +284,8 @@ void RunMapping(const TagBenchOptions& options, nlohmann::json* summary,
   perception::TagFlipResolverParams disabled;
   disabled.enabled = false;
   perception::TagFlipResolver lowest_error(disabled);
-  perception::TagMap resolved_map, unresolved_map;
+  perception::TagMap resolved_map, unresolved_map, without_odometry_map;
+  const perception::TagMapParams& map_params = resolved_map.params();
   const int frames_per_lane = options.quick ? 20 : 40;
   // 2.5 m (the scenario's start height): the 90 deg camera sees 5 x 3.75 m, so the first lane,
   // over the origin tag, also sees the tags up to ~2.3 m beside and ~3.4 m ahead of it (the map
@@ -288,6 +295,8 @@ void RunMapping(const TagBenchOptions& options, nlohmann::json* summary,
   sim::RayCaster caster;
   std::mt19937 rng(options.seed);
   std::normal_distribution<double> normal;
+  const auto gaussian = [&] { return Eigen::Vector3d(normal(rng), normal(rng), normal(rng)); };
+  std::optional<Eigen::Isometry3d> T_WC_previous, T_OC;
   int flips_resolved = 0, flips_unresolved = 0, posed = 0, frame_index = 0;
   std::vector<double> t_axis, detections_per_frame, corner_errors_px;
   for (int lane = 0; lane < 4; ++lane) {
@@ -335,21 +344,40 @@ void RunMapping(const TagBenchOptions& options, nlohmann::json* summary,
       }
       // Gravity in C as the vehicle's attitude estimate gives it: the true direction, off by
       // N(0, gravity_sigma_deg) per axis (the map's own assumption).
-      const Eigen::Vector3d tilt_noise(normal(rng), normal(rng), normal(rng));
-      const Eigen::Vector3d down_C =
-          control::ExpSo3(tilt_noise * resolved_map.params().gravity_sigma_deg * M_PI / 180.0) *
-          T_WC.linear().transpose() * -Eigen::Vector3d::UnitZ();
-      resolved_map.AddImage(t_s, resolved, down_C);
-      unresolved_map.AddImage(t_s, unresolved, down_C);
+      perception::TagMapOnboardEstimate onboard;
+      onboard.down_C = control::ExpSo3(gaussian() * map_params.gravity_sigma_deg * M_PI / 180.0) *
+                       T_WC.linear().transpose() * -Eigen::Vector3d::UnitZ();
+      // Odometry as a VIO gives it: the true motion since the last frame, off by the random walk
+      // the map assumes (the map's odometry sigmas times sqrt(step length)), so O drifts from W.
+      if (!T_OC) {
+        T_OC = T_WC;
+      } else {
+        Eigen::Isometry3d T_step = T_WC_previous->inverse() * T_WC;
+        const double step_m = T_step.translation().norm();
+        T_step.translation() +=
+            map_params.odometry_sigma_m_per_sqrt_m * std::sqrt(step_m) * gaussian();
+        T_step.linear() = control::ExpSo3(map_params.odometry_sigma_deg_per_sqrt_m * M_PI / 180.0 *
+                                          std::sqrt(step_m) * gaussian()) *
+                          T_step.linear();
+        T_OC = *T_OC * T_step;
+      }
+      T_WC_previous = T_WC;
+      onboard.T_OC = T_OC;
+      resolved_map.AddImage(t_s, resolved, onboard);
+      unresolved_map.AddImage(t_s, unresolved, onboard);
+      without_odometry_map.AddImage(t_s, resolved, {onboard.down_C, std::nullopt});
       t_axis.push_back(t_s);
       detections_per_frame.push_back(static_cast<double>(result.tags.size()));
     }
   }
   const perception::TagMapSolveSummary solve = resolved_map.Optimize();
   unresolved_map.Optimize();
+  without_odometry_map.Optimize();
   const Eigen::Isometry3d T_W0_true = scenario.scene().object("tag0").T_WO;
   const MapEvaluation resolved_eval = EvaluateMap(resolved_map, scenario, T_W0_true);
   const MapEvaluation unresolved_eval = EvaluateMap(unresolved_map, scenario, T_W0_true);
+  const MapEvaluation without_odometry_eval =
+      EvaluateMap(without_odometry_map, scenario, T_W0_true);
   const int tags_in_scene = 3 + field.fixed_obstacles + field.movable_obstacles;
   nlohmann::json section = {
       {"frames", frame_index},
@@ -362,8 +390,14 @@ void RunMapping(const TagBenchOptions& options, nlohmann::json* summary,
       {"tags_mapped", resolved_eval.tags},
       {"map_rms_before_m", resolved_eval.rms_before_m},
       {"map_rms_after_m", resolved_eval.rms_after_m},
+      {"map_mean_error_m",
+       {resolved_eval.mean_error_m.x(), resolved_eval.mean_error_m.y(),
+        resolved_eval.mean_error_m.z()}},
       {"map_flipped_tags", resolved_eval.flipped},
       {"map_rejected_observations", solve.rejected_observations},
+      {"map_odometry_edges", resolved_map.odometry_edges()},
+      {"without_odometry_map_rms_before_m", without_odometry_eval.rms_before_m},
+      {"without_odometry_map_rms_after_m", without_odometry_eval.rms_after_m},
       {"map_solve_time_s", solve.solve_time_s},
       {"unresolved_map_rms_after_m", unresolved_eval.rms_after_m},
       {"unresolved_map_flipped_tags", unresolved_eval.flipped},

@@ -5,11 +5,13 @@
 //              single 0.16 m tags at 0.5-6 m, view angles 0-70 deg, a third with motion blur
 //              (10 ms exposure at 1 m/s); detection rate, translation / rotation error (the
 //              candidate nearer the truth, so flips do not count here), ms per frame
-//   mapping    a lawn-mower pass (4 lanes, 2.5 m height, gravity per image 1 deg off) over the `tags` scenario (4 x 6 m,
-//              paper D): flip rate of the chosen pose with and without TagFlipResolver; the
-//              TagMap from the resolved observations: tag position RMS before (chained
-//              initialisation) and after optimization, in the origin tag's frame; tags whose
-//              mapped rotation is > 10 deg off (flipped) for resolved and unresolved inputs
+//   mapping    a lawn-mower pass (4 lanes, 2.5 m height) over the `tags` scenario (4 x 6 m,
+//              paper D) with the onboard estimate per image: gravity 1 deg off per axis and
+//              odometry drifting as the map's random walk assumes: flip rate of the chosen pose
+//              with and without TagFlipResolver; the TagMap from the resolved observations: tag
+//              position RMS before (chained initialisation) and after optimization, in the
+//              origin tag's frame, with and without the odometry edges; tags whose mapped
+//              rotation is > 10 deg off (flipped) for resolved and unresolved inputs
 //   acceptance booleans: map RMS <= 2 cm, no flipped tag in the map
 #include <cstdint>
 #include <nlohmann/json.hpp>

@@ -25,6 +25,7 @@ AprilTagLibraryDetector::AprilTagLibraryDetector(const TagDetectorParams& params
   }
   detector_->quad_decimate = static_cast<float>(params_.quad_decimate);
   detector_->quad_sigma = static_cast<float>(params_.quad_sigma);
+  detector_->qtp.min_white_black_diff = params_.min_white_black_diff;
   detector_->nthreads = params_.threads;
   detector_->refine_edges = params_.refine_edges;
   detector_->decode_sharpening = params_.decode_sharpening;
@@ -64,6 +65,19 @@ std::vector<TagDetection> AprilTagLibraryDetector::Detect(const cv::Mat& gray) {
   }
   apriltag_detections_destroy(found);
   return detections;
+}
+
+std::vector<std::pair<std::string, double>> AprilTagLibraryDetector::LastStageTimes() const {
+  std::vector<std::pair<std::string, double>> stages;
+  const timeprofile_t* profile = detector_->tp;
+  int64_t previous_us = profile->utime;
+  for (int i = 0; i < zarray_size(profile->stamps); ++i) {
+    timeprofile_entry* entry = nullptr;
+    zarray_get_volatile(profile->stamps, i, &entry);
+    stages.emplace_back(entry->name, 1e-6 * static_cast<double>(entry->utime - previous_us));
+    previous_us = entry->utime;
+  }
+  return stages;
 }
 
 }  // namespace aperture::perception

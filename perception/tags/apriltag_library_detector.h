@@ -7,6 +7,7 @@
 // tests/perception/apriltag_library_detector_test.cc).
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "perception/tags/apriltag_family.h"
@@ -28,6 +29,11 @@ class AprilTagLibraryDetector final : public TagDetector {
 
   std::string Name() const override { return kName; }
   std::vector<TagDetection> Detect(const cv::Mat& gray) override;
+
+  // The library's own profile of the last Detect (its timeprofile stamps: "decimate",
+  // "threshold", "unionfind", "fit quads to clusters", "decode+refinement", ...): each stage's
+  // name and wall time [s] in the library's order; empty before the first Detect.
+  std::vector<std::pair<std::string, double>> LastStageTimes() const;
 
  private:
   TagDetectorParams params_;

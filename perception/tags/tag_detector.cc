@@ -20,6 +20,10 @@ void TagDetectorParams::Validate() const {
   if (max_hamming < 0 || max_hamming > 3) {
     fail("max_hamming = " + std::to_string(max_hamming) + " must be in [0, 3]");
   }
+  if (min_white_black_diff < 0 || min_white_black_diff > 255) {
+    fail("min_white_black_diff = " + std::to_string(min_white_black_diff) +
+         " must be in [0, 255] (gray levels)");
+  }
   if (!(decode_sharpening >= 0.0) || !(min_decision_margin >= 0.0)) {
     fail("decode_sharpening and min_decision_margin must be >= 0");
   }

@@ -33,7 +33,13 @@ struct TagDetectorParams {
   // corners. 2 keeps 12 tags at 640 x 480 within ~3 ms on one core (docs/results/tags.md).
   double quad_decimate = 2.0;
   double quad_sigma = 0.0;  // Gaussian blur [px] before quad detection (0: none)
-  int threads = 1;          // the front end runs on one core next to the others
+  // Local contrast [gray levels] below which the library's adaptive threshold leaves a tile
+  // unsegmented (its qtp.min_white_black_diff, default 5). With sensor noise of a few levels
+  // every flat region passes 5, and the library fits quads to the noise clusters: on the
+  // benchmark frame (tests/bench/apriltag_bench.cc, noise sigma ~2-3 levels) that was ~85 % of the
+  // detection time; 20 (~7 sigma) still segments every tag border (docs/results/tags.md).
+  int min_white_black_diff = 20;
+  int threads = 1;  // the front end runs on one core next to the others
   bool refine_edges = true;
   double decode_sharpening = 0.25;  // the library's default
   // Bits corrected at most (the library's default; 36h11 has distance 11). Families of 41 bits

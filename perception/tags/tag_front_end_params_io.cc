@@ -8,6 +8,7 @@ void LoadParams(config::ParamReader& reader, TagDetectorParams* params) {
   reader.Read("families", &params->families);
   reader.Read("quad_decimate", &params->quad_decimate);
   reader.Read("quad_sigma", &params->quad_sigma);
+  reader.Read("min_white_black_diff", &params->min_white_black_diff);
   reader.Read("threads", &params->threads);
   reader.Read("refine_edges", &params->refine_edges);
   reader.Read("decode_sharpening", &params->decode_sharpening);
@@ -29,6 +30,10 @@ void LoadParams(config::ParamReader& reader, TagMapParams* params) {
   reader.Read("floor_sigma_m", &params->floor_sigma_m);
   reader.Read("floor_sigma_rad", &params->floor_sigma_rad);
   reader.Read("gravity_sigma_deg", &params->gravity_sigma_deg);
+  reader.Read("odometry_sigma_m_per_sqrt_m", &params->odometry_sigma_m_per_sqrt_m);
+  reader.Read("odometry_sigma_deg_per_sqrt_m", &params->odometry_sigma_deg_per_sqrt_m);
+  reader.Read("odometry_floor_sigma_m", &params->odometry_floor_sigma_m);
+  reader.Read("odometry_floor_sigma_deg", &params->odometry_floor_sigma_deg);
   reader.Read("huber_scale", &params->huber_scale);
   reader.Read("outlier_chi2", &params->outlier_chi2);
   reader.Read("solve_every", &params->solve_every);

@@ -7,6 +7,7 @@
 //     families: [tag36h11]          # library or short names (36h11, 16h5, 25h9, 41h12, ...)
 //     quad_decimate: 2.0
 //     quad_sigma: 0.0
+//     min_white_black_diff: 20      # local contrast [gray levels] the threshold segments
 //     threads: 1
 //     refine_edges: true
 //     decode_sharpening: 0.25
@@ -20,6 +21,8 @@
 //     map: false                    # build the tag map (tag_map.yaml, tag_map.png)
 //     mapping: {origin_id: 0, origin_p_m: [0, 0, 0], origin_rpy_deg: [180, 0, 0],
 //               floor_sigma_m: 0.002, floor_sigma_rad: 0.005, gravity_sigma_deg: 1.0,
+//               odometry_sigma_m_per_sqrt_m: 0.03, odometry_sigma_deg_per_sqrt_m: 0.3,
+//               odometry_floor_sigma_m: 0.001, odometry_floor_sigma_deg: 0.05,
 //               huber_scale: 2.0,
 //               outlier_chi2: 22.46, solve_every: 10, incremental_iterations: 5,
 //               max_iterations: 100, max_pending_images: 1000}

@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
+#include <numeric>
 #include <stdexcept>
 
 namespace aperture::perception {
@@ -31,37 +33,54 @@ std::array<double, 7> ToBlock(const Eigen::Isometry3d& T) {
   return {q.x(), q.y(), q.z(), q.w(), p.x(), p.y(), p.z()};
 }
 
-// The edge of one observation (see the header); parameters: T_WC and T_WT blocks.
-struct ObservationResidual {
-  ObservationResidual(const Eigen::Isometry3d& T_CT, const Matrix6d& sqrt_information)
-      : q_CT_measured(T_CT.rotation()),
-        p_CT_measured(T_CT.translation()),
+// The edge between two poses T_WA, T_WB with the measurement T_AB (see the header): a tag
+// observation (A = C, B = T) or odometry between two images (A, B = the earlier and later C).
+struct RelativePoseResidual {
+  RelativePoseResidual(const Eigen::Isometry3d& T_AB, const Matrix6d& sqrt_information)
+      : q_AB_measured(T_AB.rotation()),
+        p_AB_measured(T_AB.translation()),
         sqrt_information(sqrt_information) {}
 
   template <typename S>
-  bool operator()(const S* camera, const S* tag, S* residual) const {
+  bool operator()(const S* pose_A, const S* pose_B, S* residual) const {
     using Quaternion = Eigen::Quaternion<S>;
     using Vector3 = Eigen::Matrix<S, 3, 1>;
-    const Eigen::Map<const Quaternion> q_WC(camera);
-    const Eigen::Map<const Vector3> p_WC(camera + 4);
-    const Eigen::Map<const Quaternion> q_WT(tag);
-    const Eigen::Map<const Vector3> p_WT(tag + 4);
-    const Quaternion q_CW = q_WC.conjugate();
-    const Vector3 p_CT = q_CW * (p_WT - p_WC);
-    Quaternion q_error = (q_CW * q_WT) * q_CT_measured.conjugate().template cast<S>();
+    const Eigen::Map<const Quaternion> q_WA(pose_A);
+    const Eigen::Map<const Vector3> p_WA(pose_A + 4);
+    const Eigen::Map<const Quaternion> q_WB(pose_B);
+    const Eigen::Map<const Vector3> p_WB(pose_B + 4);
+    const Quaternion q_AW = q_WA.conjugate();
+    const Vector3 p_AB = q_AW * (p_WB - p_WA);
+    Quaternion q_error = (q_AW * q_WB) * q_AB_measured.conjugate().template cast<S>();
     if (q_error.w() < S(0)) q_error.coeffs() = -q_error.coeffs();
     Eigen::Matrix<S, 6, 1> error;
-    error.template head<3>() = p_CT - p_CT_measured.template cast<S>();
+    error.template head<3>() = p_AB - p_AB_measured.template cast<S>();
     error.template tail<3>() = S(2) * q_error.vec();  // Log for small errors
     Eigen::Map<Eigen::Matrix<S, 6, 1>> whitened(residual);
     whitened = sqrt_information.template cast<S>() * error;
     return true;
   }
 
-  Eigen::Quaterniond q_CT_measured;
-  Eigen::Vector3d p_CT_measured;
+  static ceres::CostFunction* Create(const Eigen::Isometry3d& T_AB, const Matrix6d& covariance) {
+    // L with L^T L = Sigma^-1: the inverse of Sigma's Cholesky factor ((L^-1)^T L^-1 = Sigma^-1).
+    const Matrix6d sqrt_information =
+        Eigen::LLT<Matrix6d>(covariance).matrixL().solve(Matrix6d::Identity());
+    return new ceres::AutoDiffCostFunction<RelativePoseResidual, 6, 7, 7>(
+        new RelativePoseResidual(T_AB, sqrt_information));
+  }
+
+  Eigen::Quaterniond q_AB_measured;
+  Eigen::Vector3d p_AB_measured;
   Matrix6d sqrt_information;
 };
+
+Matrix6d DiagonalCovariance(double sigma_p, double sigma_rad) {
+  return (Eigen::Matrix<double, 6, 1>() << Eigen::Vector3d::Constant(sigma_p),
+          Eigen::Vector3d::Constant(sigma_rad))
+      .finished()
+      .cwiseAbs2()
+      .asDiagonal();
+}
 
 // The gravity edge of one image (see the header); parameter: the T_WC block.
 struct GravityResidual {
@@ -91,6 +110,10 @@ void TagMapParams::Validate() const {
   require(floor_sigma_m > 0 && floor_sigma_rad > 0,
           "floor_sigma_m and floor_sigma_rad must be > 0");
   require(gravity_sigma_deg > 0, "gravity_sigma_deg must be > 0");
+  require(odometry_sigma_m_per_sqrt_m >= 0 && odometry_sigma_deg_per_sqrt_m >= 0,
+          "odometry_sigma_m_per_sqrt_m and odometry_sigma_deg_per_sqrt_m must be >= 0");
+  require(odometry_floor_sigma_m > 0 && odometry_floor_sigma_deg > 0,
+          "odometry_floor_sigma_m and odometry_floor_sigma_deg must be > 0");
   require(huber_scale > 0, "huber_scale must be > 0");
   require(outlier_chi2 > 0, "outlier_chi2 must be > 0 (22.46: chi^2 6 DOF 99.9 %)");
   require(solve_every >= 0, "solve_every must be >= 0 (0: solve only at the end)");
@@ -127,11 +150,17 @@ TagMap::TagMap(const TagMapParams& params) : params_(params) {
 TagMap::~TagMap() = default;
 
 void TagMap::AddImage(double t_s, const std::vector<TagMapObservation>& observations,
-                      const std::optional<Eigen::Vector3d>& down_C) {
+                      const TagMapOnboardEstimate& onboard) {
+  const std::optional<Eigen::Vector3d>& down_C = onboard.down_C;
   if (down_C && !(down_C->allFinite() && down_C->norm() > 0.0)) {
     throw std::invalid_argument(
         "TagMap: down_C (gravity in the camera frame) must be finite and non-zero; pass "
         "std::nullopt when the vehicle's attitude is unknown");
+  }
+  if (onboard.T_OC && !onboard.T_OC->matrix().allFinite()) {
+    throw std::invalid_argument(
+        "TagMap: T_OC (the camera in the odometry frame) must be finite; pass std::nullopt "
+        "when the vehicle has no odometry");
   }
   for (const TagMapObservation& o : observations) {
     const std::string what = "TagMap: observation of " + o.family + " id " + std::to_string(o.id);
@@ -144,8 +173,12 @@ void TagMap::AddImage(double t_s, const std::vector<TagMapObservation>& observat
       throw std::invalid_argument(what + ": covariance must be symmetric positive definite");
     }
   }
+  if (onboard.T_OC) {
+    if (last_p_OC_) path_m_ += (onboard.T_OC->translation() - *last_p_OC_).norm();
+    last_p_OC_ = onboard.T_OC->translation();
+  }
   if (observations.empty()) return;
-  Image image{t_s, observations, std::nullopt};
+  Image image{next_sequence_++, t_s, observations, std::nullopt, onboard.T_OC, path_m_};
   if (down_C) image.down_C = down_C->normalized();
   if (TryInsert(image)) {
     InsertPending();
@@ -160,11 +193,10 @@ void TagMap::AddImage(double t_s, const std::vector<TagMapObservation>& observat
   }
 }
 
-bool TagMap::TryInsert(const Image& image) {
-  // The camera pose from the most certain observation of a tag already in the map (or the
-  // origin tag, which founds the map).
-  const TagMapObservation* anchor = nullptr;
-  Eigen::Isometry3d T_WT_anchor;
+std::optional<Eigen::Isometry3d> TagMap::InitialCameraPose(const Image& image) const {
+  // From the most certain observation of a tag already in the map (or the origin tag, which
+  // founds the map).
+  std::optional<Eigen::Isometry3d> T_WC;
   double best_trace = std::numeric_limits<double>::infinity();
   for (const TagMapObservation& o : image.observations) {
     const auto it = tags_.find({o.family, o.id});
@@ -177,62 +209,86 @@ bool TagMap::TryInsert(const Image& image) {
     const double trace = o.covariance.topLeftCorner<3, 3>().trace();
     if (T_WT && trace < best_trace) {
       best_trace = trace;
-      anchor = &o;
-      T_WT_anchor = *T_WT;
+      T_WC = *T_WT * o.T_CT.inverse();
     }
   }
-  if (!anchor) return false;
-  const Eigen::Isometry3d T_WC = T_WT_anchor * anchor->T_CT.inverse();
-  cameras_.push_back(ToBlock(T_WC));
+  if (T_WC || !image.T_OC) return T_WC;
+  // Else chained through the odometry from a neighbour in the graph.
+  for (const int neighbour : {image.sequence - 1, image.sequence + 1}) {
+    const auto it = camera_of_sequence_.find(neighbour);
+    if (it == camera_of_sequence_.end() || !it->second.T_OC) continue;
+    return ToIsometry(it->second.pose) * it->second.T_OC->inverse() * *image.T_OC;
+  }
+  return std::nullopt;
+}
+
+bool TagMap::TryInsert(const Image& image) {
+  const std::optional<Eigen::Isometry3d> T_WC = InitialCameraPose(image);
+  if (!T_WC) return false;
+  cameras_.push_back(ToBlock(*T_WC));
   double* camera = cameras_.back().data();
   problem_->AddParameterBlock(camera, 7, new SeManifold());
+  const Camera& node =
+      camera_of_sequence_.emplace(image.sequence, Camera{camera, image.T_OC, image.path_m})
+          .first->second;
   if (image.down_C) {
     problem_->AddResidualBlock(
         new ceres::AutoDiffCostFunction<GravityResidual, 3, 7>(
             new GravityResidual(*image.down_C, params_.gravity_sigma_deg * M_PI / 180.0)),
         nullptr, camera);
   }
-  const Matrix6d floor =
-      (Eigen::Matrix<double, 6, 1>() << Eigen::Vector3d::Constant(params_.floor_sigma_m),
-       Eigen::Vector3d::Constant(params_.floor_sigma_rad))
-          .finished()
-          .cwiseAbs2()
-          .asDiagonal();
+  if (const auto before = camera_of_sequence_.find(image.sequence - 1);
+      before != camera_of_sequence_.end()) {
+    AddOdometryEdge(before->second, node);
+  }
+  if (const auto after = camera_of_sequence_.find(image.sequence + 1);
+      after != camera_of_sequence_.end()) {
+    AddOdometryEdge(node, after->second);
+  }
+  const Matrix6d floor = DiagonalCovariance(params_.floor_sigma_m, params_.floor_sigma_rad);
   for (const TagMapObservation& o : image.observations) {
     const Key key{o.family, o.id};
     auto it = tags_.find(key);
     if (it == tags_.end()) {
       const Eigen::Isometry3d T_WT =
-          o.id == params_.origin_id ? params_.T_W_origin() : T_WC * o.T_CT;
+          o.id == params_.origin_id ? params_.T_W_origin() : *T_WC * o.T_CT;
       TagState state{ToBlock(T_WT), T_WT, o.family, o.tag_size_m};
       it = tags_.emplace(key, state).first;
       problem_->AddParameterBlock(it->second.pose.data(), 7, new SeManifold());
       if (o.id == params_.origin_id) problem_->SetParameterBlockConstant(it->second.pose.data());
     }
-    // L with L^T L = Sigma^-1: the inverse of the Cholesky factor of Sigma (Sigma = U^T U).
-    const Matrix6d sigma = o.covariance + floor;
-    const Eigen::LLT<Matrix6d> llt(sigma);
-    const Matrix6d sqrt_information =
-        llt.matrixL().solve(Matrix6d::Identity());  // L_sigma^-1: (L^-1)^T L^-1 = Sigma^-1
-    auto* cost = new ceres::AutoDiffCostFunction<ObservationResidual, 6, 7, 7>(
-        new ObservationResidual(o.T_CT, sqrt_information));
     ceres::ResidualBlockId block = problem_->AddResidualBlock(
-        cost, new ceres::HuberLoss(params_.huber_scale), camera, it->second.pose.data());
+        RelativePoseResidual::Create(o.T_CT, o.covariance + floor),
+        new ceres::HuberLoss(params_.huber_scale), camera, it->second.pose.data());
     edges_.push_back({block, key});
   }
   return true;
 }
 
+void TagMap::AddOdometryEdge(const Camera& earlier, const Camera& later) {
+  if (!earlier.T_OC || !later.T_OC) return;
+  const double path_m = later.path_m - earlier.path_m;
+  const double sigma_m = std::sqrt(std::pow(params_.odometry_floor_sigma_m, 2) +
+                                   std::pow(params_.odometry_sigma_m_per_sqrt_m, 2) * path_m);
+  const double sigma_deg = std::sqrt(std::pow(params_.odometry_floor_sigma_deg, 2) +
+                                     std::pow(params_.odometry_sigma_deg_per_sqrt_m, 2) * path_m);
+  problem_->AddResidualBlock(
+      RelativePoseResidual::Create(earlier.T_OC->inverse() * *later.T_OC,
+                                   DiagonalCovariance(sigma_m, sigma_deg * M_PI / 180.0)),
+      nullptr, earlier.pose, later.pose);
+  ++odometry_edges_;
+}
+
 void TagMap::InsertPending() {
+  // Newest first: images waiting before the origin tag came into view chain backwards through
+  // their odometry in one pass.
   bool progress = true;
   while (progress) {
     progress = false;
-    for (auto it = pending_.begin(); it != pending_.end();) {
-      if (TryInsert(*it)) {
-        it = pending_.erase(it);
+    for (std::size_t i = pending_.size(); i-- > 0;) {
+      if (TryInsert(pending_[i])) {
+        pending_.erase(pending_.begin() + static_cast<std::ptrdiff_t>(i));
         progress = true;
-      } else {
-        ++it;
       }
     }
   }

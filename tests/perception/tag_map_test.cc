@@ -4,11 +4,13 @@
 #include <yaml-cpp/yaml.h>
 
 #include <Eigen/SVD>
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <opencv2/imgcodecs.hpp>
 #include <optional>
 #include <random>
+#include <tuple>
 
 #include "control/so3.h"
 #include "perception/camera/pinhole_camera.h"
@@ -26,11 +28,13 @@ namespace {
 // covariances are what the front end produces; the candidate nearer the truth is kept (flips are
 // the resolver's job) unless the observation is one of the `flip_every`-th, which takes the wrong
 // planar-ambiguity solution when there is one. Each image carries gravity in C as the vehicle's
-// attitude estimate would, 1 deg off per axis.
+// attitude estimate would, 1 deg off per axis, and the camera pose in a drifting odometry frame:
+// each step's true motion off by the random walk TagMapParams' odometry sigmas describe.
 struct Field {
   std::map<int, Eigen::Isometry3d> T_WT;
   std::vector<std::vector<TagMapObservation>> images;
   std::vector<Eigen::Vector3d> down_C;
+  std::vector<Eigen::Isometry3d> T_OC;
   int flips = 0;
 };
 
@@ -73,8 +77,28 @@ Field MakeField(std::uint32_t seed, int flip_every) {
     }
   }
   std::reverse(stations.begin(), stations.end());
+  const TagMapParams map_params;
+  // Apart (engine and distribution, which caches draws): the field and its images do not change.
+  std::mt19937 odometry_rng(seed + 1000);
+  std::normal_distribution<double> odometry_normal;
+  Eigen::Isometry3d T_WC_previous = Eigen::Isometry3d::Identity();
   for (const Eigen::Vector2d& xy : stations) {
     const Eigen::Isometry3d T_WC = Pose({xy.x(), xy.y(), 2.5}, yaw(rng));
+    if (field.T_OC.empty()) {
+      field.T_OC.push_back(T_WC);
+    } else {
+      Eigen::Isometry3d T_step = T_WC_previous.inverse() * T_WC;
+      const double sqrt_step = std::sqrt(T_step.translation().norm());
+      const auto draw = [&] { return odometry_normal(odometry_rng); };
+      const Eigen::Vector3d n_p(draw(), draw(), draw());
+      const Eigen::Vector3d n_R(draw(), draw(), draw());
+      T_step.translation() += map_params.odometry_sigma_m_per_sqrt_m * sqrt_step * n_p;
+      T_step.linear() =
+          control::ExpSo3(map_params.odometry_sigma_deg_per_sqrt_m * M_PI / 180 * sqrt_step * n_R) *
+          T_step.linear();
+      field.T_OC.push_back(field.T_OC.back() * T_step);
+    }
+    T_WC_previous = T_WC;
     std::vector<TagMapObservation> image;
     for (const auto& [id, T_WT] : field.T_WT) {
       const Eigen::Isometry3d T_CT = T_WC.inverse() * T_WT;
@@ -131,7 +155,10 @@ MapErrors Evaluate(const Field& field, const std::vector<MappedTag>& tags) {
     H += tag.T_WT.translation() * field.T_WT.at(tag.id).translation().transpose();
   }
   const Eigen::JacobiSVD<Eigen::Matrix3d> svd(H, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const Eigen::Matrix3d R = svd.matrixV() * svd.matrixU().transpose();
+  // Proper rotation only: the tags are nearly coplanar, so a reflection fits almost as well.
+  Eigen::Matrix3d D = Eigen::Matrix3d::Identity();
+  D(2, 2) = (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0 ? -1.0 : 1.0;
+  const Eigen::Matrix3d R = svd.matrixV() * D * svd.matrixU().transpose();
   for (const MappedTag& tag : tags) {
     errors.tilt_aligned_rms_m +=
         (R * tag.T_WT.translation() - field.T_WT.at(tag.id).translation()).squaredNorm();
@@ -142,19 +169,27 @@ MapErrors Evaluate(const Field& field, const std::vector<MappedTag>& tags) {
   return errors;
 }
 
-void AddImages(const Field& field, bool gravity, TagMap* map) {
+void AddImages(const Field& field, bool gravity, bool odometry, TagMap* map) {
   for (std::size_t k = 0; k < field.images.size(); ++k) {
-    map->AddImage(0.1 * k, field.images[k],
-                  gravity ? std::optional<Eigen::Vector3d>(field.down_C[k]) : std::nullopt);
+    TagMapOnboardEstimate onboard;
+    if (gravity) onboard.down_C = field.down_C[k];
+    if (odometry) onboard.T_OC = field.T_OC[k];
+    map->AddImage(0.1 * k, field.images[k], onboard);
   }
 }
 
-class TagMapSeeds : public ::testing::TestWithParam<std::uint32_t> {};
+// (seed, with odometry)
+class TagMapSeeds : public ::testing::TestWithParam<std::tuple<std::uint32_t, bool>> {};
 
 TEST_P(TagMapSeeds, RecoversTheFieldAndBeatsTheChainedInitialisation) {
-  const Field field = MakeField(GetParam(), 0);
+  const auto [seed, odometry] = GetParam();
+  const Field field = MakeField(seed, 0);
   TagMap map;
-  AddImages(field, true, &map);
+  AddImages(field, true, odometry, &map);
+  // Odometry joins every pair of consecutive images with tags (all are in the graph).
+  const int images_with_tags = static_cast<int>(std::count_if(
+      field.images.begin(), field.images.end(), [](const auto& image) { return !image.empty(); }));
+  EXPECT_EQ(map.odometry_edges(), odometry ? images_with_tags - 1 : 0);
   const TagMapSolveSummary summary = map.Optimize();
   EXPECT_TRUE(summary.converged) << summary;
   EXPECT_TRUE(summary.covariance_ok) << summary;
@@ -184,7 +219,9 @@ TEST_P(TagMapSeeds, RecoversTheFieldAndBeatsTheChainedInitialisation) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(TagMap, TagMapSeeds, ::testing::Values(5u, 17u, 23u, 2u));
+INSTANTIATE_TEST_SUITE_P(TagMap, TagMapSeeds,
+                         ::testing::Combine(::testing::Values(5u, 17u, 23u, 2u),
+                                            ::testing::Bool()));
 
 // Without gravity the map is consistent but tilted about the origin tag: its tilt is observable
 // only through the origin tag's own rotation measurements (1 deg each here), and 0.5 deg moves a
@@ -192,11 +229,44 @@ INSTANTIATE_TEST_SUITE_P(TagMap, TagMapSeeds, ::testing::Values(5u, 17u, 23u, 2u
 TEST(TagMap, WithoutGravityTheErrorIsATiltAboutTheOrigin) {
   const Field field = MakeField(5, 0);
   TagMap map;
-  AddImages(field, false, &map);
+  AddImages(field, false, false, &map);
   map.Optimize();
   const MapErrors errors = Evaluate(field, map.Tags());
   EXPECT_GT(errors.position_rms_m, 3.0 * errors.tilt_aligned_rms_m);
   EXPECT_LT(errors.tilt_aligned_rms_m, 0.01);
+}
+
+// An image that sees only a tag nothing else sees joins the graph through the odometry from the
+// image before it (and maps that tag); without odometry it waits. Exact measurements: the tag
+// lands where it is (to the solver's tolerance).
+TEST(TagMap, OdometryJoinsAnImageThatSeesNoMappedTag) {
+  const Eigen::Isometry3d T_W0 = TagMapParams{}.T_W_origin();
+  const Eigen::Isometry3d T_W5 = Pose({3.0, 1.0, 0.0}, 0.7);
+  const Eigen::Isometry3d T_WC1 = Pose({0.2, -0.1, 2.5}, 0.3);
+  const Eigen::Isometry3d T_WC2 = Pose({3.1, 0.8, 2.4}, -0.4);
+  // The odometry frame is W moved and turned: only differences count.
+  const Eigen::Isometry3d T_OW = Pose({10.0, -4.0, 1.0}, 1.2, 0.0);
+  const Matrix6d covariance = 1e-6 * Matrix6d::Identity();
+  const std::vector<TagMapObservation> first{
+      {"tag36h11", 0, kTagSize_m, T_WC1.inverse() * T_W0, covariance}};
+  const std::vector<TagMapObservation> second{
+      {"tag36h11", 5, kTagSize_m, T_WC2.inverse() * T_W5, covariance}};
+  for (const bool odometry : {false, true}) {
+    TagMap map;
+    map.AddImage(0.0, first, {std::nullopt, odometry ? std::optional(T_OW * T_WC1) : std::nullopt});
+    map.AddImage(1.0, second,
+                 {std::nullopt, odometry ? std::optional(T_OW * T_WC2) : std::nullopt});
+    map.Optimize();
+    EXPECT_EQ(map.pending_images(), odometry ? 0 : 1);
+    EXPECT_EQ(map.odometry_edges(), odometry ? 1 : 0);
+    const std::vector<MappedTag> tags = map.Tags();
+    ASSERT_EQ(tags.size(), odometry ? 2u : 1u);
+    if (odometry) {
+      EXPECT_EQ(tags[1].id, 5);
+      EXPECT_LT((tags[1].T_WT.translation() - T_W5.translation()).norm(), 1e-6);
+      EXPECT_LT(RotationErrorDeg(tags[1].T_WT, T_W5), 1e-4);
+    }
+  }
 }
 
 // Every 7th observation is a flipped pose: the robust loss and the chi^2 gate drop them and no
@@ -205,7 +275,7 @@ TEST(TagMap, RejectsFlippedObservations) {
   const Field field = MakeField(11, 7);
   ASSERT_GT(field.flips, 10);
   TagMap map;
-  AddImages(field, true, &map);
+  AddImages(field, true, true, &map);
   const TagMapSolveSummary summary = map.Optimize();
   const MapErrors errors = Evaluate(field, map.Tags());
   EXPECT_GE(summary.rejected_observations, field.flips * 9 / 10) << summary;
@@ -216,7 +286,7 @@ TEST(TagMap, RejectsFlippedObservations) {
 TEST(TagMap, WritesYamlAndTopView) {
   const Field field = MakeField(5, 0);
   TagMap map;
-  AddImages(field, true, &map);
+  AddImages(field, true, true, &map);
   map.Optimize();
   const test_support::TempDirectory dir;
   const std::string yaml_path = (dir.path() / "map.yaml").string();
@@ -251,12 +321,19 @@ TEST(TagMap, RejectsBadObservationsAndParams) {
   observation.tag_size_m = 0.0;
   EXPECT_THROW(map.AddImage(0.0, {observation}), std::invalid_argument);
   observation.tag_size_m = 0.25;
-  EXPECT_THROW(map.AddImage(0.0, {observation}, Eigen::Vector3d::Zero()), std::invalid_argument);
+  EXPECT_THROW(map.AddImage(0.0, {observation}, {Eigen::Vector3d(0.0, 0.0, 0.0), std::nullopt}),
+               std::invalid_argument);
+  Eigen::Isometry3d T_OC = Eigen::Isometry3d::Identity();
+  T_OC.translation().x() = std::nan("");
+  EXPECT_THROW(map.AddImage(0.0, {observation}, {std::nullopt, T_OC}), std::invalid_argument);
   TagMapParams params;
   params.gravity_sigma_deg = 0.0;
   EXPECT_THROW(TagMap{params}, std::invalid_argument);
   params = TagMapParams{};
   params.outlier_chi2 = 0.0;
+  EXPECT_THROW(TagMap{params}, std::invalid_argument);
+  params = TagMapParams{};
+  params.odometry_floor_sigma_m = 0.0;
   EXPECT_THROW(TagMap{params}, std::invalid_argument);
 }
 
