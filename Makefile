@@ -6,7 +6,7 @@ JOBS ?= $(shell nproc)
 DEMO_OUT ?= out/demo
 APERTURE := $(BUILD_DIR)/apps/aperture
 
-.PHONY: all deps configure build test demo python bench clean
+.PHONY: all deps configure build test test-slurm demo python bench clean
 
 all: build
 
@@ -21,6 +21,17 @@ build: configure
 
 test: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+
+# scripts/slurm/bench.sbatch for real: a 4-shard bench plus the merge on a one-node Slurm that the
+# test starts on localhost and stops, compared with the unsharded run. The daemons need root:
+# through sudo when not root (as scripts/install-deps.sh).
+test-slurm: configure
+	@cmake --build $(BUILD_DIR) -j $(JOBS) --target aperture
+	@if [ "$$(id -u)" -ne 0 ] && command -v sudo >/dev/null; then \
+	  sudo scripts/slurm/test-single-node.sh $(APERTURE); \
+	else \
+	  scripts/slurm/test-single-node.sh $(APERTURE); \
+	fi
 
 demo: configure
 	@cmake --build $(BUILD_DIR) -j $(JOBS) --target aperture

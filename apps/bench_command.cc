@@ -13,6 +13,7 @@ void AddBenchCommand(CLI::App& app, int* exit_code) {
   AddBenchGapCommand(*bench, exit_code);
   AddBenchGapflytCommand(*bench, exit_code);
   AddBenchLedCommand(*bench, exit_code);
+  AddBenchMergeCommand(*bench, exit_code);
   AddBenchMononavCommand(*bench, exit_code);
   AddBenchTs2pCommand(*bench, exit_code);
   AddBenchTagsCommand(*bench, exit_code);

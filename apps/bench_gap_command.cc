@@ -5,54 +5,30 @@
 //                      [--max-roll-deg R] [--max-pitch-deg P]
 //                      [--max-drop-probability D] [--motion-blur-subframes K]
 //                      [--autopilot mission|ground_truth] [--duration S] [--threads T]
-//                      [--config FILE] [--set key=value ...] --out DIR
+//                      [--shard K/N] [--config FILE] [--set key=value ...] --out DIR
 //
 // --config/--set override the built-in `gap` scenario (e.g. --set cameras.front.supersampling=1)
 // and the mission's parameters (--set mission.hover_s=1, section `mission`); summary.json "config"
 // holds the full effective configuration, which `--config OUT/summary.json` flies again.
 // Writes DIR/summary.json (success_rate, error_at_gap.*, per_trial), DIR/trials.csv and
-// DIR/report.html (experiments/gap/gap_bench.h).
-#include <iostream>
+// DIR/report.html (experiments/gap/gap_bench.h), or with --shard K/N the K-th block of the
+// trials for `aperture bench merge` (experiments/bench/monte_carlo_run.h).
 #include <memory>
 
 #include "apps/command_support.h"
 #include "apps/commands.h"
-#include "experiments/gap/gap_bench.h"
-#include "experiments/gap/gap_mission_trial.h"
-#include "experiments/gap/ground_truth_gap_autopilot.h"
-#include "output/progress_bar.h"
+#include "apps/monte_carlo_command.h"
+#include "experiments/gap/gap_monte_carlo_bench.h"
 
 namespace aperture::apps {
 namespace {
 
 struct BenchGapOptions {
   CommonOptions common;
+  MonteCarloCommandOptions monte_carlo;
   experiments::GapBenchOptions bench;
   std::string autopilot = "mission";
 };
-
-void RunBenchGap(BenchGapOptions options, output::OutputFolder& out) {
-  options.bench.config_files = options.common.config_files;
-  options.bench.set_items = options.common.set_items;
-  experiments::GapTrialAutopilotFactory factory;
-  if (options.autopilot == "mission") {
-    factory = experiments::MakeGapMissionTrialFactory();
-  } else {
-    factory = experiments::MakeGroundTruthGapAutopilotFactory();
-    options.bench.render_cameras = false;  // flies on ground truth: no camera needed
-  }
-  output::ProgressBar progress("gap trials", static_cast<std::size_t>(options.bench.trials));
-  const experiments::GapBenchResult result = experiments::RunGapBench(
-      options.bench, factory, [&](int done) { progress.Update(static_cast<std::size_t>(done)); });
-  progress.Finish();
-  experiments::WriteGapBenchOutputs(result, out);
-  const nlohmann::json& summary = out.summary();
-  const nlohmann::json& error = summary["error_at_gap"];
-  std::cout << "aperture bench gap (" << result.autopilot_name << "): "
-            << summary["successes"].get<int>() << "/" << summary["trials"].get<int>()
-            << " successful, mean |position error| at the gap " << error["position_mean"].dump()
-            << " m over " << error["trials"].get<int>() << " crossings\n";
-}
 
 }  // namespace
 
@@ -81,18 +57,23 @@ void AddBenchGapCommand(CLI::App& bench, int* exit_code) {
       ->check(CLI::PositiveNumber);
   command->add_option("--duration", options->bench.duration_s, "Simulated time per trial [s]")
       ->check(CLI::PositiveNumber);
-  command->add_option("--threads", options->bench.threads,
-                      "Trials flown concurrently (0 = all cores)")
-      ->check(CLI::NonNegativeNumber);
   command
       ->add_option("--autopilot", options->autopilot,
                    "mission: the vision gap mission (camera + IMU); ground_truth: the same "
                    "traverse flown on ground truth without cameras (control-only reference)")
       ->check(CLI::IsMember({"mission", "ground_truth"}));
   AddCommonOptions(command, &options->common);
+  AddMonteCarloOptions(command, &options->monte_carlo);
   command->callback([options, exit_code] {
     output::OutputFolder out(options->common.out_dir);
-    output::RunAndWriteSummary(out, [&] { RunBenchGap(*options, out); });
+    output::RunAndWriteSummary(out, [&] {
+      experiments::GapBenchOptions bench = options->bench;
+      bench.config_files = options->common.config_files;
+      bench.set_items = options->common.set_items;
+      RunMonteCarloCommand(experiments::kGapBenchName,
+                           experiments::GapBenchConfiguration(bench, options->autopilot),
+                           options->monte_carlo, out);
+    });
     *exit_code = 0;
   });
 }

@@ -2,17 +2,18 @@
 // servo law (issue 14; seed 002 Sec. IV analog; experiments/gapflyt/gapflyt_bench.h).
 //
 //   aperture bench gapflyt [--trials N] [--seed S] [--laws moments,pid] [--width W --height H]
-//                          [--tight-every K] [--quick] [--set mission.key=value ...] --out DIR
+//                          [--tight-every K] [--quick] [--set mission.key=value ...]
+//                          [--threads T] [--shard K/N] --out DIR
 //
 // --quick: one trial (the ellipse) per law (a smoke test of ~10 s). Writes DIR/summary.json,
-// DIR/trials.csv, DIR/report.html.
-#include <iostream>
+// DIR/trials.csv, DIR/report.html, or with --shard K/N the K-th block of the trials for
+// `aperture bench merge` (experiments/bench/monte_carlo_run.h).
 #include <memory>
 
 #include "apps/command_support.h"
 #include "apps/commands.h"
-#include "experiments/gapflyt/gapflyt_bench.h"
-#include "output/progress_bar.h"
+#include "apps/monte_carlo_command.h"
+#include "experiments/gapflyt/gapflyt_monte_carlo_bench.h"
 #include "perception/graph/front_end_registry.h"
 
 namespace aperture::apps {
@@ -20,6 +21,7 @@ namespace {
 
 struct BenchGapflytOptions {
   CommonOptions common;
+  MonteCarloCommandOptions monte_carlo;
   experiments::GapflytBenchOptions bench;
   std::string laws;
   bool quick = false;
@@ -37,19 +39,9 @@ void RunBenchGapflyt(BenchGapflytOptions options, output::OutputFolder& out) {
   }
   if (!options.laws.empty()) options.bench.laws = perception::SplitFrontEndList(options.laws);
   if (options.quick) options.bench.trials = 1;  // trial 0: the ellipse
-  const int total = options.bench.trials * static_cast<int>(options.bench.laws.size());
-  output::ProgressBar progress("gapflyt flights", static_cast<std::size_t>(std::max(total, 1)));
-  const experiments::GapflytBenchResult result = experiments::RunGapflytBench(
-      options.bench, [&](int done, int) { progress.Update(static_cast<std::size_t>(done)); });
-  progress.Finish();
-  out.summary()["command"] = "bench gapflyt";
-  out.summary()["quick"] = options.quick;
-  experiments::WriteGapflytBenchOutputs(result, out);
-  for (const auto& [law, l] : out.summary()["laws"].items()) {
-    std::cout << "aperture bench gapflyt: " << law << " passed " << l["passed"].get<int>() << "/"
-              << l["trials"].get<int>() << " (seed 002 success "
-              << l["seed002_success_rate"].get<double>() << ")\n";
-  }
+  RunMonteCarloCommand(experiments::kGapflytBenchName,
+                       experiments::GapflytBenchConfiguration(options.bench, options.quick),
+                       options.monte_carlo, out);
 }
 
 }  // namespace
@@ -71,6 +63,7 @@ void AddBenchGapflytCommand(CLI::App& bench, int* exit_code) {
       ->check(CLI::NonNegativeNumber);
   command->add_flag("--quick", options->quick, "One trial (the ellipse) per law (smoke test)");
   AddCommonOptions(command, &options->common);
+  AddMonteCarloOptions(command, &options->monte_carlo);
   command->callback([options, exit_code] {
     output::OutputFolder out(options->common.out_dir);
     output::RunAndWriteSummary(out, [&] { RunBenchGapflyt(*options, out); });

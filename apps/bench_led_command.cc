@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "apps/acceptance_outcome.h"
 #include "apps/commands.h"
 #include "experiments/led/led_bench.h"
+#include "output/acceptance_outcome.h"
 #include "output/html_report.h"
 #include "output/output_folder.h"
 
@@ -52,7 +52,7 @@ void AddBenchLedCommand(CLI::App& bench, int* exit_code) {
       bench_options.only = options->only;
       bench_options.frames_csv_path = out.Path("frames.csv");
       experiments::RunLedBench(bench_options, &out.summary(), &report);
-      report.AddOutcome(AcceptanceOutcome(out.summary()["acceptance"]));
+      report.AddOutcome(output::AcceptanceOutcome(out.summary()["acceptance"]));
       report.AddRunDescription(out.summary(), out.ElapsedSeconds());
       report.AddCollapsedTable(out.summary(), "Every figure of summary.json");
       report.Write(out.Path("report.html"));

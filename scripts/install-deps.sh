@@ -15,6 +15,8 @@ packages=(
   libvisp-dev
   visp-images-data
   chromium
+  # `make test-slurm` (scripts/slurm/test-single-node.sh): a one-node Slurm with its munge auth.
+  slurm-wlm munge
 )
 
 missing=()

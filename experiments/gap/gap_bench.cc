@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "experiments/gap/gap_mission_factory.h"
+#include "experiments/gap/gap_trial_record_json.h"
 #include "output/json_eigen.h"
 #include "planning/gap_mission/gap_mission_params_io.h"
 #include "sim/scenario/scenario.h"
@@ -120,44 +121,6 @@ nlohmann::json MeanStd(const std::vector<double>& values) {
   return {{"mean", mean}, {"std", std::sqrt(ss / std::max<double>(1.0, values.size() - 1.0))}};
 }
 
-nlohmann::json TrialJson(const GapTrialRecord& record) {
-  const GapTrialConfig& c = record.config;
-  nlohmann::json trial = {
-      {"trial", c.index},
-      {"seed", c.seed},
-      {"roll_deg", c.roll_deg},
-      {"pitch_deg", c.pitch_deg},
-      {"start_p_W_m", output::EigenToJson(c.start_p_W)},
-      {"start_yaw_deg", c.start_yaw_deg},
-      {"imu_noise_scale", c.imu_noise_scale},
-      {"accel_bias_B_mps2", output::EigenToJson(c.accel_bias_B)},
-      {"gyro_bias_B_radps", output::EigenToJson(c.gyro_bias_B)},
-      {"drop_probability", c.drop_probability},
-      {"exposure_s", c.exposure_s},
-      {"outcome", record.outcome},
-      {"success", record.evaluation.success},
-      {"failure_reason", record.evaluation.failure_reason},
-      {"sim_time_s", record.sim_time_s},
-      {"wall_time_s", record.wall_time_s},
-      {"autopilot_status", record.autopilot_status},
-      {"frames_delivered", record.frames_delivered},
-      {"frames_dropped", record.frames_dropped},
-      {"traverse_start_time_s", record.traverse_start_time_s},
-  };
-  if (const std::optional<GapCrossing>& crossing = record.evaluation.crossing) {
-    trial["crossing"] = {{"t_s", crossing->t_s},
-                         {"p_G_m", output::EigenToJson(crossing->p_G_m)},
-                         {"inside_opening", crossing->inside_opening}};
-  }
-  if (const std::optional<GapStateError>& error = record.evaluation.error) {
-    trial["error_at_gap"] = {{"position_m", output::EigenToJson(error->position_m)},
-                             {"velocity_mps", output::EigenToJson(error->velocity_mps)},
-                             {"orientation_deg", output::EigenToJson(error->orientation_deg)},
-                             {"time_s", error->time_s}};
-  }
-  return trial;
-}
-
 // The mission parameters every trial flies: the base scenario's camera and pattern sizes and the
 // nominal IMU of its SITL configuration (GapMissionParamsFor; the trials change none of these),
 // then the `mission` section.
@@ -249,25 +212,39 @@ GapTrialRecord RunGapTrial(const GapBenchOptions& options, const sim::ScenarioPa
   return record;
 }
 
-GapBenchResult RunGapBench(const GapBenchOptions& options, const GapTrialAutopilotFactory& factory,
-                           const std::function<void(int)>& on_trial_done) {
+GapBenchSetup PrepareGapBench(const GapBenchOptions& options) {
   options.Validate();
   config::ConfigTree tree = sim::ScenarioConfig("gap", options.config_files, options.set_items);
   config::ParamReader root = tree.Reader();
-  sim::ScenarioParams base;
-  LoadParams(root, &base);
+  GapBenchSetup setup;
+  LoadParams(root, &setup.base);
   config::ParamReader mission_config = root.Section("mission");
   root.RejectUnknownKeys();
-  if (base.scenario != "gap") {
+  if (setup.base.scenario != "gap") {
     throw std::invalid_argument("aperture bench gap: the scenario overrides set scenario: " +
-                                base.scenario + "; only the gap scenario can be benchmarked");
+                                setup.base.scenario + "; only the gap scenario can be benchmarked");
   }
+  setup.mission = BaseMissionParams(setup.base, mission_config);
+  sim::PutEffectiveSitlBlocks(setup.base, &tree);
+  tree.PutParams("mission", setup.mission);
+  setup.scenario_config = nlohmann::json::parse(tree.ToJson());
+  return setup;
+}
+
+GapBenchResult RunGapBench(const GapBenchOptions& options, const GapTrialAutopilotFactory& factory,
+                           const std::function<void(int)>& on_trial_done) {
+  return RunGapBench(options, PrepareGapBench(options), factory, on_trial_done);
+}
+
+GapBenchResult RunGapBench(const GapBenchOptions& options, const GapBenchSetup& setup,
+                           const GapTrialAutopilotFactory& factory,
+                           const std::function<void(int)>& on_trial_done) {
+  options.Validate();
+  const sim::ScenarioParams& base = setup.base;
   GapBenchResult result;
   result.options = options;
-  result.mission = BaseMissionParams(base, mission_config);
-  sim::PutEffectiveSitlBlocks(base, &tree);
-  tree.PutParams("mission", result.mission);
-  result.scenario_config = nlohmann::json::parse(tree.ToJson());
+  result.mission = setup.mission;
+  result.scenario_config = setup.scenario_config;
   std::vector<GapTrialConfig> configs;
   for (int i = 0; i < options.trials; ++i) {
     configs.push_back(DrawGapTrial(options.ranges, options.seed, options.first_trial + i,
@@ -317,7 +294,7 @@ nlohmann::json SummarizeGapBench(const GapBenchResult& result) {
       velocity_norm.push_back(e->velocity_mps.norm());
       if (std::isfinite(e->time_s)) time_error.push_back(e->time_s);
     }
-    per_trial.push_back(TrialJson(record));
+    per_trial.push_back(GapTrialSummaryJson(record));
   }
   summary["trials"] = trials;
   summary["successes"] = successes;

@@ -80,15 +80,35 @@ struct GapBenchResult {
   std::vector<GapTrialRecord> trials;  // in trial order
 };
 
+// The options as summary.json "inputs" (all but `threads`, which does not change a result) and
+// back: GapBenchOptionsFromJson(GapBenchOptionsToJson(o)) == o but for threads (0).
+// std::invalid_argument naming a missing or malformed key.
+nlohmann::json GapBenchOptionsToJson(const GapBenchOptions& options);
+GapBenchOptions GapBenchOptionsFromJson(const nlohmann::json& json);
+
 // Flies one trial. Exceptions of the autopilot or the simulator are caught and recorded as the
 // failure reason ("error: ...") so that one broken trial does not end a long run.
 GapTrialRecord RunGapTrial(const GapBenchOptions& options, const sim::ScenarioParams& base,
                            const planning::GapMissionParams& mission, const GapTrialConfig& trial,
                            const GapTrialAutopilotFactory& factory);
 
+// What every trial of a run shares: the `gap` scenario with the overrides, the mission
+// parameters, and the effective configuration (GapBenchResult::scenario_config).
+struct GapBenchSetup {
+  sim::ScenarioParams base;
+  planning::GapMissionParams mission;
+  nlohmann::json scenario_config;
+};
+// Throws std::invalid_argument for invalid options or scenario overrides.
+GapBenchSetup PrepareGapBench(const GapBenchOptions& options);
+
 // All trials; `on_trial_done(done_count)` is called (serialized) after each trial finishes.
 // Throws std::invalid_argument for invalid options or scenario overrides.
 GapBenchResult RunGapBench(const GapBenchOptions& options, const GapTrialAutopilotFactory& factory,
+                           const std::function<void(int)>& on_trial_done = {});
+// The same with `setup` = PrepareGapBench(options) done once (shards and benches reuse it).
+GapBenchResult RunGapBench(const GapBenchOptions& options, const GapBenchSetup& setup,
+                           const GapTrialAutopilotFactory& factory,
                            const std::function<void(int)>& on_trial_done = {});
 
 // The figures of summary.json: trials, successes, success_rate, error_at_gap (per axis:

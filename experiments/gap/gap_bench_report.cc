@@ -232,31 +232,8 @@ void WriteGapBenchOutputs(const GapBenchResult& result, output::OutputFolder& ou
   const GapBenchOptions& o = result.options;
   nlohmann::json& summary = out.summary();
   summary["command"] = "bench gap";
-  summary["inputs"] = {
-      {"trials", o.trials},
-      {"seed", o.seed},
-      {"first_trial", o.first_trial},
-      {"duration_s", o.duration_s},
-      {"threads", o.threads},
-      {"autopilot", result.autopilot_name},
-      {"render_cameras", o.render_cameras},
-      {"ranges",
-       {{"max_roll_deg", o.ranges.max_roll_deg},
-        {"max_pitch_deg", o.ranges.max_pitch_deg},
-        {"start_offset_m", output::EigenToJson(o.ranges.start_offset_m)},
-        {"max_start_yaw_deg", o.ranges.max_start_yaw_deg},
-        {"imu_noise_scale", output::EigenToJson(o.ranges.imu_noise_scale)},
-        {"accel_bias_sigma_mps2", o.ranges.accel_bias_sigma_mps2},
-        {"gyro_bias_sigma_radps", o.ranges.gyro_bias_sigma_radps},
-        {"max_drop_probability", o.ranges.max_drop_probability},
-        {"exposure_s", output::EigenToJson(o.ranges.exposure_s)},
-        {"motion_blur_subframes", o.ranges.motion_blur_subframes}}},
-      {"hover_criteria",
-       {{"window_s", o.hover.window_s},
-        {"max_speed_mps", o.hover.max_speed_mps},
-        {"max_tilt_deg", o.hover.max_tilt_deg},
-        {"max_rate_radps", o.hover.max_rate_radps},
-        {"min_height_m", o.hover.min_height_m}}}};
+  summary["inputs"] = GapBenchOptionsToJson(o);
+  summary["inputs"]["autopilot"] = result.autopilot_name;
   summary["config"] = result.scenario_config;
   const nlohmann::json figures = SummarizeGapBench(result);
   for (const auto& [key, value] : figures.items()) summary[key] = value;

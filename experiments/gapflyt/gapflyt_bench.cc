@@ -164,21 +164,6 @@ GapflytTrialRecord RunGapflytTrial(const GapflytBenchOptions& options,
   return record;
 }
 
-GapflytBenchResult RunGapflytBench(const GapflytBenchOptions& options,
-                                   const std::function<void(int, int)>& progress) {
-  options.Validate();
-  GapflytBenchResult result;
-  result.options = options;
-  const int total = options.trials * static_cast<int>(options.laws.size());
-  for (const std::string& law : options.laws) {
-    for (int k = 0; k < options.trials; ++k) {
-      result.trials.push_back(RunGapflytTrial(options, DrawGapflytTrial(options, k), law));
-      if (progress) progress(static_cast<int>(result.trials.size()), total);
-    }
-  }
-  return result;
-}
-
 nlohmann::json SummarizeGapflytBench(const GapflytBenchResult& result) {
   nlohmann::json summary;
   summary["trials_per_law"] = result.options.trials;

@@ -12,14 +12,13 @@
 //   seed 002 success  the same and the detection the servo started from overlapped the true
 //            opening by >= 75 % (Sec. IV-C).
 //
-//   GapflytBenchOptions options;  options.trials = 50;
-//   GapflytBenchResult result = RunGapflytBench(options);
+//   GapflytTrialRecord flight = RunGapflytTrial(options, DrawGapflytTrial(options, k), "moments");
 //   WriteGapflytBenchOutputs(result, out);  // summary.json, trials.csv, report.html
 //
-// Trials run one after another (each a few CPU seconds at the default 320 x 240).
+// The bench runs as a Monte-Carlo bench (gapflyt_monte_carlo_bench.h: whole or sharded); trials
+// run one after another (each a few CPU seconds at the default 320 x 240).
 #include <Eigen/Core>
 #include <cstdint>
-#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -92,9 +91,6 @@ std::string GapflytTrialSimCommand(const GapflytBenchOptions& options,
 GapflytTrialRecord RunGapflytTrial(const GapflytBenchOptions& options,
                                    const GapflytTrialConfig& config, const std::string& law);
 
-// `progress(done, total)` after every flight. Throws std::invalid_argument on bad options.
-GapflytBenchResult RunGapflytBench(const GapflytBenchOptions& options,
-                                   const std::function<void(int, int)>& progress = {});
 
 // Per law: trials, success_rate, seed002_success_rate, tight_success_rate, clearance_m and
 // time_to_cross_s (mean / min / max over the crossings), per_shape success rates; "per_trial".
@@ -102,5 +98,13 @@ nlohmann::json SummarizeGapflytBench(const GapflytBenchResult& result);
 
 // summary.json (SummarizeGapflytBench), trials.csv (one row per flight), report.html.
 void WriteGapflytBenchOutputs(const GapflytBenchResult& result, output::OutputFolder& out);
+
+// The options and the flights as JSON and back, exactly (gapflyt_bench_json.cc): the
+// configuration and trial records of the Monte-Carlo bench (gapflyt_monte_carlo_bench.h).
+// std::invalid_argument naming a missing or malformed key.
+nlohmann::json GapflytBenchOptionsToJson(const GapflytBenchOptions& options);
+GapflytBenchOptions GapflytBenchOptionsFromJson(const nlohmann::json& json);
+nlohmann::json GapflytTrialRecordToJson(const GapflytTrialRecord& record);
+GapflytTrialRecord GapflytTrialRecordFromJson(const nlohmann::json& json);
 
 }  // namespace aperture::experiments

@@ -12,7 +12,6 @@
 #include "config/config_tree.h"
 #include "experiments/missions/builtin_missions.h"
 #include "output/csv_writer.h"
-#include "output/progress_bar.h"
 #include "output/svg_plot.h"
 #include "sim/scenario/scenario.h"
 #include "sim/scenario/scenario_params.h"
@@ -28,14 +27,7 @@ struct Configuration {
   std::vector<std::string> mission_items;  // `mission.*` overrides
 };
 
-struct Flight {
-  std::string configuration;
-  std::uint64_t seed = 0;
-  MissionEvaluation evaluation;
-  std::string outcome;  // sim::ToString(SitlResult::Outcome)
-  double sim_time_s = 0.0;
-  double wall_time_s = 0.0;
-};
+using Flight = MononavFlight;
 
 // The quick course: no random obstacles, one trunk on the line to a goal 6 m away.
 const std::vector<std::string> kQuickCourse = {"forest.trees=0",
@@ -187,6 +179,20 @@ bool Has(const std::vector<Configuration>& configurations, const std::string& na
                      [&](const Configuration& c) { return c.name == name; });
 }
 
+// The configurations flown on every layout, in AllConfigurations' order: edt when quick, else
+// options.configurations (empty: all).
+std::vector<Configuration> Configurations(const MononavBenchOptions& options) {
+  std::vector<Configuration> configurations;
+  for (const Configuration& c : AllConfigurations()) {
+    const bool chosen = options.quick ? c.name == "edt"
+                                      : options.configurations.empty() ||
+                                            std::count(options.configurations.begin(),
+                                                       options.configurations.end(), c.name) > 0;
+    if (chosen) configurations.push_back(c);
+  }
+  return configurations;
+}
+
 }  // namespace
 
 void MononavBenchOptions::Validate() const {
@@ -206,28 +212,21 @@ void MononavBenchOptions::Validate() const {
   }
 }
 
-void RunMononavBench(const MononavBenchOptions& options, nlohmann::json* summary,
-                     output::HtmlReport* report) {
-  options.Validate();
-  std::vector<Configuration> configurations;
-  for (const Configuration& c : AllConfigurations()) {
-    const bool chosen = options.quick ? c.name == "edt"
-                                      : options.configurations.empty() ||
-                                            std::count(options.configurations.begin(),
-                                                       options.configurations.end(), c.name) > 0;
-    if (chosen) configurations.push_back(c);
+int MononavBenchOptions::LayoutCount() const { return quick ? 1 : trials; }
+
+std::vector<MononavFlight> FlyMononavLayout(const MononavBenchOptions& options, int layout) {
+  const std::uint64_t seed = options.first_seed + static_cast<std::uint64_t>(layout);
+  std::vector<MononavFlight> flights;
+  for (const Configuration& configuration : Configurations(options)) {
+    flights.push_back(Fly(options, configuration, seed));
   }
-  const int trials = options.quick ? 1 : options.trials;
-  std::vector<Flight> flights;
-  output::ProgressBar progress("flights", configurations.size() * trials);
-  for (int i = 0; i < trials; ++i) {
-    const std::uint64_t seed = options.first_seed + static_cast<std::uint64_t>(i);
-    for (const Configuration& configuration : configurations) {
-      flights.push_back(Fly(options, configuration, seed));
-      progress.Update(flights.size());
-    }
-  }
-  progress.Finish();
+  return flights;
+}
+
+void WriteMononavSections(const MononavBenchOptions& options,
+                          const std::vector<MononavFlight>& flights, nlohmann::json* summary,
+                          output::HtmlReport* report) {
+  const std::vector<Configuration> configurations = Configurations(options);
   if (!options.flights_csv_path.empty()) WriteFlightsCsv(flights, options.flights_csv_path);
 
   nlohmann::json& s = *summary;
@@ -283,6 +282,34 @@ void RunMononavBench(const MononavBenchOptions& options, nlohmann::json* summary
         {{"configuration", f.configuration}, {"seed", f.seed}, {"outcome", f.evaluation.outcome}});
   }
   report->AddCollapsedTable(rows, "Every flight");
+}
+
+nlohmann::json MononavFlightToJson(const MononavFlight& f) {
+  return {{"configuration", f.configuration},
+          {"seed", f.seed},
+          {"passed", f.evaluation.passed},
+          {"evaluation_outcome", f.evaluation.outcome},
+          {"figures", f.evaluation.figures},
+          {"outcome", f.outcome},
+          {"sim_time_s", f.sim_time_s},
+          {"wall_time_s", f.wall_time_s}};
+}
+
+MononavFlight MononavFlightFromJson(const nlohmann::json& json) {
+  try {
+    MononavFlight f;
+    f.configuration = json.at("configuration").get<std::string>();
+    f.seed = json.at("seed").get<std::uint64_t>();
+    f.evaluation.passed = json.at("passed").get<bool>();
+    f.evaluation.outcome = json.at("evaluation_outcome").get<std::string>();
+    f.evaluation.figures = json.at("figures");
+    f.outcome = json.at("outcome").get<std::string>();
+    f.sim_time_s = json.at("sim_time_s").get<double>();
+    f.wall_time_s = json.at("wall_time_s").get<double>();
+    return f;
+  } catch (const nlohmann::json::exception& e) {
+    throw std::invalid_argument(std::string("mononav flight record: ") + e.what());
+  }
 }
 
 }  // namespace aperture::experiments

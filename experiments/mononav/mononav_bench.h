@@ -8,12 +8,15 @@
 //   timing     per-frame thread CPU of perception (depth map) and planning (EDT, selection,
 //              spline) over every frame of the EDT flights: median and max [ms]
 //   acceptance the checks as booleans
-// Flights run one after another (deterministic; each flight is a function of its seed).
+// Flights run one after another (deterministic; each flight is a function of its seed). The bench
+// runs as a Monte-Carlo bench (mononav_monte_carlo_bench.h: whole or sharded); a trial is one
+// layout flown in every configuration.
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
+#include "experiments/missions/mission_registry.h"
 #include "output/html_report.h"
 
 namespace aperture::experiments {
@@ -33,10 +36,34 @@ struct MononavBenchOptions {
   std::string flights_csv_path;  // one row per flight; empty = none
 
   void Validate() const;  // std::invalid_argument naming the option
+  int LayoutCount() const;  // the layouts flown: 1 when quick, else trials
 };
 
-// Fills (*summary)[section] for the sections above and adds tables and plots to *report.
-void RunMononavBench(const MononavBenchOptions& options, nlohmann::json* summary,
-                     output::HtmlReport* report);
+// One flight of one configuration ("edt", "no_edt", "random_waypoint") over one layout.
+struct MononavFlight {
+  std::string configuration;
+  std::uint64_t seed = 0;  // the layout's scenario seed
+  MissionEvaluation evaluation;
+  std::string outcome;  // sim::ToString(SitlResult::Outcome)
+  double sim_time_s = 0.0;
+  double wall_time_s = 0.0;
+};
+
+// Layout `layout` (scenario seed first_seed + layout) flown in every chosen configuration (edt
+// only when quick, else `configurations`, empty = all), in the order edt, no_edt,
+// random_waypoint.
+std::vector<MononavFlight> FlyMononavLayout(const MononavBenchOptions& options, int layout);
+
+// From the flights of every layout (layout-major, configurations in order): fills
+// (*summary)[section] for the sections above, writes flights_csv_path and adds tables and plots
+// to *report.
+void WriteMononavSections(const MononavBenchOptions& options,
+                          const std::vector<MononavFlight>& flights, nlohmann::json* summary,
+                          output::HtmlReport* report);
+
+// A flight as JSON and back, exactly (the trial records of the Monte-Carlo bench).
+// std::invalid_argument naming a missing or malformed key.
+nlohmann::json MononavFlightToJson(const MononavFlight& flight);
+MononavFlight MononavFlightFromJson(const nlohmann::json& json);
 
 }  // namespace aperture::experiments

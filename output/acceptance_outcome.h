@@ -5,8 +5,8 @@
 
 #include "output/html_report.h"
 
-namespace aperture::apps {
+namespace aperture::output {
 
-output::ReportOutcome AcceptanceOutcome(const nlohmann::json& acceptance);
+ReportOutcome AcceptanceOutcome(const nlohmann::json& acceptance);
 
-}  // namespace aperture::apps
+}  // namespace aperture::output

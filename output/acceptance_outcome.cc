@@ -1,11 +1,11 @@
-#include "apps/acceptance_outcome.h"
+#include "output/acceptance_outcome.h"
 
 #include <string>
 
-namespace aperture::apps {
+namespace aperture::output {
 
-output::ReportOutcome AcceptanceOutcome(const nlohmann::json& acceptance) {
-  output::ReportOutcome outcome{"passed", "", {}};
+ReportOutcome AcceptanceOutcome(const nlohmann::json& acceptance) {
+  ReportOutcome outcome{"passed", "", {}};
   int met = 0;
   for (const auto& [check, value] : acceptance.items()) {
     const bool ok = value.is_boolean() && value.get<bool>();
@@ -18,4 +18,4 @@ output::ReportOutcome AcceptanceOutcome(const nlohmann::json& acceptance) {
   return outcome;
 }
 
-}  // namespace aperture::apps
+}  // namespace aperture::output

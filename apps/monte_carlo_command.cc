@@ -1,0 +1,54 @@
+#include "apps/monte_carlo_command.h"
+
+#include <iostream>
+#include <memory>
+
+#include "apps/code_version.h"
+#include "experiments/bench/monte_carlo_run.h"
+#include "output/progress_bar.h"
+
+namespace aperture::apps {
+
+void AddMonteCarloOptions(CLI::App* command, MonteCarloCommandOptions* options) {
+  command
+      ->add_option("--shard", options->shard,
+                   "Run only shard K of N (K/N, 1 <= K <= N) of the trials and write them for "
+                   "`aperture bench merge`")
+      ->check([](const std::string& text) {
+        try {
+          experiments::ParseShardSpec(text);
+          return std::string();
+        } catch (const experiments::ShardSpecError& e) {
+          return std::string(e.what());
+        }
+      });
+  command->add_option("--threads", options->threads, "Trials flown concurrently (0 = all cores)")
+      ->check(CLI::NonNegativeNumber);
+}
+
+void RunMonteCarloCommand(const std::string& name, const nlohmann::json& configuration,
+                          const MonteCarloCommandOptions& options, output::OutputFolder& out) {
+  experiments::MonteCarloRunOptions run;
+  if (!options.shard.empty()) run.shard = experiments::ParseShardSpec(options.shard);
+  run.threads = options.threads;
+  run.code_version = CodeVersion();
+  std::unique_ptr<output::ProgressBar> progress;
+  std::string outcome;
+  try {
+    outcome = experiments::RunMonteCarloBench(
+        experiments::MonteCarloBenchRegistry::WithBuiltins(), name, configuration, run, out,
+        [&](int done, int total) {
+          if (!progress) {
+            progress = std::make_unique<output::ProgressBar>(name + " trials",
+                                                             static_cast<std::size_t>(total));
+          }
+          progress->Update(static_cast<std::size_t>(done));
+        });
+  } catch (const experiments::ShardSpecError& e) {
+    throw CLI::ValidationError("--shard", e.what());  // a usage error: exit 2
+  }
+  if (progress) progress->Finish();
+  std::cout << outcome << "\n";
+}
+
+}  // namespace aperture::apps

@@ -1,0 +1,48 @@
+#pragma once
+// The interface every Monte-Carlo bench of `aperture bench` implements, so that any of them runs
+// whole, in shards (`--shard K/N`) and merges (`aperture bench merge`) through one path
+// (monte_carlo_run.h). A bench is built from its configuration (JSON, through
+// MonteCarloBenchRegistry) and flies trials that are pure functions of (configuration, global
+// trial index). Trial records are JSON documents that hold every field the bench's writer reads;
+// shards store them as CBOR, which keeps doubles (NaN included) bit for bit, so the writer sees
+// the same records whether the trials ran in one process or in many.
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "experiments/bench/shard_spec.h"
+#include "output/output_folder.h"
+
+namespace aperture::experiments {
+
+class MonteCarloBench {
+ public:
+  virtual ~MonteCarloBench() = default;
+
+  // Everything the trials' results depend on besides their indices: the bench's options, the
+  // whole run's trials (`run()`), and the effective scenario and mission configuration. Shards
+  // merge only when their configurations are equal. The thread count is not part of it (results
+  // do not depend on it).
+  virtual const nlohmann::json& configuration() const = 0;
+
+  // The whole (unsharded) run's trial indices.
+  virtual TrialRange run() const = 0;
+
+  // Flies trials `trials` (a part of run()), up to `threads` at a time (0 = all cores), and
+  // returns one record per trial in index order. `on_trial_done(done)` is called (serialized)
+  // after each trial. Failed trials are records too (their failure reason), never exceptions.
+  virtual std::vector<nlohmann::json> RunTrials(
+      const TrialRange& trials, int threads,
+      const std::function<void(int)>& on_trial_done) const = 0;
+
+  // summary.json figures, per-trial files and report.html from the records of every trial of
+  // run(), in index order: the same writer for a whole run and a merge of shards.
+  virtual void WriteOutputs(const std::vector<nlohmann::json>& records,
+                            output::OutputFolder& out) const = 0;
+
+  // One line for the terminal from the written summary, e.g. "38/40 successful".
+  virtual std::string DescribeOutcome(const nlohmann::json& summary) const = 0;
+};
+
+}  // namespace aperture::experiments

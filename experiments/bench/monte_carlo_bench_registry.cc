@@ -1,0 +1,46 @@
+#include "experiments/bench/monte_carlo_bench_registry.h"
+
+#include <stdexcept>
+
+#include "experiments/gap/gap_monte_carlo_bench.h"
+#include "experiments/gapflyt/gapflyt_monte_carlo_bench.h"
+#include "experiments/mononav/mononav_monte_carlo_bench.h"
+
+namespace aperture::experiments {
+
+MonteCarloBenchRegistry MonteCarloBenchRegistry::WithBuiltins() {
+  MonteCarloBenchRegistry registry;
+  registry.Register(kGapBenchName, &MakeGapMonteCarloBench);
+  registry.Register(kGapflytBenchName, &MakeGapflytMonteCarloBench);
+  registry.Register(kMononavBenchName, &MakeMononavMonteCarloBench);
+  return registry;
+}
+
+void MonteCarloBenchRegistry::Register(const std::string& name, MonteCarloBenchFactory factory) {
+  if (name.empty() || !factory) {
+    throw std::invalid_argument("MonteCarloBenchRegistry: a bench needs a name and a factory");
+  }
+  if (!factories_.emplace(name, std::move(factory)).second) {
+    throw std::invalid_argument("MonteCarloBenchRegistry: bench '" + name +
+                                "' is registered twice");
+  }
+}
+
+std::vector<std::string> MonteCarloBenchRegistry::Names() const {
+  std::vector<std::string> names;
+  for (const auto& entry : factories_) names.push_back(entry.first);
+  return names;
+}
+
+std::unique_ptr<MonteCarloBench> MonteCarloBenchRegistry::Create(
+    const std::string& name, const nlohmann::json& configuration) const {
+  const auto it = factories_.find(name);
+  if (it == factories_.end()) {
+    std::string known;
+    for (const std::string& n : Names()) known += (known.empty() ? "" : ", ") + n;
+    throw std::invalid_argument("unknown Monte-Carlo bench '" + name + "' (known: " + known + ")");
+  }
+  return it->second(configuration);
+}
+
+}  // namespace aperture::experiments

@@ -1,0 +1,44 @@
+#pragma once
+// Monte-Carlo benches by name ("gap"). `aperture bench NAME` builds its bench through here and
+// `aperture bench merge` rebuilds it from a shard's recorded configuration, so a bench that runs
+// through the registry is shardable and mergeable by construction (monte_carlo_run.h runs only
+// registered benches).
+//
+//   MonteCarloBenchRegistry benches = MonteCarloBenchRegistry::WithBuiltins();
+//   std::unique_ptr<MonteCarloBench> bench = benches.Create("gap", configuration);
+#include <functional>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "experiments/bench/monte_carlo_bench.h"
+
+namespace aperture::experiments {
+
+// Builds a bench from its configuration (MonteCarloBench::configuration() of an earlier build is
+// accepted too); std::invalid_argument naming the bad key or value.
+using MonteCarloBenchFactory =
+    std::function<std::unique_ptr<MonteCarloBench>(const nlohmann::json& configuration)>;
+
+class MonteCarloBenchRegistry {
+ public:
+  // The benches of this library: "gap" (experiments/gap/gap_monte_carlo_bench.h), "gapflyt"
+  // (experiments/gapflyt/gapflyt_monte_carlo_bench.h), "mononav"
+  // (experiments/mononav/mononav_monte_carlo_bench.h).
+  static MonteCarloBenchRegistry WithBuiltins();
+
+  // std::invalid_argument for an empty or repeated name or an empty factory.
+  void Register(const std::string& name, MonteCarloBenchFactory factory);
+  std::vector<std::string> Names() const;  // sorted
+  bool Contains(const std::string& name) const { return factories_.count(name) > 0; }
+  // std::invalid_argument for an unknown name (listing the known ones) or a bad configuration.
+  std::unique_ptr<MonteCarloBench> Create(const std::string& name,
+                                          const nlohmann::json& configuration) const;
+
+ private:
+  std::map<std::string, MonteCarloBenchFactory> factories_;
+};
+
+}  // namespace aperture::experiments

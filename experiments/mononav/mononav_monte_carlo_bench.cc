@@ -1,0 +1,106 @@
+#include "experiments/mononav/mononav_monte_carlo_bench.h"
+
+#include <tbb/task_arena.h>
+
+#include <stdexcept>
+
+#include "output/acceptance_outcome.h"
+#include "output/html_report.h"
+
+namespace aperture::experiments {
+namespace {
+
+class MononavMonteCarloBench : public MonteCarloBench {
+ public:
+  explicit MononavMonteCarloBench(const nlohmann::json& configuration) {
+    try {
+      const nlohmann::json& o = configuration.at("options");
+      options_.trials = o.at("trials").get<int>();
+      options_.first_seed = o.at("first_seed").get<std::uint64_t>();
+      options_.duration_s = o.at("duration_s").get<double>();
+      options_.quick = o.at("quick").get<bool>();
+      options_.configurations = o.at("configurations").get<std::vector<std::string>>();
+      options_.set_items = o.at("set_items").get<std::vector<std::string>>();
+    } catch (const nlohmann::json::exception& e) {
+      throw std::invalid_argument(std::string("bench mononav configuration: ") + e.what());
+    }
+    options_.Validate();
+    configuration_ = MononavBenchConfiguration(options_);
+  }
+
+  const nlohmann::json& configuration() const override { return configuration_; }
+
+  TrialRange run() const override { return {0, options_.LayoutCount()}; }
+
+  // One flight after another; `threads` bounds the renderer's parallelism.
+  std::vector<nlohmann::json> RunTrials(
+      const TrialRange& trials, int threads,
+      const std::function<void(int)>& on_trial_done) const override {
+    std::vector<nlohmann::json> records;
+    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+    arena.execute([&] {
+      for (int k = trials.first; k < trials.end(); ++k) {
+        nlohmann::json flights = nlohmann::json::array();
+        for (const MononavFlight& flight : FlyMononavLayout(options_, k)) {
+          flights.push_back(MononavFlightToJson(flight));
+        }
+        records.push_back({{"trial", k}, {"flights", flights}});
+        if (on_trial_done) on_trial_done(static_cast<int>(records.size()));
+      }
+    });
+    return records;
+  }
+
+  void WriteOutputs(const std::vector<nlohmann::json>& records,
+                    output::OutputFolder& out) const override {
+    std::vector<MononavFlight> flights;
+    for (const nlohmann::json& record : records) {
+      for (const nlohmann::json& flight : record.at("flights")) {
+        flights.push_back(MononavFlightFromJson(flight));
+      }
+    }
+    nlohmann::json& summary = out.summary();
+    summary["inputs"] = {{"trials", options_.trials},
+                         {"seed", options_.first_seed},
+                         {"duration_s", options_.duration_s},
+                         {"quick", options_.quick},
+                         {"configurations", options_.configurations},
+                         {"set", options_.set_items}};
+    MononavBenchOptions options = options_;
+    options.flights_csv_path = out.Path("flights.csv");
+    output::HtmlReport report("aperture bench mononav");
+    WriteMononavSections(options, flights, &summary, &report);
+    report.AddOutcome(output::AcceptanceOutcome(summary["acceptance"]));
+    report.AddRunDescription(summary, out.ElapsedSeconds());
+    report.AddCollapsedTable(summary, "Every figure of summary.json");
+    report.Write(out.Path("report.html"));
+  }
+
+  std::string DescribeOutcome(const nlohmann::json& summary) const override {
+    const nlohmann::json& edt = summary["table_iv"]["with_edt"];
+    return "aperture bench mononav: " + std::to_string(edt["success"].get<int>()) + "/" +
+           std::to_string(edt["flights"].get<int>()) + " flights with EDT reached the goal";
+  }
+
+ private:
+  MononavBenchOptions options_;
+  nlohmann::json configuration_;
+};
+
+}  // namespace
+
+nlohmann::json MononavBenchConfiguration(const MononavBenchOptions& options) {
+  return {{"options",
+           {{"trials", options.trials},
+            {"first_seed", options.first_seed},
+            {"duration_s", options.duration_s},
+            {"quick", options.quick},
+            {"configurations", options.configurations},
+            {"set_items", options.set_items}}}};
+}
+
+std::unique_ptr<MonteCarloBench> MakeMononavMonteCarloBench(const nlohmann::json& configuration) {
+  return std::make_unique<MononavMonteCarloBench>(configuration);
+}
+
+}  // namespace aperture::experiments

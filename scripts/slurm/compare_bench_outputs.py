@@ -1,0 +1,71 @@
+#!/usr/bin/env python3
+"""Compares two output folders of one Monte-Carlo bench (e.g. an unsharded run and a merge of
+its shards): summary.json and trials.csv must be equal but for what each process measures for
+itself (wall and CPU times, cost, merged_from). Exit 0 when equal, 1 naming the first difference.
+
+    compare_bench_outputs.py WHOLE_DIR MERGED_DIR
+"""
+import csv
+import json
+import sys
+from pathlib import Path
+
+MEASURED = {"wall_time_s", "cost", "merged_from"}
+
+
+def figures(path):
+    summary = json.loads(Path(path, "summary.json").read_text())
+    for key in MEASURED:
+        summary.pop(key, None)
+    for trial in summary.get("per_trial", []):
+        trial.pop("wall_time_s", None)
+    return summary
+
+
+def table(path):
+    with open(Path(path, "trials.csv"), newline="") as f:
+        rows = list(csv.reader(f))
+    drop = rows[0].index("wall_time_s") if rows and "wall_time_s" in rows[0] else None
+    return [[c for i, c in enumerate(r) if i != drop] for r in rows]
+
+
+def first_difference(a, b, where=""):
+    if type(a) is not type(b):
+        return f"{where or '/'}: {a!r} vs {b!r}"
+    if isinstance(a, dict):
+        for key in sorted(set(a) | set(b)):
+            if key not in a or key not in b:
+                return f"{where}/{key}: only in {'the first' if key in a else 'the second'}"
+            found = first_difference(a[key], b[key], f"{where}/{key}")
+            if found:
+                return found
+        return None
+    if isinstance(a, list):
+        if len(a) != len(b):
+            return f"{where}: {len(a)} vs {len(b)} entries"
+        for i, (x, y) in enumerate(zip(a, b)):
+            found = first_difference(x, y, f"{where}/{i}")
+            if found:
+                return found
+        return None
+    return None if a == b else f"{where or '/'}: {a!r} vs {b!r}"
+
+
+def main():
+    if len(sys.argv) != 3:
+        print(__doc__, file=sys.stderr)
+        return 2
+    whole, merged = sys.argv[1:]
+    for name, a, b in (("summary.json", figures(whole), figures(merged)),
+                       ("trials.csv", table(whole), table(merged))):
+        difference = first_difference(a, b)
+        if difference:
+            print(f"compare: {name} differs at {difference}", file=sys.stderr)
+            return 1
+    trials = len(figures(whole).get("per_trial", []))
+    print(f"compare: summary.json and trials.csv equal ({trials} trials)")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
