@@ -50,9 +50,10 @@ TEST(BenchLedCommand, QuickRunWritesTheIssueKeys) {
   // Merged LEDs: frames where they merge exist, and none gives a confident wrong pose.
   EXPECT_GT(summary["merged"]["frames_merged"].get<int>(), 0);
   EXPECT_EQ(summary["merged"]["confident_wrong_poses"], 0);
-  // frames.csv: header + one row per tracked frame of the four sections.
+  // frames.csv: header + one row per tracked frame of the five sections.
   const int frames = accuracy["frames"].get<int>() + summary["sweep"]["frames"].get<int>() +
-                     occlusion["frames"].get<int>() + summary["merged"]["frames"].get<int>();
+                     occlusion["frames"].get<int>() + summary["merged"]["frames"].get<int>() +
+                     summary["body_occlusion"]["frames"].get<int>();
   EXPECT_EQ(CountLines(out.path() + "/frames.csv"), static_cast<std::size_t>(frames) + 1);
   EXPECT_TRUE(std::filesystem::exists(out.path() + "/report.html"));
 }
