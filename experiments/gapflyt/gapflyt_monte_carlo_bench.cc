@@ -25,7 +25,8 @@ class GapflytMonteCarloBench : public MonteCarloBench {
 
   TrialRange run() const override { return {0, options_.trials}; }
 
-  // One trial after another as RunGapflytBench; `threads` bounds the renderer's parallelism.
+  // One trial after another, every law on the same trial; `threads` bounds the renderer's
+  // parallelism.
   std::vector<nlohmann::json> RunTrials(
       const TrialRange& trials, int threads,
       const std::function<void(int)>& on_trial_done) const override {
@@ -49,7 +50,7 @@ class GapflytMonteCarloBench : public MonteCarloBench {
                     output::OutputFolder& out) const override {
     GapflytBenchResult result;
     result.options = options_;
-    for (const std::string& law : options_.laws) {  // law-major, trial order: as RunGapflytBench
+    for (const std::string& law : options_.laws) {  // law-major, then trial order
       for (const nlohmann::json& record : records) {
         for (const nlohmann::json& flight : record.at("flights")) {
           if (flight.at("law") == law) result.trials.push_back(GapflytTrialRecordFromJson(flight));

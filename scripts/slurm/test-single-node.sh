@@ -31,7 +31,7 @@ done
 read -r -a bench_args <<<"${TEST_SLURM_BENCH:-gap --trials 8 --seed 5 --autopilot ground_truth --duration 6}"
 shards=${TEST_SLURM_SHARDS:-4}
 
-work=$(mktemp -d /tmp/aperture-slurm.XXXXXX)
+work=$(mktemp -d -t aperture-slurm.XXXXXX)
 chmod 755 "$work"
 pids=()
 teardown() {
