@@ -12,6 +12,20 @@
 #include <iterator>
 
 namespace aperture::experiments {
+
+std::vector<nlohmann::json> RunTrialsInOrder(const TrialRange& trials, int threads,
+                                             const std::function<void(int)>& on_trial_done,
+                                             const std::function<nlohmann::json(int)>& flights_of) {
+  std::vector<nlohmann::json> records;
+  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    for (int k = trials.first; k < trials.end(); ++k) {
+      records.push_back({{"trial", k}, {"flights", flights_of(k)}});
+      if (on_trial_done) on_trial_done(static_cast<int>(records.size()));
+    }
+  });
+  return records;
+}
 namespace {
 
 namespace fs = std::filesystem;

@@ -1,7 +1,5 @@
 #include "experiments/gapflyt/gapflyt_monte_carlo_bench.h"
 
-#include <tbb/task_arena.h>
-
 #include <stdexcept>
 
 namespace aperture::experiments {
@@ -30,20 +28,14 @@ class GapflytMonteCarloBench : public MonteCarloBench {
   std::vector<nlohmann::json> RunTrials(
       const TrialRange& trials, int threads,
       const std::function<void(int)>& on_trial_done) const override {
-    std::vector<nlohmann::json> records;
-    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
-    arena.execute([&] {
-      for (int k = trials.first; k < trials.end(); ++k) {
-        const GapflytTrialConfig config = DrawGapflytTrial(options_, k);
-        nlohmann::json flights = nlohmann::json::array();
-        for (const std::string& law : options_.laws) {
-          flights.push_back(GapflytTrialRecordToJson(RunGapflytTrial(options_, config, law)));
-        }
-        records.push_back({{"trial", k}, {"flights", flights}});
-        if (on_trial_done) on_trial_done(static_cast<int>(records.size()));
+    return RunTrialsInOrder(trials, threads, on_trial_done, [&](int k) {
+      const GapflytTrialConfig config = DrawGapflytTrial(options_, k);
+      nlohmann::json flights = nlohmann::json::array();
+      for (const std::string& law : options_.laws) {
+        flights.push_back(GapflytTrialRecordToJson(RunGapflytTrial(options_, config, law)));
       }
+      return flights;
     });
-    return records;
   }
 
   void WriteOutputs(const std::vector<nlohmann::json>& records,

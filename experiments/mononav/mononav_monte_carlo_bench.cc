@@ -1,7 +1,5 @@
 #include "experiments/mononav/mononav_monte_carlo_bench.h"
 
-#include <tbb/task_arena.h>
-
 #include <stdexcept>
 
 #include "output/acceptance_outcome.h"
@@ -36,19 +34,13 @@ class MononavMonteCarloBench : public MonteCarloBench {
   std::vector<nlohmann::json> RunTrials(
       const TrialRange& trials, int threads,
       const std::function<void(int)>& on_trial_done) const override {
-    std::vector<nlohmann::json> records;
-    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
-    arena.execute([&] {
-      for (int k = trials.first; k < trials.end(); ++k) {
-        nlohmann::json flights = nlohmann::json::array();
-        for (const MononavFlight& flight : FlyMononavLayout(options_, k)) {
-          flights.push_back(MononavFlightToJson(flight));
-        }
-        records.push_back({{"trial", k}, {"flights", flights}});
-        if (on_trial_done) on_trial_done(static_cast<int>(records.size()));
+    return RunTrialsInOrder(trials, threads, on_trial_done, [&](int k) {
+      nlohmann::json flights = nlohmann::json::array();
+      for (const MononavFlight& flight : FlyMononavLayout(options_, k)) {
+        flights.push_back(MononavFlightToJson(flight));
       }
+      return flights;
     });
-    return records;
   }
 
   void WriteOutputs(const std::vector<nlohmann::json>& records,
