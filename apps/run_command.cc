@@ -6,7 +6,8 @@
 // Writes OUT/summary.json (inputs, effective config, frame counts, skipped frames, per-node
 // timing, metric statistics), OUT/frames.csv (one row per frame: t_s, index, every node metric),
 // OUT/report.html (metric plots, timing, key frames with overlays) and with --video the overlay
-// video OUT/overlay.mp4 (or .avi); a source with an IMU (a bag with --imu-topic) adds OUT/imu.csv.
+// video OUT/overlay.mp4 (or .avi); a source with an IMU (a bag with --imu-topic) adds OUT/imu.csv
+// and hands each frame its IMU samples (ts2p derotates with them).
 // Front ends may add their own files (FrontEndResources::output_directory), e.g. ts2p:
 // OUT/openings/<index>.png and OUT/ts2p.csv; gap_tracker: OUT/gap_tracker.csv.
 #include <algorithm>
@@ -118,7 +119,7 @@ void RunFrontEnds(const RunOptions& options, output::OutputFolder& out) {
   perception::RunSource(
       *source, graph, *executor, resources, options.max_frames,
       [&](const perception::Frame& frame, const perception::FrameSlots& slots) {
-        for (const perception::ImuSample& imu : source->TakeImuSamples()) {
+        for (const perception::ImuSample& imu : frame.imu) {
           if (!imu_csv) imu_csv = MakeImuCsv(out.Path("imu.csv"));
           WriteImuRow(*imu_csv, imu);
           ++imu_samples;

@@ -15,6 +15,7 @@ std::size_t RunSource(FrameSource& source, const FrameGraph& graph, FrameGraphEx
   while (max_frames <= 0 || frames < static_cast<std::size_t>(max_frames)) {
     std::optional<Frame> frame = source.Next();
     if (!frame) break;
+    frame->imu = source.TakeImuSamples();
     if (!slots) {
       if (resources.calibration) {
         CheckCalibrationImageSize(*resources.calibration, frame->image.cols, frame->image.rows);

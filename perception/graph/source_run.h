@@ -1,7 +1,8 @@
 #pragma once
 // The frame loop `aperture run` and the Python module share: every frame of a source through a
 // frame graph, the slots made from the first frame (checked against the calibration's image
-// size), and the caller's handler after each frame.
+// size), each frame carrying the IMU samples the source read before it (Frame::imu), and the
+// caller's handler after each frame.
 //
 //   RunSource(*source, graph, executor, resources, max_frames,
 //             [&](const Frame& frame, const FrameSlots& slots) { ...graph.CollectPoses(slots)...

@@ -1,7 +1,7 @@
 // `aperture run` on a ROS1 bag end to end: a bag the test writes from a rendered image folder
 // (images, their times, the camera_info of its calibration and an IMU topic) replays through
-// `--frontends gap` with the same poses as the folder itself, its IMU samples land in imu.csv,
-// and bad topics fail the run naming them.
+// `--frontends gap` with the same poses as the folder itself, its IMU samples land in imu.csv
+// and reach the ts2p front end (it derotates with them), and bad topics fail the run naming them.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -59,6 +59,10 @@ int WriteBagFromFolder(const fs::path& folder, const fs::path& bag_path) {
   return imu_samples;
 }
 
+// TS²P on stacks of 2 frames, from the third frame on, every frame.
+const std::string kTs2pEveryFrame =
+    " --set ts2p.stack=2 --set ts2p.stride=1 --set ts2p.interval=1";
+
 TEST(RunBagCommandTest, BagReplaysWithTheSamePosesAsItsImageFolder) {
   TempFolder temp("run_bag");
   const fs::path folder = fs::path(temp.path()) / "render";
@@ -69,14 +73,15 @@ TEST(RunBagCommandTest, BagReplaysWithTheSamePosesAsItsImageFolder) {
   const fs::path from_folder = fs::path(temp.path()) / "folder_run";
   const CommandResult folder_run = RunAperture("run --source " + folder.string() + " --calib " +
                                                (folder / "calib.yaml").string() +
-                                               " --frontends gap --out " + from_folder.string());
+                                               " --frontends gap,ts2p" + kTs2pEveryFrame +
+                                               " --out " + from_folder.string());
   ASSERT_EQ(folder_run.exit_code, 0) << folder_run.output;
   const fs::path from_bag = fs::path(temp.path()) / "bag_run";
   const CommandResult bag_run =
       RunAperture("run --source " + bag.string() +
                   " --image-topic /cam0/image_raw --imu-topic /imu0 "
-                  "--camera-info-topic /cam0/camera_info --frontends gap --out " +
-                  from_bag.string());
+                  "--camera-info-topic /cam0/camera_info --frontends gap,ts2p" + kTs2pEveryFrame +
+                  " --out " + from_bag.string());
   ASSERT_EQ(bag_run.exit_code, 0) << bag_run.output;
 
   const auto folder_poses = ReadTumRows(from_folder / "gap.csv");
@@ -99,6 +104,11 @@ TEST(RunBagCommandTest, BagReplaysWithTheSamePosesAsItsImageFolder) {
   const int imu_in_run = summary["imu_samples"].get<int>();
   EXPECT_GT(imu_in_run, imu_written - 2);
   EXPECT_EQ(CountLines((from_bag / "imu.csv").string()), size_t(imu_in_run) + 1);  // + header
+  // The frames carried their IMU samples to ts2p: its last detection (frames 1-3, all after the
+  // first sample) was derotated; the image folder has no IMU, so none of its detections was.
+  EXPECT_EQ(summary["metrics"]["ts2p.derotated"]["max"], 1.0) << summary["metrics"].dump();
+  const nlohmann::json folder_summary = ReadJson((from_folder / "summary.json").string());
+  EXPECT_EQ(folder_summary["metrics"]["ts2p.derotated"]["max"], 0.0);
 }
 
 TEST(RunBagCommandTest, MissingTopicsFailTheRunNamingThem) {
