@@ -6,7 +6,9 @@
 // only): the shape kTs2pShapes[k % 5], the scene seed (textures, polygon corners, sensor noise),
 // the wall and background distances, the opening's size and its offset from the start's line of
 // sight. Every law flies the same trials. Tight trials (every tight_every-th round of the five
-// shapes) make the opening's width the vehicle's span (rotor disks) plus tight_margin_m.
+// shapes) stretch the opening's width until its narrowest passage is tight_margin_m wider than
+// the vehicle (tight_opening.h: the level footprint's best placement clears the edge by
+// tight_margin_m / 2), so a tight star is as tight as a tight ellipse.
 //
 //   success  (the mission's `passed`) crossed inside the opening, no collision;
 //   seed 002 success  the same and the detection the servo started from overlapped the true
@@ -42,7 +44,7 @@ struct GapflytBenchOptions {
   GapflytTrialRanges ranges;
   // Every tight_every-th round of the five shapes is tight (0: none): 5 = one round in five.
   int tight_every = 5;
-  double tight_margin_m = 0.05;  // opening width - vehicle span in tight trials [m]
+  double tight_margin_m = 0.05;  // narrowest passage - vehicle width in tight trials [m]
   // Image size of the forward camera (the scenario's 80 deg pinhole): 320 x 240 keeps a flight
   // at a few CPU seconds; the TS²P and tracker radii scale with the width.
   int width = 320;
