@@ -39,7 +39,7 @@ class MononavMonteCarloBench : public MonteCarloBench {
       for (const MononavFlight& flight : FlyMononavLayout(options_, k)) {
         flights.push_back(MononavFlightToJson(flight));
       }
-      return flights;
+      return nlohmann::json{{"flights", flights}};
     });
   }
 
