@@ -22,11 +22,19 @@ namespace fs = std::filesystem;
 const std::string kBench =
     "bench gap --trials 4 --seed 3 --autopilot ground_truth --duration 6 --max-roll-deg 30 ";
 
-// summary.json without what each process measures for itself (times, cost, the merge's inputs).
+// summary.json without what each process measures for itself (times, cost, the merge's inputs;
+// the section benches' "timing").
 nlohmann::json Figures(nlohmann::json summary) {
-  for (const char* key : {"wall_time_s", "cost", "merged_from"}) summary.erase(key);
+  for (const char* key : {"wall_time_s", "cost", "merged_from", "timing"}) summary.erase(key);
   for (nlohmann::json& trial : summary["per_trial"]) trial.erase("wall_time_s");
   return summary;
+}
+
+std::string FileText(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
 }
 
 // RFC 4180 rows (quoted cells may hold commas) without column `drop`.
@@ -124,6 +132,77 @@ TEST(BenchShardCommand, MergedShardsEqualTheWholeRunAndBadShardSetsAreRefused) {
       << mixed.output;
 }
 
+// A section bench: a trial is a section. Two LED sections in two shards merge into the whole
+// run's figures and frames.csv (every tracked frame's errors), bit for bit.
+TEST(BenchShardCommand, LedSectionsInShardsMergeToTheWholeRun) {
+  TempFolder temp("bench_shard_led");
+  const auto dir = [&](const std::string& name) { return fs::path(temp.path()) / name; };
+  const std::string led = "bench led --quick --seed 3 --only merged,occlusion ";
+  const CommandResult whole_run = RunAperture(led + "--out " + dir("whole").string());
+  ASSERT_EQ(whole_run.exit_code, 0) << whole_run.output;
+  for (int k = 1; k <= 2; ++k) {
+    const CommandResult shard = RunAperture(led + "--shard " + std::to_string(k) + "/2 --out " +
+                                            dir("s" + std::to_string(k)).string());
+    ASSERT_EQ(shard.exit_code, 0) << shard.output;
+  }
+  // Sections in LedBenchSectionKeys() order, whatever the order of --only: occlusion first.
+  EXPECT_EQ(ReadJson(dir("s1") / "summary.json")["run"]["trials"], 2);
+  const CommandResult merge = RunAperture("bench merge --out " + dir("merged").string() + " " +
+                                          dir("s2").string() + " " + dir("s1").string());
+  ASSERT_EQ(merge.exit_code, 0) << merge.output;
+  const nlohmann::json whole = ReadJson(dir("whole") / "summary.json");
+  const nlohmann::json merged = ReadJson(dir("merged") / "summary.json");
+  ASSERT_TRUE(whole.contains("occlusion") && whole.contains("merged")) << whole.dump();
+  EXPECT_FALSE(whole.contains("accuracy"));
+  EXPECT_EQ(Figures(merged).dump(), Figures(whole).dump());
+  EXPECT_TRUE(merged["timing"].contains("detection"));  // over both shards' frames
+  const std::string frames = FileText(dir("whole") / "frames.csv");
+  EXPECT_GT(std::count(frames.begin(), frames.end(), '\n'), 80);  // 40 + 40 frames + header
+  EXPECT_EQ(FileText(dir("merged") / "frames.csv"), frames);
+  EXPECT_EQ(whole["cost"]["trials"], 2);
+  EXPECT_GT(whole["cost"]["cpu_s_per_trial"].get<double>(), 0.0);
+}
+
+// The control bench: three sections in three shards (the recovery section's throws included)
+// merge into the whole run; a shard of another vehicle configuration is refused by its key.
+TEST(BenchShardCommand, ControlSectionsInShardsMergeToTheWholeRun) {
+  TempFolder temp("bench_shard_control");
+  const auto dir = [&](const std::string& name) { return fs::path(temp.path()) / name; };
+  const std::string control = "bench control --quick --seed 2 --only drag,mixer,recovery ";
+  const CommandResult whole_run =
+      RunAperture(control + "--threads 2 --out " + dir("whole").string());
+  ASSERT_EQ(whole_run.exit_code, 0) << whole_run.output;
+  for (int k = 1; k <= 3; ++k) {
+    const CommandResult shard = RunAperture(control + "--threads 1 --shard " +
+                                            std::to_string(k) + "/3 --out " +
+                                            dir("s" + std::to_string(k)).string());
+    ASSERT_EQ(shard.exit_code, 0) << shard.output;
+  }
+  const CommandResult merge =
+      RunAperture("bench merge --out " + dir("merged").string() + " " + dir("s3").string() + " " +
+                  dir("s1").string() + " " + dir("s2").string());
+  ASSERT_EQ(merge.exit_code, 0) << merge.output;
+  const nlohmann::json whole = ReadJson(dir("whole") / "summary.json");
+  const nlohmann::json merged = ReadJson(dir("merged") / "summary.json");
+  ASSERT_TRUE(whole.contains("recovery")) << whole.dump();
+  EXPECT_GT(whole["recovery"]["trials"].get<int>(), 0);
+  EXPECT_EQ(Figures(merged).dump(), Figures(whole).dump());
+  EXPECT_EQ(merged["inputs"]["sections"], nlohmann::json::array({"drag", "mixer", "recovery"}));
+  EXPECT_TRUE(merged["timing"].contains("recovery_s"));
+  EXPECT_EQ(whole["cost"]["threads"], 2);
+  EXPECT_EQ(merged["cost"]["threads"], 1);
+
+  const CommandResult other =
+      RunAperture(control + "--set control.mixer=one_shot --shard 2/3 --out " +
+                  dir("other2").string());
+  ASSERT_EQ(other.exit_code, 0) << other.output;
+  const CommandResult mixed =
+      RunAperture("bench merge --out " + dir("bad").string() + " " + dir("s1").string() + " " +
+                  dir("other2").string() + " " + dir("s3").string());
+  EXPECT_EQ(mixed.exit_code, 1) << mixed.output;
+  EXPECT_NE(mixed.output.find("/config/control/mixer"), std::string::npos) << mixed.output;
+}
+
 TEST(BenchShardCommand, UsageMistakesExit2) {
   TempFolder temp("bench_shard_usage");
   const fs::path out = fs::path(temp.path()) / "out";
@@ -139,15 +218,10 @@ TEST(BenchShardCommand, UsageMistakesExit2) {
   }
 }
 
-// Every `aperture bench` subcommand is a registered Monte-Carlo bench with --shard, the merge, or
-// one of the benches below that are not (yet) sharded: a new bench must take a side here.
-TEST(BenchRegistry, EveryBenchCommandIsShardableOrListedAsNot) {
-  const std::vector<std::string> not_sharded = {
-      "control",  // sections of comparisons; its recovery throws are a Monte-Carlo part
-      "led",      // sections over rendered sequences, no trial list
-      "tags",     // sections over rendered frames, no trial list
-      "ts2p",     // detection trials per method and sweeps: not converted yet
-      "merge"};
+// Every `aperture bench` subcommand but `merge` is a registered Monte-Carlo bench with --shard
+// or declared unsharded with a reason (MonteCarloBenchRegistry::DeclareUnsharded): a new bench
+// must take a side.
+TEST(BenchRegistry, EveryBenchCommandIsShardableOrDeclaredUnsharded) {
   const experiments::MonteCarloBenchRegistry registry =
       experiments::MonteCarloBenchRegistry::WithBuiltins();
   const CommandResult help = RunAperture("bench --help");
@@ -159,17 +233,29 @@ TEST(BenchRegistry, EveryBenchCommandIsShardableOrListedAsNot) {
   while (std::getline(lines, line)) {
     std::istringstream words(line);
     std::string name;
-    if (!(words >> name)) continue;
+    if (!(words >> name) || name == "merge") continue;
     ++commands;
-    const bool listed =
-        std::find(not_sharded.begin(), not_sharded.end(), name) != not_sharded.end();
-    EXPECT_NE(registry.Contains(name), listed) << "bench " << name;
-    if (registry.Contains(name)) {
-      const CommandResult command = RunAperture("bench " + name + " --help");
-      EXPECT_NE(command.output.find("--shard"), std::string::npos) << name;
-    }
+    const bool unsharded = registry.unsharded().count(name) > 0;
+    EXPECT_NE(registry.Contains(name), unsharded) << "bench " << name;
+    const CommandResult command = RunAperture("bench " + name + " --help");
+    EXPECT_EQ(command.output.find("--shard") != std::string::npos, registry.Contains(name))
+        << name;
   }
-  EXPECT_EQ(commands, static_cast<int>(registry.Names().size() + not_sharded.size()));
+  EXPECT_EQ(commands, static_cast<int>(registry.Names().size() + registry.unsharded().size()));
+}
+
+TEST(BenchRegistry, ANameIsRegisteredOrDeclaredUnshardedOnce) {
+  experiments::MonteCarloBenchRegistry registry =
+      experiments::MonteCarloBenchRegistry::WithBuiltins();
+  const experiments::MonteCarloBenchFactory factory = [](const nlohmann::json&) {
+    return std::unique_ptr<experiments::MonteCarloBench>();
+  };
+  EXPECT_THROW(registry.Register("led", factory), std::invalid_argument);
+  EXPECT_THROW(registry.Register("tags", factory), std::invalid_argument);  // declared unsharded
+  EXPECT_THROW(registry.DeclareUnsharded("gap", "a fixed measurement"), std::invalid_argument);
+  EXPECT_THROW(registry.DeclareUnsharded("new_bench", ""), std::invalid_argument);  // no reason
+  registry.DeclareUnsharded("new_bench", "a fixed measurement");
+  EXPECT_EQ(registry.unsharded().at("new_bench"), "a fixed measurement");
 }
 
 }  // namespace
