@@ -10,6 +10,7 @@
 #include <string>
 
 #include "apps/commands.h"
+#include "experiments/bench/monte_carlo_run.h"
 #include "experiments/tags/tag_bench.h"
 #include "output/html_report.h"
 #include "output/output_folder.h"
@@ -45,7 +46,12 @@ void AddBenchTagsCommand(CLI::App& bench, int* exit_code) {
       bench_options.quick = options->quick;
       bench_options.detectors.Register(servo::kVispTagDetectorName, &servo::CreateVispTagDetector);
       bench_options.frames_csv_path = out.Path("frames.csv");
-      experiments::RunTagBench(bench_options, &out.summary(), &report);
+      // Cost per section (detection, mapping); not sharded (see
+      // experiments::MonteCarloBenchRegistry::WithBuiltins).
+      const nlohmann::json cost = experiments::MeasureTrialCost(2, 0, [&](int) {
+        experiments::RunTagBench(bench_options, &out.summary(), &report);
+      });
+      out.summary()["cost"] = cost;
       report.Write(out.Path("report.html"));
     });
     *exit_code = 0;
