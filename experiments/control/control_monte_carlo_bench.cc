@@ -8,6 +8,7 @@
 #include "experiments/bench/section_record.h"
 #include "experiments/control/control_bench_sections.h"
 #include "output/html_report.h"
+#include "output/report_page.h"
 #include "sim/control_params_io.h"
 #include "sim/sim_params_io.h"
 
@@ -87,13 +88,12 @@ class ControlMonteCarloBench : public MonteCarloBench {
       summary["timing"][record.at("section").get<std::string>() + "_s"] = record["wall_time_s"];
     }
     // The sections compare controllers; their figures against the thesis are in each section.
-    report.AddOutcome({"done",
-                       std::to_string(sections_.size()) +
-                           " section(s) of the control bench: " + keys.dump() + ".",
-                       {}});
-    report.AddRunDescription(summary, out.ElapsedSeconds());
-    report.AddCollapsedTable(summary, "Every figure of summary.json");
-    report.Write(out.Path("report.html"));
+    output::WriteReportPage(report,
+                            {"done",
+                             std::to_string(sections_.size()) +
+                                 " section(s) of the control bench: " + keys.dump() + ".",
+                             {}},
+                            out);
     summary["outputs"] = {{"report", "report.html"}};
   }
 

@@ -6,6 +6,7 @@
 
 #include "output/acceptance_outcome.h"
 #include "output/html_report.h"
+#include "output/report_page.h"
 
 namespace aperture::experiments {
 namespace {
@@ -46,18 +47,12 @@ class LedMonteCarloBench : public MonteCarloBench {
     options.frames_csv_path = out.Path("frames.csv");
     output::HtmlReport report("aperture bench led");
     WriteLedBenchOutputs(options, records, &summary, &report);
-    report.AddOutcome(output::AcceptanceOutcome(summary["acceptance"]));
-    report.AddRunDescription(summary, out.ElapsedSeconds());
-    report.AddCollapsedTable(summary, "Every figure of summary.json");
-    report.Write(out.Path("report.html"));
+    output::WriteReportPage(report, output::AcceptanceOutcome(summary["acceptance"]), out);
   }
 
   std::string DescribeOutcome(const nlohmann::json& summary) const override {
-    int met = 0;
-    for (const auto& check : summary["acceptance"].items()) met += check.value() == true ? 1 : 0;
     return "aperture bench led: " + std::to_string(sections_.size()) + " section(s), " +
-           std::to_string(met) + "/" + std::to_string(summary["acceptance"].size()) +
-           " acceptance checks met";
+           output::AcceptanceOutcome(summary["acceptance"]).headline;
   }
 
  private:

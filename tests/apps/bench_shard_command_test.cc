@@ -65,6 +65,21 @@ std::vector<std::vector<std::string>> CsvWithout(const fs::path& path, const std
   return rows;
 }
 
+// `bench` (arguments of `aperture`) as shards 1/N .. N/N into folder/s1 .. folder/sN, merged in
+// reverse order (shards merge in any order) into folder/merged.
+void RunShardsAndMerge(const std::string& bench, int shards, const fs::path& folder) {
+  std::string merge = "bench merge --out " + (folder / "merged").string();
+  for (int k = 1; k <= shards; ++k) {
+    const fs::path shard = folder / ("s" + std::to_string(k));
+    const CommandResult run = RunAperture(bench + "--shard " + std::to_string(k) + "/" +
+                                          std::to_string(shards) + " --out " + shard.string());
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    merge += " " + (folder / ("s" + std::to_string(shards + 1 - k))).string();
+  }
+  const CommandResult merged = RunAperture(merge);
+  ASSERT_EQ(merged.exit_code, 0) << merged.output;
+}
+
 // One test (each ctest test is its own process): the whole run, three shards, the merge and the
 // refused merges share the flights.
 TEST(BenchShardCommand, MergedShardsEqualTheWholeRunAndBadShardSetsAreRefused) {
@@ -73,12 +88,7 @@ TEST(BenchShardCommand, MergedShardsEqualTheWholeRunAndBadShardSetsAreRefused) {
   // The whole run on two threads, the shards on one: neither changes a trial.
   const CommandResult whole_run = RunAperture(kBench + "--threads 2 --out " + dir("whole").string());
   ASSERT_EQ(whole_run.exit_code, 0) << whole_run.output;
-  for (int k = 1; k <= 3; ++k) {
-    const std::string name = "s" + std::to_string(k);
-    const CommandResult shard = RunAperture(kBench + "--threads 1 --shard " + std::to_string(k) +
-                                            "/3 --out " + dir(name).string());
-    ASSERT_EQ(shard.exit_code, 0) << shard.output;
-  }
+  ASSERT_NO_FATAL_FAILURE(RunShardsAndMerge(kBench + "--threads 1 ", 3, temp.path()));
   // A shard holds its block of trials and what the merge checks.
   const nlohmann::json manifest = ReadJson(dir("s1") / "summary.json");
   EXPECT_EQ(manifest["status"], "ok");
@@ -89,11 +99,6 @@ TEST(BenchShardCommand, MergedShardsEqualTheWholeRunAndBadShardSetsAreRefused) {
   EXPECT_EQ(manifest["configuration"]["options"]["seed"], 3);
   EXPECT_TRUE(fs::exists(dir("s1") / "trials.cbor"));
 
-  // Shards in any order.
-  const CommandResult merge =
-      RunAperture("bench merge --out " + dir("merged").string() + " " + dir("s3").string() + " " +
-                  dir("s1").string() + " " + dir("s2").string());
-  ASSERT_EQ(merge.exit_code, 0) << merge.output;
   const nlohmann::json whole = ReadJson(dir("whole") / "summary.json");
   const nlohmann::json merged = ReadJson(dir("merged") / "summary.json");
   ASSERT_EQ(merged["per_trial"].size(), 4u);
@@ -140,16 +145,9 @@ TEST(BenchShardCommand, LedSectionsInShardsMergeToTheWholeRun) {
   const std::string led = "bench led --quick --seed 3 --only merged,occlusion ";
   const CommandResult whole_run = RunAperture(led + "--out " + dir("whole").string());
   ASSERT_EQ(whole_run.exit_code, 0) << whole_run.output;
-  for (int k = 1; k <= 2; ++k) {
-    const CommandResult shard = RunAperture(led + "--shard " + std::to_string(k) + "/2 --out " +
-                                            dir("s" + std::to_string(k)).string());
-    ASSERT_EQ(shard.exit_code, 0) << shard.output;
-  }
+  ASSERT_NO_FATAL_FAILURE(RunShardsAndMerge(led, 2, temp.path()));
   // Sections in LedBenchSectionKeys() order, whatever the order of --only: occlusion first.
   EXPECT_EQ(ReadJson(dir("s1") / "summary.json")["run"]["trials"], 2);
-  const CommandResult merge = RunAperture("bench merge --out " + dir("merged").string() + " " +
-                                          dir("s2").string() + " " + dir("s1").string());
-  ASSERT_EQ(merge.exit_code, 0) << merge.output;
   const nlohmann::json whole = ReadJson(dir("whole") / "summary.json");
   const nlohmann::json merged = ReadJson(dir("merged") / "summary.json");
   ASSERT_TRUE(whole.contains("occlusion") && whole.contains("merged")) << whole.dump();
@@ -172,16 +170,7 @@ TEST(BenchShardCommand, ControlSectionsInShardsMergeToTheWholeRun) {
   const CommandResult whole_run =
       RunAperture(control + "--threads 2 --out " + dir("whole").string());
   ASSERT_EQ(whole_run.exit_code, 0) << whole_run.output;
-  for (int k = 1; k <= 3; ++k) {
-    const CommandResult shard = RunAperture(control + "--threads 1 --shard " +
-                                            std::to_string(k) + "/3 --out " +
-                                            dir("s" + std::to_string(k)).string());
-    ASSERT_EQ(shard.exit_code, 0) << shard.output;
-  }
-  const CommandResult merge =
-      RunAperture("bench merge --out " + dir("merged").string() + " " + dir("s3").string() + " " +
-                  dir("s1").string() + " " + dir("s2").string());
-  ASSERT_EQ(merge.exit_code, 0) << merge.output;
+  ASSERT_NO_FATAL_FAILURE(RunShardsAndMerge(control + "--threads 1 ", 3, temp.path()));
   const nlohmann::json whole = ReadJson(dir("whole") / "summary.json");
   const nlohmann::json merged = ReadJson(dir("merged") / "summary.json");
   ASSERT_TRUE(whole.contains("recovery")) << whole.dump();
