@@ -7,19 +7,19 @@
 #include "experiments/gapflyt/gapflyt_monte_carlo_bench.h"
 #include "experiments/led/led_monte_carlo_bench.h"
 #include "experiments/mononav/mononav_monte_carlo_bench.h"
+#include "experiments/tags/tags_monte_carlo_bench.h"
 
 namespace aperture::experiments {
 
-MonteCarloBenchRegistry MonteCarloBenchRegistry::WithBuiltins() {
+MonteCarloBenchRegistry MonteCarloBenchRegistry::WithBuiltins(
+    const perception::TagDetectorRegistry& tag_detectors) {
   MonteCarloBenchRegistry registry;
   registry.Register(kControlBenchName, &MakeControlMonteCarloBench);
   registry.Register(kGapBenchName, &MakeGapMonteCarloBench);
   registry.Register(kGapflytBenchName, &MakeGapflytMonteCarloBench);
   registry.Register(kLedBenchName, &MakeLedMonteCarloBench);
   registry.Register(kMononavBenchName, &MakeMononavMonteCarloBench);
-  registry.DeclareUnsharded(
-      "tags", "not converted yet: its detection and mapping sections are seeded, and the "
-              "detection section runs every tag detector of the command, ViSP's among them");
+  registry.Register(kTagsBenchName, MakeTagsMonteCarloBenchFactory(tag_detectors));
   registry.DeclareUnsharded(
       "ts2p", "not converted yet: seeded detection trials per method plus sweeps and tracking "
               "runs on the first trials");

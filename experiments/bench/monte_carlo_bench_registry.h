@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "experiments/bench/monte_carlo_bench.h"
+#include "perception/tags/tag_detector_registry.h"
 
 namespace aperture::experiments {
 
@@ -28,8 +29,11 @@ class MonteCarloBenchRegistry {
   // "gap" (experiments/gap/gap_monte_carlo_bench.h), "gapflyt"
   // (experiments/gapflyt/gapflyt_monte_carlo_bench.h), "led"
   // (experiments/led/led_monte_carlo_bench.h), "mononav"
-  // (experiments/mononav/mononav_monte_carlo_bench.h); and the benches declared unsharded.
-  static MonteCarloBenchRegistry WithBuiltins();
+  // (experiments/mononav/mononav_monte_carlo_bench.h), "tags" with `tag_detectors`
+  // (experiments/tags/tags_monte_carlo_bench.h); and the benches declared unsharded.
+  static MonteCarloBenchRegistry WithBuiltins(
+      const perception::TagDetectorRegistry& tag_detectors =
+          perception::TagDetectorRegistry::WithBuiltins());
 
   // std::invalid_argument for an empty or repeated name (also one declared unsharded) or an
   // empty factory.

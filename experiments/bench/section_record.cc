@@ -23,4 +23,15 @@ void AddSectionRecord(const nlohmann::json& record, nlohmann::json* summary,
   report->AddBlocks(record.at("report").get<std::vector<std::string>>());
 }
 
+void WriteRecordedCsvRows(const nlohmann::json& rows, output::CsvWriter* csv) {
+  for (const nlohmann::json& row : rows) {
+    std::vector<output::CsvCell> cells;
+    for (const nlohmann::json& cell : row) {
+      cells.push_back(cell.is_string() ? output::CsvCell(cell.get<std::string>())
+                                       : output::CsvCell(cell.get<double>()));
+    }
+    csv->WriteCells(cells);
+  }
+}
+
 }  // namespace aperture::experiments

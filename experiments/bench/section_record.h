@@ -13,6 +13,7 @@
 #include <functional>
 #include <nlohmann/json.hpp>
 
+#include "output/csv_writer.h"
 #include "output/html_report.h"
 
 namespace aperture::experiments {
@@ -27,5 +28,9 @@ nlohmann::json RecordSection(const SectionRun& run);
 // key) and appends record["report"] to *report.
 void AddSectionRecord(const nlohmann::json& record, nlohmann::json* summary,
                       output::HtmlReport* report);
+
+// Writes recorded CSV rows (a section's per-frame rows in its record: JSON arrays of strings and
+// numbers, NaN kept by CBOR) to *csv, one row per array.
+void WriteRecordedCsvRows(const nlohmann::json& rows, output::CsvWriter* csv);
 
 }  // namespace aperture::experiments

@@ -835,15 +835,7 @@ void WriteLedBenchOutputs(const LedBenchOptions& options,
   for (const nlohmann::json& record : section_records) {
     AddSectionRecord(record, summary, report);
     times.Append(record.at("stage_times"));
-    if (!frames_csv) continue;
-    for (const nlohmann::json& row : record.at("frames")) {
-      std::vector<output::CsvCell> cells;
-      for (const nlohmann::json& cell : row) {
-        cells.push_back(cell.is_string() ? output::CsvCell(cell.get<std::string>())
-                                         : output::CsvCell(cell.get<double>()));
-      }
-      frames_csv->WriteCells(cells);
-    }
+    if (frames_csv) WriteRecordedCsvRows(record.at("frames"), &*frames_csv);
   }
   if (frames_csv) frames_csv->Close();
   WriteTiming(times, summary, report);
