@@ -50,11 +50,14 @@ void AddBenchControlCommand(CLI::App& bench, int* exit_code) {
   command->callback([options, exit_code] {
     output::OutputFolder out(options->common.out_dir);
     output::RunAndWriteSummary(out, [&] {
-      const nlohmann::json config = nlohmann::json::parse(LoadConfig(options->common, "").ToJson());
-      RunMonteCarloCommand(
-          experiments::kControlBenchName,
-          experiments::ControlBenchConfiguration(options->bench, options->only, config),
-          options->monte_carlo, out);
+      // Read here first so that a mistake is named by its file line or --set item.
+      config::ConfigTree tree = LoadConfig(options->common, "");
+      experiments::ControlBenchOptions bench = options->bench;
+      experiments::ReadControlBenchVehicle(&tree, &bench);
+      RunMonteCarloCommand(experiments::kControlBenchName,
+                           experiments::ControlBenchConfiguration(
+                               bench, options->only, nlohmann::json::parse(tree.ToJson())),
+                           options->monte_carlo, out);
     });
     *exit_code = 0;
   });

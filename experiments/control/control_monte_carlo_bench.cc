@@ -4,7 +4,6 @@
 #include <string>
 #include <vector>
 
-#include "config/config_tree.h"
 #include "experiments/bench/section_record.h"
 #include "experiments/control/control_bench_sections.h"
 #include "output/html_report.h"
@@ -33,17 +32,8 @@ class ControlMonteCarloBench : public MonteCarloBench {
     // JSON is YAML: the tree reads the recorded configuration as it reads a --config file.
     config::ConfigTree tree;
     if (!config.is_null()) tree.MergeYaml(config.dump(), "bench control configuration");
-    config::ParamReader root = tree.Reader();
-    root.ReadSection("control", &options_.control);
-    root.ReadSection("dynamics", &options_.dynamics);
-    root.ReadSection("imu", &options_.imu);
-    root.ReadSection("range", &options_.range);
-    root.RejectUnknownKeys();
+    ReadControlBenchVehicle(&tree, &options_);
     // The full effective vehicle and control stack (`--config OUT/summary.json` repeats them).
-    tree.PutParams("control", options_.control);
-    tree.PutParams("dynamics", options_.dynamics);
-    tree.PutParams("imu", options_.imu);
-    tree.PutParams("range", options_.range);
     configuration_ =
         ControlBenchConfiguration(options_, only_, nlohmann::json::parse(tree.ToJson()));
   }
@@ -110,6 +100,19 @@ class ControlMonteCarloBench : public MonteCarloBench {
 };
 
 }  // namespace
+
+void ReadControlBenchVehicle(config::ConfigTree* tree, ControlBenchOptions* options) {
+  config::ParamReader root = tree->Reader();
+  root.ReadSection("control", &options->control);
+  root.ReadSection("dynamics", &options->dynamics);
+  root.ReadSection("imu", &options->imu);
+  root.ReadSection("range", &options->range);
+  root.RejectUnknownKeys();
+  tree->PutParams("control", options->control);
+  tree->PutParams("dynamics", options->dynamics);
+  tree->PutParams("imu", options->imu);
+  tree->PutParams("range", options->range);
+}
 
 nlohmann::json ControlBenchConfiguration(const ControlBenchOptions& options,
                                          const std::vector<std::string>& only,

@@ -12,6 +12,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "config/config_tree.h"
 #include "experiments/bench/monte_carlo_bench.h"
 #include "experiments/control/control_bench_section.h"
 
@@ -24,6 +25,13 @@ inline constexpr const char* kControlBenchName = "control";
 nlohmann::json ControlBenchConfiguration(const ControlBenchOptions& options,
                                          const std::vector<std::string>& only,
                                          const nlohmann::json& config);
+
+// Reads the vehicle and control stack (sections control, dynamics, imu, range; unknown keys
+// rejected) from `tree` into options, then replaces those sections of `tree` by their full
+// effective values. std::invalid_argument naming the value's source (a file line, a --set item)
+// and key. The command calls it on its --config/--set tree so that mistakes are named there; the
+// bench calls it again on the configuration it is built from.
+void ReadControlBenchVehicle(config::ConfigTree* tree, ControlBenchOptions* options);
 
 // std::invalid_argument naming the bad key, section or parameter.
 std::unique_ptr<MonteCarloBench> MakeControlMonteCarloBench(const nlohmann::json& configuration);
