@@ -1,18 +1,20 @@
 // aperture bench led: the infrared-LED tracker against rendered ground truth (issue 6).
 //
 //   aperture bench led --out DIR [--seed S] [--quick] [--only body_occlusion,merged]
+//                      [--threads T] [--shard K/N]
 //
 // Writes DIR/summary.json (sections accuracy, sweep, occlusion, merged, body_occlusion, timing,
 // acceptance; see experiments/led/led_bench.h; --only runs the sections named), DIR/frames.csv
-// (every tracked frame with its errors) and DIR/report.html (error plots, box plots per distance).
+// (every tracked frame with its errors) and DIR/report.html (error plots, box plots per distance),
+// or with --shard K/N the K-th block of the sections (a trial is a section,
+// experiments/led/led_monte_carlo_bench.h) for `aperture bench merge`.
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "apps/commands.h"
-#include "experiments/led/led_bench.h"
-#include "output/acceptance_outcome.h"
-#include "output/html_report.h"
+#include "apps/monte_carlo_command.h"
+#include "experiments/led/led_monte_carlo_bench.h"
 #include "output/output_folder.h"
 
 namespace aperture::apps {
@@ -23,9 +25,9 @@ struct BenchLedOptions {
   long long seed = 1;
   bool quick = false;
   std::vector<std::string> only;
+  MonteCarloCommandOptions monte_carlo;
 };
 
-// Passed when every acceptance check (thesis C.4 analogs, experiments/led/led_bench.h) holds.
 }  // namespace
 
 void AddBenchLedCommand(CLI::App& bench, int* exit_code) {
@@ -39,23 +41,16 @@ void AddBenchLedCommand(CLI::App& bench, int* exit_code) {
   command->add_option("--only", options->only, "Run only these sections (comma-separated keys)")
       ->delimiter(',')
       ->check(CLI::IsMember(experiments::LedBenchSectionKeys()));
+  AddMonteCarloOptions(command, &options->monte_carlo);
   command->callback([options, exit_code] {
     output::OutputFolder out(options->out_dir);
     output::RunAndWriteSummary(out, [&] {
-      out.summary()["command"] = "bench led";
-      out.summary()["inputs"] = {
-          {"seed", options->seed}, {"quick", options->quick}, {"only", options->only}};
-      output::HtmlReport report("aperture bench led");
-      experiments::LedBenchOptions bench_options;
-      bench_options.seed = static_cast<std::uint64_t>(options->seed);
-      bench_options.quick = options->quick;
-      bench_options.only = options->only;
-      bench_options.frames_csv_path = out.Path("frames.csv");
-      experiments::RunLedBench(bench_options, &out.summary(), &report);
-      report.AddOutcome(output::AcceptanceOutcome(out.summary()["acceptance"]));
-      report.AddRunDescription(out.summary(), out.ElapsedSeconds());
-      report.AddCollapsedTable(out.summary(), "Every figure of summary.json");
-      report.Write(out.Path("report.html"));
+      experiments::LedBenchOptions bench;
+      bench.seed = static_cast<std::uint64_t>(options->seed);
+      bench.quick = options->quick;
+      bench.only = options->only;
+      RunMonteCarloCommand(experiments::kLedBenchName,
+                           experiments::LedBenchConfiguration(bench), options->monte_carlo, out);
     });
     *exit_code = 0;
   });

@@ -17,6 +17,7 @@
 
 #include "apps/code_version.h"
 #include "apps/commands.h"
+#include "apps/monte_carlo_command.h"
 #include "experiments/bench/monte_carlo_run.h"
 #include "output/output_folder.h"
 
@@ -56,7 +57,7 @@ void AddBenchMergeCommand(CLI::App& bench, int* exit_code) {
     output::OutputFolder out(options->out_dir);
     output::RunAndWriteSummary(out, [&] {
       std::cout << experiments::MergeMonteCarloShards(
-                       experiments::MonteCarloBenchRegistry::WithBuiltins(), options->shard_dirs,
+                       BenchRegistry(), options->shard_dirs,
                        CodeVersion(), out)
                 << "\n";
     });

@@ -1,17 +1,19 @@
 // aperture bench tags: the AprilTag front end and tag map against rendered ground truth
 // (issue 15).
 //
-//   aperture bench tags --out DIR [--seed S] [--quick]
+//   aperture bench tags --out DIR [--seed S] [--quick] [--threads T] [--shard K/N]
 //
 // Writes DIR/summary.json (sections detection, mapping, acceptance; see
 // experiments/tags/tag_bench.h), DIR/frames.csv (every detection-section frame per detector) and
-// DIR/report.html.
+// DIR/report.html, or with --shard K/N the K-th block of the two sections (a trial is a section,
+// experiments/tags/tags_monte_carlo_bench.h) for `aperture bench merge`. The detectors: the
+// built-in ones and ViSP's (BenchRegistry).
 #include <memory>
 #include <string>
 
 #include "apps/commands.h"
-#include "experiments/tags/tag_bench.h"
-#include "output/html_report.h"
+#include "apps/monte_carlo_command.h"
+#include "experiments/tags/tags_monte_carlo_bench.h"
 #include "output/output_folder.h"
 #include "servo/visp_tag_detector.h"
 
@@ -22,6 +24,7 @@ struct BenchTagsOptions {
   std::string out_dir;
   long long seed = 1;
   bool quick = false;
+  MonteCarloCommandOptions monte_carlo;
 };
 
 }  // namespace
@@ -34,19 +37,16 @@ void AddBenchTagsCommand(CLI::App& bench, int* exit_code) {
   command->add_option("--seed", options->seed, "Seed of the views, noise and the tag field")
       ->check(CLI::NonNegativeNumber);
   command->add_flag("--quick", options->quick, "Fewer frames per section (same code paths)");
+  AddMonteCarloOptions(command, &options->monte_carlo);
   command->callback([options, exit_code] {
     output::OutputFolder out(options->out_dir);
     output::RunAndWriteSummary(out, [&] {
-      out.summary()["command"] = "bench tags";
-      out.summary()["inputs"] = {{"seed", options->seed}, {"quick", options->quick}};
-      output::HtmlReport report("aperture bench tags");
-      experiments::TagBenchOptions bench_options;
-      bench_options.seed = static_cast<std::uint64_t>(options->seed);
-      bench_options.quick = options->quick;
-      bench_options.detectors.Register(servo::kVispTagDetectorName, &servo::CreateVispTagDetector);
-      bench_options.frames_csv_path = out.Path("frames.csv");
-      experiments::RunTagBench(bench_options, &out.summary(), &report);
-      report.Write(out.Path("report.html"));
+      experiments::TagBenchOptions bench;
+      bench.seed = static_cast<std::uint64_t>(options->seed);
+      bench.quick = options->quick;
+      bench.detectors.Register(servo::kVispTagDetectorName, &servo::CreateVispTagDetector);
+      RunMonteCarloCommand(experiments::kTagsBenchName,
+                           experiments::TagsBenchConfiguration(bench), options->monte_carlo, out);
     });
     *exit_code = 0;
   });

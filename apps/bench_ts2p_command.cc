@@ -15,6 +15,7 @@
 
 #include "apps/command_support.h"
 #include "apps/commands.h"
+#include "experiments/bench/monte_carlo_run.h"
 #include "experiments/ts2p/ts2p_bench.h"
 #include "output/progress_bar.h"
 #include "perception/graph/front_end_registry.h"
@@ -50,8 +51,13 @@ void RunBenchTs2p(BenchTs2pOptions options, output::OutputFolder& out) {
                         options.bench.depth_trials +
                     options.bench.tracking_trials;
   output::ProgressBar progress("ts2p trials", static_cast<std::size_t>(std::max(steps, 1)));
-  const experiments::Ts2pBenchResult result = experiments::RunTs2pBench(
-      options.bench, [&](int done, int) { progress.Update(static_cast<std::size_t>(done)); });
+  experiments::Ts2pBenchResult result;
+  // Cost per rendered scan (detection, depth and tracking trials); not sharded (see
+  // experiments::MonteCarloBenchRegistry::WithBuiltins).
+  out.summary()["cost"] = experiments::MeasureTrialCost(steps, 0, [&](int) {
+    result = experiments::RunTs2pBench(
+        options.bench, [&](int done, int) { progress.Update(static_cast<std::size_t>(done)); });
+  });
   progress.Finish();
   out.summary()["command"] = "bench ts2p";
   out.summary()["config"] = nlohmann::json::parse(tree.ToJson());

@@ -6,8 +6,15 @@
 #include "apps/code_version.h"
 #include "experiments/bench/monte_carlo_run.h"
 #include "output/progress_bar.h"
+#include "servo/visp_tag_detector.h"
 
 namespace aperture::apps {
+
+experiments::MonteCarloBenchRegistry BenchRegistry() {
+  perception::TagDetectorRegistry tag_detectors = perception::TagDetectorRegistry::WithBuiltins();
+  tag_detectors.Register(servo::kVispTagDetectorName, &servo::CreateVispTagDetector);
+  return experiments::MonteCarloBenchRegistry::WithBuiltins(tag_detectors);
+}
 
 void AddMonteCarloOptions(CLI::App* command, MonteCarloCommandOptions* options) {
   command
@@ -36,7 +43,7 @@ void RunMonteCarloCommand(const std::string& name, const nlohmann::json& configu
   std::string outcome;
   try {
     outcome = experiments::RunMonteCarloBench(
-        experiments::MonteCarloBenchRegistry::WithBuiltins(), name, configuration, run, out,
+        BenchRegistry(), name, configuration, run, out,
         [&](int done, int total) {
           if (!progress) {
             progress = std::make_unique<output::ProgressBar>(name + " trials",

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "experiments/bench/monte_carlo_bench_registry.h"
 #include "output/output_folder.h"
 
 namespace aperture::apps {
@@ -15,6 +16,11 @@ struct MonteCarloCommandOptions {
   std::string shard;  // "K/N"; empty = the whole run
   int threads = 0;    // concurrent trials; 0 = all cores
 };
+
+// The Monte-Carlo benches of this program: the library's (MonteCarloBenchRegistry::WithBuiltins),
+// `bench tags` with ViSP's tag detector besides the built-in ones. `aperture bench NAME` and
+// `aperture bench merge` build their benches through it.
+experiments::MonteCarloBenchRegistry BenchRegistry();
 
 // Adds --shard (checked: K/N with 1 <= K <= N, else exit 2) and --threads to `command`.
 void AddMonteCarloOptions(CLI::App* command, MonteCarloCommandOptions* options);

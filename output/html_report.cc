@@ -184,6 +184,10 @@ void HtmlReport::AddImage(const cv::Mat& image, const std::string& caption,
              caption));
 }
 
+void HtmlReport::AddBlocks(const std::vector<std::string>& blocks) {
+  blocks_.insert(blocks_.end(), blocks.begin(), blocks.end());
+}
+
 std::string HtmlReport::ToHtml() const {
   std::string html =
       "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"

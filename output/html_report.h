@@ -61,6 +61,12 @@ class HtmlReport {
   void AddImage(const cv::Mat& image, const std::string& caption = "",
                 ImageEncoding encoding = ImageEncoding::kPng);
 
+  // The blocks added so far (sections, paragraphs, tables, figures; not the outcome and run
+  // description), and blocks of another report appended verbatim (trusted: e.g. a bench section
+  // recorded in a shard of the run, experiments/bench/section_record.h).
+  const std::vector<std::string>& blocks() const { return blocks_; }
+  void AddBlocks(const std::vector<std::string>& blocks);
+
   std::string ToHtml() const;
   // Writes ToHtml() atomically to `path`.
   void Write(const std::string& path) const;

@@ -45,11 +45,11 @@ class MonteCarloBench {
   virtual std::string DescribeOutcome(const nlohmann::json& summary) const = 0;
 };
 
-// RunTrials for a bench whose trials run one after another (each trial's flights may render in
-// parallel): `flights_of(k)` for every k of `trials` inside a task arena of `threads` (0 = all
-// cores), as records {"trial": k, "flights": flights_of(k)}; `on_trial_done` after each.
+// RunTrials for a bench whose trials run one after another (each trial may render or fly in
+// parallel inside): `record_of(k)` (a JSON object) for every k of `trials` inside a task arena of
+// `threads` (0 = all cores), each record with "trial": k added; `on_trial_done` after each.
 std::vector<nlohmann::json> RunTrialsInOrder(const TrialRange& trials, int threads,
                                              const std::function<void(int)>& on_trial_done,
-                                             const std::function<nlohmann::json(int)>& flights_of);
+                                             const std::function<nlohmann::json(int)>& record_of);
 
 }  // namespace aperture::experiments

@@ -2,17 +2,27 @@
 
 #include <stdexcept>
 
+#include "experiments/control/control_monte_carlo_bench.h"
 #include "experiments/gap/gap_monte_carlo_bench.h"
 #include "experiments/gapflyt/gapflyt_monte_carlo_bench.h"
+#include "experiments/led/led_monte_carlo_bench.h"
 #include "experiments/mononav/mononav_monte_carlo_bench.h"
+#include "experiments/tags/tags_monte_carlo_bench.h"
 
 namespace aperture::experiments {
 
-MonteCarloBenchRegistry MonteCarloBenchRegistry::WithBuiltins() {
+MonteCarloBenchRegistry MonteCarloBenchRegistry::WithBuiltins(
+    const perception::TagDetectorRegistry& tag_detectors) {
   MonteCarloBenchRegistry registry;
+  registry.Register(kControlBenchName, &MakeControlMonteCarloBench);
   registry.Register(kGapBenchName, &MakeGapMonteCarloBench);
   registry.Register(kGapflytBenchName, &MakeGapflytMonteCarloBench);
+  registry.Register(kLedBenchName, &MakeLedMonteCarloBench);
   registry.Register(kMononavBenchName, &MakeMononavMonteCarloBench);
+  registry.Register(kTagsBenchName, MakeTagsMonteCarloBenchFactory(tag_detectors));
+  registry.DeclareUnsharded(
+      "ts2p", "not converted yet: seeded detection trials per method plus sweeps and tracking "
+              "runs on the first trials");
   return registry;
 }
 
@@ -20,9 +30,20 @@ void MonteCarloBenchRegistry::Register(const std::string& name, MonteCarloBenchF
   if (name.empty() || !factory) {
     throw std::invalid_argument("MonteCarloBenchRegistry: a bench needs a name and a factory");
   }
-  if (!factories_.emplace(name, std::move(factory)).second) {
+  if (unsharded_.count(name) > 0 || !factories_.emplace(name, std::move(factory)).second) {
     throw std::invalid_argument("MonteCarloBenchRegistry: bench '" + name +
-                                "' is registered twice");
+                                "' is registered or declared twice");
+  }
+}
+
+void MonteCarloBenchRegistry::DeclareUnsharded(const std::string& name, const std::string& reason) {
+  if (name.empty() || reason.empty()) {
+    throw std::invalid_argument(
+        "MonteCarloBenchRegistry: an unsharded bench needs a name and the reason it is");
+  }
+  if (factories_.count(name) > 0 || !unsharded_.emplace(name, reason).second) {
+    throw std::invalid_argument("MonteCarloBenchRegistry: bench '" + name +
+                                "' is registered or declared twice");
   }
 }
 

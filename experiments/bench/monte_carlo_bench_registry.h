@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "experiments/bench/monte_carlo_bench.h"
+#include "perception/tags/tag_detector_registry.h"
 
 namespace aperture::experiments {
 
@@ -24,12 +25,18 @@ using MonteCarloBenchFactory =
 
 class MonteCarloBenchRegistry {
  public:
-  // The benches of this library: "gap" (experiments/gap/gap_monte_carlo_bench.h), "gapflyt"
-  // (experiments/gapflyt/gapflyt_monte_carlo_bench.h), "mononav"
-  // (experiments/mononav/mononav_monte_carlo_bench.h).
-  static MonteCarloBenchRegistry WithBuiltins();
+  // The benches of this library: "control" (experiments/control/control_monte_carlo_bench.h),
+  // "gap" (experiments/gap/gap_monte_carlo_bench.h), "gapflyt"
+  // (experiments/gapflyt/gapflyt_monte_carlo_bench.h), "led"
+  // (experiments/led/led_monte_carlo_bench.h), "mononav"
+  // (experiments/mononav/mononav_monte_carlo_bench.h), "tags" with `tag_detectors`
+  // (experiments/tags/tags_monte_carlo_bench.h); and the benches declared unsharded.
+  static MonteCarloBenchRegistry WithBuiltins(
+      const perception::TagDetectorRegistry& tag_detectors =
+          perception::TagDetectorRegistry::WithBuiltins());
 
-  // std::invalid_argument for an empty or repeated name or an empty factory.
+  // std::invalid_argument for an empty or repeated name (also one declared unsharded) or an
+  // empty factory.
   void Register(const std::string& name, MonteCarloBenchFactory factory);
   std::vector<std::string> Names() const;  // sorted
   bool Contains(const std::string& name) const { return factories_.count(name) > 0; }
@@ -37,8 +44,17 @@ class MonteCarloBenchRegistry {
   std::unique_ptr<MonteCarloBench> Create(const std::string& name,
                                           const nlohmann::json& configuration) const;
 
+  // A bench of `aperture bench` that takes no --shard, and why (a fixed, deterministic
+  // measurement that is no set of trials, or not converted yet). Every `aperture bench`
+  // subcommand but `merge` is either registered or declared here, which
+  // tests/apps/bench_shard_command_test.cc checks: a new bench that is neither fails it.
+  // std::invalid_argument for an empty name or reason, or a name registered or declared before.
+  void DeclareUnsharded(const std::string& name, const std::string& reason);
+  const std::map<std::string, std::string>& unsharded() const { return unsharded_; }
+
  private:
   std::map<std::string, MonteCarloBenchFactory> factories_;
+  std::map<std::string, std::string> unsharded_;  // name -> reason
 };
 
 }  // namespace aperture::experiments

@@ -10,22 +10,26 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <utility>
 
 namespace aperture::experiments {
 
 std::vector<nlohmann::json> RunTrialsInOrder(const TrialRange& trials, int threads,
                                              const std::function<void(int)>& on_trial_done,
-                                             const std::function<nlohmann::json(int)>& flights_of) {
+                                             const std::function<nlohmann::json(int)>& record_of) {
   std::vector<nlohmann::json> records;
   tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
   arena.execute([&] {
     for (int k = trials.first; k < trials.end(); ++k) {
-      records.push_back({{"trial", k}, {"flights", flights_of(k)}});
+      nlohmann::json record = record_of(k);
+      record["trial"] = k;
+      records.push_back(std::move(record));
       if (on_trial_done) on_trial_done(static_cast<int>(records.size()));
     }
   });
   return records;
 }
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -36,6 +40,26 @@ double ProcessCpuSeconds() {
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
   return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
 }
+
+}  // namespace
+
+nlohmann::json MeasureTrialCost(int trials, int threads, const std::function<void(int)>& body) {
+  // The thread count the trials really get: `threads`, or what oneTBB may use here (the
+  // process's CPU affinity: a Slurm task's --cpus-per-task).
+  const int used_threads = threads > 0 ? threads : tbb::info::default_concurrency();
+  const double cpu_start_s = ProcessCpuSeconds();
+  const auto wall_start = std::chrono::steady_clock::now();
+  body(used_threads);
+  const double cpu_s = ProcessCpuSeconds() - cpu_start_s;
+  return {{"threads", used_threads},
+          {"trials", trials},
+          {"cpu_time_s", cpu_s},
+          {"cpu_s_per_trial", trials > 0 ? cpu_s / trials : 0.0},
+          {"wall_time_s",
+           std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count()}};
+}
+
+namespace {
 
 std::string HostName() {
   char name[256] = {};
@@ -48,32 +72,21 @@ nlohmann::json RangeJson(const TrialRange& range) {
 
 struct TrialLoop {
   std::vector<nlohmann::json> records;
-  nlohmann::json cost;  // threads, trials, cpu_time_s, cpu_s_per_trial, wall_time_s
+  nlohmann::json cost;  // MeasureTrialCost
 };
 
 TrialLoop RunTrialLoop(const MonteCarloBench& bench, const TrialRange& trials, int threads,
                        const std::function<void(int, int)>& progress) {
-  // The thread count the trials really get: --threads, or what oneTBB may use here (the
-  // process's CPU affinity: a Slurm task's --cpus-per-task).
-  const int used_threads = threads > 0 ? threads : tbb::info::default_concurrency();
-  const double cpu_start_s = ProcessCpuSeconds();
-  const auto wall_start = std::chrono::steady_clock::now();
   TrialLoop loop;
-  loop.records = bench.RunTrials(trials, used_threads, [&](int done) {
-    if (progress) progress(done, trials.count);
+  loop.cost = MeasureTrialCost(trials.count, threads, [&](int used_threads) {
+    loop.records = bench.RunTrials(trials, used_threads, [&](int done) {
+      if (progress) progress(done, trials.count);
+    });
   });
-  const double cpu_s = ProcessCpuSeconds() - cpu_start_s;
   if (static_cast<int>(loop.records.size()) != trials.count) {
     throw std::logic_error("Monte-Carlo bench returned " + std::to_string(loop.records.size()) +
                            " records for " + std::to_string(trials.count) + " trials");
   }
-  loop.cost = {
-      {"threads", used_threads},
-      {"trials", trials.count},
-      {"cpu_time_s", cpu_s},
-      {"cpu_s_per_trial", cpu_s / trials.count},
-      {"wall_time_s",
-       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count()}};
   return loop;
 }
 

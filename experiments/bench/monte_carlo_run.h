@@ -53,6 +53,13 @@ std::string RunMonteCarloBench(const MonteCarloBenchRegistry& benches, const std
                         output::OutputFolder& out,
                         const std::function<void(int, int)>& progress = {});
 
+// What running `trials` trials in `body(used_threads)` costs, for summary.json "cost" of every
+// bench: {threads: used_threads (`threads`, or 0 = what oneTBB may use in this process, i.e.
+// its CPU affinity), trials, cpu_time_s (process CPU during `body`, every thread),
+// cpu_s_per_trial, wall_time_s}. RunMonteCarloBench records it for its trial loop; a bench that
+// runs otherwise measures its run with it.
+nlohmann::json MeasureTrialCost(int trials, int threads, const std::function<void(int)>& body);
+
 // Merges the shard folders `shard_dirs` (any order) into `out`; the merging build's
 // `code_version` must equal the shards'. ShardMergeError when they do not merge (see above).
 // Returns the bench's one-line outcome (MonteCarloBench::DescribeOutcome).

@@ -34,7 +34,7 @@ class GapflytMonteCarloBench : public MonteCarloBench {
       for (const std::string& law : options_.laws) {
         flights.push_back(GapflytTrialRecordToJson(RunGapflytTrial(options_, config, law)));
       }
-      return flights;
+      return nlohmann::json{{"flights", flights}};
     });
   }
 

@@ -15,10 +15,10 @@
 #include <utility>
 #include <vector>
 
+#include "experiments/bench/section_record.h"
 #include "experiments/led/led_pose_error.h"
 #include "experiments/led/led_target_renderer.h"
 #include "output/csv_writer.h"
-#include "output/progress_bar.h"
 #include "output/svg_plot.h"
 #include "perception/camera/pinhole_camera.h"
 #include "perception/led/led_configuration.h"
@@ -131,7 +131,7 @@ struct FrameRecord {
   int visible_leds = 0;
 };
 
-// Stage times of every tracked frame of every section (Table C.2 analog).
+// Stage times of every tracked frame of every section (Table C.2 analog) [s].
 struct StageTimeSamples {
   std::vector<double> detection_roi, detection_full, prediction, refinement, brute_force_tracker,
       near_prediction;
@@ -151,13 +151,36 @@ struct StageTimeSamples {
     if (t.refinement_s > 0.0) refinement.push_back(t.refinement_s);
     if (result.used_near_prediction) near_prediction.push_back(t.near_prediction_s);
   }
+
+  // Every sample list by name, for a section's record and for appending one to another.
+  std::vector<std::pair<const char*, std::vector<double>*>> Lists() {
+    return {{"detection_roi", &detection_roi},
+            {"detection_full", &detection_full},
+            {"prediction", &prediction},
+            {"refinement", &refinement},
+            {"brute_force_tracker", &brute_force_tracker},
+            {"near_prediction", &near_prediction},
+            {"brute_force", &brute_force},
+            {"brute_force_with_false_detection", &brute_force_with_false_detection}};
+  }
+  nlohmann::json ToJson() {
+    nlohmann::json json = nlohmann::json::object();
+    for (const auto& [name, list] : Lists()) json[name] = *list;
+    return json;
+  }
+  void Append(const nlohmann::json& json) {
+    for (const auto& [name, list] : Lists()) {
+      const std::vector<double> samples = json.at(name).get<std::vector<double>>();
+      list->insert(list->end(), samples.begin(), samples.end());
+    }
+  }
 };
 
-// What every section shares: the stage times, the per-frame CSV (may be null), the progress bar.
+// What a section collects besides its figures: the stage times and its frames.csv rows (JSON
+// arrays of the kFramesCsvColumns cells).
 struct BenchContext {
   StageTimeSamples times;
-  output::CsvWriter* frames_csv = nullptr;
-  output::ProgressBar* progress = nullptr;
+  nlohmann::json frames = nlohmann::json::array();
 };
 
 const std::vector<std::string> kFramesCsvColumns{
@@ -187,21 +210,18 @@ std::vector<FrameRecord> TrackSequence(
     record.visible_leds =
         VisibleLeds(renderer.camera(), tracker.configuration(), record.T_CT_true, unseen);
     context->times.Add(record.result);
-    if (context->frames_csv) {
-      const double nan = std::numeric_limits<double>::quiet_NaN();
-      const Eigen::Vector3d p = record.T_CT_true.translation();
-      context->frames_csv->WriteCells(
-          {section, record.t_s, LedTrackStatusName(record.result.status),
-           static_cast<double>(record.result.detections.size()),
-           static_cast<double>(record.visible_leds), p.x(), p.y(), p.z(),
-           record.error ? record.error->position_m : nan,
-           record.error ? record.error->orientation_deg : nan,
-           record.result.covariance ? PositionSigma(*record.result.covariance) : nan,
-           record.result.covariance ? OrientationSigmaDeg(*record.result.covariance) : nan,
-           record.result.rms_px});
-    }
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const Eigen::Vector3d p = record.T_CT_true.translation();
+    context->frames.push_back(
+        {section, record.t_s, LedTrackStatusName(record.result.status),
+         static_cast<double>(record.result.detections.size()),
+         static_cast<double>(record.visible_leds), p.x(), p.y(), p.z(),
+         record.error ? record.error->position_m : nan,
+         record.error ? record.error->orientation_deg : nan,
+         record.result.covariance ? PositionSigma(*record.result.covariance) : nan,
+         record.result.covariance ? OrientationSigmaDeg(*record.result.covariance) : nan,
+         record.result.rms_px});
     records.push_back(std::move(record));
-    if (context->progress) context->progress->Increment();
   }
   return records;
 }
@@ -705,10 +725,9 @@ void WriteTiming(const StageTimeSamples& times, nlohmann::json* summary,
   report->AddTable(timing);
 }
 
-// The sections in order: summary key, frames, the run, and its acceptance checks (true = met).
+// The sections in order: summary key, the run, and its acceptance checks (true = met).
 struct LedBenchSection {
   std::string key;
-  std::size_t (*frames)(const SectionSizes&);
   void (*run)(const SectionSizes&, std::uint64_t, BenchContext*, nlohmann::json*,
               output::HtmlReport*);
   void (*accept)(const nlohmann::json& section, nlohmann::json* acceptance);
@@ -720,8 +739,7 @@ double Number(const nlohmann::json& value) {
 
 const std::vector<LedBenchSection>& LedBenchSections() {
   static const std::vector<LedBenchSection> sections = {
-      {"accuracy", [](const SectionSizes& s) -> std::size_t { return s.accuracy_frames; },
-       RunAccuracy,
+      {"accuracy", RunAccuracy,
        [](const nlohmann::json& s, nlohmann::json* a) {
          (*a)["position_error_mean_le_0.5cm"] = Number(s["position_error_mean"]) <= 0.005;
          (*a)["position_error_max_le_2cm"] = Number(s["position_error_max"]) <= 0.02;
@@ -729,30 +747,23 @@ const std::vector<LedBenchSection>& LedBenchSections() {
          (*a)["pose_rate_4_leds_visible_ge_99.9pct"] =
              Number(s["pose_rate_4_leds_visible"]) >= 0.999;
        }},
-      {"sweep",
-       [](const SectionSizes& s) -> std::size_t {
-         return kSweepDistances.size() * s.sweep_frames_per_distance;
-       },
-       RunSweep,
+      {"sweep", RunSweep,
        [](const nlohmann::json& s, nlohmann::json* a) {
          (*a)["close_range_0.3m_tracked"] =
              !s["distances"].empty() && s["distances"][0]["frames_with_pose"].get<int>() ==
                                             s["distances"][0]["frames"].get<int>();
        }},
-      {"occlusion", [](const SectionSizes& s) -> std::size_t { return s.occlusion_frames; },
-       RunOcclusion,
+      {"occlusion", RunOcclusion,
        [](const nlohmann::json& s, nlohmann::json* a) {
          (*a)["occlusion_pose_kept"] = s["frames_with_pose_occluded"] == s["frames_occluded"];
          (*a)["occlusion_jump_le_2cm"] = Number(s["max_position_jump"]) <= 0.02;
          (*a)["occlusion_fresh_start_pose"] = s["fresh_start_pose"];
        }},
-      {"merged", [](const SectionSizes& s) -> std::size_t { return s.merged_frames; }, RunMerged,
+      {"merged", RunMerged,
        [](const nlohmann::json& s, nlohmann::json* a) {
          (*a)["merged_no_confident_wrong_pose"] = s["confident_wrong_poses"] == 0;
        }},
-      {"body_occlusion",
-       [](const SectionSizes& s) -> std::size_t { return s.body_occlusion_frames; },
-       RunBodyOcclusion,
+      {"body_occlusion", RunBodyOcclusion,
        [](const nlohmann::json& s, nlohmann::json* a) {
          // Issue 22: a pose in >= 95 % of the frames with >= 3 LEDs, mean error <= 0.5 cm and
          // <= 0.5 deg; a fresh start still needs four LEDs.
@@ -775,44 +786,63 @@ std::vector<std::string> LedBenchSectionKeys() {
   return keys;
 }
 
-void RunLedBench(const LedBenchOptions& options, nlohmann::json* summary,
-                 output::HtmlReport* report) {
-  const std::vector<std::string> keys = LedBenchSectionKeys();
-  for (const std::string& key : options.only) {
-    if (std::find(keys.begin(), keys.end(), key) == keys.end()) {
-      std::string known;
-      for (const std::string& k : keys) known += (known.empty() ? "" : ", ") + k;
-      throw std::invalid_argument("bench led --only: unknown section '" + key + "'; known: " +
-                                  known);
-    }
-  }
-  std::vector<const LedBenchSection*> selected;
+namespace {
+
+const LedBenchSection& FindSection(const std::string& key) {
   for (const LedBenchSection& section : LedBenchSections()) {
+    if (section.key == key) return section;
+  }
+  std::string known;
+  for (const std::string& k : LedBenchSectionKeys()) known += (known.empty() ? "" : ", ") + k;
+  throw std::invalid_argument("bench led: unknown section '" + key + "'; known: " + known);
+}
+
+}  // namespace
+
+std::vector<std::string> SelectedLedBenchSections(const LedBenchOptions& options) {
+  for (const std::string& key : options.only) FindSection(key);
+  std::vector<std::string> selected;
+  for (const std::string& key : LedBenchSectionKeys()) {
     if (options.only.empty() ||
-        std::find(options.only.begin(), options.only.end(), section.key) != options.only.end()) {
-      selected.push_back(&section);
+        std::find(options.only.begin(), options.only.end(), key) != options.only.end()) {
+      selected.push_back(key);
     }
   }
-  const SectionSizes sizes = Sizes(options.quick);
-  std::size_t total_frames = 0;
-  for (const LedBenchSection* section : selected) total_frames += section->frames(sizes);
-  output::ProgressBar progress("bench led", total_frames);
-  std::optional<output::CsvWriter> frames_csv;
+  return selected;
+}
+
+nlohmann::json RunLedBenchSection(const std::string& key, const LedBenchOptions& options) {
+  const LedBenchSection& section = FindSection(key);
   BenchContext context;
-  context.progress = &progress;
+  nlohmann::json record =
+      RecordSection([&](nlohmann::json* summary, output::HtmlReport* report) {
+        section.run(Sizes(options.quick), options.seed, &context, summary, report);
+      });
+  record["section"] = key;
+  record["frames"] = std::move(context.frames);
+  record["stage_times"] = context.times.ToJson();
+  return record;
+}
+
+void WriteLedBenchOutputs(const LedBenchOptions& options,
+                          const std::vector<nlohmann::json>& section_records,
+                          nlohmann::json* summary, output::HtmlReport* report) {
+  std::optional<output::CsvWriter> frames_csv;
   if (!options.frames_csv_path.empty()) {
     frames_csv.emplace(options.frames_csv_path, kFramesCsvColumns);
-    context.frames_csv = &*frames_csv;
   }
-  for (const LedBenchSection* section : selected) {
-    section->run(sizes, options.seed, &context, summary, report);
+  StageTimeSamples times;
+  for (const nlohmann::json& record : section_records) {
+    AddSectionRecord(record, summary, report);
+    times.Append(record.at("stage_times"));
+    if (frames_csv) WriteRecordedCsvRows(record.at("frames"), &*frames_csv);
   }
-  progress.Finish();
   if (frames_csv) frames_csv->Close();
-  WriteTiming(context.times, summary, report);
+  WriteTiming(times, summary, report);
   nlohmann::json acceptance = nlohmann::json::object();
-  for (const LedBenchSection* section : selected) {
-    section->accept((*summary)[section->key], &acceptance);
+  for (const nlohmann::json& record : section_records) {
+    const std::string key = record.at("section").get<std::string>();
+    FindSection(key).accept((*summary)[key], &acceptance);
   }
   (*summary)["acceptance"] = acceptance;
   report->AddSection("Acceptance (issues 6 and 22)");

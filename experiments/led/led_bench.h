@@ -39,9 +39,22 @@ struct LedBenchOptions {
 // The section keys in the order they run.
 std::vector<std::string> LedBenchSectionKeys();
 
-// Fills (*summary)[section] for every section selected and adds plots and tables to *report.
-// Throws std::invalid_argument naming an unknown key of options.only.
-void RunLedBench(const LedBenchOptions& options, nlohmann::json* summary,
-                 output::HtmlReport* report);
+// The sections to run: options.only in LedBenchSectionKeys() order, or all when empty.
+// std::invalid_argument naming an unknown key.
+std::vector<std::string> SelectedLedBenchSections(const LedBenchOptions& options);
+
+// Runs section `key` on its own (each section has its own target, seeds and frame indices, so it
+// tracks the same frames whatever else runs): its record {"section", "summary" (its figures
+// under its key), "report" (its blocks), "frames" (its frames.csv rows), "stage_times" (samples
+// for the timing section), "wall_time_s"} (experiments/bench/section_record.h).
+// std::invalid_argument for an unknown key.
+nlohmann::json RunLedBenchSection(const std::string& key, const LedBenchOptions& options);
+
+// The bench's outputs from the records of the sections run, in LedBenchSectionKeys() order: every
+// section's figures into *summary and blocks into *report, then timing (over the sections' stage
+// times) and acceptance; frames.csv to options.frames_csv_path when set.
+void WriteLedBenchOutputs(const LedBenchOptions& options,
+                          const std::vector<nlohmann::json>& section_records,
+                          nlohmann::json* summary, output::HtmlReport* report);
 
 }  // namespace aperture::experiments

@@ -4,6 +4,7 @@
 
 #include "output/acceptance_outcome.h"
 #include "output/html_report.h"
+#include "output/report_page.h"
 
 namespace aperture::experiments {
 namespace {
@@ -39,7 +40,7 @@ class MononavMonteCarloBench : public MonteCarloBench {
       for (const MononavFlight& flight : FlyMononavLayout(options_, k)) {
         flights.push_back(MononavFlightToJson(flight));
       }
-      return flights;
+      return nlohmann::json{{"flights", flights}};
     });
   }
 
@@ -62,10 +63,7 @@ class MononavMonteCarloBench : public MonteCarloBench {
     options.flights_csv_path = out.Path("flights.csv");
     output::HtmlReport report("aperture bench mononav");
     WriteMononavSections(options, flights, &summary, &report);
-    report.AddOutcome(output::AcceptanceOutcome(summary["acceptance"]));
-    report.AddRunDescription(summary, out.ElapsedSeconds());
-    report.AddCollapsedTable(summary, "Every figure of summary.json");
-    report.Write(out.Path("report.html"));
+    output::WriteReportPage(report, output::AcceptanceOutcome(summary["acceptance"]), out);
   }
 
   std::string DescribeOutcome(const nlohmann::json& summary) const override {

@@ -7,8 +7,13 @@
 #include <memory>
 #include <optional>
 #include <random>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "control/so3.h"
+#include "experiments/bench/section_record.h"
 #include "output/csv_writer.h"
 #include "output/svg_plot.h"
 #include "perception/camera/pinhole_camera.h"
@@ -26,6 +31,9 @@ using perception::TagPoseCandidate;
 constexpr double kDetectionTagSize_m = 0.16;
 constexpr double kFlipThreshold_deg = 10.0;  // a chosen rotation further off is a flip
 const char* const kFamilies[] = {"tag36h11", "tag16h5", "tag25h9", "tagStandard41h12"};
+const std::vector<std::string> kFramesCsvColumns{
+    "detector", "family", "distance_m", "angle_deg", "blur", "detected", "translation_error_m",
+    "rotation_error_deg", "ms"};
 
 double RotationErrorDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   return control::LogSo3(a.linear().transpose() * b.linear()).norm() * 180.0 / M_PI;
@@ -121,8 +129,9 @@ DetectionFrame RenderDetectionFrame(const std::string& family, int id, std::mt19
   return frame;
 }
 
+// frames.csv rows (kFramesCsvColumns) into *frames_csv_rows.
 void RunDetection(const TagBenchOptions& options, nlohmann::json* summary,
-                  output::HtmlReport* report) {
+                  output::HtmlReport* report, nlohmann::json* frames_csv_rows) {
   const perception::PinholeCamera camera(640, 480, {320.0, 320.0, 319.5, 239.5});
   std::mt19937 rng(static_cast<std::uint32_t>(options.seed));
   sim::RayCaster caster;
@@ -132,13 +141,6 @@ void RunDetection(const TagBenchOptions& options, nlohmann::json* summary,
     for (int k = 0; k < frames_per_family; ++k) {
       frames.push_back(RenderDetectionFrame(family, k % 20, &rng, camera, &caster));
     }
-  }
-  std::unique_ptr<output::CsvWriter> csv;
-  if (!options.frames_csv_path.empty()) {
-    csv = std::make_unique<output::CsvWriter>(
-        options.frames_csv_path,
-        std::vector<std::string>{"detector", "family", "distance_m", "angle_deg", "blur",
-                                 "detected", "translation_error_m", "rotation_error_deg", "ms"});
   }
   nlohmann::json section = nlohmann::json::object();
   std::vector<output::NamedValues> time_groups;
@@ -186,10 +188,9 @@ void RunDetection(const TagBenchOptions& options, nlohmann::json* summary,
           translation_errors.push_back(t_error);
           rotation_errors.push_back(r_error);
         }
-        if (csv) {
-          csv->WriteCells({name, std::string(family), frame.distance_m, frame.angle_deg,
-                           double(frame.blur), double(pose.has_value()), t_error, r_error, ms});
-        }
+        frames_csv_rows->push_back({name, std::string(family), frame.distance_m, frame.angle_deg,
+                                    double(frame.blur), double(pose.has_value()), t_error,
+                                    r_error, ms});
       }
       nlohmann::json rates = nlohmann::json::object();
       for (const auto& [bin, counts] : by_distance) {
@@ -209,7 +210,6 @@ void RunDetection(const TagBenchOptions& options, nlohmann::json* summary,
       time_groups.push_back({name + " " + family, times_ms});
     }
   }
-  if (csv) csv->Close();
   (*summary)["detection"] = section;
   report->AddSection("Detection per detector and family");
   report->AddParagraph("Single " + std::to_string(kDetectionTagSize_m) +
@@ -419,10 +419,40 @@ void RunMapping(const TagBenchOptions& options, nlohmann::json* summary,
 
 }  // namespace
 
-void RunTagBench(const TagBenchOptions& options, nlohmann::json* summary,
-                 output::HtmlReport* report) {
-  RunDetection(options, summary, report);
-  RunMapping(options, summary, report);
+std::vector<std::string> TagBenchSectionKeys() { return {"detection", "mapping"}; }
+
+nlohmann::json RunTagBenchSection(const std::string& key, const TagBenchOptions& options) {
+  nlohmann::json frames = nlohmann::json::array();
+  nlohmann::json record;
+  if (key == "detection") {
+    record = RecordSection([&](nlohmann::json* summary, output::HtmlReport* report) {
+      RunDetection(options, summary, report, &frames);
+    });
+  } else if (key == "mapping") {
+    record = RecordSection([&](nlohmann::json* summary, output::HtmlReport* report) {
+      RunMapping(options, summary, report);
+    });
+  } else {
+    throw std::invalid_argument("bench tags: unknown section '" + key +
+                                "'; known: detection, mapping");
+  }
+  record["section"] = key;
+  record["frames"] = std::move(frames);
+  return record;
+}
+
+void WriteTagBenchOutputs(const TagBenchOptions& options,
+                          const std::vector<nlohmann::json>& section_records,
+                          nlohmann::json* summary, output::HtmlReport* report) {
+  std::optional<output::CsvWriter> frames_csv;
+  if (!options.frames_csv_path.empty()) {
+    frames_csv.emplace(options.frames_csv_path, kFramesCsvColumns);
+  }
+  for (const nlohmann::json& record : section_records) {
+    AddSectionRecord(record, summary, report);
+    if (frames_csv) WriteRecordedCsvRows(record.at("frames"), &*frames_csv);
+  }
+  if (frames_csv) frames_csv->Close();
 }
 
 }  // namespace aperture::experiments

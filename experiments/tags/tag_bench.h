@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "output/html_report.h"
 #include "perception/tags/tag_detector_registry.h"
@@ -29,7 +30,19 @@ struct TagBenchOptions {
   std::string frames_csv_path;  // per detection frame of the detection section; empty = none
 };
 
-void RunTagBench(const TagBenchOptions& options, nlohmann::json* summary,
-                 output::HtmlReport* report);
+// The section keys in the order they run: "detection", "mapping".
+std::vector<std::string> TagBenchSectionKeys();
+
+// Runs section `key` on its own (each draws from options.seed alone, so it gives the same
+// figures whatever else runs): its record {"section", "summary" (its keys; mapping also writes
+// "acceptance"), "report" (its blocks), "frames" (detection: its frames.csv rows), "wall_time_s"}
+// (experiments/bench/section_record.h). std::invalid_argument for an unknown key.
+nlohmann::json RunTagBenchSection(const std::string& key, const TagBenchOptions& options);
+
+// The bench's outputs from the records of the sections run, in order: figures into *summary,
+// blocks into *report, frames.csv to options.frames_csv_path when set.
+void WriteTagBenchOutputs(const TagBenchOptions& options,
+                          const std::vector<nlohmann::json>& section_records,
+                          nlohmann::json* summary, output::HtmlReport* report);
 
 }  // namespace aperture::experiments

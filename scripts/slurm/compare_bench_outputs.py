@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """Compares two output folders of one Monte-Carlo bench (e.g. an unsharded run and a merge of
-its shards): summary.json and trials.csv must be equal but for what each process measures for
-itself (wall and CPU times, cost, merged_from). Exit 0 when equal, 1 naming the first difference.
+its shards): summary.json and every CSV file (trials.csv, frames.csv, flights.csv) must be equal
+but for what each process measures for itself (wall and CPU times, cost, merged_from, the
+section benches' and mononav's stage timings "timing"). Exit 0 when equal, 1 naming the first
+difference.
 
     compare_bench_outputs.py WHOLE_DIR MERGED_DIR
 """
@@ -10,7 +12,7 @@ import json
 import sys
 from pathlib import Path
 
-MEASURED = {"wall_time_s", "cost", "merged_from"}
+MEASURED = {"wall_time_s", "cost", "merged_from", "timing"}
 
 
 def figures(path):
@@ -23,7 +25,9 @@ def figures(path):
 
 
 def table(path):
-    with open(Path(path, "trials.csv"), newline="") as f:
+    if not path.exists():
+        return None
+    with open(path, newline="") as f:
         rows = list(csv.reader(f))
     drop = rows[0].index("wall_time_s") if rows and "wall_time_s" in rows[0] else None
     return [[c for i, c in enumerate(r) if i != drop] for r in rows]
@@ -56,14 +60,17 @@ def main():
         print(__doc__, file=sys.stderr)
         return 2
     whole, merged = sys.argv[1:]
-    for name, a, b in (("summary.json", figures(whole), figures(merged)),
-                       ("trials.csv", table(whole), table(merged))):
+    csv_names = sorted(p.name for p in Path(whole).glob("*.csv"))
+    pairs = [("summary.json", figures(whole), figures(merged))]
+    pairs += [(name, table(Path(whole, name)), table(Path(merged, name))) for name in csv_names]
+    for name, a, b in pairs:
         difference = first_difference(a, b)
         if difference:
             print(f"compare: {name} differs at {difference}", file=sys.stderr)
             return 1
     trials = len(figures(whole).get("per_trial", []))
-    print(f"compare: summary.json and trials.csv equal ({trials} trials)")
+    print(f"compare: summary.json and {', '.join(csv_names) or 'no CSV'} equal ({trials} "
+          "per-trial entries)")
     return 0
 
 

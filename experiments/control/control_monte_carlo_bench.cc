@@ -1,0 +1,132 @@
+#include "experiments/control/control_monte_carlo_bench.h"
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "experiments/bench/section_record.h"
+#include "experiments/control/control_bench_sections.h"
+#include "output/html_report.h"
+#include "output/report_page.h"
+#include "sim/control_params_io.h"
+#include "sim/sim_params_io.h"
+
+namespace aperture::experiments {
+namespace {
+
+class ControlMonteCarloBench : public MonteCarloBench {
+ public:
+  explicit ControlMonteCarloBench(const nlohmann::json& configuration) {
+    nlohmann::json config;
+    try {
+      const nlohmann::json& o = configuration.at("options");
+      options_.seed = o.at("seed").get<std::uint64_t>();
+      options_.quick = o.at("quick").get<bool>();
+      options_.recovery_trials = o.at("recovery_trials").get<int>();
+      only_ = o.at("only").get<std::vector<std::string>>();
+      config = configuration.at("config");
+    } catch (const nlohmann::json::exception& e) {
+      throw std::invalid_argument(std::string("bench control configuration: ") + e.what());
+    }
+    sections_ = SelectControlBenchSections(only_);
+    // JSON is YAML: the tree reads the recorded configuration as it reads a --config file.
+    config::ConfigTree tree;
+    if (!config.is_null()) tree.MergeYaml(config.dump(), "bench control configuration");
+    ReadControlBenchVehicle(&tree, &options_);
+    // The full effective vehicle and control stack (`--config OUT/summary.json` repeats them).
+    configuration_ =
+        ControlBenchConfiguration(options_, only_, nlohmann::json::parse(tree.ToJson()));
+  }
+
+  const nlohmann::json& configuration() const override { return configuration_; }
+
+  TrialRange run() const override { return {0, static_cast<int>(sections_.size())}; }
+
+  std::vector<nlohmann::json> RunTrials(
+      const TrialRange& trials, int threads,
+      const std::function<void(int)>& on_trial_done) const override {
+    return RunTrialsInOrder(trials, threads, on_trial_done, [&](int k) {
+      const ControlBenchSection& section = sections_.at(static_cast<std::size_t>(k));
+      nlohmann::json record =
+          RecordSection([&](nlohmann::json* summary, output::HtmlReport* report) {
+            section.run(options_, summary, report);
+          });
+      record["section"] = section.key;
+      return record;
+    });
+  }
+
+  void WriteOutputs(const std::vector<nlohmann::json>& records,
+                    output::OutputFolder& out) const override {
+    nlohmann::json& summary = out.summary();
+    nlohmann::json keys = nlohmann::json::array();
+    for (const auto& section : sections_) keys.push_back(section.key);
+    summary["inputs"] = {{"seed", options_.seed},
+                         {"quick", options_.quick},
+                         {"recovery_trials", options_.recovery_trials},
+                         {"sections", keys}};
+    summary["config"] = configuration_["config"];
+    output::HtmlReport report("aperture bench control");
+    report.AddParagraph(
+        "Control-stack comparisons of issue 4 on the simulated bench vehicle (rotor "
+        "drag d_x = 0.5, d_y = 0.35 1/s, motor lag and kappa(f) of G.6.1, IMU "
+        "noise), seed " +
+        std::to_string(options_.seed) +
+        (options_.quick ? ", quick mode (shorter flights, fewer trials)" : ""));
+    for (const nlohmann::json& record : records) {
+      AddSectionRecord(record, &summary, &report);
+      summary["timing"][record.at("section").get<std::string>() + "_s"] = record["wall_time_s"];
+    }
+    // The sections compare controllers; their figures against the thesis are in each section.
+    output::WriteReportPage(report,
+                            {"done",
+                             std::to_string(sections_.size()) +
+                                 " section(s) of the control bench: " + keys.dump() + ".",
+                             {}},
+                            out);
+    summary["outputs"] = {{"report", "report.html"}};
+  }
+
+  std::string DescribeOutcome(const nlohmann::json& summary) const override {
+    return "aperture bench control: " + std::to_string(sections_.size()) + " section(s) " +
+           summary["inputs"]["sections"].dump();
+  }
+
+ private:
+  ControlBenchOptions options_;
+  std::vector<std::string> only_;
+  std::vector<ControlBenchSection> sections_;
+  nlohmann::json configuration_;
+};
+
+}  // namespace
+
+void ReadControlBenchVehicle(config::ConfigTree* tree, ControlBenchOptions* options) {
+  config::ParamReader root = tree->Reader();
+  root.ReadSection("control", &options->control);
+  root.ReadSection("dynamics", &options->dynamics);
+  root.ReadSection("imu", &options->imu);
+  root.ReadSection("range", &options->range);
+  root.RejectUnknownKeys();
+  tree->PutParams("control", options->control);
+  tree->PutParams("dynamics", options->dynamics);
+  tree->PutParams("imu", options->imu);
+  tree->PutParams("range", options->range);
+}
+
+nlohmann::json ControlBenchConfiguration(const ControlBenchOptions& options,
+                                         const std::vector<std::string>& only,
+                                         const nlohmann::json& config) {
+  return {{"options",
+           {{"seed", options.seed},
+            {"quick", options.quick},
+            {"recovery_trials", options.recovery_trials},
+            {"only", only}}},
+          {"config", config}};
+}
+
+std::unique_ptr<MonteCarloBench> MakeControlMonteCarloBench(const nlohmann::json& configuration) {
+  return std::make_unique<ControlMonteCarloBench>(configuration);
+}
+
+}  // namespace aperture::experiments
