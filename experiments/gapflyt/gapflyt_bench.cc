@@ -109,8 +109,7 @@ GapflytTrialConfig DrawGapflytTrial(const GapflytBenchOptions& options, int tria
     // The narrowest passage tight_margin_m wider than the vehicle, for this shape and its corners.
     const sim::Scenario scenario = sim::BuildScenario(TrialScenarioParams(options, config));
     config.size_m.x() = TightOpeningWidthM(
-        OpeningFromScene(scenario.scene()), config.size_m.x(),
-        LevelFootprint(control::VehicleParameters{}, sim::CollisionParams{}),
+        OpeningFromScene(scenario.scene()), config.size_m.x(), BenchFootprint(),
         options.tight_margin_m);
   }
   return config;

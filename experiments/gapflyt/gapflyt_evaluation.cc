@@ -8,18 +8,12 @@
 #include <variant>
 
 #include "experiments/gap/gap_trial_evaluation.h"
+#include "planning/gapflyt/footprint_placement.h"
 
 namespace aperture::experiments {
 namespace {
 
 constexpr int kEllipseVertices = 64;
-
-double DistanceToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
-                         const Eigen::Vector2d& b) {
-  const Eigen::Vector2d ab = b - a;
-  const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-18), 0.0, 1.0);
-  return (a + t * ab - p).norm();
-}
 
 }  // namespace
 
@@ -37,19 +31,7 @@ Eigen::Vector2d GapflytOpening::Centroid() const {
 }
 
 double GapflytOpening::SignedDistance(const Eigen::Vector2d& p) const {
-  bool inside = false;
-  double distance = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0, j = polygon_O.size() - 1; i < polygon_O.size(); j = i++) {
-    const Eigen::Vector2d& a = polygon_O[i];
-    const Eigen::Vector2d& b = polygon_O[j];
-    // Even-odd crossing test of the ray +x from p.
-    if ((a.y() > p.y()) != (b.y() > p.y()) &&
-        p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x()) {
-      inside = !inside;
-    }
-    distance = std::min(distance, DistanceToSegment(p, a, b));
-  }
-  return inside ? distance : -distance;
+  return planning::PolygonSignedDistance(polygon_O, p);
 }
 
 GapflytOpening OpeningFromScene(const sim::Scene& scene, const std::string& name) {

@@ -1,5 +1,7 @@
 #include "planning/gapflyt/gapflyt_mission.h"
 
+#include "planning/gapflyt/footprint_placement.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -51,6 +53,8 @@ void GapflytMissionParams::Validate() const {
   control::RequirePositive(max_servo_accel_mps2, "GapflytMissionParams.max_servo_accel_mps2");
   control::RequirePositive(go_through_speed_mps, "GapflytMissionParams.go_through_speed_mps");
   control::RequireNonNegative(max_aim_correction_m, "GapflytMissionParams.max_aim_correction_m");
+  control::RequireNonNegative(body_radius_m, "GapflytMissionParams.body_radius_m");
+  control::RequireNonNegative(propeller_radius_m, "GapflytMissionParams.propeller_radius_m");
   control::RequirePositive(go_through_distance_m, "GapflytMissionParams.go_through_distance_m");
   control::RequireNonNegative(stop_hold_s, "GapflytMissionParams.stop_hold_s");
   control::RequireAtLeast(max_lost_frames, 1, "GapflytMissionParams.max_lost_frames");
@@ -282,14 +286,32 @@ Eigen::Vector3d GapflytMission::AimCorrection() const {
   const Eigen::Vector3d forward_W =
       Eigen::AngleAxisd(heading_rad_, Eigen::Vector3d::UnitZ()) * Eigen::Vector3d::UnitX();
   const double wall_m = wall_at_scan_m - (estimate().p_WB - detection_p_W_).dot(forward_W);
+  // Image points on the wall, in the level body frame: from the camera's optical centre (its
+  // lever arm on the body) along the level-view ray to the wall.
+  const auto on_wall_B = [&](const Eigen::Vector2d& n) -> std::optional<Eigen::Vector3d> {
+    const Eigen::Vector3d ray_B = T_BC_.linear() * n.homogeneous();
+    if (!(ray_B.x() > 1e-6)) return std::nullopt;
+    return T_BC_.translation() + ray_B * (wall_m / ray_B.x());
+  };
   const std::optional<std::vector<Eigen::Vector2d>> safe_n =
       LevelNormalized({last_track_->safe_point_px});
   if (!safe_n || !(wall_m > 0.0)) return zero;
-  // The safe point's level-camera ray in the level body (heading) frame, scaled to the wall.
-  const Eigen::Vector3d ray_B = T_BC_.linear() * safe_n->front().homogeneous();
-  if (!(ray_B.x() > 1e-6)) return zero;
-  // From the camera's optical centre (its lever arm on the body) along the ray to the wall.
-  Eigen::Vector3d offset_B = T_BC_.translation() + ray_B * (wall_m / ray_B.x());
+  const std::optional<Eigen::Vector3d> safe_B = on_wall_B(safe_n->front());
+  if (!safe_B) return zero;
+  Eigen::Vector3d offset_B = *safe_B;
+  // The contour on the wall in the plane's (right, down) = (-y_B, -z_B) coordinates.
+  std::vector<Eigen::Vector2d> polygon;
+  if (const auto contour_n = LevelNormalized(last_track_->contour_px)) {
+    for (const Eigen::Vector2d& n : *contour_n) {
+      if (const auto p_B = on_wall_B(n)) polygon.emplace_back(-p_B->y(), -p_B->z());
+    }
+  }
+  const FootprintPlacement best = BestFootprintPlacement(
+      polygon, LevelFootprint(vehicle_, params_.body_radius_m, params_.propeller_radius_m),
+      Eigen::Vector2d(-safe_B->y(), -safe_B->z()));
+  if (polygon.size() == last_track_->contour_px.size() && best.clearance_m > 0.0) {
+    offset_B = Eigen::Vector3d(0.0, -best.center.x(), -best.center.y());
+  }
   offset_B.x() = 0.0;  // only sideways and vertically: the line still runs along the heading
   if (offset_B.norm() > params_.max_aim_correction_m) {
     offset_B *= params_.max_aim_correction_m / offset_B.norm();

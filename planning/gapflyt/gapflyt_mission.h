@@ -124,11 +124,17 @@ struct GapflytMissionParams {
   // reaches the PID's 1 m/s in 1 s.
   double max_servo_accel_mps2 = 1.0;
   double go_through_speed_mps = 1.0;
-  // At the commit the blind line is aimed through the last tracked safe point: its level-view
-  // bearing times the wall's distance (TS²P's wall parallax over the scan's mean baseline, minus
-  // the odometry's forward travel since) moves the line sideways and vertically by at most this
-  // much [m] (0 = straight ahead from where the vehicle committed, as the paper).
-  double max_aim_correction_m = 0.15;
+  // At the commit the blind line is aimed where the vehicle fits best in the last tracked
+  // contour (footprint_placement.h), or through its safe point when it fits nowhere: the contour
+  // is put on the wall through its level-view bearings and the wall's distance (TS²P's wall
+  // parallax over the scan's mean baseline, minus the odometry's forward travel since); the line
+  // moves sideways and vertically by at most this much [m] (0 = straight ahead from where the
+  // vehicle committed, as the paper).
+  double max_aim_correction_m = 0.25;
+  // The vehicle's footprint in the opening's plane for that aim: body sphere and propeller disk
+  // radii [m] (the rotor positions come from the vehicle parameters).
+  double body_radius_m = 0.08;
+  double propeller_radius_m = 0.0635;
   // Blind distance after the commit [m]: past a wall the commit view puts at ~0.6-1 m, short of a
   // background ~2 m behind it (seed 002: 0Z_B - 0Z_F ~ 3.1 m).
   double go_through_distance_m = 1.8;

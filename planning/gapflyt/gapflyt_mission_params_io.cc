@@ -30,6 +30,8 @@ void LoadParams(config::ParamReader& reader, GapflytMissionParams* params) {
   reader.Read("max_servo_accel_mps2", &params->max_servo_accel_mps2);
   reader.Read("go_through_speed_mps", &params->go_through_speed_mps);
   reader.Read("max_aim_correction_m", &params->max_aim_correction_m);
+  reader.Read("body_radius_m", &params->body_radius_m);
+  reader.Read("propeller_radius_m", &params->propeller_radius_m);
   reader.Read("go_through_distance_m", &params->go_through_distance_m);
   reader.Read("stop_hold_s", &params->stop_hold_s);
   reader.Read("max_lost_frames", &params->max_lost_frames);

@@ -17,7 +17,9 @@
 //     max_servo_speed_mps: 1.2
 //     max_servo_accel_mps2: 1.0
 //     go_through_speed_mps: 1.0
-//     max_aim_correction_m: 0.15   # 0 = straight ahead from the commit (the paper)
+//     max_aim_correction_m: 0.25   # 0 = straight ahead from the commit (the paper)
+//     body_radius_m: 0.08
+//     propeller_radius_m: 0.0635
 //     go_through_distance_m: 1.8
 //     stop_hold_s: 1.0
 //     max_lost_frames: 3

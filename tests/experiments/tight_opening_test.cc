@@ -20,16 +20,15 @@ GapflytOpening Rectangle(double width_m, double height_m) {
 }
 
 // Half the footprint's width and height (the disks' outer extents).
-Eigen::Vector2d HalfExtent(const std::vector<FootprintDisk>& footprint) {
+Eigen::Vector2d HalfExtent(const std::vector<planning::FootprintDisk>& footprint) {
   Eigen::Vector2d half = Eigen::Vector2d::Zero();
-  for (const FootprintDisk& disk : footprint) {
-    half = half.cwiseMax(disk.offset_O.cwiseAbs() + Eigen::Vector2d::Constant(disk.radius_m));
+  for (const planning::FootprintDisk& disk : footprint) {
+    half = half.cwiseMax(disk.offset.cwiseAbs() + Eigen::Vector2d::Constant(disk.radius_m));
   }
   return half;
 }
 
-const std::vector<FootprintDisk> kFootprint =
-    LevelFootprint(control::VehicleParameters{}, sim::CollisionParams{});
+const std::vector<planning::FootprintDisk> kFootprint = BenchFootprint();
 
 TEST(TightOpeningTest, LevelFootprintSpansTheRotorDisks) {
   const control::VehicleParameters vehicle;
@@ -44,7 +43,7 @@ TEST(TightOpeningTest, LevelFootprintSpansTheRotorDisks) {
 TEST(TightOpeningTest, RectangleClearanceAndTightWidthAreAnalytic) {
   const Eigen::Vector2d half = HalfExtent(kFootprint);
   // Centred in a 0.6 x 0.5 m rectangle the footprint clears the sides by 0.3 - half.x.
-  EXPECT_NEAR(BestFootprintClearanceM(Rectangle(0.6, 0.5), kFootprint), 0.3 - half.x(), 5e-4);
+  EXPECT_NEAR(planning::BestFootprintPlacement(Rectangle(0.6, 0.5).polygon_O, kFootprint).clearance_m, 0.3 - half.x(), 5e-4);
   // Tight: the rectangle's width is the footprint's width plus the margin.
   const double width = TightOpeningWidthM(Rectangle(1.0, 0.8), 1.0, kFootprint, 0.05);
   EXPECT_NEAR(width, 2.0 * half.x() + 0.05, 1e-3);
@@ -66,7 +65,7 @@ TEST(TightOpeningTest, EveryShapeAtItsTightWidthLeavesHalfTheMargin) {
     const double width = TightOpeningWidthM(opening, 1.0, kFootprint, 0.05);
     params.gapflyt.size_m.x() = width;
     const GapflytOpening tight = OpeningFromScene(sim::BuildScenario(params).scene());
-    EXPECT_NEAR(BestFootprintClearanceM(tight, kFootprint), 0.025, 1e-3) << shape;
+    EXPECT_NEAR(planning::BestFootprintPlacement(tight.polygon_O, kFootprint).clearance_m, 0.025, 1e-3) << shape;
     if (shape == "ellipse") ellipse_width = width;
     if (shape == "star") star_width = width;
   }
