@@ -4,8 +4,8 @@
 //   aperture bench tags --out DIR [--seed S] [--quick]
 //
 // Writes DIR/summary.json (sections detection, mapping, acceptance; see
-// experiments/tags/tag_bench.h), DIR/frames.csv (every detection-section frame per detector) and
-// DIR/report.html.
+// experiments/tags/tag_bench.h), DIR/frames.csv (every detection-section frame per detector),
+// DIR/observations.csv (every tag observation of the mapping pass) and DIR/report.html.
 #include <memory>
 #include <string>
 
@@ -45,6 +45,7 @@ void AddBenchTagsCommand(CLI::App& bench, int* exit_code) {
       bench_options.quick = options->quick;
       bench_options.detectors.Register(servo::kVispTagDetectorName, &servo::CreateVispTagDetector);
       bench_options.frames_csv_path = out.Path("frames.csv");
+      bench_options.observations_csv_path = out.Path("observations.csv");
       experiments::RunTagBench(bench_options, &out.summary(), &report);
       report.Write(out.Path("report.html"));
     });

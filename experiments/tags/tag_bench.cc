@@ -299,6 +299,16 @@ void RunMapping(const TagBenchOptions& options, nlohmann::json* summary,
   std::optional<Eigen::Isometry3d> T_WC_previous, T_OC;
   int flips_resolved = 0, flips_unresolved = 0, posed = 0, frame_index = 0;
   std::vector<double> t_axis, detections_per_frame, corner_errors_px;
+  std::optional<output::CsvWriter> observations_csv;
+  if (!options.observations_csv_path.empty()) {
+    observations_csv.emplace(
+        options.observations_csv_path,
+        std::vector<std::string>{"frame", "id", "size_m", "true_x_m", "true_y_m", "true_z_m",
+                                 "x_m", "y_m", "z_m", "sigma_x_m", "sigma_y_m", "sigma_z_m",
+                                 "rotation_error_deg", "view_angle_deg", "corner_outward_px",
+                                 "best_rms_px", "alternative_rms_px",
+                                 "lowest_error_rotation_error_deg"});
+  }
   for (int lane = 0; lane < 4; ++lane) {
     for (int k = 0; k < frames_per_lane; ++k, ++frame_index) {
       const double along = -0.5 + 7.0 * k / (frames_per_lane - 1);
@@ -317,20 +327,45 @@ void RunMapping(const TagBenchOptions& options, nlohmann::json* summary,
       std::vector<perception::TagPoseInImage> posed_tags;
       std::vector<perception::TagMapObservation> resolved, unresolved;
       std::vector<Eigen::Isometry3d> truth;
+      std::vector<std::vector<double>> rows;  // of observations.csv, completed below
       for (const perception::TagResult& tag : result.tags) {
         const int object = scenario.scene().FindId("tag" + std::to_string(tag.detection.id));
         if (!tag.pose || object < 0) continue;
         posed_tags.push_back({tag.detection.family, tag.detection.id, *tag.pose});
         truth.push_back(T_WC.inverse() * scenario.scene().object(object).T_WO);
-        for (int c = 0; c < 4; ++c) {  // detected corners against the projected truth
+        // Detected corners against the projected truth; `outward`: along the line from the
+        // projected centre through the corner (> 0: the tag looks larger, i.e. nearer).
+        Eigen::Vector2d centre_px;
+        const bool centre_ok = camera.model->Project(truth.back().translation(), &centre_px);
+        double outward_px = 0.0;
+        int projected = 0;
+        for (int c = 0; c < 4; ++c) {
           Eigen::Vector2d corner_px;
           if (camera.model->Project(truth.back() * perception::TagCorner(c, tag.size_m),
                                     &corner_px)) {
-            corner_errors_px.push_back((corner_px - tag.detection.corners_px[c]).norm());
+            const Eigen::Vector2d error_px = tag.detection.corners_px[c] - corner_px;
+            corner_errors_px.push_back(error_px.norm());
+            if (centre_ok) outward_px += error_px.dot((corner_px - centre_px).normalized());
+            ++projected;
           }
         }
         resolved.push_back({tag.detection.family, tag.detection.id, tag.size_m, tag.chosen().T_CT,
                             tag.chosen().covariance});
+        if (observations_csv) {
+          const Eigen::Vector3d& p_true = truth.back().translation();
+          const Eigen::Vector3d& p = tag.chosen().T_CT.translation();
+          const Eigen::Vector3d sigma = tag.chosen().covariance.diagonal().head<3>().cwiseSqrt();
+          // View angle: between the line of sight and the tag's normal (z_T).
+          const double view_deg =
+              std::acos(std::min(1.0, p_true.normalized().dot(truth.back().linear().col(2)))) *
+              180.0 / M_PI;
+          rows.push_back({double(frame_index), double(tag.detection.id), tag.size_m, p_true.x(),
+                          p_true.y(), p_true.z(), p.x(), p.y(), p.z(), sigma.x(), sigma.y(),
+                          sigma.z(), RotationErrorDeg(tag.chosen().T_CT, truth.back()), view_deg,
+                          projected ? outward_px / projected : std::nan(""),
+                          tag.pose->best.rms_px,
+                          tag.pose->alternative ? tag.pose->alternative->rms_px : std::nan("")});
+        }
       }
       const std::vector<perception::FlipChoice> baseline = lowest_error.Resolve(t_s, posed_tags);
       for (std::size_t i = 0; i < posed_tags.size(); ++i) {
@@ -341,6 +376,10 @@ void RunMapping(const TagBenchOptions& options, nlohmann::json* summary,
         flips_resolved += RotationErrorDeg(resolved[i].T_CT, truth[i]) > kFlipThreshold_deg;
         flips_unresolved += RotationErrorDeg(plain.T_CT, truth[i]) > kFlipThreshold_deg;
         ++posed;
+        if (observations_csv) {
+          rows[i].push_back(RotationErrorDeg(plain.T_CT, truth[i]));
+          observations_csv->WriteRow(rows[i]);
+        }
       }
       // Gravity in C as the vehicle's attitude estimate gives it: the true direction, off by
       // N(0, gravity_sigma_deg) per axis (the map's own assumption).
@@ -370,6 +409,7 @@ void RunMapping(const TagBenchOptions& options, nlohmann::json* summary,
       detections_per_frame.push_back(static_cast<double>(result.tags.size()));
     }
   }
+  if (observations_csv) observations_csv->Close();
   const perception::TagMapSolveSummary solve = resolved_map.Optimize();
   unresolved_map.Optimize();
   without_odometry_map.Optimize();

@@ -27,6 +27,8 @@ struct TagBenchOptions {
   bool quick = false;  // fewer frames, same code paths (ctest smoke test)
   perception::TagDetectorRegistry detectors = perception::TagDetectorRegistry::WithBuiltins();
   std::string frames_csv_path;  // per detection frame of the detection section; empty = none
+  // Per tag observation of the mapping pass (its pose and corners against the truth); empty = none
+  std::string observations_csv_path;
 };
 
 void RunTagBench(const TagBenchOptions& options, nlohmann::json* summary,
