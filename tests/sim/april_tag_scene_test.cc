@@ -23,6 +23,21 @@ struct Case {
   double max_translation_error_m;  // per metre of distance
 };
 
+// The apriltag front end with the scenario's tag sizes, quads found at full resolution.
+perception::TagFrontEnd MakeFrontEnd(const Scenario& scenario, const ScenarioCamera& camera) {
+  perception::TagFrontEndParams params;
+  const TagsSceneParams& tags = scenario.params().tags;
+  params.size_m = tags.tag_size_m;
+  const int first_movable = 3 + tags.fixed_obstacles;
+  for (int k = 0; k < tags.movable_obstacles; ++k) {
+    params.sizes[first_movable + k] = tags.movable_tag_size_m;
+  }
+  params.detection.quad_decimate = 1.0;
+  return perception::TagFrontEnd(
+      std::make_unique<perception::AprilTagLibraryDetector>(params.detection), camera.model,
+      params);
+}
+
 class AprilTagSceneTest : public ::testing::TestWithParam<Case> {};
 
 TEST_P(AprilTagSceneTest, DetectsEveryVisibleTagAtItsTruePose) {
@@ -36,17 +51,10 @@ TEST_P(AprilTagSceneTest, DetectsEveryVisibleTagAtItsTruePose) {
   const CapturedFrame captured = camera.effects.Capture(
       caster, scenario.scene(), *camera.model, [&](double) { return T_WC; }, 0.0, 0, camera.render);
 
-  perception::TagFrontEndParams params;
-  params.size_m = scenario.params().tags.tag_size_m;
-  const int first_movable = 3 + scenario.params().tags.fixed_obstacles;
-  for (int k = 0; k < scenario.params().tags.movable_obstacles; ++k) {
-    params.sizes[first_movable + k] = scenario.params().tags.movable_tag_size_m;
-  }
-  params.detection.quad_decimate = 1.0;
-  perception::TagFrontEnd front_end(
-      std::make_unique<perception::AprilTagLibraryDetector>(params.detection), camera.model,
-      params);
+  perception::TagFrontEnd front_end = MakeFrontEnd(scenario, camera);
   const perception::TagFrameResult result = front_end.Process(captured.frame.image, 0.0);
+  const int first_movable = 3 + scenario.params().tags.fixed_obstacles;
+  const double size_m = scenario.params().tags.tag_size_m;
   // Every 0.25 m tag within 50 deg of the optical axis whose corners all project 5 px inside the
   // image is detected (nearer the fisheye's rim the tags are squeezed to a few pixels across).
   const int tag_count = first_movable + scenario.params().tags.movable_obstacles;
@@ -58,7 +66,7 @@ TEST_P(AprilTagSceneTest, DetectsEveryVisibleTagAtItsTruePose) {
     for (int k = 0; k < 4; ++k) {
       Eigen::Vector2d px;
       inside = inside &&
-               camera.model->Project(T_CT * perception::TagCorner(k, params.size_m), &px) &&
+               camera.model->Project(T_CT * perception::TagCorner(k, size_m), &px) &&
                px.x() > 5 && px.y() > 5 && px.x() < camera.model->width() - 5 &&
                px.y() < camera.model->height() - 5;
     }
@@ -117,12 +125,7 @@ TEST(AprilTagScene, CornersFollowSubPixelMotion) {
                      {"cameras.down.width=160", "cameras.down.height=120",
                       "cameras.down.fov_deg=" + std::to_string(fov_deg)})));
   const ScenarioCamera& camera = scenario.camera("down");
-  perception::TagFrontEndParams params;
-  params.size_m = scenario.params().tags.tag_size_m;
-  params.detection.quad_decimate = 1.0;
-  perception::TagFrontEnd front_end(
-      std::make_unique<perception::AprilTagLibraryDetector>(params.detection), camera.model,
-      params);
+  perception::TagFrontEnd front_end = MakeFrontEnd(scenario, camera);
   const Eigen::Isometry3d T_W0 = scenario.scene().object("tag0").T_WO;
   RayCaster caster;
   double squared_error_sum_px2 = 0.0;
@@ -145,7 +148,8 @@ TEST(AprilTagScene, CornersFollowSubPixelMotion) {
     const Eigen::Isometry3d T_CT = T_WC.inverse() * T_W0;
     for (int c = 0; c < 4; ++c) {
       Eigen::Vector2d px;
-      ASSERT_TRUE(camera.model->Project(T_CT * perception::TagCorner(c, params.size_m), &px));
+      ASSERT_TRUE(camera.model->Project(
+          T_CT * perception::TagCorner(c, scenario.params().tags.tag_size_m), &px));
       squared_error_sum_px2 += (px - origin->detection.corners_px[c]).squaredNorm();
       ++corners;
     }
