@@ -4,8 +4,9 @@
 //   aperture bench tags --out DIR [--seed S] [--quick] [--threads T] [--shard K/N]
 //
 // Writes DIR/summary.json (sections detection, mapping, acceptance; see
-// experiments/tags/tag_bench.h), DIR/frames.csv (every detection-section frame per detector) and
-// DIR/report.html, or with --shard K/N the K-th block of the two sections (a trial is a section,
+// experiments/tags/tag_bench.h), DIR/frames.csv (every detection-section frame per detector),
+// DIR/observations.csv (every tag observation of the mapping pass) and DIR/report.html, or
+// with --shard K/N the K-th block of the two sections (a trial is a section,
 // experiments/tags/tags_monte_carlo_bench.h) for `aperture bench merge`. The detectors: the
 // built-in ones and ViSP's (BenchRegistry).
 #include <memory>

@@ -34,6 +34,11 @@ const char* const kFamilies[] = {"tag36h11", "tag16h5", "tag25h9", "tagStandard4
 const std::vector<std::string> kFramesCsvColumns{
     "detector", "family", "distance_m", "angle_deg", "blur", "detected", "translation_error_m",
     "rotation_error_deg", "ms"};
+const std::vector<std::string> kObservationsCsvColumns{
+    "frame",      "id",        "size_m",    "true_x_m",          "true_y_m",
+    "true_z_m",   "x_m",       "y_m",       "z_m",               "sigma_x_m",
+    "sigma_y_m",  "sigma_z_m", "rotation_error_deg", "view_angle_deg", "corner_outward_px",
+    "best_rms_px", "alternative_rms_px", "lowest_error_rotation_error_deg"};
 
 double RotationErrorDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   return control::LogSo3(a.linear().transpose() * b.linear()).norm() * 180.0 / M_PI;
@@ -263,8 +268,10 @@ MapEvaluation EvaluateMap(const perception::TagMap& map, const sim::Scenario& sc
   return evaluation;
 }
 
+// The mapping section; one observations.csv row (kObservationsCsvColumns) per tag observation
+// into *observation_rows.
 void RunMapping(const TagBenchOptions& options, nlohmann::json* summary,
-                output::HtmlReport* report) {
+                output::HtmlReport* report, nlohmann::json* observation_rows) {
   sim::Scenario scenario = sim::BuildScenario(sim::LoadScenarioParams(
       sim::ScenarioConfig("tags", {}, {"seed=" + std::to_string(options.seed)})));
   const sim::TagsSceneParams& field = scenario.params().tags;
@@ -277,7 +284,9 @@ void RunMapping(const TagBenchOptions& options, nlohmann::json* summary,
   }
   params.detection.quad_decimate = 1.0;  // the 0.1 m movable tags are ~13 px at 2.5 m
   // The rendered corners' error against the projected truth (corner_error_*_px below): median
-  // ~0.17 px, 90 % ~0.4 px; the default 1 px would weight the tags 1/25 against gravity.
+  // ~0.11 px, 90 % ~0.22 px, partly systematic (0.1 m tags look ~0.13 px smaller per corner;
+  // edges parallel to the pixel rows); the default 1 px would weight the tags 1/25 against
+  // gravity, 0.15 px (the white part alone) gave larger map errors on seeds 1-3.
   params.pose.refiner.detection_sigma_px = 0.3;
   perception::TagFrontEnd front_end(options.detectors.Create("apriltag", params.detection),
                                     camera.model, params);
@@ -317,20 +326,45 @@ void RunMapping(const TagBenchOptions& options, nlohmann::json* summary,
       std::vector<perception::TagPoseInImage> posed_tags;
       std::vector<perception::TagMapObservation> resolved, unresolved;
       std::vector<Eigen::Isometry3d> truth;
+      std::vector<std::vector<double>> rows;  // of observations.csv, completed below
       for (const perception::TagResult& tag : result.tags) {
         const int object = scenario.scene().FindId("tag" + std::to_string(tag.detection.id));
         if (!tag.pose || object < 0) continue;
         posed_tags.push_back({tag.detection.family, tag.detection.id, *tag.pose});
         truth.push_back(T_WC.inverse() * scenario.scene().object(object).T_WO);
-        for (int c = 0; c < 4; ++c) {  // detected corners against the projected truth
+        // Detected corners against the projected truth; `outward`: along the line from the
+        // projected centre through the corner (> 0: the tag looks larger, i.e. nearer).
+        Eigen::Vector2d centre_px;
+        const bool centre_ok = camera.model->Project(truth.back().translation(), &centre_px);
+        double outward_px = 0.0;
+        int projected = 0;
+        for (int c = 0; c < 4; ++c) {
           Eigen::Vector2d corner_px;
           if (camera.model->Project(truth.back() * perception::TagCorner(c, tag.size_m),
                                     &corner_px)) {
-            corner_errors_px.push_back((corner_px - tag.detection.corners_px[c]).norm());
+            const Eigen::Vector2d error_px = tag.detection.corners_px[c] - corner_px;
+            corner_errors_px.push_back(error_px.norm());
+            if (centre_ok) outward_px += error_px.dot((corner_px - centre_px).normalized());
+            ++projected;
           }
         }
         resolved.push_back({tag.detection.family, tag.detection.id, tag.size_m, tag.chosen().T_CT,
                             tag.chosen().covariance});
+        {
+          const Eigen::Vector3d& p_true = truth.back().translation();
+          const Eigen::Vector3d& p = tag.chosen().T_CT.translation();
+          const Eigen::Vector3d sigma = tag.chosen().covariance.diagonal().head<3>().cwiseSqrt();
+          // View angle: between the line of sight and the tag's normal (z_T).
+          const double view_deg =
+              std::acos(std::min(1.0, p_true.normalized().dot(truth.back().linear().col(2)))) *
+              180.0 / M_PI;
+          rows.push_back({double(frame_index), double(tag.detection.id), tag.size_m, p_true.x(),
+                          p_true.y(), p_true.z(), p.x(), p.y(), p.z(), sigma.x(), sigma.y(),
+                          sigma.z(), RotationErrorDeg(tag.chosen().T_CT, truth.back()), view_deg,
+                          projected ? outward_px / projected : std::nan(""),
+                          tag.pose->best.rms_px,
+                          tag.pose->alternative ? tag.pose->alternative->rms_px : std::nan("")});
+        }
       }
       const std::vector<perception::FlipChoice> baseline = lowest_error.Resolve(t_s, posed_tags);
       for (std::size_t i = 0; i < posed_tags.size(); ++i) {
@@ -341,6 +375,8 @@ void RunMapping(const TagBenchOptions& options, nlohmann::json* summary,
         flips_resolved += RotationErrorDeg(resolved[i].T_CT, truth[i]) > kFlipThreshold_deg;
         flips_unresolved += RotationErrorDeg(plain.T_CT, truth[i]) > kFlipThreshold_deg;
         ++posed;
+        rows[i].push_back(RotationErrorDeg(plain.T_CT, truth[i]));
+        observation_rows->push_back(rows[i]);
       }
       // Gravity in C as the vehicle's attitude estimate gives it: the true direction, off by
       // N(0, gravity_sigma_deg) per axis (the map's own assumption).
@@ -423,6 +459,7 @@ std::vector<std::string> TagBenchSectionKeys() { return {"detection", "mapping"}
 
 nlohmann::json RunTagBenchSection(const std::string& key, const TagBenchOptions& options) {
   nlohmann::json frames = nlohmann::json::array();
+  nlohmann::json observations = nlohmann::json::array();
   nlohmann::json record;
   if (key == "detection") {
     record = RecordSection([&](nlohmann::json* summary, output::HtmlReport* report) {
@@ -430,7 +467,7 @@ nlohmann::json RunTagBenchSection(const std::string& key, const TagBenchOptions&
     });
   } else if (key == "mapping") {
     record = RecordSection([&](nlohmann::json* summary, output::HtmlReport* report) {
-      RunMapping(options, summary, report);
+      RunMapping(options, summary, report, &observations);
     });
   } else {
     throw std::invalid_argument("bench tags: unknown section '" + key +
@@ -438,21 +475,27 @@ nlohmann::json RunTagBenchSection(const std::string& key, const TagBenchOptions&
   }
   record["section"] = key;
   record["frames"] = std::move(frames);
+  record["observations"] = std::move(observations);
   return record;
 }
 
 void WriteTagBenchOutputs(const TagBenchOptions& options,
                           const std::vector<nlohmann::json>& section_records,
                           nlohmann::json* summary, output::HtmlReport* report) {
-  std::optional<output::CsvWriter> frames_csv;
+  std::optional<output::CsvWriter> frames_csv, observations_csv;
   if (!options.frames_csv_path.empty()) {
     frames_csv.emplace(options.frames_csv_path, kFramesCsvColumns);
+  }
+  if (!options.observations_csv_path.empty()) {
+    observations_csv.emplace(options.observations_csv_path, kObservationsCsvColumns);
   }
   for (const nlohmann::json& record : section_records) {
     AddSectionRecord(record, summary, report);
     if (frames_csv) WriteRecordedCsvRows(record.at("frames"), &*frames_csv);
+    if (observations_csv) WriteRecordedCsvRows(record.at("observations"), &*observations_csv);
   }
   if (frames_csv) frames_csv->Close();
+  if (observations_csv) observations_csv->Close();
 }
 
 }  // namespace aperture::experiments

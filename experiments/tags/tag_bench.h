@@ -28,6 +28,8 @@ struct TagBenchOptions {
   bool quick = false;  // fewer frames, same code paths (ctest smoke test)
   perception::TagDetectorRegistry detectors = perception::TagDetectorRegistry::WithBuiltins();
   std::string frames_csv_path;  // per detection frame of the detection section; empty = none
+  // Per tag observation of the mapping pass (its pose and corners against the truth); empty = none
+  std::string observations_csv_path;
 };
 
 // The section keys in the order they run: "detection", "mapping".
@@ -40,7 +42,8 @@ std::vector<std::string> TagBenchSectionKeys();
 nlohmann::json RunTagBenchSection(const std::string& key, const TagBenchOptions& options);
 
 // The bench's outputs from the records of the sections run, in order: figures into *summary,
-// blocks into *report, frames.csv to options.frames_csv_path when set.
+// blocks into *report, frames.csv to options.frames_csv_path and observations.csv to
+// options.observations_csv_path when set.
 void WriteTagBenchOutputs(const TagBenchOptions& options,
                           const std::vector<nlohmann::json>& section_records,
                           nlohmann::json* summary, output::HtmlReport* report);

@@ -53,6 +53,7 @@ class TagsMonteCarloBench : public MonteCarloBench {
     summary["inputs"] = {{"seed", options_.seed}, {"quick", options_.quick}};
     TagBenchOptions options = options_;
     options.frames_csv_path = out.Path("frames.csv");
+    options.observations_csv_path = out.Path("observations.csv");
     output::HtmlReport report("aperture bench tags");
     WriteTagBenchOutputs(options, records, &summary, &report);
     report.Write(out.Path("report.html"));

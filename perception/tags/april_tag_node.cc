@@ -121,8 +121,7 @@ std::map<std::string, double> AprilTagNode::Metrics(const NodeContext& context) 
     if (!tag.pose) continue;
     ++posed;
     rms_sum += tag.chosen().rms_px;
-    if (tag.pose->alternative &&
-        tag.pose->ambiguity_ratio > front_end_.params().flip.max_ambiguity_ratio) {
+    if (tag.pose->alternative && !ImageDecides(*tag.pose, front_end_.params().flip)) {
       ++ambiguous;
     }
     if (tag.choice.use_alternative) ++alternatives;

@@ -24,14 +24,23 @@ std::string FlipDecisionName(FlipDecision decision) {
   return "unknown";
 }
 
+bool ImageDecides(const TagPose& pose, const TagFlipResolverParams& params) {
+  if (!pose.alternative) return false;
+  const double gap_px2 = 4.0 * (pose.alternative->rms_px * pose.alternative->rms_px -
+                                pose.best.rms_px * pose.best.rms_px);
+  return pose.ambiguity_ratio <= params.max_ambiguity_ratio && gap_px2 >= params.min_error_gap_px2;
+}
+
 TagFlipResolver::TagFlipResolver(const TagFlipResolverParams& params) : params_(params) {
   if (!(params.max_ambiguity_ratio >= 0.0 && params.max_ambiguity_ratio <= 1.0)) {
     throw std::invalid_argument("apriltag.flip.max_ambiguity_ratio = " +
                                 std::to_string(params.max_ambiguity_ratio) + " must be in [0, 1]");
   }
-  if (!(params.coplanar_tolerance_deg >= 0.0) || !(params.max_track_gap_s >= 0.0)) {
+  if (!(params.min_error_gap_px2 >= 0.0) || !(params.coplanar_tolerance_deg >= 0.0) ||
+      !(params.max_track_gap_s >= 0.0)) {
     throw std::invalid_argument(
-        "apriltag.flip: coplanar_tolerance_deg and max_track_gap_s must be >= 0");
+        "apriltag.flip: min_error_gap_px2, coplanar_tolerance_deg and max_track_gap_s must be "
+        ">= 0");
   }
 }
 
@@ -110,7 +119,7 @@ std::vector<FlipChoice> TagFlipResolver::Resolve(double t_s,
     const TagPose& pose = tags[i].pose;
     if (!pose.alternative) {
       choices[i].decision = FlipDecision::kSingle;
-    } else if (!params_.enabled || pose.ambiguity_ratio <= params_.max_ambiguity_ratio) {
+    } else if (!params_.enabled || ImageDecides(pose, params_)) {
       choices[i].decision =
           params_.enabled ? FlipDecision::kUnambiguous : FlipDecision::kLowestError;
     } else {

@@ -4,7 +4,9 @@
 // the mirrored tilt about half the time for small or head-on tags.
 //
 // Per image, for each tag with two candidates, the first rule that applies decides:
-//   unambiguous  ambiguity_ratio <= max_ambiguity_ratio: the image itself decides (best);
+//   unambiguous  ambiguity_ratio <= max_ambiguity_ratio and the alternative's summed squared
+//                corner error exceeds the best's by min_error_gap_px2: the image itself decides
+//                (best; ImageDecides);
 //   coplanar     exactly one candidate's normal z_T (in C) lies within coplanar_tolerance_deg of
 //                the normal of a tag decided by the image in the same frame (paper D's tags all
 //                lie flat on the ground or on obstacle tops);
@@ -33,6 +35,11 @@ struct TagFlipResolverParams {
   // IPPE's error ratio below which the image is trusted; head-on tags at 1-4 m in the rendered
   // bench sit at 0.4-1, tags viewed at > 30 deg well below 0.2.
   double max_ambiguity_ratio = 0.25;
+  // ... and the alternative's summed squared corner error (4 corners) must exceed the best's by
+  // this much [px^2]: a ratio of two errors that are both within the corner noise decides
+  // nothing. bench tags (0.1 m tags at ~2.3 m, 13 px wide): gaps of 0.03-0.16 px^2 both when
+  // the best is right and when it is the mirrored tilt; 0.25 m tags viewed at 30-40 deg: ~2 px^2.
+  double min_error_gap_px2 = 0.25;
   double coplanar_tolerance_deg = 15.0;  // 0 disables the coplanar rule
   double max_track_gap_s = 0.5;          // longer gaps restart the tag's history
 };
@@ -51,9 +58,13 @@ struct TagPoseInImage {
   TagPose pose;
 };
 
+// Whether the image alone decides between the two candidates (rule `unambiguous` above); false
+// without an alternative.
+bool ImageDecides(const TagPose& pose, const TagFlipResolverParams& params);
+
 class TagFlipResolver {
  public:
-  // std::invalid_argument for a ratio outside [0, 1], a negative tolerance or gap.
+  // std::invalid_argument for a ratio outside [0, 1], a negative error gap, tolerance or gap.
   explicit TagFlipResolver(const TagFlipResolverParams& params = {});
 
   // One choice per tag of the image taken at t_s (seconds, non-decreasing between calls).

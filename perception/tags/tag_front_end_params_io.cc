@@ -19,6 +19,7 @@ void LoadParams(config::ParamReader& reader, TagDetectorParams* params) {
 void LoadParams(config::ParamReader& reader, TagFlipResolverParams* params) {
   reader.Read("enabled", &params->enabled);
   reader.Read("max_ambiguity_ratio", &params->max_ambiguity_ratio);
+  reader.Read("min_error_gap_px2", &params->min_error_gap_px2);
   reader.Read("coplanar_tolerance_deg", &params->coplanar_tolerance_deg);
   reader.Read("max_track_gap_s", &params->max_track_gap_s);
 }

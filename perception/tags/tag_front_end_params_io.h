@@ -16,8 +16,8 @@
 //     size_m: 0.25                  # edge of the black border [m], every tag ...
 //     sizes: {6: 0.1, 7: 0.1}       # ... unless listed here by id
 //     corner_sigma_px: 1.0          # corner noise for the pose covariance
-//     flip: {enabled: true, max_ambiguity_ratio: 0.25, coplanar_tolerance_deg: 15,
-//            max_track_gap_s: 0.5}
+//     flip: {enabled: true, max_ambiguity_ratio: 0.25, min_error_gap_px2: 0.25,
+//            coplanar_tolerance_deg: 15, max_track_gap_s: 0.5}
 //     map: false                    # build the tag map (tag_map.yaml, tag_map.png)
 //     mapping: {origin_id: 0, origin_p_m: [0, 0, 0], origin_rpy_deg: [180, 0, 0],
 //               floor_sigma_m: 0.002, floor_sigma_rad: 0.005, gravity_sigma_deg: 1.0,

@@ -103,6 +103,7 @@ cameras:
     fov_deg: 90
     pose: {p_m: [0.0, 0.0, -0.05], rpy_deg: [180, 0, -90]}
     rate_hz: 30
+    supersampling: 3  # edges at their sub-pixel positions: the tag map needs them (issue 15)
 trajectory: {kind: line, frames: 40, end_p_m: [2.0, 5.0, 2.5]}
 tags:
   area_m: [4.0, 6.0]

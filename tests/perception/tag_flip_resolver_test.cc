@@ -60,6 +60,24 @@ TEST(TagFlipResolver, AmbiguousTagKeepsItsHistoryWithinTheGap) {
   EXPECT_EQ(choices[0].decision, FlipDecision::kLowestError);
 }
 
+TEST(TagFlipResolver, ErrorsWithinTheCornerNoiseDoNotDecide) {
+  // A small tag: ratio 0.1 as above, but both errors tiny (0.03 and 0.1 px RMS): the alternative
+  // is worse by 4 (0.1^2 - 0.03^2) = 0.036 px^2 < min_error_gap_px2, so the image does not
+  // decide; the tag follows the large tag decided in the same image (+0.3 rad, its alternative).
+  TagPoseInImage small = Ambiguous(6, -0.3, 0.3, 0.1);
+  small.pose.best.rms_px *= 0.1;
+  small.pose.alternative->rms_px *= 0.1;
+  const TagPoseInImage large = Ambiguous(1, 0.3, -0.3, 0.1);
+  const TagFlipResolverParams params;
+  EXPECT_FALSE(ImageDecides(small.pose, params));
+  EXPECT_TRUE(ImageDecides(large.pose, params));  // 4 (1 - 0.1) = 3.6 px^2
+  TagFlipResolver resolver(params);
+  const std::vector<FlipChoice> choices = resolver.Resolve(0.0, {large, small});
+  EXPECT_EQ(choices[0].decision, FlipDecision::kUnambiguous);
+  EXPECT_TRUE(choices[1].use_alternative);
+  EXPECT_EQ(choices[1].decision, FlipDecision::kCoplanar);
+}
+
 TEST(TagFlipResolver, DisabledAlwaysTakesTheLowestError) {
   TagFlipResolverParams params;
   params.enabled = false;
@@ -73,6 +91,9 @@ TEST(TagFlipResolver, DisabledAlwaysTakesTheLowestError) {
 TEST(TagFlipResolver, RejectsBadParams) {
   TagFlipResolverParams params;
   params.max_ambiguity_ratio = 1.5;
+  EXPECT_THROW(TagFlipResolver{params}, std::invalid_argument);
+  params = {};
+  params.min_error_gap_px2 = -0.1;
   EXPECT_THROW(TagFlipResolver{params}, std::invalid_argument);
 }
 
