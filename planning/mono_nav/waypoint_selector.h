@@ -19,6 +19,8 @@
 //     windows (Sec. III-D): boxes of half size sigma + delta around samples of the path must hold
 //     no EDT point; a path that fails marks its segment non-traversable and the next best is
 //     tried (the count of such rejections is the "replanning" of Table II).
+//     Beyond the paper, a path must also run through seen space (IsSeen: within the camera's
+//     horizontal field of view), and ExtendTowardsGoal continues a chosen path towards the goal.
 // Frames: B body (x forward, y left, z up), C camera (OpenCV), T_BC the camera mount. Units SI.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
