@@ -29,14 +29,17 @@ struct Configuration {
 
 using Flight = MononavFlight;
 
-// The quick course: no random obstacles, one trunk on the line to a goal 6 m away.
+// The quick course: no random obstacles, one trunk on the line to a goal 6 m away, 3 m ahead
+// (its surface 2.7 m): at 2 m the vehicle starts 1.7 m from a trunk it never saw the sides of,
+// the model puts the bark at ~0.7 m and only a sidestep out of the field of view passed it,
+// which seen-space paths forbid (docs/results/mononav.md).
 const std::vector<std::string> kQuickCourse = {"forest.trees=0",
                                                "forest.boxes=0",
                                                "forest.goal_m=[6.0, 0.0, 1.5]",
                                                "objects.trunk.shape=cylinder",
                                                "objects.trunk.radius_m=0.3",
                                                "objects.trunk.height_m=6",
-                                               "objects.trunk.pose.p_m=[2.0, 0.0, 0.0]",
+                                               "objects.trunk.pose.p_m=[3.0, 0.0, 0.0]",
                                                "objects.trunk.texture.kind=bark"};
 
 Flight Fly(const MononavBenchOptions& options, const Configuration& configuration,

@@ -53,6 +53,21 @@ void MaskGround(const cv::Mat& depth_m, const Eigen::Vector2d& patch_px,
   }
 }
 
+// The selector's parameters with max_bearing_rad no wider than the camera's horizontal field of
+// view: the smaller bearing in B of the rays through the image's left and right edge centres.
+WaypointSelectorParams WithCameraFieldOfView(WaypointSelectorParams params,
+                                             const perception::CameraModel* camera,
+                                             const Eigen::Isometry3d& T_BC) {
+  if (camera == nullptr) return params;  // the constructor rejects it
+  const double row = 0.5 * (camera->height() - 1);
+  for (const double column : {0.0, camera->width() - 1.0}) {
+    const Eigen::Vector3d ray_B = T_BC.linear() * camera->Unproject(Eigen::Vector2d(column, row));
+    params.max_bearing_rad =
+        std::min(params.max_bearing_rad, std::atan2(std::abs(ray_B.y()), ray_B.x()));
+  }
+  return params;
+}
+
 }  // namespace
 
 void ForestMissionParams::Validate() const {
@@ -64,6 +79,8 @@ void ForestMissionParams::Validate() const {
           "spline_path_points must be >= 6 (a quintic B-spline needs 6 control points)");
   require(replan_from_estimate_m > 0.0, "replan_from_estimate_m must be > 0");
   require(extension_m >= 0.0, "extension_m must be >= 0");
+  require(extension_standoff_m >= 0.0, "extension_standoff_m must be >= 0");
+  require(max_yaw_rate_radps >= 0.0, "max_yaw_rate_radps must be >= 0 (0: fixed heading)");
   require(direct_goal_distance_m >= 0.0, "direct_goal_distance_m must be >= 0");
   require(goal_reached_m > 0.0, "goal_reached_m must be > 0");
   require(goal_speed_mps > 0.0, "goal_speed_mps must be > 0");
@@ -87,7 +104,7 @@ ForestMission::ForestMission(const ForestMissionParams& params,
       T_BC_(T_BC),
       vehicle_(vehicle),
       front_ends_(MonoDepthFrontEnd(std::move(model))),
-      selector_(params.waypoints),
+      selector_(WithCameraFieldOfView(params.waypoints, camera_.get(), T_BC)),
       controller_(vehicle, params.controller),
       fusion_(params.fusion) {
   if (!camera_) throw std::invalid_argument("ForestMission: camera is null; pass the camera model");
@@ -133,7 +150,20 @@ control::TrajectoryPoint ForestMission::Reference(double t_s) const {
   }
   reference.t_s = t_s;
   reference.heading_rad = heading_rad_;
+  reference.heading_rate_radps = heading_rate_radps_;
   return reference;
+}
+
+void ForestMission::TurnTowardsGoal(const Eigen::Vector3d& p_W, double dt_s) {
+  heading_rate_radps_ = 0.0;
+  const Eigen::Vector2d to_goal = (params_.goal_W - p_W).head<2>();
+  if (to_goal.norm() <= kHoldHeadingWithinM || !(dt_s > 0.0)) return;
+  const double error = std::remainder(std::atan2(to_goal.y(), to_goal.x()) - heading_rad_,
+                                      2.0 * M_PI);
+  const double max_step = params_.max_yaw_rate_radps * dt_s;
+  const double step = std::clamp(error, -max_step, max_step);
+  heading_rad_ = std::remainder(heading_rad_ + step, 2.0 * M_PI);
+  heading_rate_radps_ = step / dt_s;
 }
 
 void ForestMission::OnFrame(const perception::Frame& frame) {
@@ -168,9 +198,11 @@ void ForestMission::Plan(double t_s, const perception::MonoDepthEstimate& depth,
     d_eff_m = EgoDynamicTransform(depth.depth_m, params_.edt);
     d_eff_m.setTo(0.0f, d_obs_m <= 0.0f);  // the ground mask
   }
-  // Selection in the heading frame H (B's origin, z up, x along the fixed heading): the waypoint
-  // height is then a height (max_height_from_goal_m) whatever the vehicle's tilt.
-  const Eigen::Matrix3d R_WH = Eigen::AngleAxisd(heading_rad_, Eigen::Vector3d::UnitZ()).matrix();
+  // Selection in the heading frame H (B's origin, z up, x along B's estimated heading): the
+  // waypoint height is then a height (max_height_from_goal_m) whatever the vehicle's tilt, and
+  // the field of view (seen space) is the camera's whatever the heading reference.
+  const Eigen::Matrix3d R_WH =
+      Eigen::AngleAxisd(std::atan2(R_WB(1, 0), R_WB(0, 0)), Eigen::Vector3d::UnitZ()).matrix();
   const Eigen::Matrix3d R_HB = R_WH.transpose() * R_WB;
   const auto to_H = [&](std::vector<Eigen::Vector3d> points_B) {
     for (Eigen::Vector3d& p : points_B) p = R_HB * p;
@@ -208,24 +240,9 @@ void ForestMission::Plan(double t_s, const perception::MonoDepthEstimate& depth,
   record->replans = selection.Replans();
   if (!selection.chosen) return;
   std::vector<Eigen::Vector3d> path_H = selection.path_B;
-  ExtendTowardsGoal(goal_H, obstacles_H, &path_H);
+  selector_.ExtendTowardsGoal(goal_H, obstacles_H, params_.extension_m,
+                              params_.extension_standoff_m, &path_H);
   record->planned = FollowPath(t_s, x, to_W(path_H));
-}
-
-void ForestMission::ExtendTowardsGoal(const Eigen::Vector3d& goal_H,
-                                      const std::vector<Eigen::Vector3d>& obstacles_H,
-                                      std::vector<Eigen::Vector3d>* path_H) const {
-  const Eigen::Vector3d waypoint = path_H->back();
-  const Eigen::Vector3d to_goal = goal_H - waypoint;
-  const double length = std::min(params_.extension_m, to_goal.norm());
-  if (!(length > kExtensionStepM)) return;
-  const Eigen::Vector3d step = to_goal.normalized() * kExtensionStepM;
-  for (int k = 1; k * kExtensionStepM <= length; ++k) {
-    const Eigen::Vector3d sample = waypoint + k * step;
-    // Only what the camera has seen ahead of the vehicle can be checked.
-    if (!selector_.PathIsFree({sample}, obstacles_H) || !(sample.x() > 0.0)) break;
-    path_H->push_back(sample);
-  }
 }
 
 bool ForestMission::FollowPath(double t_s, const control::QuadState& x,
@@ -291,7 +308,10 @@ perception::AutopilotCommand ForestMission::Step(double t_s) {
     control::TrajectoryPoint hold;
     hold.p_W = x->p_WB;
     hold_ = hold;
+    last_step_t_s_ = t_s;
   }
+  if (!goal_reached_) TurnTowardsGoal(x->p_WB, t_s - last_step_t_s_);
+  last_step_t_s_ = t_s;
   if ((params_.goal_W - x->p_WB).norm() <= params_.goal_reached_m &&
       x->v_W.norm() <= params_.goal_speed_mps) {
     goal_reached_ = true;

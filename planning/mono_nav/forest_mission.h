@@ -18,7 +18,17 @@
 // it). Every spline ends at rest at its waypoint, so when a frame finds no traversable segment
 // the vehicle keeps the previous spline and stops at a waypoint that was free. Within
 // direct_goal_distance_m of the goal the straight path to it is flown when its spatial windows
-// are free. Heading is fixed at the start heading (the paper's psi = 0).
+// are free.
+//
+// Beyond the paper (each forced by a failed flight, docs/results/mononav.md):
+//   * paths run only through seen space (WaypointSelectorParams::max_bearing_rad, set from the
+//     camera's horizontal field of view): a window beside the field of view holds no point only
+//     because nothing there was seen (layout 4 flew into a trunk 59 deg off its heading);
+//   * the heading turns towards the goal at up to max_yaw_rate_radps (the paper keeps psi = 0):
+//     with seen-space paths, a goal beside the field of view could not be approached otherwise;
+//   * a look-ahead cut by an obstacle ends extension_standoff_m before it, so the vehicle does
+//     not come to rest facing a trunk at ~1 m, too near for any path around it to pass its
+//     windows (layouts 1 and 4 stalled there for 20-40 s).
 //
 // State: the odometry source's body poses (OnOdometry: a VIO or the paper's optical-flow EKF on
 // hardware; in SITL a simulated one, experiments/missions/forest_flight.h) fused with the IMU by
@@ -97,11 +107,17 @@ struct ForestMissionParams {
   // never gets the vehicle to speed; the extension is checked like the path, so the spline still
   // ends at rest where the map was free.
   double extension_m = 4.0;
+  // A look-ahead cut by an obstacle's window ends this far before the blocked sample [m]: at
+  // rest ~1 m from a trunk, the trunk's window blocks every path around it; from ~2 m the
+  // Bezier paths beside it pass.
+  double extension_standoff_m = 1.5;
   // Within this distance of the goal, fly straight to it when that path is free [m].
   double direct_goal_distance_m = 4.0;
   // Done (AutopilotCommand::done) within this distance of the goal and below goal_speed_mps.
   double goal_reached_m = 0.3;
   double goal_speed_mps = 0.3;
+  // The heading reference turns towards the goal's bearing at up to this rate [rad/s].
+  double max_yaw_rate_radps = 0.5;
 
   void Validate() const;  // std::invalid_argument naming the field
 };
@@ -139,6 +155,9 @@ class ForestMission : public perception::Autopilot {
 
   // The filter's estimate (t_s = latest IMU sample); nullopt before the first odometry pose.
   std::optional<control::QuadState> estimate() const;
+  double heading_rad() const { return heading_rad_; }  // the heading reference psi [rad]
+  // The selector's parameters: the mission's, max_bearing_rad narrowed to the camera's view.
+  const WaypointSelectorParams& selector_params() const { return selector_.params(); }
   const std::vector<ForestFrameRecord>& frames() const { return frames_; }
   int replans() const;              // sum of ForestFrameRecord::replans
   int frames_without_path() const;  // frames that found no traversable segment
@@ -149,12 +168,10 @@ class ForestMission : public perception::Autopilot {
   // The reference of the current spline at t_s (the hold point before the first one).
   control::TrajectoryPoint Reference(double t_s) const;
   void Plan(double t_s, const perception::MonoDepthEstimate& depth, ForestFrameRecord* record);
-  // Appends samples (kExtensionStepM apart) from the path's end towards the goal, up to
-  // extension_m, stopping before the first whose spatial window holds an obstacle.
-  void ExtendTowardsGoal(const Eigen::Vector3d& goal_H,
-                         const std::vector<Eigen::Vector3d>& obstacles_H,
-                         std::vector<Eigen::Vector3d>* path_H) const;
-  static constexpr double kExtensionStepM = 0.2;  // < the windows' 0.35 m half size: no gaps
+  // Turns heading_rad_ towards the goal's bearing from p_W, at most max_yaw_rate_radps * dt_s.
+  void TurnTowardsGoal(const Eigen::Vector3d& p_W, double dt_s);
+  // Nearer the goal than this (horizontally) the heading holds: its bearing swings there [m].
+  static constexpr double kHoldHeadingWithinM = 1.0;
   // Spline from the current reference (or estimate) along path_W; false when the solver fails.
   bool FollowPath(double t_s, const control::QuadState& x,
                   const std::vector<Eigen::Vector3d>& path_W);
@@ -172,6 +189,8 @@ class ForestMission : public perception::Autopilot {
   std::optional<BSpline> spline_;
   double spline_start_t_s_ = 0.0;
   double heading_rad_ = 0.0;
+  double heading_rate_radps_ = 0.0;
+  double last_step_t_s_ = 0.0;
   bool goal_reached_ = false;
   std::vector<Eigen::Vector3d> last_path_W_;                     // drawn by DrawOverlay
   Eigen::Isometry3d last_T_WB_ = Eigen::Isometry3d::Identity();  // estimate at the latest plan

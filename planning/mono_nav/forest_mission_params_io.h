@@ -23,9 +23,11 @@
 //     spline_path_points: 6
 //     replan_from_estimate_m: 0.5
 //     extension_m: 4.0
+//     extension_standoff_m: 1.5
 //     direct_goal_distance_m: 4.0
 //     goal_reached_m: 0.3
 //     goal_speed_mps: 0.3
+//     max_yaw_rate_radps: 0.5
 #include "config/yaml_read_archive.h"
 #include "control/control_params_io.h"
 #include "perception/estimation/pose_fusion_params_io.h"
@@ -50,6 +52,8 @@ void Serialize(Archive* a, WaypointSelectorParams* p) {
   a->Visit(APERTURE_NVP(p, state_sigma_m));
   a->Visit(APERTURE_NVP(p, path_samples));
   a->Visit(APERTURE_NVP(p, max_height_from_goal_m));
+  a->Visit(APERTURE_NVP(p, max_bearing_rad));
+  a->Visit(APERTURE_NVP(p, seen_from_m));
 }
 
 template <typename Archive>
@@ -89,9 +93,11 @@ void Serialize(Archive* a, ForestMissionParams* p) {
   a->Visit(APERTURE_NVP(p, spline_path_points));
   a->Visit(APERTURE_NVP(p, replan_from_estimate_m));
   a->Visit(APERTURE_NVP(p, extension_m));
+  a->Visit(APERTURE_NVP(p, extension_standoff_m));
   a->Visit(APERTURE_NVP(p, direct_goal_distance_m));
   a->Visit(APERTURE_NVP(p, goal_reached_m));
   a->Visit(APERTURE_NVP(p, goal_speed_mps));
+  a->Visit(APERTURE_NVP(p, max_yaw_rate_radps));
 }
 
 }  // namespace aperture::planning

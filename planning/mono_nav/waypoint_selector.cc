@@ -26,6 +26,8 @@ void WaypointSelectorParams::Validate() const {
           "state_sigma_m must be finite and >= 0");
   require(path_samples >= 2, "path_samples must be >= 2");
   require(max_height_from_goal_m >= 0.0, "max_height_from_goal_m must be >= 0 (inf: free)");
+  require(max_bearing_rad > 0.0, "max_bearing_rad must be > 0 (inf: no field-of-view check)");
+  require(seen_from_m >= 0.0 && std::isfinite(seen_from_m), "seen_from_m must be finite, >= 0");
 }
 
 Eigen::Vector3d Bezier3(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
@@ -100,16 +102,50 @@ std::vector<Segment> WaypointSelector::Cluster(const std::vector<Eigen::Vector3d
   return segments;
 }
 
+bool WaypointSelector::IsSeen(const Eigen::Vector3d& sample_B) const {
+  if (!std::isfinite(params_.max_bearing_rad) || sample_B.norm() <= params_.seen_from_m) {
+    return true;
+  }
+  // The sample's lateral extent (+- the vehicle's half width) inside the horizontal wedge.
+  return sample_B.x() > 0.0 && std::atan2(std::abs(sample_B.y()) + params_.vehicle_radius_m,
+                                          sample_B.x()) <= params_.max_bearing_rad;
+}
+
 bool WaypointSelector::PathIsFree(const std::vector<Eigen::Vector3d>& path_B,
                                   const std::vector<Eigen::Vector3d>& points_B) const {
   const Eigen::Vector3d half =
       params_.state_sigma_m + Eigen::Vector3d::Constant(params_.vehicle_radius_m);
   for (const Eigen::Vector3d& sample : path_B) {
+    if (!IsSeen(sample)) return false;
     for (const Eigen::Vector3d& point : points_B) {
       if (((point - sample).cwiseAbs().array() <= half.array()).all()) return false;
     }
   }
   return true;
+}
+
+void WaypointSelector::ExtendTowardsGoal(const Eigen::Vector3d& goal_B,
+                                         const std::vector<Eigen::Vector3d>& obstacles_B,
+                                         double length_m, double standoff_m,
+                                         std::vector<Eigen::Vector3d>* path_B) const {
+  const Eigen::Vector3d end = path_B->back();
+  const Eigen::Vector3d to_goal = goal_B - end;
+  const double length = std::min(length_m, to_goal.norm());
+  if (!(length > kExtensionStepM)) return;
+  const Eigen::Vector3d step = to_goal.normalized() * kExtensionStepM;
+  const size_t first = path_B->size();
+  for (int k = 1; k * kExtensionStepM <= length; ++k) {
+    const Eigen::Vector3d sample = end + k * step;
+    // Only what the camera has seen ahead of the vehicle can be checked.
+    if (!(sample.x() > 0.0) || !IsSeen(sample)) return;
+    if (!PathIsFree({sample}, obstacles_B)) {
+      while (path_B->size() > first && (sample - path_B->back()).norm() < standoff_m) {
+        path_B->pop_back();
+      }
+      return;
+    }
+    path_B->push_back(sample);
+  }
 }
 
 WaypointSelection WaypointSelector::Select(std::vector<Eigen::Vector3d> points_B,

@@ -19,6 +19,8 @@
 //     windows (Sec. III-D): boxes of half size sigma + delta around samples of the path must hold
 //     no EDT point; a path that fails marks its segment non-traversable and the next best is
 //     tried (the count of such rejections is the "replanning" of Table II).
+//     Beyond the paper, a path must also run through seen space (IsSeen: within the camera's
+//     horizontal field of view), and ExtendTowardsGoal continues a chosen path towards the goal.
 // Frames: B body (x forward, y left, z up), C camera (OpenCV), T_BC the camera mount. Units SI.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -51,6 +53,13 @@ struct WaypointSelectorParams {
   // waypoint). With points in a gravity-aligned frame it keeps the flight near the goal's height
   // instead of climbing towards the sky, whose far patches dominate the largest free segments.
   double max_height_from_goal_m = std::numeric_limits<double>::infinity();
+  // Seen space (beyond the paper): beyond seen_from_m of the vehicle a path sample, widened by
+  // vehicle_radius_m to each side, must lie within +-max_bearing_rad of x (the camera's
+  // horizontal field of view, which ForestMission sets from its camera): the map holds only what
+  // the camera saw, and a window beside the field of view is "free" only because nothing there
+  // was seen. Nearer samples are where the vehicle is and just was. inf: no check.
+  double max_bearing_rad = std::numeric_limits<double>::infinity();
+  double seen_from_m = 1.0;
 
   void Validate() const;  // std::invalid_argument naming the field
 };
@@ -106,9 +115,23 @@ class WaypointSelector {
                            WaypointOrder order = WaypointOrder::kOptimal, std::uint64_t seed = 0,
                            const std::vector<Eigen::Vector3d>* obstacles_B = nullptr) const;
 
-  // Spatial-window check of one path: false when a window around a sample holds a point.
+  // True when `sample` lies in seen space (max_bearing_rad, seen_from_m).
+  bool IsSeen(const Eigen::Vector3d& sample_B) const;
+
+  // Spatial-window check of one path: false when a window around a sample holds a point or a
+  // sample is not in seen space (IsSeen).
   bool PathIsFree(const std::vector<Eigen::Vector3d>& path_B,
                   const std::vector<Eigen::Vector3d>& points_B) const;
+
+  // Beyond the paper: appends samples (kExtensionStepM apart) from path_B's end towards goal_B,
+  // up to length_m, while they lie ahead (x > 0) in seen space and their windows hold none of
+  // obstacles_B. When an obstacle's window stops it, the samples within standoff_m of the
+  // blocked one are dropped again: a path that ends at rest facing an obstacle leaves too little
+  // room for any path around it.
+  void ExtendTowardsGoal(const Eigen::Vector3d& goal_B,
+                         const std::vector<Eigen::Vector3d>& obstacles_B, double length_m,
+                         double standoff_m, std::vector<Eigen::Vector3d>* path_B) const;
+  static constexpr double kExtensionStepM = 0.2;  // < the windows' 0.35 m half size: no gaps
 
   const WaypointSelectorParams& params() const { return params_; }
 

@@ -153,6 +153,82 @@ TEST(WaypointSelector, WaypointHeightIsClampedToTheGoalsAndWindowsCheckTheGivenO
       std::invalid_argument);
 }
 
+// A straight path from the vehicle to `end`, 0.1 m between samples.
+std::vector<Eigen::Vector3d> StraightPath(const Eigen::Vector3d& end) {
+  std::vector<Eigen::Vector3d> path;
+  const int n = static_cast<int>(std::ceil(end.norm() / 0.1));
+  for (int k = 0; k <= n; ++k) path.push_back(end * (double(k) / n));
+  return path;
+}
+
+TEST(WaypointSelector, PathsRunOnlyThroughSeenSpace) {
+  // Nothing was seen anywhere: only the field of view (+-45 deg) says where a path may go.
+  const std::vector<Eigen::Vector3d> no_points;
+  WaypointSelectorParams params;
+  params.max_bearing_rad = M_PI / 4.0;
+  const WaypointSelector selector(params);
+  const double bearing_55 = -55.0 * M_PI / 180.0, bearing_20 = 20.0 * M_PI / 180.0;
+  const Eigen::Vector3d at_55(3.0 * std::cos(bearing_55), 3.0 * std::sin(bearing_55), 0.0);
+  const Eigen::Vector3d at_20(3.0 * std::cos(bearing_20), 3.0 * std::sin(bearing_20), 0.0);
+  EXPECT_FALSE(selector.PathIsFree(StraightPath(at_55), no_points));  // beside the view
+  EXPECT_TRUE(WaypointSelector().PathIsFree(StraightPath(at_55), no_points));  // no check
+  EXPECT_TRUE(selector.PathIsFree(StraightPath(at_20), no_points));
+  // The vehicle's half width counts: a sample 4 m ahead is seen up to |y| = 4 - 0.25 m.
+  EXPECT_TRUE(selector.IsSeen(Eigen::Vector3d(4.0, 3.74, 0.0)));
+  EXPECT_FALSE(selector.IsSeen(Eigen::Vector3d(4.0, -3.76, 0.0)));
+  // Within seen_from_m (1 m) is where the vehicle is and was: not checked.
+  EXPECT_TRUE(selector.IsSeen(Eigen::Vector3d(0.0, 0.9, 0.0)));
+  EXPECT_FALSE(selector.IsSeen(Eigen::Vector3d(0.0, 1.1, 0.0)));
+  EXPECT_FALSE(selector.IsSeen(Eigen::Vector3d(-2.0, 0.0, 0.0)));  // behind
+  // Select only returns paths through seen space: a segment 60 deg to the side is not taken.
+  std::vector<Eigen::Vector3d> side;
+  AddWall(3.0, -6.0, -4.5, -1.0, 1.0, &side);
+  EXPECT_TRUE(WaypointSelector().Select(side, Eigen::Vector3d::Zero(), kGoalAhead)
+                  .chosen.has_value());
+  EXPECT_FALSE(selector.Select(side, Eigen::Vector3d::Zero(), kGoalAhead).chosen.has_value());
+  EXPECT_THROW(
+      [] {
+        WaypointSelectorParams bad;
+        bad.max_bearing_rad = 0.0;
+        WaypointSelector{bad};
+      }(),
+      std::invalid_argument);
+}
+
+TEST(WaypointSelector, ExtensionTowardsTheGoalStandsOffFromTheFirstObstacle) {
+  // A trunk 4 m ahead on the line to the goal; the path so far ends 1 m ahead.
+  std::vector<Eigen::Vector3d> trunk;
+  AddWall(4.0, -0.2, 0.2, -1.0, 1.0, &trunk);
+  const WaypointSelector selector;
+  const std::vector<Eigen::Vector3d> start{Eigen::Vector3d::Zero(), Eigen::Vector3d(1.0, 0, 0)};
+  // Samples 0.2 m apart: 3.6 m is the last whose window (0.35 m) misses the trunk, 3.8 m is
+  // blocked; a 1.5 m standoff from it keeps the samples up to 2.2 m (3.8 - 2.4 < 1.5).
+  std::vector<Eigen::Vector3d> path = start;
+  selector.ExtendTowardsGoal(kGoalAhead, trunk, 4.0, 1.5, &path);
+  EXPECT_NEAR(path.back().x(), 2.2, 1e-9);
+  EXPECT_GE(3.8 - path.back().x(), 1.5);
+  EXPECT_TRUE(selector.PathIsFree(path, trunk));
+  path = start;
+  selector.ExtendTowardsGoal(kGoalAhead, trunk, 4.0, 0.0, &path);
+  EXPECT_NEAR(path.back().x(), 3.6, 1e-9);  // no standoff: up to the trunk's window
+  // Nothing in the way: the full 4 m; the standoff never removes the path it was given.
+  path = start;
+  selector.ExtendTowardsGoal(kGoalAhead, {}, 4.0, 1.5, &path);
+  EXPECT_NEAR(path.back().x(), 5.0, 1e-9);
+  std::vector<Eigen::Vector3d> blocked_at_once{Eigen::Vector3d::Zero(), Eigen::Vector3d(3.5, 0, 0)};
+  selector.ExtendTowardsGoal(kGoalAhead, trunk, 4.0, 1.5, &blocked_at_once);
+  EXPECT_EQ(blocked_at_once.size(), 2u);
+  // Unseen space ends the extension without a standoff (no obstacle was seen there): towards a
+  // goal straight to the right of the path's end (1, 0, 0), y = -0.6 m is the last sample whose
+  // half width lies in the +-45 deg view (atan2(0.6 + 0.25, 1) = 40 deg; -0.8 m: 46 deg).
+  WaypointSelectorParams narrow;
+  narrow.max_bearing_rad = M_PI / 4.0;
+  path = start;
+  WaypointSelector(narrow).ExtendTowardsGoal(Eigen::Vector3d(1.0, -20.0, 0.0), {}, 4.0, 1.5,
+                                             &path);
+  EXPECT_NEAR(path.back().y(), -0.6, 1e-9);
+}
+
 TEST(WaypointSelector, BackProjectionPutsPatchesAlongTheirRays) {
   // 90 deg pinhole, 64 x 48 px, 8 px patches; camera looking along x_B (T_BC: z_C = x_B,
   // x_C = -y_B, y_C = -z_B).
