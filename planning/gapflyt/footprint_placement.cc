@@ -14,15 +14,6 @@ double DistanceToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
   return (a + t * ab - p).norm();
 }
 
-double Clearance(const std::vector<Eigen::Vector2d>& polygon,
-                 const std::vector<FootprintDisk>& footprint, const Eigen::Vector2d& p) {
-  double clearance = std::numeric_limits<double>::infinity();
-  for (const FootprintDisk& disk : footprint) {
-    clearance = std::min(clearance, PolygonSignedDistance(polygon, p + disk.offset) - disk.radius_m);
-  }
-  return clearance;
-}
-
 }  // namespace
 
 double PolygonSignedDistance(const std::vector<Eigen::Vector2d>& polygon,
@@ -40,6 +31,17 @@ double PolygonSignedDistance(const std::vector<Eigen::Vector2d>& polygon,
     distance = std::min(distance, DistanceToSegment(p, a, b));
   }
   return inside ? distance : -distance;
+}
+
+double FootprintClearance(const std::vector<Eigen::Vector2d>& polygon,
+                          const std::vector<FootprintDisk>& footprint,
+                          const Eigen::Vector2d& center) {
+  double clearance = std::numeric_limits<double>::infinity();
+  for (const FootprintDisk& disk : footprint) {
+    clearance =
+        std::min(clearance, PolygonSignedDistance(polygon, center + disk.offset) - disk.radius_m);
+  }
+  return clearance;
 }
 
 std::vector<FootprintDisk> LevelFootprint(const control::VehicleParameters& vehicle,
@@ -66,7 +68,7 @@ FootprintPlacement BestFootprintPlacement(const std::vector<Eigen::Vector2d>& po
     for (double y = from.y(); y <= to.y(); y += step) {
       for (double x = from.x(); x <= to.x(); x += step) {
         const Eigen::Vector2d p(x, y);
-        const double clearance = Clearance(polygon, footprint, p);
+        const double clearance = FootprintClearance(polygon, footprint, p);
         // Better by more than 0.1 mm, or as good and nearer the preferred point.
         if (clearance > best.clearance_m + 1e-4 ||
             (clearance > best.clearance_m - 1e-4 &&
@@ -80,7 +82,7 @@ FootprintPlacement BestFootprintPlacement(const std::vector<Eigen::Vector2d>& po
   search(lo, hi, coarse);
   const Eigen::Vector2d around(coarse, coarse);
   search(best.center - around, best.center + around, 0.0005);
-  best.clearance_m = Clearance(polygon, footprint, best.center);
+  best.clearance_m = FootprintClearance(polygon, footprint, best.center);
   return best;
 }
 

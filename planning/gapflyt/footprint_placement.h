@@ -28,6 +28,11 @@ struct FootprintDisk {
 std::vector<FootprintDisk> LevelFootprint(const control::VehicleParameters& vehicle,
                                           double body_radius_m, double propeller_radius_m);
 
+// min over disks of (PolygonSignedDistance(polygon, center + offset) - radius) [m].
+double FootprintClearance(const std::vector<Eigen::Vector2d>& polygon,
+                          const std::vector<FootprintDisk>& footprint,
+                          const Eigen::Vector2d& center);
+
 struct FootprintPlacement {
   Eigen::Vector2d center = Eigen::Vector2d::Zero();  // body origin in the plane [m]
   double clearance_m = 0.0;  // min over disks of (edge distance - radius); < 0: fits nowhere

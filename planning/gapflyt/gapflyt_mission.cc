@@ -18,6 +18,9 @@ namespace {
 
 // The ts2p node's interval that never comes: one detection per scan (see the header).
 constexpr int kOneDetectionPerScan = 1 << 30;
+// The aim leaves the safe point for the footprint's best placement only when that clears the
+// edge by this much more [m].
+constexpr double kAimClearanceGainM = 0.01;
 
 cv::Point ToPoint(const Eigen::Vector2d& p) {
   return {static_cast<int>(std::lround(p.x())), static_cast<int>(std::lround(p.y()))};
@@ -306,11 +309,17 @@ Eigen::Vector3d GapflytMission::AimCorrection() const {
       if (const auto p_B = on_wall_B(n)) polygon.emplace_back(-p_B->y(), -p_B->z());
     }
   }
-  const FootprintPlacement best = BestFootprintPlacement(
-      polygon, LevelFootprint(vehicle_, params_.body_radius_m, params_.propeller_radius_m),
-      Eigen::Vector2d(-safe_B->y(), -safe_B->z()));
-  if (polygon.size() == last_track_->contour_px.size() && best.clearance_m > 0.0) {
-    offset_B = Eigen::Vector3d(0.0, -best.center.x(), -best.center.y());
+  // The safe point unless the vehicle fits clearly better elsewhere (a tight triangle's base):
+  // the contour's shape is only as good as the tracker keeps it, the safe point is smoothed.
+  const std::vector<FootprintDisk> footprint =
+      LevelFootprint(vehicle_, params_.body_radius_m, params_.propeller_radius_m);
+  const Eigen::Vector2d safe(-safe_B->y(), -safe_B->z());
+  if (polygon.size() == last_track_->contour_px.size()) {
+    const FootprintPlacement best = BestFootprintPlacement(polygon, footprint, safe);
+    if (best.clearance_m > 0.0 &&
+        FootprintClearance(polygon, footprint, safe) < best.clearance_m - kAimClearanceGainM) {
+      offset_B = Eigen::Vector3d(0.0, -best.center.x(), -best.center.y());
+    }
   }
   offset_B.x() = 0.0;  // only sideways and vertically: the line still runs along the heading
   if (offset_B.norm() > params_.max_aim_correction_m) {

@@ -124,9 +124,10 @@ struct GapflytMissionParams {
   // reaches the PID's 1 m/s in 1 s.
   double max_servo_accel_mps2 = 1.0;
   double go_through_speed_mps = 1.0;
-  // At the commit the blind line is aimed where the vehicle fits best in the last tracked
-  // contour (footprint_placement.h), or through its safe point when it fits nowhere: the contour
-  // is put on the wall through its level-view bearings and the wall's distance (TS²P's wall
+  // At the commit the blind line is aimed through the last tracked safe point, or where the
+  // vehicle fits best in the tracked contour (footprint_placement.h) when that clears the edge by
+  // over 1 cm more (a tight triangle only passes above its base): the safe point and the contour
+  // are put on the wall through their level-view bearings and the wall's distance (TS²P's wall
   // parallax over the scan's mean baseline, minus the odometry's forward travel since); the line
   // moves sideways and vertically by at most this much [m] (0 = straight ahead from where the
   // vehicle committed, as the paper).

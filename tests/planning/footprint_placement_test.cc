@@ -13,13 +13,8 @@ namespace {
 const std::vector<FootprintDisk> kFootprint =
     LevelFootprint(control::VehicleParameters{}, 0.08, 0.0635);
 
-// Clearance of the footprint with its body origin at p.
 double ClearanceAt(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& p) {
-  double clearance = INFINITY;
-  for (const FootprintDisk& disk : kFootprint) {
-    clearance = std::min(clearance, PolygonSignedDistance(polygon, p + disk.offset) - disk.radius_m);
-  }
-  return clearance;
+  return FootprintClearance(polygon, kFootprint, p);
 }
 
 TEST(FootprintPlacementTest, SignedDistanceToASquare) {
