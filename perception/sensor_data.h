@@ -15,10 +15,10 @@ struct ImuSample {
 };
 
 struct Frame {
-  double t_s = 0.0;     // mid-exposure timestamp [s]
-  int camera_id = 0;    // index into the rig's cameras
-  int index = 0;        // running index in its source
-  cv::Mat image;        // CV_8UC1 (gray) or CV_8UC3 (BGR)
+  double t_s = 0.0;   // mid-exposure timestamp [s]
+  int camera_id = 0;  // index into the rig's cameras
+  int index = 0;      // running index in its source
+  cv::Mat image;      // CV_8UC1 (gray) or CV_8UC3 (BGR)
   // The source's IMU samples since its previous frame, oldest first (FrameSource::TakeImuSamples,
   // filled by RunSource); empty for sources without an IMU.
   std::vector<ImuSample> imu;

@@ -108,9 +108,8 @@ GapflytTrialConfig DrawGapflytTrial(const GapflytBenchOptions& options, int tria
   if (config.tight) {
     // The narrowest passage tight_margin_m wider than the vehicle, for this shape and its corners.
     const sim::Scenario scenario = sim::BuildScenario(TrialScenarioParams(options, config));
-    config.size_m.x() = TightOpeningWidthM(
-        OpeningFromScene(scenario.scene()), config.size_m.x(), BenchFootprint(),
-        options.tight_margin_m);
+    config.size_m.x() = TightOpeningWidthM(OpeningFromScene(scenario.scene()), config.size_m.x(),
+                                           BenchFootprint(), options.tight_margin_m);
   }
   return config;
 }
@@ -297,10 +296,10 @@ void WriteGapflytBenchOutputs(const GapflytBenchResult& result, output::OutputFo
                        : Percent(l["tight_success_rate"].get<double>());
     table.push_back(row);
   }
-  report.AddTable(table, "Passed / flown per shape; tight: the narrowest passage (the level "
-                         "vehicle's best placement) is " +
-                             std::to_string(result.options.tight_margin_m) +
-                             " m wider than the vehicle");
+  report.AddTable(table,
+                  "Passed / flown per shape; tight: the narrowest passage (the level "
+                  "vehicle's best placement) is " +
+                      std::to_string(result.options.tight_margin_m) + " m wider than the vehicle");
   nlohmann::json figures_table = nlohmann::json::array();
   for (const std::string& law : result.options.laws) {
     const nlohmann::json& l = summary["laws"][law];

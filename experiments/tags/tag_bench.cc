@@ -32,13 +32,27 @@ constexpr double kDetectionTagSize_m = 0.16;
 constexpr double kFlipThreshold_deg = 10.0;  // a chosen rotation further off is a flip
 const char* const kFamilies[] = {"tag36h11", "tag16h5", "tag25h9", "tagStandard41h12"};
 const std::vector<std::string> kFramesCsvColumns{
-    "detector", "family", "distance_m", "angle_deg", "blur", "detected", "translation_error_m",
-    "rotation_error_deg", "ms"};
-const std::vector<std::string> kObservationsCsvColumns{
-    "frame",      "id",        "size_m",    "true_x_m",          "true_y_m",
-    "true_z_m",   "x_m",       "y_m",       "z_m",               "sigma_x_m",
-    "sigma_y_m",  "sigma_z_m", "rotation_error_deg", "view_angle_deg", "corner_outward_px",
-    "best_rms_px", "alternative_rms_px", "lowest_error_rotation_error_deg"};
+    "detector", "family",   "distance_m",          "angle_deg",
+    "blur",     "detected", "translation_error_m", "rotation_error_deg",
+    "ms"};
+const std::vector<std::string> kObservationsCsvColumns{"frame",
+                                                       "id",
+                                                       "size_m",
+                                                       "true_x_m",
+                                                       "true_y_m",
+                                                       "true_z_m",
+                                                       "x_m",
+                                                       "y_m",
+                                                       "z_m",
+                                                       "sigma_x_m",
+                                                       "sigma_y_m",
+                                                       "sigma_z_m",
+                                                       "rotation_error_deg",
+                                                       "view_angle_deg",
+                                                       "corner_outward_px",
+                                                       "best_rms_px",
+                                                       "alternative_rms_px",
+                                                       "lowest_error_rotation_error_deg"};
 
 double RotationErrorDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   return control::LogSo3(a.linear().transpose() * b.linear()).norm() * 180.0 / M_PI;
@@ -194,8 +208,8 @@ void RunDetection(const TagBenchOptions& options, nlohmann::json* summary,
           rotation_errors.push_back(r_error);
         }
         frames_csv_rows->push_back({name, std::string(family), frame.distance_m, frame.angle_deg,
-                                    double(frame.blur), double(pose.has_value()), t_error,
-                                    r_error, ms});
+                                    double(frame.blur), double(pose.has_value()), t_error, r_error,
+                                    ms});
       }
       nlohmann::json rates = nlohmann::json::object();
       for (const auto& [bin, counts] : by_distance) {
@@ -270,8 +284,8 @@ MapEvaluation EvaluateMap(const perception::TagMap& map, const sim::Scenario& sc
 
 // The mapping section; one observations.csv row (kObservationsCsvColumns) per tag observation
 // into *observation_rows.
-void RunMapping(const TagBenchOptions& options, nlohmann::json* summary,
-                output::HtmlReport* report, nlohmann::json* observation_rows) {
+void RunMapping(const TagBenchOptions& options, nlohmann::json* summary, output::HtmlReport* report,
+                nlohmann::json* observation_rows) {
   sim::Scenario scenario = sim::BuildScenario(sim::LoadScenarioParams(
       sim::ScenarioConfig("tags", {}, {"seed=" + std::to_string(options.seed)})));
   const sim::TagsSceneParams& field = scenario.params().tags;
@@ -361,8 +375,7 @@ void RunMapping(const TagBenchOptions& options, nlohmann::json* summary,
           rows.push_back({double(frame_index), double(tag.detection.id), tag.size_m, p_true.x(),
                           p_true.y(), p_true.z(), p.x(), p.y(), p.z(), sigma.x(), sigma.y(),
                           sigma.z(), RotationErrorDeg(tag.chosen().T_CT, truth.back()), view_deg,
-                          projected ? outward_px / projected : std::nan(""),
-                          tag.pose->best.rms_px,
+                          projected ? outward_px / projected : std::nan(""), tag.pose->best.rms_px,
                           tag.pose->alternative ? tag.pose->alternative->rms_px : std::nan("")});
         }
       }

@@ -5,8 +5,8 @@
 // R_B0B(t_i) = R_B0B(t_{i-1}) Exp((omega_{i-1} + omega_i) / 2 * (t_i - t_{i-1})) — exact for a
 // rate linear in time about a fixed axis; between the last sample and a later query time the
 // last rate is held, and so it is back to a query time a little before the last sample (a bag's
-// IMU header stamps may run ahead of the frame that follows them). Gyro bias and the accelerometer are ignored (a few frames apart, a bias of
-// 0.01 rad/s at 30 Hz adds ~0.02 deg per frame).
+// IMU header stamps may run ahead of the frame that follows them). Gyro bias and the accelerometer
+// are ignored (a few frames apart, a bias of 0.01 rad/s at 30 Hz adds ~0.02 deg per frame).
 //
 //   GyroIntegrator gyro;
 //   for (const ImuSample& s : frame.imu) gyro.Add(s);
@@ -28,7 +28,6 @@ class GyroIntegrator {
   // any sample or when t_s precedes the first sample.
   std::optional<Eigen::Matrix3d> OrientationAt(double t_s) const;
 
-  bool empty() const { return !last_; }
 
  private:
   double first_t_s_ = 0.0;

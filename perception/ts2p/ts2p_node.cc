@@ -45,8 +45,9 @@ Ts2pNode::Ts2pNode(const Ts2pNodeParams& params, const std::string& output_dir,
     csv_ = std::make_unique<output::CsvWriter>(
         (std::filesystem::path(output_dir_) / "ts2p.csv").string(),
         std::vector<std::string>{"t_s", "index", "valid", "area_px", "safe_u_px", "safe_v_px",
-                                 "stack", "flow", "derotated", "flow_ms", "derotation_ms", "stacking_ms",
-                                 "edge_aware_ms", "segmentation_ms", "safe_point_ms", "total_ms"});
+                                 "stack", "flow", "derotated", "flow_ms", "derotation_ms",
+                                 "stacking_ms", "edge_aware_ms", "segmentation_ms", "safe_point_ms",
+                                 "total_ms"});
   }
 }
 
@@ -54,8 +55,7 @@ std::unique_ptr<Node> Ts2pNode::Create(config::ParamReader& params,
                                        const FrontEndResources& resources) {
   Ts2pNodeParams node_params;
   LoadParams(params, &node_params);
-  return std::make_unique<Ts2pNode>(node_params, resources.output_directory,
-                                    resources.calibration);
+  return std::make_unique<Ts2pNode>(node_params, resources.output_directory, resources.calibration);
 }
 
 std::vector<SlotSpec> Ts2pNode::Inputs() const { return {MakeSlot<Frame>(kFrameSlot)}; }
@@ -136,18 +136,17 @@ void Ts2pNode::Write(const Ts2pOutput& output) {
   csv_->WriteCells({output.reference_t_s, double(output.reference_index), d.valid ? 1.0 : 0.0,
                     d.area_px, d.valid ? d.safe_point_px.x() : nan,
                     d.valid ? d.safe_point_px.y() : nan, double(d.stack_size), detector_.FlowName(),
-                    output.derotated ? 1.0 : 0.0, d.timing.flow_ms, d.timing.derotation_ms, d.timing.stacking_ms,
-                    d.timing.edge_aware_ms, d.timing.segmentation_ms, d.timing.safe_point_ms,
-                    d.timing.total_ms});
+                    output.derotated ? 1.0 : 0.0, d.timing.flow_ms, d.timing.derotation_ms,
+                    d.timing.stacking_ms, d.timing.edge_aware_ms, d.timing.segmentation_ms,
+                    d.timing.safe_point_ms, d.timing.total_ms});
 }
 
 std::map<std::string, double> Ts2pNode::Metrics(const NodeContext& context) const {
   const auto& output = context.Get<Ts2pOutput>(kOutputSlot);
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  std::map<std::string, double> metrics{{"detected", nan},        {"area_px", nan},
-                                        {"safe_u_px", nan},       {"safe_v_px", nan},
-                                        {"reference_index", nan}, {"total_ms", nan},
-                                        {"derotated", nan}};
+  std::map<std::string, double> metrics{
+      {"detected", nan},        {"area_px", nan},  {"safe_u_px", nan}, {"safe_v_px", nan},
+      {"reference_index", nan}, {"total_ms", nan}, {"derotated", nan}};
   if (!output.fresh) return metrics;
   const Ts2pDetection& d = *output.detection;
   metrics["detected"] = d.valid ? 1.0 : 0.0;

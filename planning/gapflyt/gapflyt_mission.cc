@@ -1,7 +1,5 @@
 #include "planning/gapflyt/gapflyt_mission.h"
 
-#include "planning/gapflyt/footprint_placement.h"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -10,6 +8,7 @@
 
 #include "control/require.h"
 #include "perception/ts2p/gap_tracker_node.h"
+#include "planning/gapflyt/footprint_placement.h"
 #include "servo/level_view.h"
 #include "servo/polygon_moments.h"
 

@@ -262,7 +262,7 @@ class GapflytMission : public perception::Autopilot {
   int lost_frames_ = 0;
   int frames_tracked_ = 0;
   Eigen::Vector3d go_through_start_W_ = Eigen::Vector3d::Zero();  // on the aimed line
-  Eigen::Vector3d detection_p_W_ = Eigen::Vector3d::Zero();  // odometry at the detection
+  Eigen::Vector3d detection_p_W_ = Eigen::Vector3d::Zero();       // odometry at the detection
   Eigen::Vector3d aim_correction_W_ = Eigen::Vector3d::Zero();
   // The line's offset from the commit position towards the safe point (zero when unknown).
   Eigen::Vector3d AimCorrection() const;

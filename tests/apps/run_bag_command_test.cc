@@ -60,8 +60,7 @@ int WriteBagFromFolder(const fs::path& folder, const fs::path& bag_path) {
 }
 
 // TS²P on stacks of 2 frames, from the third frame on, every frame.
-const std::string kTs2pEveryFrame =
-    " --set ts2p.stack=2 --set ts2p.stride=1 --set ts2p.interval=1";
+const std::string kTs2pEveryFrame = " --set ts2p.stack=2 --set ts2p.stride=1 --set ts2p.interval=1";
 
 TEST(RunBagCommandTest, BagReplaysWithTheSamePosesAsItsImageFolder) {
   TempFolder temp("run_bag");
@@ -71,17 +70,16 @@ TEST(RunBagCommandTest, BagReplaysWithTheSamePosesAsItsImageFolder) {
   const int imu_written = WriteBagFromFolder(folder, bag);
 
   const fs::path from_folder = fs::path(temp.path()) / "folder_run";
-  const CommandResult folder_run = RunAperture("run --source " + folder.string() + " --calib " +
-                                               (folder / "calib.yaml").string() +
-                                               " --frontends gap,ts2p" + kTs2pEveryFrame +
-                                               " --out " + from_folder.string());
+  const CommandResult folder_run = RunAperture(
+      "run --source " + folder.string() + " --calib " + (folder / "calib.yaml").string() +
+      " --frontends gap,ts2p" + kTs2pEveryFrame + " --out " + from_folder.string());
   ASSERT_EQ(folder_run.exit_code, 0) << folder_run.output;
   const fs::path from_bag = fs::path(temp.path()) / "bag_run";
   const CommandResult bag_run =
       RunAperture("run --source " + bag.string() +
                   " --image-topic /cam0/image_raw --imu-topic /imu0 "
-                  "--camera-info-topic /cam0/camera_info --frontends gap,ts2p" + kTs2pEveryFrame +
-                  " --out " + from_bag.string());
+                  "--camera-info-topic /cam0/camera_info --frontends gap,ts2p" +
+                  kTs2pEveryFrame + " --out " + from_bag.string());
   ASSERT_EQ(bag_run.exit_code, 0) << bag_run.output;
 
   const auto folder_poses = ReadTumRows(from_folder / "gap.csv");

@@ -43,7 +43,9 @@ TEST(TightOpeningTest, LevelFootprintSpansTheRotorDisks) {
 TEST(TightOpeningTest, RectangleClearanceAndTightWidthAreAnalytic) {
   const Eigen::Vector2d half = HalfExtent(kFootprint);
   // Centred in a 0.6 x 0.5 m rectangle the footprint clears the sides by 0.3 - half.x.
-  EXPECT_NEAR(planning::BestFootprintPlacement(Rectangle(0.6, 0.5).polygon_O, kFootprint).clearance_m, 0.3 - half.x(), 5e-4);
+  EXPECT_NEAR(
+      planning::BestFootprintPlacement(Rectangle(0.6, 0.5).polygon_O, kFootprint).clearance_m,
+      0.3 - half.x(), 5e-4);
   // Tight: the rectangle's width is the footprint's width plus the margin.
   const double width = TightOpeningWidthM(Rectangle(1.0, 0.8), 1.0, kFootprint, 0.05);
   EXPECT_NEAR(width, 2.0 * half.x() + 0.05, 1e-3);
@@ -65,7 +67,9 @@ TEST(TightOpeningTest, EveryShapeAtItsTightWidthLeavesHalfTheMargin) {
     const double width = TightOpeningWidthM(opening, 1.0, kFootprint, 0.05);
     params.gapflyt.size_m.x() = width;
     const GapflytOpening tight = OpeningFromScene(sim::BuildScenario(params).scene());
-    EXPECT_NEAR(planning::BestFootprintPlacement(tight.polygon_O, kFootprint).clearance_m, 0.025, 1e-3) << shape;
+    EXPECT_NEAR(planning::BestFootprintPlacement(tight.polygon_O, kFootprint).clearance_m, 0.025,
+                1e-3)
+        << shape;
     if (shape == "ellipse") ellipse_width = width;
     if (shape == "star") star_width = width;
   }
