@@ -3,21 +3,20 @@
 //
 //   aperture bench ts2p [--trials N] [--seed S] [--methods dis_medium,deepflow,...]
 //                       [--sweep-trials N] [--depth-trials N] [--tracking-trials N] [--quick]
-//                       [--set ts2p.segmentation=edges ...] --out DIR
+//                       [--set ts2p.segmentation=edges ...] [--threads T] [--shard K/N] --out DIR
 //
 // --set ts2p.* / gap_tracker.* configure the detector (its flow.method is the sweeps' method)
-// and the tracker. --quick: one trial per shape, dis_medium only, short sweeps (a smoke test of
-// a few seconds). Writes DIR/summary.json, DIR/trials.csv, DIR/report.html
-// (experiments/ts2p/ts2p_bench.h).
-#include <algorithm>
-#include <iostream>
+// and the tracker. --quick: one trial per shape, the configured method only, no sweeps, one
+// short approach (a smoke test of a few seconds). Writes DIR/summary.json, DIR/trials.csv,
+// DIR/report.html (experiments/ts2p/ts2p_bench.h), or with --shard K/N the K-th block of the
+// rendered scans (a trial is a scan: a detection trial with its sweeps, a depth-sweep scan or a
+// tracking approach; experiments/ts2p/ts2p_monte_carlo_bench.h) for `aperture bench merge`.
 #include <memory>
 
 #include "apps/command_support.h"
 #include "apps/commands.h"
-#include "experiments/bench/monte_carlo_run.h"
-#include "experiments/ts2p/ts2p_bench.h"
-#include "output/progress_bar.h"
+#include "apps/monte_carlo_command.h"
+#include "experiments/ts2p/ts2p_monte_carlo_bench.h"
 #include "perception/graph/front_end_registry.h"
 
 namespace aperture::apps {
@@ -25,17 +24,16 @@ namespace {
 
 struct BenchTs2pOptions {
   CommonOptions common;
+  MonteCarloCommandOptions monte_carlo;
   experiments::Ts2pBenchOptions bench;
   std::string methods;
   bool quick = false;
 };
 
 void RunBenchTs2p(BenchTs2pOptions options, output::OutputFolder& out) {
+  // Read here first so that a mistake is named by its file line or --set item.
   const config::ConfigTree tree = LoadConfig(options.common, "");
-  config::ParamReader root = tree.Reader();
-  root.ReadSection("ts2p", &options.bench.detector);
-  root.ReadSection("gap_tracker", &options.bench.tracker);
-  root.RejectUnknownKeys();
+  experiments::ReadTs2pBenchParams(tree, &options.bench);
   if (!options.methods.empty())
     options.bench.methods = perception::SplitFrontEndList(options.methods);
   if (options.quick) {
@@ -46,32 +44,10 @@ void RunBenchTs2p(BenchTs2pOptions options, output::OutputFolder& out) {
     options.bench.tracking_trials = 1;
     options.bench.tracking_frames = 8;
   }
-  const int steps = options.bench.trials +
-                    static_cast<int>(options.bench.foreground_depths_m.size()) *
-                        options.bench.depth_trials +
-                    options.bench.tracking_trials;
-  output::ProgressBar progress("ts2p trials", static_cast<std::size_t>(std::max(steps, 1)));
-  experiments::Ts2pBenchResult result;
-  // Cost per rendered scan (detection, depth and tracking trials); not sharded (see
-  // experiments::MonteCarloBenchRegistry::WithBuiltins).
-  out.summary()["cost"] = experiments::MeasureTrialCost(steps, 0, [&](int) {
-    result = experiments::RunTs2pBench(
-        options.bench, [&](int done, int) { progress.Update(static_cast<std::size_t>(done)); });
-  });
-  progress.Finish();
-  out.summary()["command"] = "bench ts2p";
-  out.summary()["config"] = nlohmann::json::parse(tree.ToJson());
-  out.summary()["quick"] = options.quick;
-  experiments::WriteTs2pBenchOutputs(result, out);
-  const nlohmann::json& summary = out.summary();
-  if (summary.contains("acceptance")) {
-    std::cout << "aperture bench ts2p: best " << summary["best_method"].get<std::string>() << " DR "
-              << summary["acceptance"]["dr"].dump() << " AFN "
-              << summary["acceptance"]["afn"].dump() << " AFP "
-              << summary["acceptance"]["afp"].dump() << " at "
-              << summary["acceptance"]["cpu_ms"].dump() << " ms CPU over " << options.bench.trials
-              << " trials\n";
-  }
+  RunMonteCarloCommand(experiments::kTs2pBenchName,
+                       experiments::Ts2pBenchConfiguration(options.bench, options.quick,
+                                                           nlohmann::json::parse(tree.ToJson())),
+                       options.monte_carlo, out);
 }
 
 }  // namespace
@@ -102,6 +78,7 @@ void AddBenchTs2pCommand(CLI::App& bench, int* exit_code) {
   command->add_flag("--quick", options->quick,
                     "One trial per shape with the configured method, no sweeps (smoke test)");
   AddCommonOptions(command, &options->common);
+  AddMonteCarloOptions(command, &options->monte_carlo);
   command->callback([options, exit_code] {
     output::OutputFolder out(options->common.out_dir);
     output::RunAndWriteSummary(out, [&] { RunBenchTs2p(*options, out); });

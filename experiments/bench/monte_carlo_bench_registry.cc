@@ -8,6 +8,7 @@
 #include "experiments/led/led_monte_carlo_bench.h"
 #include "experiments/mononav/mononav_monte_carlo_bench.h"
 #include "experiments/tags/tags_monte_carlo_bench.h"
+#include "experiments/ts2p/ts2p_monte_carlo_bench.h"
 
 namespace aperture::experiments {
 
@@ -20,9 +21,7 @@ MonteCarloBenchRegistry MonteCarloBenchRegistry::WithBuiltins(
   registry.Register(kLedBenchName, &MakeLedMonteCarloBench);
   registry.Register(kMononavBenchName, &MakeMononavMonteCarloBench);
   registry.Register(kTagsBenchName, MakeTagsMonteCarloBenchFactory(tag_detectors));
-  registry.DeclareUnsharded(
-      "ts2p", "not converted yet: seeded detection trials per method plus sweeps and tracking "
-              "runs on the first trials");
+  registry.Register(kTs2pBenchName, &MakeTs2pMonteCarloBench);
   return registry;
 }
 

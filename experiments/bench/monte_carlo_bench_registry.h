@@ -30,10 +30,10 @@ class MonteCarloBenchRegistry {
   // (experiments/gapflyt/gapflyt_monte_carlo_bench.h), "led"
   // (experiments/led/led_monte_carlo_bench.h), "mononav"
   // (experiments/mononav/mononav_monte_carlo_bench.h), "tags" with `tag_detectors`
-  // (experiments/tags/tags_monte_carlo_bench.h); and the benches declared unsharded.
-  static MonteCarloBenchRegistry WithBuiltins(
-      const perception::TagDetectorRegistry& tag_detectors =
-          perception::TagDetectorRegistry::WithBuiltins());
+  // (experiments/tags/tags_monte_carlo_bench.h), "ts2p"
+  // (experiments/ts2p/ts2p_monte_carlo_bench.h); and the benches declared unsharded (none now).
+  static MonteCarloBenchRegistry WithBuiltins(const perception::TagDetectorRegistry& tag_detectors =
+                                                  perception::TagDetectorRegistry::WithBuiltins());
 
   // std::invalid_argument for an empty or repeated name (also one declared unsharded) or an
   // empty factory.

@@ -2,11 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <numeric>
-#include <opencv2/core/utility.hpp>
-#include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
 #include "output/csv_writer.h"
@@ -17,63 +14,6 @@ namespace aperture::experiments {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kPaperBackgroundDepthM = 5.7;
-
-// Restores OpenCV's thread count on scope exit.
-class SingleThreadedOpenCv {
- public:
-  SingleThreadedOpenCv() : previous_(cv::getNumThreads()) { cv::setNumThreads(1); }
-  ~SingleThreadedOpenCv() { cv::setNumThreads(previous_); }
-
- private:
-  int previous_;
-};
-
-// The frames of an N-stack from a scan rendered with a larger even stack (offsets -M/2..M/2
-// without 0, in order): those within +-N/2 of the reference.
-std::vector<cv::Mat> SubStack(const Ts2pScan& scan, int rendered_stack, int stack) {
-  std::vector<cv::Mat> frames;
-  const int half = rendered_stack / 2;
-  for (int k = 0, i = 0; k <= rendered_stack; ++k) {
-    if (k == half) continue;
-    if (std::abs(k - half) <= stack / 2) frames.push_back(scan.frames[i]);
-    ++i;
-  }
-  return frames;
-}
-
-cv::Mat Resized(const cv::Mat& image, cv::Size size) {
-  cv::Mat out;
-  cv::resize(image, out, size, 0, 0, cv::INTER_AREA);
-  return out;
-}
-
-Ts2pTrialOutcome Evaluate(perception::Ts2pDetector& detector, const cv::Mat& reference,
-                          const std::vector<cv::Mat>& frames, const cv::Mat& truth,
-                          const Ts2pScanConfig& config, int trial,
-                          perception::Ts2pDetection* detection_out = nullptr) {
-  perception::Ts2pDetection detection = detector.Detect(reference, frames);
-  Ts2pTrialOutcome outcome;
-  outcome.trial = trial;
-  outcome.shape = config.shape;
-  outcome.valid = detection.valid;
-  outcome.score = perception::ScoreOpening(detection.opening, truth);
-  outcome.timing = detection.timing;
-  if (detection_out) *detection_out = std::move(detection);
-  return outcome;
-}
-
-// Seed 002 Fig. 10 colours on the reference image.
-cv::Mat Overlay(const cv::Mat& reference, const cv::Mat& opening, const cv::Mat& truth) {
-  cv::Mat bgr;
-  cv::cvtColor(reference, bgr, cv::COLOR_GRAY2BGR);
-  cv::Mat tint(bgr.size(), CV_8UC3, cv::Scalar(0, 0, 0));
-  tint.setTo(cv::Scalar(0, 200, 0), opening & truth);
-  tint.setTo(cv::Scalar(0, 220, 255), ~opening & truth);
-  tint.setTo(cv::Scalar(0, 0, 255), opening & ~truth);
-  cv::addWeighted(bgr, 0.55, tint, 0.45, 0.0, bgr);
-  return bgr;
-}
 
 double Mean(const std::vector<double>& values) {
   if (values.empty()) return kNaN;
@@ -84,40 +24,6 @@ double Percentile(std::vector<double> values, double p) {
   if (values.empty()) return kNaN;
   std::sort(values.begin(), values.end());
   return values[static_cast<std::size_t>(std::lround(p * (values.size() - 1)))];
-}
-
-Ts2pSeries& SeriesNamed(std::vector<Ts2pSeries>& series, const std::string& name, double x) {
-  for (Ts2pSeries& s : series) {
-    if (s.name == name) return s;
-  }
-  series.push_back({name, x, {}});
-  return series.back();
-}
-
-Ts2pTrackingRun RunTracking(const Ts2pBenchOptions& options, const Ts2pScanConfig& config,
-                            int trial, perception::Ts2pDetector& detector, sim::RayCaster& caster) {
-  Ts2pTrackingRun run;
-  run.trial = trial;
-  const Ts2pScan scan = RenderTs2pScan(config, caster);
-  const perception::Ts2pDetection detection = detector.Detect(scan.reference, scan.frames);
-  if (!detection.valid) return run;
-  const Ts2pApproach approach =
-      RenderTs2pApproach(config, options.tracking_frames, options.tracking_speed_mps, caster);
-  perception::LabelTracker tracker(options.tracker);
-  tracker.Initialize(scan.reference, detection.opening, detection.safe_point_px, detection.contour,
-                     0.0, 0);
-  const Eigen::Vector2d e0 = detection.safe_point_px - perception::GeometricMedian(scan.truth, 30);
-  for (std::size_t k = 0; k < approach.frames.size(); ++k) {
-    const perception::OpeningTrack track = tracker.Track(
-        approach.frames[k], (k + 1) / approach.frame_rate_hz, static_cast<int>(k + 1));
-    const Eigen::Vector2d truth = perception::GeometricMedian(approach.truth[k], 30);
-    run.drift_px.push_back((track.safe_point_measured_px - truth - e0).norm());
-    run.filtered_drift_px.push_back((track.safe_point_px - truth - e0).norm());
-    run.propagation_ms.push_back(track.propagation_ms);
-    run.klt_ms.push_back(track.klt_ms);
-    run.resets += track.foreground_reset + track.background_reset;
-  }
-  return run;
 }
 
 nlohmann::json SeriesJson(const Ts2pSeries& series) {
@@ -187,6 +93,7 @@ void Ts2pBenchOptions::Validate() const {
     flow.method = method;
     flow.Validate();
   }
+  if (stacks.empty()) throw std::invalid_argument("bench ts2p: stacks must not be empty");
   for (int stack : stacks) {
     if (stack < 2 || stack % 2 != 0) {
       throw std::invalid_argument("bench ts2p: stacks must be even and >= 2, got " +
@@ -233,95 +140,6 @@ double Ts2pSeries::MeanTotalMs() const {
   std::vector<double> values;
   for (const auto& o : outcomes) values.push_back(o.timing.total_ms);
   return Mean(values);
-}
-
-Ts2pBenchResult RunTs2pBench(const Ts2pBenchOptions& options_in,
-                             const std::function<void(int, int)>& progress) {
-  Ts2pBenchOptions options = options_in;
-  if (options.methods.empty()) options.methods = perception::DenseFlowMethodNames();
-  options.Validate();
-  const SingleThreadedOpenCv single_threaded;
-  Ts2pBenchResult result;
-  result.options = options;
-
-  std::vector<perception::Ts2pDetector> method_detectors;
-  for (const std::string& method : options.methods) {
-    perception::Ts2pParams params = options.detector;
-    params.flow.method = method;
-    method_detectors.emplace_back(params);
-  }
-  perception::Ts2pDetector sweep_detector(options.detector);
-  const int max_stack = *std::max_element(options.stacks.begin(), options.stacks.end());
-  const int total = options.trials +
-                    static_cast<int>(options.foreground_depths_m.size()) * options.depth_trials +
-                    options.tracking_trials;
-  int done = 0;
-  sim::RayCaster caster;
-
-  for (int trial = 0; trial < options.trials; ++trial) {
-    Ts2pScanConfig config = DrawTs2pTrial(options.ranges, options.seed, trial);
-    const bool sweep = trial < options.sweep_trials;
-    const int rendered = sweep ? std::max(max_stack, 4) : 4;
-    config.stack = rendered;
-    result.trials.push_back(config);
-    const Ts2pScan scan = RenderTs2pScan(config, caster);
-    const std::vector<cv::Mat> stack4 = SubStack(scan, rendered, 4);
-    for (std::size_t m = 0; m < options.methods.size(); ++m) {
-      SeriesNamed(result.methods, options.methods[m], 0.0)
-          .outcomes.push_back(
-              Evaluate(method_detectors[m], scan.reference, stack4, scan.truth, config, trial));
-    }
-    if (sweep) {
-      for (int stack : options.stacks) {
-        perception::Ts2pDetection detection;
-        SeriesNamed(result.stacks, "N=" + std::to_string(stack), stack)
-            .outcomes.push_back(Evaluate(sweep_detector, scan.reference,
-                                         SubStack(scan, rendered, stack), scan.truth, config, trial,
-                                         &detection));
-        const bool first_of_shape = trial < static_cast<int>(kTs2pShapes.size());
-        if (stack == 4 && first_of_shape) {
-          result.examples.emplace_back(config.shape,
-                                       Overlay(scan.reference, detection.opening, scan.truth));
-        }
-      }
-      for (int width : options.widths) {
-        const cv::Size size(width, width * 2 / 3);
-        std::vector<cv::Mat> frames;
-        for (const cv::Mat& frame : stack4) frames.push_back(Resized(frame, size));
-        cv::Mat truth = Resized(scan.truth, size) >= 128;
-        if (cv::countNonZero(truth) == 0) continue;
-        SeriesNamed(result.sizes, std::to_string(size.width) + "x" + std::to_string(size.height),
-                    width)
-            .outcomes.push_back(Evaluate(sweep_detector, Resized(scan.reference, size), frames,
-                                         truth, config, trial));
-      }
-    }
-    if (progress) progress(++done, total);
-  }
-
-  for (double depth : options.foreground_depths_m) {
-    for (int i = 0; i < options.depth_trials; ++i) {
-      // Trials of their own (index offset) so the depth sweep does not repeat Table II's scenes.
-      const int trial = 100000 + i;
-      Ts2pScanConfig config = DrawTs2pTrial(options.ranges, options.seed, trial);
-      config.foreground_depth_m = depth;
-      config.background_depth_m = kPaperBackgroundDepthM;
-      const Ts2pScan scan = RenderTs2pScan(config, caster);
-      char name[32];
-      std::snprintf(name, sizeof(name), "Z_F=%.2f", depth);
-      SeriesNamed(result.depths, name, depth)
-          .outcomes.push_back(
-              Evaluate(sweep_detector, scan.reference, scan.frames, scan.truth, config, trial));
-      if (progress) progress(++done, total);
-    }
-  }
-
-  for (int trial = 0; trial < options.tracking_trials; ++trial) {
-    Ts2pScanConfig config = DrawTs2pTrial(options.ranges, options.seed, trial);
-    result.tracking.push_back(RunTracking(options, config, trial, sweep_detector, caster));
-    if (progress) progress(++done, total);
-  }
-  return result;
 }
 
 nlohmann::json SummarizeTs2pBench(const Ts2pBenchResult& result) {

@@ -9,13 +9,13 @@
 //   Table III  label tracking over an approach after the detection: time per frame (KLT,
 //              propagation) and the drift of x_s against the safe point of the true opening.
 // Each trial is a pure function of (seed, trial index); detection timings are single-threaded
-// (cv::setNumThreads(1) for the run: "on one core").
+// (cv::setNumThreads(1) while trials run: "on one core"). The bench runs as a Monte-Carlo bench
+// (ts2p_monte_carlo_bench.h), whole or in shards: every rendered scan is one unit of work whose
+// record holds its scores (ts2p_bench_trials.h), and this writer builds the outputs from them.
 //
-//   Ts2pBenchOptions options;  options.trials = 150;
-//   Ts2pBenchResult result = RunTs2pBench(options);
+//   Ts2pBenchResult result = Ts2pBenchResultFromRecords(options, records);
 //   WriteTs2pBenchOutputs(result, out);  // summary.json, trials.csv, report.html
 #include <cstdint>
-#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -31,8 +31,11 @@ namespace aperture::experiments {
 struct Ts2pBenchOptions {
   int trials = 150;  // Table II: "averaged over 150 trials"
   std::uint64_t seed = 1;
-  std::vector<std::string> methods;  // empty: every DenseFlowMethodNames() entry
-  perception::Ts2pParams detector;   // flow.method is replaced per method
+  // Empty: every DenseFlowMethodNames() entry (filled in by the Monte-Carlo bench).
+  std::vector<std::string> methods;
+  // Sections `ts2p` and `gap_tracker` of the configuration (ReadTs2pBenchParams); not part of
+  // Ts2pBenchOptionsToJson.
+  perception::Ts2pParams detector;  // flow.method is replaced per method
   Ts2pTrialRanges ranges;
   // The sweeps and the tracking use detector.flow.method on the first trials.
   int sweep_trials = 50;
@@ -78,7 +81,6 @@ struct Ts2pTrackingRun {
 
 struct Ts2pBenchResult {
   Ts2pBenchOptions options;
-  std::vector<Ts2pScanConfig> trials;
   std::vector<Ts2pSeries> methods, stacks, sizes, depths;
   std::vector<Ts2pTrackingRun> tracking;
   // Overlays of the first trial of each shape (sweep method, N = 4): G and O coloured as
@@ -86,9 +88,10 @@ struct Ts2pBenchResult {
   std::vector<std::pair<std::string, cv::Mat>> examples;
 };
 
-// `progress(done, total)` after every rendered trial. Throws std::invalid_argument on bad options.
-Ts2pBenchResult RunTs2pBench(const Ts2pBenchOptions& options,
-                             const std::function<void(int, int)>& progress = {});
+// The options but `detector` and `tracker` as JSON and back (the Monte-Carlo bench's
+// configuration); FromJson: std::invalid_argument naming the missing or mistyped key.
+nlohmann::json Ts2pBenchOptionsToJson(const Ts2pBenchOptions& options);
+Ts2pBenchOptions Ts2pBenchOptionsFromJson(const nlohmann::json& json);
 
 nlohmann::json SummarizeTs2pBench(const Ts2pBenchResult& result);
 

@@ -2,8 +2,9 @@
 """Compares two output folders of one Monte-Carlo bench (e.g. an unsharded run and a merge of
 its shards): summary.json and every CSV file (trials.csv, frames.csv, flights.csv) must be equal
 but for what each process measures for itself (wall and CPU times, cost, merged_from, the
-section benches' and mononav's stage timings "timing"). Exit 0 when equal, 1 naming the first
-difference.
+section benches' and mononav's stage timings "timing", any key or column in milliseconds
+"*_ms" / "*_ms_*", and ts2p's acceptance "met", which holds a CPU budget). Exit 0 when equal, 1
+naming the first difference.
 
     compare_bench_outputs.py WHOLE_DIR MERGED_DIR
 """
@@ -15,13 +16,25 @@ from pathlib import Path
 MEASURED = {"wall_time_s", "cost", "merged_from", "timing"}
 
 
+def measured(key):
+    return key == "wall_time_s" or key.endswith("_ms") or "_ms_" in key
+
+
+def without_measured(value):
+    if isinstance(value, dict):
+        return {k: without_measured(v) for k, v in value.items() if not measured(k)}
+    if isinstance(value, list):
+        return [without_measured(v) for v in value]
+    return value
+
+
 def figures(path):
     summary = json.loads(Path(path, "summary.json").read_text())
     for key in MEASURED:
         summary.pop(key, None)
-    for trial in summary.get("per_trial", []):
-        trial.pop("wall_time_s", None)
-    return summary
+    if summary.get("command") == "bench ts2p":
+        summary.get("acceptance", {}).pop("met", None)
+    return without_measured(summary)
 
 
 def table(path):
@@ -29,8 +42,8 @@ def table(path):
         return None
     with open(path, newline="") as f:
         rows = list(csv.reader(f))
-    drop = rows[0].index("wall_time_s") if rows and "wall_time_s" in rows[0] else None
-    return [[c for i, c in enumerate(r) if i != drop] for r in rows]
+    drop = {i for i, name in enumerate(rows[0]) if measured(name)} if rows else set()
+    return [[c for i, c in enumerate(r) if i not in drop] for r in rows]
 
 
 def first_difference(a, b, where=""):

@@ -9,6 +9,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "experiments/bench/monte_carlo_bench_registry.h"
@@ -37,8 +39,9 @@ std::string FileText(const fs::path& path) {
   return text.str();
 }
 
-// RFC 4180 rows (quoted cells may hold commas) without column `drop`.
-std::vector<std::vector<std::string>> CsvWithout(const fs::path& path, const std::string& drop) {
+// RFC 4180 rows (quoted cells may hold commas) without the columns `drop`.
+std::vector<std::vector<std::string>> CsvWithout(const fs::path& path,
+                                                 const std::vector<std::string>& drop) {
   std::ifstream in(path);
   std::vector<std::vector<std::string>> rows;
   std::string line;
@@ -56,11 +59,13 @@ std::vector<std::vector<std::string>> CsvWithout(const fs::path& path, const std
     }
     rows.push_back(cells);
   }
-  if (rows.empty()) return rows;
-  const auto it = std::find(rows[0].begin(), rows[0].end(), drop);
-  const std::size_t column = static_cast<std::size_t>(it - rows[0].begin());
-  for (auto& row : rows) {
-    if (column < row.size()) row.erase(row.begin() + static_cast<std::ptrdiff_t>(column));
+  for (const std::string& name : drop) {
+    if (rows.empty()) break;
+    const auto it = std::find(rows[0].begin(), rows[0].end(), name);
+    const std::size_t column = static_cast<std::size_t>(it - rows[0].begin());
+    for (auto& row : rows) {
+      if (column < row.size()) row.erase(row.begin() + static_cast<std::ptrdiff_t>(column));
+    }
   }
   return rows;
 }
@@ -86,7 +91,8 @@ TEST(BenchShardCommand, MergedShardsEqualTheWholeRunAndBadShardSetsAreRefused) {
   TempFolder temp("bench_shard");
   const auto dir = [&](const std::string& name) { return fs::path(temp.path()) / name; };
   // The whole run on two threads, the shards on one: neither changes a trial.
-  const CommandResult whole_run = RunAperture(kBench + "--threads 2 --out " + dir("whole").string());
+  const CommandResult whole_run =
+      RunAperture(kBench + "--threads 2 --out " + dir("whole").string());
   ASSERT_EQ(whole_run.exit_code, 0) << whole_run.output;
   ASSERT_NO_FATAL_FAILURE(RunShardsAndMerge(kBench + "--threads 1 ", 3, temp.path()));
   // A shard holds its block of trials and what the merge checks.
@@ -105,8 +111,8 @@ TEST(BenchShardCommand, MergedShardsEqualTheWholeRunAndBadShardSetsAreRefused) {
   EXPECT_EQ(whole["successes"], 4);  // ground truth flies every traverse
   // JSON text of a double is its shortest exact form: equal text = equal bits.
   EXPECT_EQ(Figures(merged).dump(), Figures(whole).dump());
-  EXPECT_EQ(CsvWithout(dir("merged") / "trials.csv", "wall_time_s"),
-            CsvWithout(dir("whole") / "trials.csv", "wall_time_s"));
+  EXPECT_EQ(CsvWithout(dir("merged") / "trials.csv", {"wall_time_s"}),
+            CsvWithout(dir("whole") / "trials.csv", {"wall_time_s"}));
   EXPECT_TRUE(fs::exists(dir("merged") / "report.html"));
   // Cost: the whole run's threads and CPU per trial; the merge's per shard.
   EXPECT_EQ(whole["cost"]["threads"], 2);
@@ -127,7 +133,8 @@ TEST(BenchShardCommand, MergedShardsEqualTheWholeRunAndBadShardSetsAreRefused) {
   // A shard of another configuration, named by the key that differs.
   const CommandResult other = RunAperture(
       "bench gap --trials 4 --seed 3 --autopilot ground_truth --duration 6 --max-roll-deg 20 "
-      "--shard 2/3 --out " + dir("other2").string());
+      "--shard 2/3 --out " +
+      dir("other2").string());
   ASSERT_EQ(other.exit_code, 0) << other.output;
   const CommandResult mixed =
       RunAperture("bench merge --out " + dir("bad_config").string() + " " + dir("s1").string() +
@@ -181,9 +188,8 @@ TEST(BenchShardCommand, ControlSectionsInShardsMergeToTheWholeRun) {
   EXPECT_EQ(whole["cost"]["threads"], 2);
   EXPECT_EQ(merged["cost"]["threads"], 1);
 
-  const CommandResult other =
-      RunAperture(control + "--set control.mixer=one_shot --shard 2/3 --out " +
-                  dir("other2").string());
+  const CommandResult other = RunAperture(
+      control + "--set control.mixer=one_shot --shard 2/3 --out " + dir("other2").string());
   ASSERT_EQ(other.exit_code, 0) << other.output;
   const CommandResult mixed =
       RunAperture("bench merge --out " + dir("bad").string() + " " + dir("s1").string() + " " +
@@ -223,9 +229,88 @@ TEST(BenchShardCommand, TagsSectionsInShardsMergeToTheWholeRun) {
     b.erase("sigma_m");
   }
   EXPECT_EQ(merged.dump(), whole.dump());
-  EXPECT_EQ(CsvWithout(dir("merged") / "frames.csv", "ms"),
-            CsvWithout(dir("whole") / "frames.csv", "ms"));
+  EXPECT_EQ(CsvWithout(dir("merged") / "frames.csv", {"ms"}),
+            CsvWithout(dir("whole") / "frames.csv", {"ms"}));
   EXPECT_EQ(ReadJson(dir("merged") / "summary.json")["cost"]["shards"].size(), 2u);
+}
+
+// The figures, plots and images of report.html: its <svg> and <img> elements in order (the
+// tables around them hold measured times).
+std::vector<std::string> ReportFigures(const fs::path& path) {
+  const std::string html = FileText(path);
+  std::vector<std::string> figures;
+  for (const auto& [open, close] : {std::pair<std::string, std::string>{"<svg", "</svg>"},
+                                    std::pair<std::string, std::string>{"<img", "/>"}}) {
+    for (std::size_t at = html.find(open); at != std::string::npos; at = html.find(open, at + 1)) {
+      figures.push_back(html.substr(at, html.find(close, at) + close.size() - at));
+    }
+  }
+  return figures;
+}
+
+// bench ts2p: every unit (a detection trial with its N and size sweeps and example image, a
+// depth-sweep scan, a tracking approach) in one of three shards; the merge equals the whole run
+// but for what each process measures (detection and tracking times, hence the CPU tie-break of
+// best_method and the acceptance's CPU budget).
+TEST(BenchShardCommand, Ts2pScansInShardsMergeToTheWholeRun) {
+  TempFolder temp("bench_shard_ts2p");
+  const auto dir = [&](const std::string& name) { return fs::path(temp.path()) / name; };
+  // 3 detection trials (2 with sweeps: examples of the ellipse and the polygon), 5 depths x 1
+  // scan, 1 approach: 9 units.
+  const std::string ts2p =
+      "bench ts2p --trials 3 --seed 2 --methods dis_ultrafast,dis_medium --sweep-trials 2 "
+      "--depth-trials 1 --tracking-trials 1 ";
+  const CommandResult whole_run = RunAperture(ts2p + "--threads 2 --out " + dir("whole").string());
+  ASSERT_EQ(whole_run.exit_code, 0) << whole_run.output;
+  ASSERT_NO_FATAL_FAILURE(RunShardsAndMerge(ts2p + "--threads 1 ", 3, temp.path()));
+  const nlohmann::json manifest = ReadJson(dir("s2") / "summary.json");
+  EXPECT_EQ(manifest["run"]["trials"], 9);
+  EXPECT_EQ(manifest["shard"]["first_trial"], 3);
+  EXPECT_EQ(manifest["shard"]["trials"], 3);
+
+  const auto figures = [](nlohmann::json summary) {
+    summary = Figures(summary);
+    for (const char* sweep : {"table_ii", "stack_sweep", "resolution_sweep", "depth_sweep"}) {
+      for (nlohmann::json& series : summary[sweep]) series.erase("time_ms");
+    }
+    summary.erase("best_method");
+    summary.erase("acceptance");
+    for (const char* key :
+         {"propagation_ms_mean", "propagation_ms_p95", "klt_ms_mean", "total_ms_mean"}) {
+      summary["tracking"].erase(key);
+    }
+    return summary;
+  };
+  const nlohmann::json whole = ReadJson(dir("whole") / "summary.json");
+  const nlohmann::json merged = ReadJson(dir("merged") / "summary.json");
+  ASSERT_EQ(whole["table_ii"].size(), 2u);
+  EXPECT_EQ(whole["table_ii"][1]["trials"], 3);
+  EXPECT_EQ(whole["stack_sweep"].size(), 3u);  // N = 2, 4, 8 on 2 trials
+  EXPECT_EQ(whole["stack_sweep"][0]["trials"], 2);
+  EXPECT_EQ(whole["depth_sweep"].size(), 5u);  // Z_F 1.5 .. 4.0
+  EXPECT_EQ(whole["tracking"]["approaches"], 1);
+  EXPECT_EQ(figures(merged).dump(), figures(whole).dump());
+  EXPECT_EQ(merged["best_method"].is_string(), true);
+  // Every outcome of every series (trial, shape, scores) in the same order.
+  const std::vector<std::string> times = {"flow_ms",         "stacking_ms",   "edge_aware_ms",
+                                          "segmentation_ms", "safe_point_ms", "total_ms",
+                                          "cpu_ms"};
+  const auto whole_rows = CsvWithout(dir("whole") / "trials.csv", times);
+  EXPECT_EQ(whole_rows.size(), 1u + 3 * 2 + 2 * 3 + 2 * 5 + 5 * 1) << "rows";
+  EXPECT_EQ(CsvWithout(dir("merged") / "trials.csv", times), whole_rows);
+  // The sweep plots, the tracking drift plot and the two example overlays, byte for byte.
+  const std::vector<std::string> report_figures = ReportFigures(dir("whole") / "report.html");
+  EXPECT_EQ(std::count_if(report_figures.begin(), report_figures.end(),
+                          [](const std::string& f) { return f.rfind("<img", 0) == 0; }),
+            2);
+  EXPECT_EQ(ReportFigures(dir("merged") / "report.html"), report_figures);
+  EXPECT_EQ(merged["cost"]["trials"], 9);
+  EXPECT_EQ(merged["cost"]["shards"].size(), 3u);
+
+  const CommandResult missing = RunAperture("bench merge --out " + dir("bad").string() + " " +
+                                            dir("s1").string() + " " + dir("s3").string());
+  EXPECT_EQ(missing.exit_code, 1) << missing.output;
+  EXPECT_NE(missing.output.find("missing trials 3..5"), std::string::npos) << missing.output;
 }
 
 TEST(BenchShardCommand, UsageMistakesExit2) {
@@ -263,8 +348,7 @@ TEST(BenchRegistry, EveryBenchCommandIsShardableOrDeclaredUnsharded) {
     const bool unsharded = registry.unsharded().count(name) > 0;
     EXPECT_NE(registry.Contains(name), unsharded) << "bench " << name;
     const CommandResult command = RunAperture("bench " + name + " --help");
-    EXPECT_EQ(command.output.find("--shard") != std::string::npos, registry.Contains(name))
-        << name;
+    EXPECT_EQ(command.output.find("--shard") != std::string::npos, registry.Contains(name)) << name;
   }
   EXPECT_EQ(commands, static_cast<int>(registry.Names().size() + registry.unsharded().size()));
 }
@@ -276,11 +360,11 @@ TEST(BenchRegistry, ANameIsRegisteredOrDeclaredUnshardedOnce) {
     return std::unique_ptr<experiments::MonteCarloBench>();
   };
   EXPECT_THROW(registry.Register("led", factory), std::invalid_argument);
-  EXPECT_THROW(registry.Register("ts2p", factory), std::invalid_argument);  // declared unsharded
   EXPECT_THROW(registry.DeclareUnsharded("gap", "a fixed measurement"), std::invalid_argument);
   EXPECT_THROW(registry.DeclareUnsharded("new_bench", ""), std::invalid_argument);  // no reason
   registry.DeclareUnsharded("new_bench", "a fixed measurement");
   EXPECT_EQ(registry.unsharded().at("new_bench"), "a fixed measurement");
+  EXPECT_THROW(registry.Register("new_bench", factory), std::invalid_argument);  // unsharded
 }
 
 }  // namespace
