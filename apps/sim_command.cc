@@ -280,6 +280,7 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
       outputs["video"] = std::filesystem::path(*path).filename().string();
     }
   }
+  for (const auto& [key, file] : flight->WriteFiles(out.directory())) outputs[key] = file;
   summary["outputs"] = outputs;
   WriteReport(result, key_frames, "aperture sim: " + options.scenario, scenario, out, *flight,
               evaluation);

@@ -61,6 +61,11 @@ class MissionFlight {
   virtual void DrawOverlay(cv::Mat& /*onboard_bgr*/) const {}
   // Scores the finished run on ground truth (once, after the run).
   virtual MissionEvaluation Evaluate(const sim::SitlResult& result) = 0;
+  // Writes the mission's own files into `directory` (after Evaluate); returns summary.json
+  // "outputs" entries (key -> file name).
+  virtual std::map<std::string, std::string> WriteFiles(const std::string& /*directory*/) const {
+    return {};
+  }
   // Sections for report.html after the summary (plots of the mission's own figures).
   virtual void AddReportSections(const MissionEvaluation& /*evaluation*/,
                                  const sim::SitlResult& /*result*/,
