@@ -57,6 +57,9 @@ class MissionFlight {
   // The mission's effective parameters, every field (config::DumpParams of its parameter struct):
   // the `mission` section of summary.json "config", which `--config summary.json` reads back.
   virtual YAML::Node EffectiveParams() const { return YAML::Node(YAML::NodeType::Map); }
+  // The simulated time the mission needs to finish [s] (0: none); `aperture sim` flies at least
+  // this long unless --duration says otherwise.
+  virtual double MinimumDurationS() const { return 0.0; }
   // Draws the mission's perception on the onboard camera image of the latest frame (the video).
   virtual void DrawOverlay(cv::Mat& /*onboard_bgr*/) const {}
   // Scores the finished run on ground truth (once, after the run).

@@ -23,6 +23,8 @@ namespace {
 
 // The acceptance: tag position RMS over the field [m].
 constexpr double kMapRmsTargetM = 0.02;
+// Simulated time beyond the planned flight that `aperture sim` gives the mission [s].
+constexpr double kDurationMarginS = 5.0;
 
 int DownCameraIndex(const sim::Scenario& scenario) {
   if (scenario.kind() != "tags") {
@@ -43,7 +45,9 @@ int DownCameraIndex(const sim::Scenario& scenario) {
 class TagMappingFlight final : public MissionFlight {
  public:
   explicit TagMappingFlight(const MissionContext& context)
-      : scene_(context.scenario.scene()), field_(context.scenario.params().tags) {
+      : scene_(context.scenario.scene()),
+        field_(context.scenario.params().tags),
+        p_WB_start_(context.sitl.initial_state.p_WB) {
     params_.camera_id = DownCameraIndex(context.scenario);
     static_cast<perception::ImuNoiseParams&>(params_.fusion.filter) = context.sitl.imu;
     odometry_.seed = context.scenario.params().seed * 7919 + 29;
@@ -62,6 +66,10 @@ class TagMappingFlight final : public MissionFlight {
   }
 
   perception::Autopilot& autopilot() override { return *adapter_; }
+  // The planned flight from the start, and time for the filter to start and the map to solve.
+  double MinimumDurationS() const override {
+    return autopilot_->PlannedDurationS(p_WB_start_) + kDurationMarginS;
+  }
   YAML::Node EffectiveParams() const override {
     YAML::Node node = config::DumpParams(params_);
     node["odometry"] = config::DumpParams(odometry_);
@@ -159,6 +167,7 @@ class TagMappingFlight final : public MissionFlight {
  private:
   const sim::Scene& scene_;
   sim::TagsSceneParams field_;
+  Eigen::Vector3d p_WB_start_;
   planning::TagMappingParams params_;
   sim::OdometrySensorParams odometry_;
   std::unique_ptr<planning::TagMappingAutopilot> autopilot_;

@@ -136,9 +136,7 @@ void TagMappingAutopilot::PlanSegments(double t_s, const control::QuadState& x) 
   const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
   double start_t_s = t_s + params_.settle_s;
   for (std::size_t k = 1; k < points_W.size(); ++k) {
-    const double length_m = (points_W[k] - points_W[k - 1]).norm();
-    const double duration_s = std::max(params_.min_segment_duration_s,
-                                       kMinimumJerkPeakToMean * length_m / params_.max_speed_mps);
+    const double duration_s = SegmentDurationS((points_W[k] - points_W[k - 1]).norm());
     Segment segment{
         start_t_s,
         MotionPrimitive(points_W[k - 1], zero, zero, points_W[k], zero, zero, duration_s),
@@ -151,6 +149,21 @@ void TagMappingAutopilot::PlanSegments(double t_s, const control::QuadState& x) 
     segments_.push_back(std::move(segment));
     start_t_s += duration_s;
   }
+}
+
+double TagMappingAutopilot::SegmentDurationS(double length_m) const {
+  return std::max(params_.min_segment_duration_s,
+                  kMinimumJerkPeakToMean * length_m / params_.max_speed_mps);
+}
+
+double TagMappingAutopilot::PlannedDurationS(const Eigen::Vector3d& p_WB_start) const {
+  double duration_s = 2.0 * params_.settle_s;
+  Eigen::Vector3d previous = p_WB_start;
+  for (const Eigen::Vector3d& p_WC : plan_.camera_waypoints_W) {
+    duration_s += SegmentDurationS((p_WC - previous).norm());
+    previous = p_WC;
+  }
+  return duration_s;
 }
 
 std::optional<double> TagMappingAutopilot::flight_start_t_s() const {

@@ -98,6 +98,9 @@ class TagMappingAutopilot : public perception::Autopilot {
   std::optional<double> flight_start_t_s() const;
   std::optional<double> flight_end_t_s() const;
   bool done() const { return done_; }
+  // The time from the first estimate to done for a start at p_WB_start [s] (the camera's offset
+  // from B left out of the segment lengths: a few centimetres of a lawn-mower's metres).
+  double PlannedDurationS(const Eigen::Vector3d& p_WB_start) const;
 
  private:
   struct Segment {
@@ -106,6 +109,7 @@ class TagMappingAutopilot : public perception::Autopilot {
     std::optional<MotionPrimitive> heading;  // in x (the first segment's turn)
   };
   std::optional<control::QuadState> Estimate() const;
+  double SegmentDurationS(double length_m) const;
   void PlanSegments(double t_s, const control::QuadState& x);
   control::TrajectoryPoint Reference(double t_s) const;
 
