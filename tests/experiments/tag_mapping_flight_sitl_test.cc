@@ -51,6 +51,9 @@ TEST(TagMappingFlightSitl, MapsASmallFieldWithinTwoCentimetres) {
 
   EXPECT_TRUE(evaluation.passed) << evaluation.figures.dump(2);
   EXPECT_EQ(result.outcome, sim::SitlResult::Outcome::kAutopilotDone) << result.autopilot_status;
+  // `aperture sim` without --duration flies MinimumDurationS: the plan (done here at its end, the
+  // first estimate at the first odometry pose) and a 5 s margin.
+  EXPECT_NEAR(result.sim_time_s, flight->MinimumDurationS() - 5.0, 0.1);
   const nlohmann::json& f = evaluation.figures;
   EXPECT_EQ(f["tags_mapped"], 3);
   EXPECT_EQ(f["tags_total"], 3);
