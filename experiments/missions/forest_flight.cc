@@ -56,19 +56,13 @@ class ForestFlight final : public MissionFlight {
     params_.goal_W = context.scenario.params().forest.goal_m;
     params_.camera_id = FrontCameraIndex(context.scenario);
     static_cast<perception::ImuNoiseParams&>(params_.fusion.filter) = context.sitl.imu;
-    odometry_.seed = context.scenario.params().seed * 7919 + 17;
-    context.params.ReadSection("odometry", &odometry_);
+    odometry_ = LoadOdometryParams(context, 17);
     LoadParams(context.params, &params_);  // config::LoadParams: reads, rejects, validates
     const sim::ScenarioCamera& camera = context.scenario.cameras()[params_.camera_id];
     mission_ = std::make_unique<planning::ForestMission>(params_, camera.model, *camera.T_BC,
                                                          context.sitl.dynamics.vehicle,
                                                          perception::DefaultMonoDepthModel());
-    adapter_ = std::make_unique<OdometryAdapter>(
-        mission_.get(),
-        [mission = mission_.get()](const perception::PoseMeasurement& pose_WB) {
-          mission->OnOdometry(pose_WB);
-        },
-        odometry_);
+    adapter_ = MakeOdometryAdapter(mission_.get(), odometry_);
   }
 
   YAML::Node EffectiveParams() const override {

@@ -4,12 +4,16 @@
 // poses, no drift) fed from ground truth and handed to the mission's OnOdometry; every other call
 // is forwarded, so the mission itself never sees ground truth. Used by the forest and the tag
 // mapping flights.
+#include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <utility>
 
+#include "experiments/missions/mission_registry.h"
 #include "perception/autopilot.h"
 #include "sim/sensors/odometry_sensor.h"
+#include "sim/sim_params_io.h"
 
 namespace aperture::experiments {
 
@@ -36,5 +40,26 @@ class OdometryAdapter final : public perception::Autopilot {
   OdometrySink on_odometry_;
   sim::OdometrySensor odometry_;
 };
+
+// The odometry source's parameters of a mission flight: seeded from the scenario's seed (times
+// 7919 plus `salt`, so two missions do not draw the same noise), then the `odometry` section of
+// `mission` (read before the mission's own keys, which reject the rest).
+inline sim::OdometrySensorParams LoadOdometryParams(const MissionContext& context,
+                                                    std::uint64_t salt) {
+  sim::OdometrySensorParams odometry;
+  odometry.seed = context.scenario.params().seed * 7919 + salt;
+  context.params.ReadSection("odometry", &odometry);
+  return odometry;
+}
+
+// The adapter for a mission with OnOdometry(const perception::PoseMeasurement&).
+template <typename Mission>
+std::unique_ptr<OdometryAdapter> MakeOdometryAdapter(Mission* mission,
+                                                     const sim::OdometrySensorParams& odometry) {
+  return std::make_unique<OdometryAdapter>(
+      mission,
+      [mission](const perception::PoseMeasurement& pose_WB) { mission->OnOdometry(pose_WB); },
+      odometry);
+}
 
 }  // namespace aperture::experiments

@@ -50,19 +50,13 @@ class TagMappingFlight final : public MissionFlight {
         p_WB_start_(context.sitl.initial_state.p_WB) {
     params_.camera_id = DownCameraIndex(context.scenario);
     static_cast<perception::ImuNoiseParams&>(params_.fusion.filter) = context.sitl.imu;
-    odometry_.seed = context.scenario.params().seed * 7919 + 29;
-    context.params.ReadSection("odometry", &odometry_);
+    odometry_ = LoadOdometryParams(context, 29);
     LoadParams(context.params, &params_);  // config::LoadParams: reads, rejects, validates
     const sim::ScenarioCamera& camera = context.scenario.cameras()[params_.camera_id];
     autopilot_ = std::make_unique<planning::TagMappingAutopilot>(
         params_, TagsFieldForMapping(field_), camera.model, *camera.T_BC,
         context.sitl.dynamics.vehicle, TagsFieldFrontEndParams(field_), perception::TagMapParams{});
-    adapter_ = std::make_unique<OdometryAdapter>(
-        autopilot_.get(),
-        [autopilot = autopilot_.get()](const perception::PoseMeasurement& pose_WB) {
-          autopilot->OnOdometry(pose_WB);
-        },
-        odometry_);
+    adapter_ = MakeOdometryAdapter(autopilot_.get(), odometry_);
   }
 
   perception::Autopilot& autopilot() override { return *adapter_; }
