@@ -7,14 +7,16 @@
 // an earlier run as --config: its full effective configuration, the same flight). The vehicle
 // starts at the scenario's start pose and flies a mission of the registry
 // (experiments/missions/builtin_missions.h): --mission (or mission.name), else the scenario's
-// default (`gap`: the vision gap mission, `led`: the LED-stabilized hover, others: a ground-truth
-// hover), with its parameters from the `mission` section (--set mission.<key>=<value>); its
+// default (`gap`: the vision gap mission, `led`: the LED-stabilized hover, `tags`: the tag
+// mapping flight, ...; `--set mission=NAME` is mission.name), with its parameters from the
+// `mission` section (--set mission.<key>=<value>); its
 // ground-truth evaluation goes into summary.json "mission" (name, passed, its figures) and its
 // report sections into report.html. Writes OUT/summary.json (outcome, crash reason and
 // contact point, real_time_factor, timing, hover errors, frame statistics), OUT/trajectory.csv
 // and OUT/trajectory.tum (ground truth), OUT/commands.csv, OUT/imu.csv, OUT/sim.mp4 (or .avi: the
 // onboard camera with overlays beside a third-person view from behind the vehicle) and
-// OUT/report.html (position and command plots, key frames).
+// OUT/report.html (position and command plots, key frames), and the mission's own files
+// (MissionFlight::WriteFiles, e.g. the tag map's).
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -44,12 +46,16 @@
 namespace aperture::apps {
 namespace {
 
+constexpr double kDefaultDurationS = 10.0;
+
 struct SimOptions {
   CommonOptions common;
   std::string scenario;
   std::string mission;  // empty: the scenario's default
   std::optional<std::uint64_t> seed;
-  double duration_s = 10.0;
+  // Simulated time [s]; unset: 10 s or the mission's own flight time if longer
+  // (MissionFlight::MinimumDurationS).
+  std::optional<double> duration_s;
   int video_every = 2;  // camera frames per video frame (30 Hz camera: 15 frames/s video)
   ChaseViewParams chase;
 };
@@ -147,6 +153,14 @@ void WriteReport(const sim::SitlResult& result, const std::vector<cv::Mat>& key_
 void RunSim(const SimOptions& options, output::OutputFolder& out) {
   std::vector<std::string> set_items = options.common.set_items;
   if (options.seed) set_items.push_back("seed=" + std::to_string(*options.seed));
+  // `--set mission=NAME` (issue 15's spelling) names the mission: `--set mission.name=NAME`.
+  const std::string mission_item = "mission=";
+  for (std::string& item : set_items) {
+    if (item.rfind(mission_item, 0) == 0 && item.size() > mission_item.size() &&
+        item[mission_item.size()] != '{') {
+      item.insert(mission_item.size() - 1, ".name");
+    }
+  }
   config::ConfigTree tree =
       sim::ScenarioConfig(options.scenario, options.common.config_files, set_items);
   config::ParamReader root = tree.Reader();
@@ -160,7 +174,7 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
   sim::Scenario scenario = sim::BuildScenario(scenario_params);
 
   sim::SitlRunnerParams params;
-  params.duration_s = options.duration_s;
+  params.duration_s = options.duration_s.value_or(kDefaultDurationS);
   params.trajectory_decimation = 5;  // 200 Hz ground truth in the outputs
   sim::ConfigureSitlFromScenario(scenario, &params);
   for (sim::SitlCamera& camera : params.cameras) camera.render.ground_truth = false;
@@ -180,6 +194,9 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
   if (mission_name.empty()) mission_name = missions.DefaultFor(scenario_params.scenario);
   const std::unique_ptr<experiments::MissionFlight> flight =
       missions.Create(mission_name, {scenario, params, mission_params});
+  if (!options.duration_s) {
+    params.duration_s = std::max(params.duration_s, flight->MinimumDurationS());
+  }
   perception::Autopilot& autopilot = flight->autopilot();
   sim::SitlRunner runner(params, &scenario.scene());
 
@@ -188,7 +205,7 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
   const int frames_expected =
       params.cameras.empty()
           ? 0
-          : static_cast<int>(options.duration_s * params.cameras[primary].rate_hz);
+          : static_cast<int>(params.duration_s * params.cameras[primary].rate_hz);
   // The video takes every video_every-th camera frame (the others cost nothing here); at most
   // ~kMaxKeyFrames evenly spaced video frames go into the report (JPEG), whatever the duration.
   const int video_frames_expected = frames_expected / options.video_every;
@@ -230,7 +247,7 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
   summary["inputs"] = {{"scenario", options.scenario},
                        {"mission", mission_name},
                        {"seed", scenario_params.seed},
-                       {"duration_s", options.duration_s},
+                       {"duration_s", params.duration_s},
                        {"autopilot", result.autopilot_name}};
   // The full effective configuration: `--config OUT/summary.json` flies this run again.
   sim::PutEffectiveSitlBlocks(scenario_params, &tree);
@@ -280,6 +297,7 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
       outputs["video"] = std::filesystem::path(*path).filename().string();
     }
   }
+  for (const auto& [key, file] : flight->WriteFiles(out.directory())) outputs[key] = file;
   summary["outputs"] = outputs;
   WriteReport(result, key_frames, "aperture sim: " + options.scenario, scenario, out, *flight,
               evaluation);
@@ -298,9 +316,12 @@ void AddSimCommand(CLI::App& app, int* exit_code) {
   command->add_option("scenario", options->scenario,
                       "Built-in scenario name (see aperture render); or a flow below");
   command->add_option("--mission", options->mission,
-                      "Mission to fly (gap, led_hover, hover); default: the scenario's own");
+                      "Mission to fly (gap, gapflyt, led_hover, forest, map, hover); default: the "
+                      "scenario's own");
   command->add_option("--seed", options->seed, "Seed of the scenario and every sensor stream");
-  command->add_option("--duration", options->duration_s, "Simulated time [s]")
+  command
+      ->add_option("--duration", options->duration_s,
+                   "Simulated time [s] (default 10, or the mission's flight time if longer)")
       ->check(CLI::PositiveNumber);
   command
       ->add_option("--video-every", options->video_every,

@@ -12,6 +12,7 @@
 #include "experiments/missions/forest_flight.h"
 #include "experiments/missions/gap_mission_flight.h"
 #include "experiments/missions/gapflyt_flight.h"
+#include "experiments/missions/tag_mapping_flight.h"
 #include "sim/sitl/ground_truth_autopilot.h"
 
 namespace aperture::experiments {
@@ -138,8 +139,11 @@ void RegisterBuiltinMissions(MissionRegistry& registry) {
                     "forest navigation (seed 003): monocular depth, ego-dynamic space, waypoint, "
                     "minimum-time B-spline, replanned every frame, to forest.goal_m",
                     {"forest"}, MakeForestFlight);
-  registry.Register("hover", "hover at the start pose on ground truth (reference flight)",
-                    {"tags"},
+  registry.Register("map",
+                    "tag mapping flight (seed 001, paper D): lawn-mower coverage of the tag field, "
+                    "apriltag front end, incremental tag map, scored on the ground truth",
+                    {"tags"}, MakeTagMappingFlight);
+  registry.Register("hover", "hover at the start pose on ground truth (reference flight)", {},
                     [](const MissionContext& context) -> std::unique_ptr<MissionFlight> {
                       return std::make_unique<HoverFlight>(context);
                     });

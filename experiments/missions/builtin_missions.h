@@ -7,8 +7,12 @@
 //              (experiments/led/led_hover_flight.h)
 //   forest     monocular forest navigation (seed 003), default of scenario `forest`
 //              (experiments/missions/forest_flight.h)
+//   gapflyt    GapFlyt (seed 002), default of scenario `gapflyt`
+//              (experiments/missions/gapflyt_flight.h)
+//   map        tag mapping flight (seed 001, paper D), default of scenario `tags`
+//              (experiments/missions/tag_mapping_flight.h)
 //   hover      ground-truth hover at the start pose (sim/sitl/ground_truth_autopilot.h), the
-//              default of the scenarios that have no mission of their own yet (gapflyt, tags)
+//              reference flight of any scenario (--mission hover)
 #include "experiments/missions/mission_registry.h"
 
 namespace aperture::experiments {

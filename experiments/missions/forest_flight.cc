@@ -7,10 +7,10 @@
 #include <vector>
 
 #include "config/yaml_write_archive.h"
+#include "experiments/missions/odometry_adapter.h"
 #include "output/json_eigen.h"
 #include "perception/mono_depth/mono_depth_estimator.h"
 #include "planning/mono_nav/forest_mission_params_io.h"
-#include "sim/sensors/odometry_sensor.h"
 #include "sim/sim_params_io.h"
 
 namespace aperture::experiments {
@@ -32,27 +32,6 @@ int FrontCameraIndex(const sim::Scenario& scenario) {
                               "' has no body-mounted camera 'front' for the forest mission: add "
                               "one (cameras.front)");
 }
-
-// What the SITL flies: the mission, with the simulated odometry source fed from ground truth.
-class OdometryAdapter final : public perception::Autopilot {
- public:
-  OdometryAdapter(planning::ForestMission* mission, const sim::OdometrySensorParams& odometry)
-      : mission_(mission), odometry_(odometry) {}
-  std::string name() const override { return mission_->name(); }
-  void OnImu(const perception::ImuSample& sample) override { mission_->OnImu(sample); }
-  void OnFrame(const perception::Frame& frame) override { mission_->OnFrame(frame); }
-  void OnRange(const perception::RangeReading& reading) override { mission_->OnRange(reading); }
-  bool UsesGroundTruth() const override { return true; }  // the odometry sensor's input only
-  void OnGroundTruth(const control::QuadState& state) override {
-    if (auto pose = odometry_.Update(state)) mission_->OnOdometry(*pose);
-  }
-  perception::AutopilotCommand Step(double t_s) override { return mission_->Step(t_s); }
-  std::string status() const override { return mission_->status(); }
-
- private:
-  planning::ForestMission* mission_;
-  sim::OdometrySensor odometry_;
-};
 
 // Per-frame cost of a flown mission [ms of thread CPU]: {"frames", "mean", "median", "max"}.
 nlohmann::json ForestFrameTiming(const planning::ForestMission& mission, bool planning) {
@@ -76,19 +55,14 @@ class ForestFlight final : public MissionFlight {
   explicit ForestFlight(const MissionContext& context) : scene_(context.scenario.scene()) {
     params_.goal_W = context.scenario.params().forest.goal_m;
     params_.camera_id = FrontCameraIndex(context.scenario);
-    const sim::ImuSensorParams& imu = context.sitl.imu;
-    params_.fusion.filter.accel_noise_density = imu.accel_noise_density;
-    params_.fusion.filter.gyro_noise_density = imu.gyro_noise_density;
-    params_.fusion.filter.accel_bias_random_walk = imu.accel_bias_random_walk;
-    params_.fusion.filter.gyro_bias_random_walk = imu.gyro_bias_random_walk;
-    odometry_.seed = context.scenario.params().seed * 7919 + 17;
-    context.params.ReadSection("odometry", &odometry_);
+    static_cast<perception::ImuNoiseParams&>(params_.fusion.filter) = context.sitl.imu;
+    odometry_ = LoadOdometryParams(context, 17);
     LoadParams(context.params, &params_);  // config::LoadParams: reads, rejects, validates
     const sim::ScenarioCamera& camera = context.scenario.cameras()[params_.camera_id];
     mission_ = std::make_unique<planning::ForestMission>(params_, camera.model, *camera.T_BC,
                                                          context.sitl.dynamics.vehicle,
                                                          perception::DefaultMonoDepthModel());
-    adapter_ = std::make_unique<OdometryAdapter>(mission_.get(), odometry_);
+    adapter_ = MakeOdometryAdapter(mission_.get(), odometry_);
   }
 
   YAML::Node EffectiveParams() const override {

@@ -57,10 +57,18 @@ class MissionFlight {
   // The mission's effective parameters, every field (config::DumpParams of its parameter struct):
   // the `mission` section of summary.json "config", which `--config summary.json` reads back.
   virtual YAML::Node EffectiveParams() const { return YAML::Node(YAML::NodeType::Map); }
+  // The simulated time the mission needs to finish [s] (0: none); `aperture sim` flies at least
+  // this long unless --duration says otherwise.
+  virtual double MinimumDurationS() const { return 0.0; }
   // Draws the mission's perception on the onboard camera image of the latest frame (the video).
   virtual void DrawOverlay(cv::Mat& /*onboard_bgr*/) const {}
   // Scores the finished run on ground truth (once, after the run).
   virtual MissionEvaluation Evaluate(const sim::SitlResult& result) = 0;
+  // Writes the mission's own files into `directory` (after Evaluate); returns summary.json
+  // "outputs" entries (key -> file name).
+  virtual std::map<std::string, std::string> WriteFiles(const std::string& /*directory*/) const {
+    return {};
+  }
   // Sections for report.html after the summary (plots of the mission's own figures).
   virtual void AddReportSections(const MissionEvaluation& /*evaluation*/,
                                  const sim::SitlResult& /*result*/,

@@ -14,6 +14,8 @@
 
 #include "control/so3.h"
 #include "experiments/bench/section_record.h"
+#include "experiments/tags/tag_map_evaluation.h"
+#include "experiments/tags/tags_scenario_field.h"
 #include "output/csv_writer.h"
 #include "output/svg_plot.h"
 #include "perception/camera/pinhole_camera.h"
@@ -29,7 +31,6 @@ namespace {
 using perception::TagPoseCandidate;
 
 constexpr double kDetectionTagSize_m = 0.16;
-constexpr double kFlipThreshold_deg = 10.0;  // a chosen rotation further off is a flip
 const char* const kFamilies[] = {"tag36h11", "tag16h5", "tag25h9", "tagStandard41h12"};
 const std::vector<std::string> kFramesCsvColumns{
     "detector", "family",   "distance_m",          "angle_deg",
@@ -53,10 +54,6 @@ const std::vector<std::string> kObservationsCsvColumns{"frame",
                                                        "best_rms_px",
                                                        "alternative_rms_px",
                                                        "lowest_error_rotation_error_deg"};
-
-double RotationErrorDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
-  return control::LogSo3(a.linear().transpose() * b.linear()).norm() * 180.0 / M_PI;
-}
 
 double Median(std::vector<double> values) {
   if (values.empty()) return std::nan("");
@@ -240,48 +237,6 @@ void RunDetection(const TagBenchOptions& options, nlohmann::json* summary,
 
 // ---- mapping ------------------------------------------------------------------------------------
 
-struct MapEvaluation {
-  double rms_before_m = 0, rms_after_m = 0;
-  // Mean error over the tags: the part of the error that is a common offset of the map against
-  // the origin tag (the gauge), which more views elsewhere cannot remove.
-  Eigen::Vector3d mean_error_m = Eigen::Vector3d::Zero();
-  int flipped = 0, tags = 0;
-  nlohmann::json per_tag = nlohmann::json::array();
-};
-
-MapEvaluation EvaluateMap(const perception::TagMap& map, const sim::Scenario& scenario,
-                          const Eigen::Isometry3d& T_W0_true) {
-  MapEvaluation evaluation;
-  const Eigen::Isometry3d T_W0 = map.params().T_W_origin();
-  for (const perception::MappedTag& tag : map.Tags()) {
-    const Eigen::Isometry3d T_0T_true =
-        T_W0_true.inverse() * scenario.scene().object("tag" + std::to_string(tag.id)).T_WO;
-    const Eigen::Isometry3d T_0T = T_W0.inverse() * tag.T_WT;
-    const Eigen::Isometry3d T_0T_before = T_W0.inverse() * tag.T_WT_initial;
-    evaluation.rms_after_m += (T_0T.translation() - T_0T_true.translation()).squaredNorm();
-    evaluation.rms_before_m += (T_0T_before.translation() - T_0T_true.translation()).squaredNorm();
-    evaluation.flipped += RotationErrorDeg(T_0T, T_0T_true) > kFlipThreshold_deg;
-    const Eigen::Vector3d error = T_0T.translation() - T_0T_true.translation();
-    evaluation.mean_error_m += error;
-    evaluation.per_tag.push_back(
-        {{"id", tag.id},
-         {"error_m", {error.x(), error.y(), error.z()}},
-         {"error_before_m", (T_0T_before.translation() - T_0T_true.translation()).norm()},
-         {"rotation_error_deg", RotationErrorDeg(T_0T, T_0T_true)},
-         {"sigma_m",
-          tag.has_covariance ? std::sqrt(tag.covariance.topLeftCorner<3, 3>().trace()) : 0.0},
-         {"observations", tag.observations},
-         {"rejected", tag.rejected}});
-    ++evaluation.tags;
-  }
-  if (evaluation.tags > 0) {
-    evaluation.rms_after_m = std::sqrt(evaluation.rms_after_m / evaluation.tags);
-    evaluation.rms_before_m = std::sqrt(evaluation.rms_before_m / evaluation.tags);
-    evaluation.mean_error_m /= evaluation.tags;
-  }
-  return evaluation;
-}
-
 // The mapping section; one observations.csv row (kObservationsCsvColumns) per tag observation
 // into *observation_rows.
 void RunMapping(const TagBenchOptions& options, nlohmann::json* summary, output::HtmlReport* report,
@@ -290,18 +245,7 @@ void RunMapping(const TagBenchOptions& options, nlohmann::json* summary, output:
       sim::ScenarioConfig("tags", {}, {"seed=" + std::to_string(options.seed)})));
   const sim::TagsSceneParams& field = scenario.params().tags;
   const sim::ScenarioCamera& camera = scenario.camera("down");
-  perception::TagFrontEndParams params;
-  params.size_m = field.tag_size_m;
-  const int first_movable = 3 + field.fixed_obstacles;
-  for (int k = 0; k < field.movable_obstacles; ++k) {
-    params.sizes[first_movable + k] = field.movable_tag_size_m;
-  }
-  params.detection.quad_decimate = 1.0;  // the 0.1 m movable tags are ~13 px at 2.5 m
-  // The rendered corners' error against the projected truth (corner_error_*_px below): median
-  // ~0.11 px, 90 % ~0.22 px, partly systematic (0.1 m tags look ~0.13 px smaller per corner;
-  // edges parallel to the pixel rows); the default 1 px would weight the tags 1/25 against
-  // gravity, 0.15 px (the white part alone) gave larger map errors on seeds 1-3.
-  params.pose.refiner.detection_sigma_px = 0.3;
+  const perception::TagFrontEndParams params = TagsFieldFrontEndParams(field);
   perception::TagFrontEnd front_end(options.detectors.Create("apriltag", params.detection),
                                     camera.model, params);
   perception::TagFlipResolverParams disabled;
@@ -385,8 +329,8 @@ void RunMapping(const TagBenchOptions& options, nlohmann::json* summary, output:
             baseline[i].use_alternative ? *posed_tags[i].pose.alternative : posed_tags[i].pose.best;
         unresolved.push_back({posed_tags[i].family, posed_tags[i].id, resolved[i].tag_size_m,
                               plain.T_CT, plain.covariance});
-        flips_resolved += RotationErrorDeg(resolved[i].T_CT, truth[i]) > kFlipThreshold_deg;
-        flips_unresolved += RotationErrorDeg(plain.T_CT, truth[i]) > kFlipThreshold_deg;
+        flips_resolved += RotationErrorDeg(resolved[i].T_CT, truth[i]) > kFlippedTagDeg;
+        flips_unresolved += RotationErrorDeg(plain.T_CT, truth[i]) > kFlippedTagDeg;
         ++posed;
         rows[i].push_back(RotationErrorDeg(plain.T_CT, truth[i]));
         observation_rows->push_back(rows[i]);
@@ -422,11 +366,10 @@ void RunMapping(const TagBenchOptions& options, nlohmann::json* summary, output:
   const perception::TagMapSolveSummary solve = resolved_map.Optimize();
   unresolved_map.Optimize();
   without_odometry_map.Optimize();
-  const Eigen::Isometry3d T_W0_true = scenario.scene().object("tag0").T_WO;
-  const MapEvaluation resolved_eval = EvaluateMap(resolved_map, scenario, T_W0_true);
-  const MapEvaluation unresolved_eval = EvaluateMap(unresolved_map, scenario, T_W0_true);
-  const MapEvaluation without_odometry_eval =
-      EvaluateMap(without_odometry_map, scenario, T_W0_true);
+  const TagMapEvaluation resolved_eval = EvaluateTagMap(resolved_map, scenario.scene());
+  const TagMapEvaluation unresolved_eval = EvaluateTagMap(unresolved_map, scenario.scene());
+  const TagMapEvaluation without_odometry_eval =
+      EvaluateTagMap(without_odometry_map, scenario.scene());
   const int tags_in_scene = 3 + field.fixed_obstacles + field.movable_obstacles;
   nlohmann::json section = {
       {"frames", frame_index},
@@ -436,7 +379,7 @@ void RunMapping(const TagBenchOptions& options, nlohmann::json* summary, output:
       {"flip_rate_resolved", posed ? double(flips_resolved) / posed : 0.0},
       {"flip_rate_lowest_error", posed ? double(flips_unresolved) / posed : 0.0},
       {"tags_in_scene", tags_in_scene},
-      {"tags_mapped", resolved_eval.tags},
+      {"tags_mapped", resolved_eval.tags.size()},
       {"map_rms_before_m", resolved_eval.rms_before_m},
       {"map_rms_after_m", resolved_eval.rms_after_m},
       {"map_mean_error_m",
@@ -450,13 +393,13 @@ void RunMapping(const TagBenchOptions& options, nlohmann::json* summary, output:
       {"map_solve_time_s", solve.solve_time_s},
       {"unresolved_map_rms_after_m", unresolved_eval.rms_after_m},
       {"unresolved_map_flipped_tags", unresolved_eval.flipped},
-      {"map_tags", resolved_eval.per_tag},
+      {"map_tags", resolved_eval.PerTagJson()},
   };
   (*summary)["mapping"] = section;
   (*summary)["acceptance"] = {
       {"map_rms_within_2cm", resolved_eval.rms_after_m <= 0.02},
       {"no_flipped_tag_in_map", resolved_eval.flipped == 0},
-      {"all_tags_mapped", resolved_eval.tags == tags_in_scene},
+      {"all_tags_mapped", static_cast<int>(resolved_eval.tags.size()) == tags_in_scene},
   };
   report->AddSection("Mapping pass over the tags scenario");
   report->AddParagraph("Lawn-mower: 4 lanes at 2.5 m; map errors in the origin tag's frame.");

@@ -75,15 +75,7 @@ std::string AprilTagNode::StreamName(const TagDetection& detection) const {
 void AprilTagNode::Run(NodeContext& context) {
   const Frame& frame = context.Get<Frame>(kFrameSlot);
   TagFrameResult result = front_end_.Process(frame.image, frame.t_s);
-  if (map_) {
-    std::vector<TagMapObservation> observations;
-    for (const TagResult& tag : result.tags) {
-      if (!tag.pose) continue;
-      observations.push_back({tag.detection.family, tag.detection.id, tag.size_m, tag.chosen().T_CT,
-                              tag.chosen().covariance});
-    }
-    map_->AddImage(frame.t_s, observations);
-  }
+  if (map_) map_->AddImage(frame.t_s, MapObservations(result));
   if (csv_) WriteRows(frame, result);
   context.Set(kOutputSlot, std::move(result));
 }

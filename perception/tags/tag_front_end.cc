@@ -71,4 +71,14 @@ TagFrameResult TagFrontEnd::Process(const cv::Mat& gray, double t_s) {
   return result;
 }
 
+std::vector<TagMapObservation> MapObservations(const TagFrameResult& result) {
+  std::vector<TagMapObservation> observations;
+  for (const TagResult& tag : result.tags) {
+    if (!tag.pose) continue;
+    observations.push_back({tag.detection.family, tag.detection.id, tag.size_m, tag.chosen().T_CT,
+                            tag.chosen().covariance});
+  }
+  return observations;
+}
+
 }  // namespace aperture::perception

@@ -11,6 +11,7 @@
 #include "perception/camera/camera_model.h"
 #include "perception/tags/tag_detector.h"
 #include "perception/tags/tag_flip_resolver.h"
+#include "perception/tags/tag_map.h"
 #include "perception/tags/tag_pose_estimator.h"
 
 namespace aperture::perception {
@@ -44,6 +45,9 @@ struct TagResult {
 struct TagFrameResult {
   std::vector<TagResult> tags;
 };
+
+// The tags of a frame that have a pose, as tag map observations (the chosen candidate).
+std::vector<TagMapObservation> MapObservations(const TagFrameResult& result);
 
 class TagFrontEnd {
  public:

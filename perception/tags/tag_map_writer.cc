@@ -58,8 +58,7 @@ void WriteTagMapYaml(const std::string& path, const std::vector<MappedTag>& tags
   if (!file) throw std::runtime_error("cannot write tag map '" + path + "'");
 }
 
-void WriteTagMapTopView(const std::string& path, const std::vector<MappedTag>& tags,
-                        const TopViewOptions& options) {
+cv::Mat DrawTagMapTopView(const std::vector<MappedTag>& tags, const TopViewOptions& options) {
   Eigen::Vector2d low(0.0, 0.0), high(1.0, 1.0);
   for (const MappedTag& tag : tags) {
     low = low.cwiseMin(tag.T_WT.translation().head<2>());
@@ -113,7 +112,12 @@ void WriteTagMapTopView(const std::string& path, const std::vector<MappedTag>& t
     cv::putText(image, std::to_string(tag.id), centre + cv::Point2d(6, -6),
                 cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
   }
-  if (!cv::imwrite(path, image))
+  return image;
+}
+
+void WriteTagMapTopView(const std::string& path, const std::vector<MappedTag>& tags,
+                        const TopViewOptions& options) {
+  if (!cv::imwrite(path, DrawTagMapTopView(tags, options)))
     throw std::runtime_error("cannot write tag map image '" + path + "'");
 }
 

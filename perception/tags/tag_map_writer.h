@@ -7,6 +7,7 @@
 //             its id, and its ellipse_scale-sigma position ellipse in x-y (at least 1 px); the
 //             pre-optimization position as a grey cross.
 // Both throw std::runtime_error when the file cannot be written.
+#include <opencv2/core/mat.hpp>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,8 @@ struct TopViewOptions {
   double margin_m = 0.5;
   double ellipse_scale = 3.0;  // sigmas
 };
+// The top view as an image (CV_8UC3); WriteTagMapTopView writes it as PNG.
+cv::Mat DrawTagMapTopView(const std::vector<MappedTag>& tags, const TopViewOptions& options = {});
 void WriteTagMapTopView(const std::string& path, const std::vector<MappedTag>& tags,
                         const TopViewOptions& options = {});
 

@@ -193,6 +193,8 @@ TEST(SimCommand, SummaryConfigurationKeepsTheMissionChosenOnTheCommandLine) {
   const std::string summary = (fs::path(temp.path()) / "first" / "summary.json").string();
   EXPECT_EQ(run("again", "--config " + summary)["mission"]["name"], "hover");
   EXPECT_EQ(run("default", "")["mission"]["name"], "gap");
+  // Issue 15's spelling: --set mission=NAME is mission.name.
+  EXPECT_EQ(run("shorthand", "--set mission=hover")["mission"]["name"], "hover");
 }
 
 }  // namespace
