@@ -9,6 +9,8 @@
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
+#include "control/constants.h"
+#include "experiments/bench/sample_statistics.h"
 #include "output/csv_writer.h"
 #include "output/html_report.h"
 #include "output/svg_plot.h"
@@ -16,7 +18,7 @@
 namespace aperture::experiments {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using control::kNaN;
 constexpr double kPaperBackgroundDepthM = 5.7;
 
 // Restores OpenCV's thread count on scope exit.
@@ -73,11 +75,6 @@ cv::Mat Overlay(const cv::Mat& reference, const cv::Mat& opening, const cv::Mat&
   tint.setTo(cv::Scalar(0, 0, 255), opening & ~truth);
   cv::addWeighted(bgr, 0.55, tint, 0.45, 0.0, bgr);
   return bgr;
-}
-
-double Mean(const std::vector<double>& values) {
-  if (values.empty()) return kNaN;
-  return std::accumulate(values.begin(), values.end(), 0.0) / values.size();
 }
 
 double Percentile(std::vector<double> values, double p) {
