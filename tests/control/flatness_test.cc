@@ -10,6 +10,7 @@
 
 #include "control/constants.h"
 #include "control/reference_trajectories.h"
+#include "control/so3.h"
 #include "tests/support/scientific.h"
 
 namespace aperture::control {
@@ -56,10 +57,6 @@ VehicleParameters DragFreeVehicle() {
   vehicle.rotor_drag_D_per_s.setZero();
   vehicle.thrust_velocity_coeff_kh = 0.0;
   return vehicle;
-}
-
-Eigen::Vector3d Vee(const Eigen::Matrix3d& m) {
-  return 0.5 * Eigen::Vector3d(m(2, 1) - m(1, 2), m(0, 2) - m(2, 0), m(1, 0) - m(0, 1));
 }
 
 // Body rates from central differences of R(t): omega^ = R' dR/dt (F.3).
