@@ -19,6 +19,7 @@
 #include "apps/command_support.h"
 #include "apps/commands.h"
 #include "apps/sitl_outputs.h"
+#include "control/constants.h"
 #include "output/csv_writer.h"
 #include "output/html_report.h"
 #include "output/json_eigen.h"
@@ -30,7 +31,7 @@
 namespace aperture::apps {
 namespace {
 
-constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+using control::kRadToDeg;
 
 struct RecoveryOptions {
   CommonOptions common;
@@ -121,7 +122,7 @@ void RunRecovery(const RecoveryOptions& options, output::OutputFolder& out) {
                          {"final_tilt_deg", flight.final_tilt_rad * kRadToDeg},
                          {"final_speed_mps", flight.final_speed_mps}};
   WriteSitlTimeSeries(flight.sitl, out);
-  summary["outputs"] = {{"stages", "stages.csv"}, {"trajectory", "trajectory.csv"},
+  summary["outputs"] = {{"stages", "stages.csv"},  {"trajectory", "trajectory.csv"},
                         {"tum", "trajectory.tum"}, {"commands", "commands.csv"},
                         {"imu", "imu.csv"},        {"report", "report.html"}};
   WriteRecoveryReport(flight, out);
@@ -136,8 +137,7 @@ void AddSimRecoveryCommand(CLI::App& sim, int* exit_code) {
   CLI::App* command = sim.add_subcommand(
       "recovery", "Recover a seeded hand throw with the on-board pipeline of thesis paper B");
   command->add_option("--seed", options->seed, "Seed of the throw and every sensor stream");
-  command->add_option("--duration", options->duration_s, "Timeout [s]")
-      ->check(CLI::PositiveNumber);
+  command->add_option("--duration", options->duration_s, "Timeout [s]")->check(CLI::PositiveNumber);
   AddCommonOptions(command, &options->common);
   command->callback([options, exit_code] {
     output::OutputFolder out(options->common.out_dir);

@@ -9,13 +9,14 @@
 #include <stdexcept>
 #include <string>
 
+#include "control/constants.h"
 #include "control/require.h"
 #include "planning/fast_acos.h"
 
 namespace aperture::planning {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using control::kPi;
 constexpr double kNoBound = std::numeric_limits<double>::infinity();
 
 double WrapAngle(double angle) { return std::remainder(angle, 2.0 * kPi); }

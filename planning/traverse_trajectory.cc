@@ -56,7 +56,7 @@ struct ProblemData {
 };
 
 // Layout of x: [d (m), t_c (s)].
-double Objective(const std::vector<double>& x, std::vector<double>& grad, void* data) {
+double TraverseTimeObjective(const std::vector<double>& x, std::vector<double>& grad, void* data) {
   ++static_cast<ProblemData*>(data)->evaluations;
   if (!grad.empty()) {
     grad[0] = 0.0;
@@ -194,7 +194,7 @@ TraverseOptimizationResult OptimizeTraverseTrajectory(const GapPose& gap,
   nlopt::opt optimizer(nlopt::LD_SLSQP, 2);
   optimizer.set_lower_bounds({parameters.min_start_distance_m, t_min});
   optimizer.set_upper_bounds({parameters.max_start_distance_m, parameters.max_time_to_gap_s});
-  optimizer.set_min_objective(Objective, &data);
+  optimizer.set_min_objective(TraverseTimeObjective, &data);
   optimizer.add_inequality_constraint(SpeedConstraint, &data, 1e-12);
   const bool needs_clearance = basis.g2 < 0.0;
   if (needs_clearance) optimizer.add_inequality_constraint(ClearanceConstraint, &data, 1e-12);

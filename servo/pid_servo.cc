@@ -5,12 +5,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "control/constants.h"
 #include "control/require.h"
 
 namespace aperture::servo {
 namespace {
 
-constexpr double kGravity_mps2 = 9.81;
+using control::kGravity_mps2;
 constexpr double kMaxForwardPitchDeg = 30.0;
 // x_B must lie this far in front of the image plane (z_C component of the unit x_B) to have a
 // usable image: 0.1 = within ~84 deg of the optical axis.

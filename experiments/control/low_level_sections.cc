@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "control/constants.h"
 #include "control/low_level_controller.h"
 #include "control/mixer.h"
 #include "control/position_controller.h"
@@ -20,7 +21,7 @@
 namespace aperture::experiments {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using control::kPi;
 constexpr double kHoverHeight_m = 1.5;
 constexpr double kControlRate_hz = 100.0;  // high-level loop on ground truth (G.6 mocap setting)
 constexpr double kRecordRate_hz = 100.0;   // ground truth kept for the figures
@@ -51,7 +52,7 @@ double Rms(const std::vector<double>& values) {
   for (double v : values) sum += v * v;
   return values.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(values.size()));
 }
-double Mean(const std::vector<double>& values) {
+double MeanOrZero(const std::vector<double>& values) {
   double sum = 0.0;
   for (double v : values) sum += v;
   return values.empty() ? 0.0 : sum / static_cast<double>(values.size());
@@ -237,7 +238,7 @@ void RunBodyRate(const ControlBenchOptions& options, nlohmann::json* summary,
     rate_errors.AddLine(controller.label, tracking.t_s, tracking.pitch_rate_error_radps);
     x_errors.AddLine(controller.label, tracking.t_s, tracking.x_error_m);
     const HitResponse hits = FlyHits(controller, options);
-    out[controller.key]["settling_time"] = Mean(hits.settling_times_s);
+    out[controller.key]["settling_time"] = MeanOrZero(hits.settling_times_s);
     out[controller.key]["settling_time_max"] =
         *std::max_element(hits.settling_times_s.begin(), hits.settling_times_s.end());
     hit_rates.AddLine(controller.label, hits.t_s, hits.rate_radps);

@@ -8,6 +8,7 @@
 #include <optional>
 #include <vector>
 
+#include "control/constants.h"
 #include "control/recovery_state_machine.h"
 #include "output/svg_plot.h"
 #include "sim/sitl/recovery_flight.h"
@@ -18,7 +19,7 @@ namespace {
 // Release -> timeout [s]: stages 1-5 take 2-3 s in B.4, then the position stage must hold for
 // RecoveryAutopilotParams::hold_s (4 s).
 constexpr double kTimeLimit_s = 10.0;
-constexpr double kPi = 3.14159265358979323846;
+using control::kPi;
 
 // B.4.2: "maximum body rates above 650 deg/s, linear velocities exceeding 3.6 m/s" indoors,
 // above 800 deg/s and 6 m/s outdoors. Lobs released slightly downwards are included: the

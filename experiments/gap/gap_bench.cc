@@ -11,6 +11,7 @@
 #include <mutex>
 #include <stdexcept>
 
+#include "control/constants.h"
 #include "experiments/gap/gap_mission_factory.h"
 #include "experiments/gap/gap_trial_record_json.h"
 #include "output/json_eigen.h"
@@ -21,7 +22,7 @@
 namespace aperture::experiments {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using control::kNaN;
 
 // Forwards everything to the trial's autopilot and records its estimate after every Step, mapped
 // from the autopilot's world frame into the simulator's through the gap: T_WG_true * T_MG_est^-1
@@ -71,9 +72,9 @@ std::vector<control::QuadState> SampleTruth(const std::vector<control::QuadState
   std::vector<control::QuadState> truth;
   truth.reserve(at.size());
   for (const control::QuadState& sample : at) {
-    auto it = std::upper_bound(
-        trajectory.begin(), trajectory.end(), sample.t_s + 1e-9,
-        [](double t, const control::QuadState& state) { return t < state.t_s; });
+    auto it =
+        std::upper_bound(trajectory.begin(), trajectory.end(), sample.t_s + 1e-9,
+                         [](double t, const control::QuadState& state) { return t < state.t_s; });
     if (it == trajectory.begin()) continue;
     truth.push_back(*std::prev(it));
   }
@@ -190,8 +191,8 @@ GapTrialRecord RunGapTrial(const GapBenchOptions& options, const sim::ScenarioPa
 
     record.plan = autopilot->traverse_plan();
     record.traverse_start_time_s = autopilot->traverse_start_time_s();
-    record.evaluation = EvaluateGapTrial(result, gap, record.plan, record.traverse_start_time_s,
-                                         options.hover);
+    record.evaluation =
+        EvaluateGapTrial(result, gap, record.plan, record.traverse_start_time_s, options.hover);
     record.outcome = sim::ToString(result.outcome);
     record.sim_time_s = result.sim_time_s;
     record.autopilot_name = result.autopilot_name;
@@ -253,8 +254,7 @@ GapBenchResult RunGapBench(const GapBenchOptions& options, const GapBenchSetup& 
   result.trials.resize(configs.size());
   std::mutex mutex;
   int done = 0;
-  tbb::task_arena arena(options.threads > 0 ? options.threads
-                                            : tbb::task_arena::automatic);
+  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
   arena.execute([&] {
     tbb::parallel_for(0, options.trials, [&](int i) {
       result.trials[i] = RunGapTrial(options, base, result.mission, configs[i], factory);
@@ -336,12 +336,11 @@ nlohmann::json SummarizeGapBench(const GapBenchResult& result) {
   }
   nlohmann::json by_inclination = nlohmann::json::array();
   for (const auto& [key, counts] : bins) {
-    by_inclination.push_back(
-        {{"roll_deg", {15 * key.first, 15 * (key.first + 1)}},
-         {"pitch_deg", {15 * key.second, 15 * (key.second + 1)}},
-         {"trials", counts.second},
-         {"successes", counts.first},
-         {"success_rate", static_cast<double>(counts.first) / counts.second}});
+    by_inclination.push_back({{"roll_deg", {15 * key.first, 15 * (key.first + 1)}},
+                              {"pitch_deg", {15 * key.second, 15 * (key.second + 1)}},
+                              {"trials", counts.second},
+                              {"successes", counts.first},
+                              {"success_rate", static_cast<double>(counts.first) / counts.second}});
   }
   summary["success_by_inclination"] = by_inclination;
   summary["per_trial"] = per_trial;

@@ -6,6 +6,7 @@
 #include <limits>
 #include <set>
 
+#include "control/constants.h"
 #include "experiments/gap/gap_bench.h"
 #include "output/csv_writer.h"
 #include "output/html_report.h"
@@ -15,18 +16,47 @@
 namespace aperture::experiments {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using control::kNaN;
 
 void WriteTrialsCsv(const GapBenchResult& result, const std::string& path) {
-  output::CsvWriter csv(
-      path, {"trial", "seed", "roll_deg", "pitch_deg", "start_x_m", "start_y_m", "start_z_m",
-             "start_yaw_deg", "imu_noise_scale", "accel_bias_x_mps2", "accel_bias_y_mps2",
-             "accel_bias_z_mps2", "gyro_bias_x_radps", "gyro_bias_y_radps", "gyro_bias_z_radps",
-             "drop_probability", "exposure_s", "outcome", "success", "failure_reason",
-             "traverse_start_time_s", "crossing_t_s", "crossing_x_G_m", "crossing_y_G_m",
-             "error_x_m", "error_y_m", "error_z_m", "error_vx_mps", "error_vy_mps", "error_vz_mps",
-             "error_roll_deg", "error_pitch_deg", "error_time_s", "frames_delivered",
-             "frames_dropped", "sim_time_s", "wall_time_s", "autopilot_status"});
+  output::CsvWriter csv(path, {"trial",
+                               "seed",
+                               "roll_deg",
+                               "pitch_deg",
+                               "start_x_m",
+                               "start_y_m",
+                               "start_z_m",
+                               "start_yaw_deg",
+                               "imu_noise_scale",
+                               "accel_bias_x_mps2",
+                               "accel_bias_y_mps2",
+                               "accel_bias_z_mps2",
+                               "gyro_bias_x_radps",
+                               "gyro_bias_y_radps",
+                               "gyro_bias_z_radps",
+                               "drop_probability",
+                               "exposure_s",
+                               "outcome",
+                               "success",
+                               "failure_reason",
+                               "traverse_start_time_s",
+                               "crossing_t_s",
+                               "crossing_x_G_m",
+                               "crossing_y_G_m",
+                               "error_x_m",
+                               "error_y_m",
+                               "error_z_m",
+                               "error_vx_mps",
+                               "error_vy_mps",
+                               "error_vz_mps",
+                               "error_roll_deg",
+                               "error_pitch_deg",
+                               "error_time_s",
+                               "frames_delivered",
+                               "frames_dropped",
+                               "sim_time_s",
+                               "wall_time_s",
+                               "autopilot_status"});
   for (const GapTrialRecord& r : result.trials) {
     const GapTrialConfig& c = r.config;
     const std::optional<GapCrossing>& crossing = r.evaluation.crossing;
@@ -93,8 +123,7 @@ Eigen::Vector3d RollPitchYawDeg(const Eigen::Quaterniond& q_WB) {
 }
 
 // One Fig. 6 column: estimate (dashed in spirit: "est") vs ground truth of one quantity.
-std::string Fig6Plot(const std::string& title, const std::string& unit,
-                     const GapTrialRecord& r,
+std::string Fig6Plot(const std::string& title, const std::string& unit, const GapTrialRecord& r,
                      const std::function<Eigen::Vector3d(const control::QuadState&)>& value,
                      const std::array<const char*, 3>& axes) {
   output::SvgPlot plot({title, "t [s]", unit});
@@ -112,8 +141,8 @@ std::string Fig6Plot(const std::string& title, const std::string& unit,
   add(r.estimate_trace, " est.");
   // Markers at the start of the traverse (t_0) and at the crossing (t_c) on the truth's first axis.
   std::vector<double> t_marks, y_marks;
-  for (double t : {r.traverse_start_time_s,
-                   r.evaluation.crossing ? r.evaluation.crossing->t_s : kNaN}) {
+  for (double t :
+       {r.traverse_start_time_s, r.evaluation.crossing ? r.evaluation.crossing->t_s : kNaN}) {
     if (!std::isfinite(t)) continue;
     for (const control::QuadState& s : r.truth_trace) {
       if (s.t_s >= t) {

@@ -7,11 +7,12 @@
 #include <stdexcept>
 
 #include "control/attitude_controller.h"
+#include "control/constants.h"
 
 namespace aperture::experiments {
 namespace {
 
-constexpr double kRadToDeg = 180.0 / M_PI;
+using control::kRadToDeg;
 
 double WrapDeg(double angle_deg) {
   double wrapped = std::remainder(angle_deg, 360.0);
@@ -73,9 +74,9 @@ control::QuadState Interpolate(const control::QuadState& a, const control::QuadS
 
 control::QuadState GroundTruthAt(const std::vector<control::QuadState>& trajectory, double t_s) {
   if (trajectory.empty()) throw std::invalid_argument("GroundTruthAt: empty trajectory");
-  const auto later = std::lower_bound(
-      trajectory.begin(), trajectory.end(), t_s,
-      [](const control::QuadState& s, double t) { return s.t_s < t; });
+  const auto later =
+      std::lower_bound(trajectory.begin(), trajectory.end(), t_s,
+                       [](const control::QuadState& s, double t) { return s.t_s < t; });
   if (later == trajectory.begin()) return trajectory.front();
   if (later == trajectory.end()) return trajectory.back();
   const control::QuadState& a = *(later - 1);
@@ -112,7 +113,8 @@ std::optional<GapCrossing> FindGapCrossing(const std::vector<control::QuadState>
     crossing.state = Interpolate(a, b, s);
     const control::QuadState& c = crossing.state;
     crossing.p_G_m = (T_GW * c.p_WB).head<2>();
-    crossing.inside_opening = (crossing.p_G_m.cwiseAbs().array() < 0.5 * gap.opening_m.array()).all();
+    crossing.inside_opening =
+        (crossing.p_G_m.cwiseAbs().array() < 0.5 * gap.opening_m.array()).all();
     return crossing;
   }
   return std::nullopt;
@@ -142,8 +144,8 @@ GapStateError ComputeErrorAtGap(const GapCrossing& crossing, const GapGeometry& 
   error.velocity_mps = crossing.state.v_W - T_true_est.linear() * plan.Velocity(t_c);
   const Eigen::Vector2d actual = RollPitchDeg(crossing.state.q_WB.toRotationMatrix());
   const Eigen::Vector2d desired = RollPitchDeg(T_true_est.linear() * R_WB_plan);
-  error.orientation_deg = Eigen::Vector2d(WrapDeg(actual.x() - desired.x()),
-                                          WrapDeg(actual.y() - desired.y()));
+  error.orientation_deg =
+      Eigen::Vector2d(WrapDeg(actual.x() - desired.x()), WrapDeg(actual.y() - desired.y()));
   error.time_s = crossing.t_s - (traverse_start_time_s + t_c);
   return error;
 }

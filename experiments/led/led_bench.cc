@@ -15,6 +15,8 @@
 #include <utility>
 #include <vector>
 
+#include "control/constants.h"
+#include "experiments/bench/sample_statistics.h"
 #include "experiments/bench/section_record.h"
 #include "experiments/led/led_pose_error.h"
 #include "experiments/led/led_target_renderer.h"
@@ -32,7 +34,7 @@ using perception::LedTracker;
 using perception::LedTrackResult;
 using perception::LedTrackStatus;
 
-constexpr double kDegToRad = M_PI / 180.0;
+using control::kDegToRad;
 constexpr double kRateHz = 50.0;  // camera frame rate
 // Two LED images closer than this merge into one blob: at 1-2 m a blob (clipped Gaussian, sigma
 // 0.8 px) is above the detector threshold within ~2.3 px of its centre.
@@ -60,9 +62,9 @@ LedTargetRenderer MakeBenchRenderer(const LedConfiguration& configuration,
 // all six distances different by >= 2 cm so no relabelling is near a rigid motion (any four of
 // the built-in five are within 15 mm of a symmetry).
 LedConfiguration FourLedConfiguration() {
-  return LedConfiguration({{0.0, 0.1, 0.0}, {0.1, -0.02, 0.0}, {-0.07, -0.07, 0.0},
-                           {0.0, 0.0, -0.09}},
-                          "bench 4-LED target");
+  return LedConfiguration(
+      {{0.0, 0.1, 0.0}, {0.1, -0.02, 0.0}, {-0.07, -0.07, 0.0}, {0.0, 0.0, -0.09}},
+      "bench 4-LED target");
 }
 
 Eigen::Isometry3d MakePose(const Eigen::Vector3d& p_CT, const Eigen::Vector3d& rpy_rad) {
@@ -92,10 +94,6 @@ double PositionSigma(const perception::Matrix6d& covariance) {
 }
 double OrientationSigmaDeg(const perception::Matrix6d& covariance) {
   return perception::LargestStandardDeviation(covariance.bottomRightCorner<3, 3>()) / kDegToRad;
-}
-
-nlohmann::json FiniteOrNull(double value) {
-  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
 }
 
 // LEDs separately visible in the true image: projected inside the image and not merged with
@@ -177,24 +175,34 @@ struct StageTimeSamples {
 };
 
 // What a section collects besides its figures: the stage times and its frames.csv rows (JSON
-// arrays of the kFramesCsvColumns cells).
+// arrays of the kLedFramesCsvColumns cells).
 struct BenchContext {
   StageTimeSamples times;
   nlohmann::json frames = nlohmann::json::array();
 };
 
-const std::vector<std::string> kFramesCsvColumns{
-    "section",       "t_s",         "status",           "detections",
-    "visible_leds",  "p_CT_true_x", "p_CT_true_y",      "p_CT_true_z",
-    "position_error_m", "orientation_error_deg", "position_sigma_m", "orientation_sigma_deg",
-    "rms_px"};
+const std::vector<std::string> kLedFramesCsvColumns{"section",
+                                                    "t_s",
+                                                    "status",
+                                                    "detections",
+                                                    "visible_leds",
+                                                    "p_CT_true_x",
+                                                    "p_CT_true_y",
+                                                    "p_CT_true_z",
+                                                    "position_error_m",
+                                                    "orientation_error_deg",
+                                                    "position_sigma_m",
+                                                    "orientation_sigma_deg",
+                                                    "rms_px"};
 
 // Renders and tracks a sequence: T_CT_at(t) over `frames` frames at kRateHz, hidden(k) the LEDs
 // occluded in frame k.
-std::vector<FrameRecord> TrackSequence(
-    const std::string& section, LedTargetRenderer& renderer, LedTracker& tracker,
-    const std::function<Eigen::Isometry3d(double)>& T_CT_at, int frames, int first_frame_index,
-    const std::function<std::vector<int>(int)>& hidden, BenchContext* context) {
+std::vector<FrameRecord> TrackSequence(const std::string& section, LedTargetRenderer& renderer,
+                                       LedTracker& tracker,
+                                       const std::function<Eigen::Isometry3d(double)>& T_CT_at,
+                                       int frames, int first_frame_index,
+                                       const std::function<std::vector<int>(int)>& hidden,
+                                       BenchContext* context) {
   std::vector<FrameRecord> records;
   for (int k = 0; k < frames; ++k) {
     FrameRecord record;
@@ -284,9 +292,8 @@ void RunAccuracy(const SectionSizes& sizes, std::uint64_t seed, BenchContext* co
   const auto camera = BenchCamera();
   LedTargetRenderer renderer = MakeBenchRenderer(configuration, camera, seed);
   LedTracker tracker(configuration, camera);
-  const std::vector<FrameRecord> records =
-      TrackSequence("accuracy", renderer, tracker, ExcitationPose, sizes.accuracy_frames, 0,
-                    nullptr, context);
+  const std::vector<FrameRecord> records = TrackSequence(
+      "accuracy", renderer, tracker, ExcitationPose, sizes.accuracy_frames, 0, nullptr, context);
   nlohmann::json accuracy = ComputePoseErrorStatistics(Errors(records)).ToJson();
   int visible4 = 0, visible4_with_pose = 0;
   for (const FrameRecord& record : records) {
@@ -323,7 +330,8 @@ void RunSweep(const SectionSizes& sizes, std::uint64_t seed, BenchContext* conte
   for (const double distance_m : kSweepDistances) {
     // A random pose at this distance (orientation within +-20 deg, lateral offset keeping the
     // target in view) with a slow drift, tracked from a fresh start.
-    const Eigen::Vector3d rpy0 = 20.0 * kDegToRad * Eigen::Vector3d(unit(rng), unit(rng), unit(rng));
+    const Eigen::Vector3d rpy0 =
+        20.0 * kDegToRad * Eigen::Vector3d(unit(rng), unit(rng), unit(rng));
     const Eigen::Vector3d p0(0.1 * distance_m * unit(rng), 0.06 * distance_m * unit(rng),
                              distance_m);
     const auto T_CT_at = [&](double t_s) {
@@ -355,8 +363,7 @@ void RunSweep(const SectionSizes& sizes, std::uint64_t seed, BenchContext* conte
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         static_cast<void>(found);
-        (with_false ? context->times.brute_force_with_false_detection
-                    : context->times.brute_force)
+        (with_false ? context->times.brute_force_with_false_detection : context->times.brute_force)
             .push_back(seconds);
       }
     }
@@ -526,8 +533,7 @@ void RunMerged(const SectionSizes& sizes, std::uint64_t seed, BenchContext* cont
     (is_close ? sigma_close : sigma_separate).push_back(sigma);
     position_cm.push_back(100.0 * record.error->position_m);
     sigma_cm.push_back(100.0 * sigma);
-    if (IsConfidentWrongPose(*record.result.T_CT, *record.result.covariance,
-                             record.T_CT_true)) {
+    if (IsConfidentWrongPose(*record.result.T_CT, *record.result.covariance, record.T_CT_true)) {
       ++confident_wrong;
     }
   }
@@ -721,7 +727,8 @@ void WriteTiming(const StageTimeSamples& times, nlohmann::json* summary,
       "detection: ROIs around the predicted LEDs; prediction: (C.6), (C.7), matching and "
       "verification; near_prediction: P3P candidates near the prediction when fewer than four "
       "LEDs matched (issue 22); brute force: Algorithm 1 on the sweep's detections (n_L = 5), "
-      "alone and with one false detection added. Wall-clock on this machine under its current load.");
+      "alone and with one false detection added. Wall-clock on this machine under its current "
+      "load.");
   report->AddTable(timing);
 }
 
@@ -763,8 +770,7 @@ const std::vector<LedBenchSection>& LedBenchSections() {
        [](const nlohmann::json& s, nlohmann::json* a) {
          (*a)["merged_no_confident_wrong_pose"] = s["confident_wrong_poses"] == 0;
        }},
-      {"body_occlusion", RunBodyOcclusion,
-       [](const nlohmann::json& s, nlohmann::json* a) {
+      {"body_occlusion", RunBodyOcclusion, [](const nlohmann::json& s, nlohmann::json* a) {
          // Issue 22: a pose in >= 95 % of the frames with >= 3 LEDs, mean error <= 0.5 cm and
          // <= 0.5 deg; a fresh start still needs four LEDs.
          (*a)["body_occlusion_pose_rate_3_leds_visible_ge_95pct"] =
@@ -814,10 +820,9 @@ std::vector<std::string> SelectedLedBenchSections(const LedBenchOptions& options
 nlohmann::json RunLedBenchSection(const std::string& key, const LedBenchOptions& options) {
   const LedBenchSection& section = FindSection(key);
   BenchContext context;
-  nlohmann::json record =
-      RecordSection([&](nlohmann::json* summary, output::HtmlReport* report) {
-        section.run(Sizes(options.quick), options.seed, &context, summary, report);
-      });
+  nlohmann::json record = RecordSection([&](nlohmann::json* summary, output::HtmlReport* report) {
+    section.run(Sizes(options.quick), options.seed, &context, summary, report);
+  });
   record["section"] = key;
   record["frames"] = std::move(context.frames);
   record["stage_times"] = context.times.ToJson();
@@ -829,7 +834,7 @@ void WriteLedBenchOutputs(const LedBenchOptions& options,
                           nlohmann::json* summary, output::HtmlReport* report) {
   std::optional<output::CsvWriter> frames_csv;
   if (!options.frames_csv_path.empty()) {
-    frames_csv.emplace(options.frames_csv_path, kFramesCsvColumns);
+    frames_csv.emplace(options.frames_csv_path, kLedFramesCsvColumns);
   }
   StageTimeSamples times;
   for (const nlohmann::json& record : section_records) {

@@ -5,14 +5,13 @@
 #include <cmath>
 #include <limits>
 
+#include "control/constants.h"
+#include "experiments/bench/sample_statistics.h"
+
 namespace aperture::experiments {
 namespace {
 
-constexpr double kRadToDeg = 180.0 / M_PI;
-
-nlohmann::json FiniteOrNull(double value) {
-  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
-}
+using control::kRadToDeg;
 
 }  // namespace
 
@@ -79,8 +78,7 @@ double PoseMahalanobisSquared(const Eigen::Isometry3d& T_CT_estimated,
   const Eigen::AngleAxisd rotation(T_CT_estimated.linear() * T_CT_true.linear().transpose());
   delta.tail<3>() = rotation.angle() * rotation.axis();
   const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> ldlt(covariance);
-  if (ldlt.info() != Eigen::Success || !ldlt.isPositive() ||
-      ldlt.vectorD().minCoeff() <= 0.0) {
+  if (ldlt.info() != Eigen::Success || !ldlt.isPositive() || ldlt.vectorD().minCoeff() <= 0.0) {
     return std::numeric_limits<double>::infinity();
   }
   return delta.dot(ldlt.solve(delta));

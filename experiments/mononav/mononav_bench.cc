@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "config/config_tree.h"
+#include "experiments/bench/sample_statistics.h"
 #include "experiments/missions/builtin_missions.h"
 #include "output/csv_writer.h"
 #include "output/svg_plot.h"
@@ -80,20 +81,7 @@ Flight Fly(const MononavBenchOptions& options, const Configuration& configuratio
   return out;
 }
 
-double Median(std::vector<double> values) {
-  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
-  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
-  return values[values.size() / 2];
-}
-
-double Mean(const std::vector<double>& values) {
-  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
-  double sum = 0.0;
-  for (double v : values) sum += v;
-  return sum / values.size();
-}
-
-double Figure(const Flight& flight, const std::string& key) {
+double FlightFigure(const Flight& flight, const std::string& key) {
   const nlohmann::json& value = flight.evaluation.figures[key];
   return value.is_number() ? value.get<double>() : std::numeric_limits<double>::quiet_NaN();
 }
@@ -120,10 +108,10 @@ nlohmann::json SuccessRow(const std::vector<const Flight*>& flights) {
 // Table II row: replans per flight (segments rejected by their spatial windows).
 nlohmann::json ReplanRow(const std::vector<const Flight*>& flights) {
   std::vector<double> replans;
-  for (const Flight* f : flights) replans.push_back(Figure(*f, "replans"));
+  for (const Flight* f : flights) replans.push_back(FlightFigure(*f, "replans"));
   return {{"flights", flights.size()},
           {"replans_mean", Mean(replans)},
-          {"replans_median", Median(replans)}};
+          {"replans_median", UpperMedian(replans)}};
 }
 
 // Per-frame timing over the flights: the median of the flights' medians and the largest max.
@@ -138,7 +126,7 @@ nlohmann::json TimingRow(const std::vector<const Flight*>& flights, const std::s
     max_ms = std::max(max_ms, t["max"].get<double>());
     frames += t["frames"].get<int>();
   }
-  return {{"median_ms", Median(medians)}, {"max_ms", max_ms}, {"frames", frames}};
+  return {{"median_ms", UpperMedian(medians)}, {"max_ms", max_ms}, {"frames", frames}};
 }
 
 void WriteFlightsCsv(const std::vector<Flight>& flights, const std::string& path) {
@@ -158,10 +146,12 @@ void WriteFlightsCsv(const std::vector<Flight>& flights, const std::string& path
          output::CsvCell(double(f.evaluation.passed)),
          output::CsvCell(double(m["reached_goal"].get<bool>())),
          output::CsvCell(double(m["collision"].get<bool>())),
-         output::CsvCell(Figure(f, "time_to_goal_s")), output::CsvCell(Figure(f, "path_length_m")),
-         output::CsvCell(Figure(f, "min_clearance_m")),
-         output::CsvCell(Figure(f, "final_distance_m")), output::CsvCell(Figure(f, "replans")),
-         output::CsvCell(Figure(f, "frames")), output::CsvCell(Figure(f, "frames_without_path")),
+         output::CsvCell(FlightFigure(f, "time_to_goal_s")),
+         output::CsvCell(FlightFigure(f, "path_length_m")),
+         output::CsvCell(FlightFigure(f, "min_clearance_m")),
+         output::CsvCell(FlightFigure(f, "final_distance_m")),
+         output::CsvCell(FlightFigure(f, "replans")), output::CsvCell(FlightFigure(f, "frames")),
+         output::CsvCell(FlightFigure(f, "frames_without_path")),
          output::CsvCell(median("perception_ms")), output::CsvCell(median("planning_ms")),
          output::CsvCell(f.sim_time_s), output::CsvCell(f.wall_time_s)});
   }
@@ -273,7 +263,8 @@ void WriteMononavSections(const MononavBenchOptions& options,
   std::vector<output::NamedValues> replans;
   for (const Configuration& configuration : configurations) {
     std::vector<double> values;
-    for (const Flight* f : Of(flights, configuration.name)) values.push_back(Figure(*f, "replans"));
+    for (const Flight* f : Of(flights, configuration.name))
+      values.push_back(FlightFigure(*f, "replans"));
     replans.push_back({configuration.name, values});
   }
   report->AddSvg(
@@ -288,14 +279,10 @@ void WriteMononavSections(const MononavBenchOptions& options,
 }
 
 nlohmann::json MononavFlightToJson(const MononavFlight& f) {
-  return {{"configuration", f.configuration},
-          {"seed", f.seed},
-          {"passed", f.evaluation.passed},
-          {"evaluation_outcome", f.evaluation.outcome},
-          {"figures", f.evaluation.figures},
-          {"outcome", f.outcome},
-          {"sim_time_s", f.sim_time_s},
-          {"wall_time_s", f.wall_time_s}};
+  return {{"configuration", f.configuration}, {"seed", f.seed},
+          {"passed", f.evaluation.passed},    {"evaluation_outcome", f.evaluation.outcome},
+          {"figures", f.evaluation.figures},  {"outcome", f.outcome},
+          {"sim_time_s", f.sim_time_s},       {"wall_time_s", f.wall_time_s}};
 }
 
 MononavFlight MononavFlightFromJson(const nlohmann::json& json) {

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "control/so3.h"
+#include "experiments/bench/sample_statistics.h"
 #include "experiments/bench/section_record.h"
 #include "experiments/tags/tag_map_evaluation.h"
 #include "experiments/tags/tags_scenario_field.h"
@@ -32,7 +33,7 @@ using perception::TagPoseCandidate;
 
 constexpr double kDetectionTagSize_m = 0.16;
 const char* const kFamilies[] = {"tag36h11", "tag16h5", "tag25h9", "tagStandard41h12"};
-const std::vector<std::string> kFramesCsvColumns{
+const std::vector<std::string> kTagFramesCsvColumns{
     "detector", "family",   "distance_m",          "angle_deg",
     "blur",     "detected", "translation_error_m", "rotation_error_deg",
     "ms"};
@@ -54,12 +55,6 @@ const std::vector<std::string> kObservationsCsvColumns{"frame",
                                                        "best_rms_px",
                                                        "alternative_rms_px",
                                                        "lowest_error_rotation_error_deg"};
-
-double Median(std::vector<double> values) {
-  if (values.empty()) return std::nan("");
-  std::sort(values.begin(), values.end());
-  return values[values.size() / 2];
-}
 
 double Percentile90(std::vector<double> values) {
   if (values.empty()) return std::nan("");
@@ -145,7 +140,7 @@ DetectionFrame RenderDetectionFrame(const std::string& family, int id, std::mt19
   return frame;
 }
 
-// frames.csv rows (kFramesCsvColumns) into *frames_csv_rows.
+// frames.csv rows (kTagFramesCsvColumns) into *frames_csv_rows.
 void RunDetection(const TagBenchOptions& options, nlohmann::json* summary,
                   output::HtmlReport* report, nlohmann::json* frames_csv_rows) {
   const perception::PinholeCamera camera(640, 480, {320.0, 320.0, 319.5, 239.5});
@@ -218,10 +213,10 @@ void RunDetection(const TagBenchOptions& options, nlohmann::json* summary,
           {"detection_rate", total ? double(detected) / total : 0.0},
           {"false_detections", false_detections},
           {"detection_rate_by_distance", rates},
-          {"median_translation_error_m", Median(translation_errors)},
+          {"median_translation_error_m", UpperMedian(translation_errors)},
           {"p90_translation_error_m", Percentile90(translation_errors)},
-          {"median_rotation_error_deg", Median(rotation_errors)},
-          {"median_ms", Median(times_ms)},
+          {"median_rotation_error_deg", UpperMedian(rotation_errors)},
+          {"median_ms", UpperMedian(times_ms)},
       };
       time_groups.push_back({name + " " + family, times_ms});
     }
@@ -374,7 +369,7 @@ void RunMapping(const TagBenchOptions& options, nlohmann::json* summary, output:
   nlohmann::json section = {
       {"frames", frame_index},
       {"posed_tag_observations", posed},
-      {"corner_error_median_px", Median(corner_errors_px)},
+      {"corner_error_median_px", UpperMedian(corner_errors_px)},
       {"corner_error_p90_px", Percentile90(corner_errors_px)},
       {"flip_rate_resolved", posed ? double(flips_resolved) / posed : 0.0},
       {"flip_rate_lowest_error", posed ? double(flips_unresolved) / posed : 0.0},
@@ -440,7 +435,7 @@ void WriteTagBenchOutputs(const TagBenchOptions& options,
                           nlohmann::json* summary, output::HtmlReport* report) {
   std::optional<output::CsvWriter> frames_csv, observations_csv;
   if (!options.frames_csv_path.empty()) {
-    frames_csv.emplace(options.frames_csv_path, kFramesCsvColumns);
+    frames_csv.emplace(options.frames_csv_path, kTagFramesCsvColumns);
   }
   if (!options.observations_csv_path.empty()) {
     observations_csv.emplace(options.observations_csv_path, kObservationsCsvColumns);

@@ -6,6 +6,8 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "control/constants.h"
+#include "experiments/bench/sample_statistics.h"
 #include "output/csv_writer.h"
 #include "output/html_report.h"
 #include "output/svg_plot.h"
@@ -13,12 +15,7 @@
 namespace aperture::experiments {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-double Mean(const std::vector<double>& values) {
-  if (values.empty()) return kNaN;
-  return std::accumulate(values.begin(), values.end(), 0.0) / values.size();
-}
+using control::kNaN;
 
 double Percentile(std::vector<double> values, double p) {
   if (values.empty()) return kNaN;

@@ -4,12 +4,13 @@
 #include <random>
 #include <stdexcept>
 
+#include "control/constants.h"
 #include "sim/scenario/scenario.h"
 
 namespace aperture::experiments {
 namespace {
 
-constexpr double kDegToRad = M_PI / 180.0;
+using control::kDegToRad;
 // Height of the body (and camera) during the scan: the built-in gapflyt start height.
 constexpr double kBodyHeightM = 1.5;
 

@@ -20,7 +20,7 @@ namespace {
                               "or circles:6x6:0.03");
 }
 
-cv::Mat ToGray(const cv::Mat& image) {
+cv::Mat Gray8(const cv::Mat& image) {
   if (image.type() == CV_8UC1) return image;
   cv::Mat gray;
   cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY);
@@ -115,7 +115,7 @@ std::vector<Eigen::Vector3d> PatternObjectPoints(const PatternSpec& pattern) {
 
 std::optional<std::vector<Eigen::Vector2d>> DetectCalibrationPattern(const cv::Mat& image,
                                                                      const PatternSpec& pattern) {
-  const cv::Mat gray = ToGray(image);
+  const cv::Mat gray = Gray8(image);
   const cv::Size size(pattern.cols, pattern.rows);
   std::vector<cv::Point2f> points;
   if (pattern.kind == PatternSpec::Kind::kChessboard) {

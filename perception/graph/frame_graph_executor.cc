@@ -1,13 +1,8 @@
 #include "perception/graph/frame_graph_executor.h"
 
+#include "perception/elapsed_time.h"
+
 namespace aperture::perception {
-namespace {
-
-double SecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-}  // namespace
 
 FrameGraphExecutor::FrameGraphExecutor(FrameGraph& graph)
     : graph_(graph), node_durations_s_(graph.size()) {}

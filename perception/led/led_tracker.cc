@@ -7,27 +7,31 @@
 #include <stdexcept>
 
 #include "control/so3.h"
+#include "perception/elapsed_time.h"
 
 namespace aperture::perception {
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double SecondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
 }  // namespace
 
 std::string LedTrackStatusName(LedTrackStatus status) {
   switch (status) {
-    case LedTrackStatus::kTracked: return "tracked";
-    case LedTrackStatus::kReinitialized: return "reinitialized";
-    case LedTrackStatus::kNoDetections: return "no_detections";
-    case LedTrackStatus::kNoCorrespondences: return "no_correspondences";
-    case LedTrackStatus::kAmbiguous: return "ambiguous";
-    case LedTrackStatus::kInconsistent: return "inconsistent";
-    case LedTrackStatus::kTrackedNearPrediction: return "tracked_near_prediction";
+    case LedTrackStatus::kTracked:
+      return "tracked";
+    case LedTrackStatus::kReinitialized:
+      return "reinitialized";
+    case LedTrackStatus::kNoDetections:
+      return "no_detections";
+    case LedTrackStatus::kNoCorrespondences:
+      return "no_correspondences";
+    case LedTrackStatus::kAmbiguous:
+      return "ambiguous";
+    case LedTrackStatus::kInconsistent:
+      return "inconsistent";
+    case LedTrackStatus::kTrackedNearPrediction:
+      return "tracked_near_prediction";
   }
   return "unknown";
 }
@@ -197,8 +201,7 @@ void LedTracker::Finish(LedTrackResult* result,
     return;
   }
   const Clock::time_point start = Clock::now();
-  const LedPoseRefinement refined =
-      RefineLedPose(*camera_, p_T, px, T_CT_initial, params_.refiner);
+  const LedPoseRefinement refined = RefineLedPose(*camera_, p_T, px, T_CT_initial, params_.refiner);
   result->stage_times.refinement_s = SecondsSince(start);
   result->rms_px = refined.rms_px;
   if (!refined.valid || refined.rms_px > params_.max_rms_px ||

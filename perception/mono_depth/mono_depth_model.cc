@@ -9,8 +9,6 @@
 namespace aperture::perception {
 namespace {
 
-constexpr int kEnergies = MonoDepthFeatureExtractor::kFeatures;
-
 // Reads the non-comment lines of a model file, naming file and line in every error.
 class ModelReader {
  public:
@@ -74,9 +72,10 @@ MonoDepthModel::MonoDepthModel(const MonoDepthFeatureParams& features, double lo
       std_(std::move(std_dev)),
       weights_(std::move(weights)) {
   features_.Validate();
-  if (!(log_epsilon_ > 0.0) || row_bands_ < 0 || mean_.size() != kEnergies ||
-      std_.size() != kEnergies || weights_.rows() != labels_.Count() ||
-      weights_.cols() != kEnergies + row_bands_ + 1) {
+  if (!(log_epsilon_ > 0.0) || row_bands_ < 0 ||
+      mean_.size() != MonoDepthFeatureExtractor::kFeatures ||
+      std_.size() != MonoDepthFeatureExtractor::kFeatures || weights_.rows() != labels_.Count() ||
+      weights_.cols() != MonoDepthFeatureExtractor::kFeatures + row_bands_ + 1) {
     throw std::invalid_argument(
         "mono_depth model: inconsistent sizes (need log_epsilon > 0, row_bands >= 0, 102 means "
         "and stds, weights labels x (102 + row_bands + 1))");
@@ -118,15 +117,18 @@ MonoDepthModel MonoDepthModel::Parse(std::istream& in, const std::string& source
   const int row_bands = reader.Number<int>(bands_line, "row_bands");
   if (row_bands < 0 || row_bands > 10000) reader.Fail("row_bands " + std::to_string(row_bands));
   std::istringstream mean_line = reader.Line("mean");
-  const Eigen::VectorXf mean = reader.Vector(mean_line, kEnergies, "mean");
+  const Eigen::VectorXf mean =
+      reader.Vector(mean_line, MonoDepthFeatureExtractor::kFeatures, "mean");
   std::istringstream std_line = reader.Line("std");
-  const Eigen::VectorXf std_dev = reader.Vector(std_line, kEnergies, "std");
+  const Eigen::VectorXf std_dev =
+      reader.Vector(std_line, MonoDepthFeatureExtractor::kFeatures, "std");
   std::istringstream weights_line = reader.Line("weights");
   const int rows = reader.Number<int>(weights_line, "weight rows");
   const int cols = reader.Number<int>(weights_line, "weight columns");
-  if (rows != count || cols != kEnergies + row_bands + 1) {
+  if (rows != count || cols != MonoDepthFeatureExtractor::kFeatures + row_bands + 1) {
     reader.Fail("weights " + std::to_string(rows) + " x " + std::to_string(cols) + ", expected " +
-                std::to_string(count) + " x " + std::to_string(kEnergies + row_bands + 1));
+                std::to_string(count) + " x " +
+                std::to_string(MonoDepthFeatureExtractor::kFeatures + row_bands + 1));
   }
   Eigen::MatrixXf weights(rows, cols);
   for (int i = 0; i < rows; ++i) {
@@ -180,18 +182,20 @@ Eigen::MatrixXf MonoDepthModel::LogEnergies(const Eigen::MatrixXf& energies, dou
 
 Eigen::MatrixXf MonoDepthModel::Inputs(const Eigen::MatrixXf& energies,
                                        const PatchGrid& grid) const {
-  if (energies.cols() != kEnergies || energies.rows() != grid.rows * grid.cols) {
+  if (energies.cols() != MonoDepthFeatureExtractor::kFeatures ||
+      energies.rows() != grid.rows * grid.cols) {
     throw std::invalid_argument("mono_depth model: energies must be (grid rows * cols) x 102");
   }
   Eigen::MatrixXf inputs = Eigen::MatrixXf::Zero(energies.rows(), InputSize());
-  inputs.leftCols(kEnergies) =
+  inputs.leftCols(MonoDepthFeatureExtractor::kFeatures) =
       ((LogEnergies(energies, log_epsilon_).rowwise() - mean_.transpose()).array().rowwise() *
        inv_std_.transpose().array())
           .matrix();
   for (int r = 0; r < grid.rows; ++r) {
     const int band = r * row_bands_ / grid.rows;
     for (int c = 0; c < grid.cols; ++c) {
-      if (row_bands_ > 0) inputs(r * grid.cols + c, kEnergies + band) = 1.0f;
+      if (row_bands_ > 0)
+        inputs(r * grid.cols + c, MonoDepthFeatureExtractor::kFeatures + band) = 1.0f;
     }
   }
   inputs.col(InputSize() - 1).setOnes();

@@ -12,7 +12,6 @@
 namespace aperture::perception {
 namespace {
 
-constexpr int kEnergies = MonoDepthFeatureExtractor::kFeatures;
 // Score bias of labels absent from the training set: far below any trained score.
 constexpr float kNeverScore = -1e6f;
 
@@ -63,7 +62,8 @@ MonoDepthModel MonoDepthTrainer::Train(MonoDepthTrainingReport* report) const {
   const std::size_t n = labels_.size();
   if (n == 0) throw std::invalid_argument("mono_depth training: no training patches");
   // Standardisation over the training set.
-  Eigen::VectorXd mean = Eigen::VectorXd::Zero(kEnergies), sq = Eigen::VectorXd::Zero(kEnergies);
+  Eigen::VectorXd mean = Eigen::VectorXd::Zero(MonoDepthFeatureExtractor::kFeatures),
+                  sq = Eigen::VectorXd::Zero(MonoDepthFeatureExtractor::kFeatures);
   for (const Eigen::VectorXf& x : log_energies_) {
     mean += x.cast<double>();
     sq += x.cast<double>().cwiseAbs2();
@@ -73,8 +73,9 @@ MonoDepthModel MonoDepthTrainer::Train(MonoDepthTrainingReport* report) const {
   std_dev = std_dev.cwiseMax(1e-6);  // a constant feature carries nothing; keep it harmless
 
   // liblinear problem: dense rows, 1-based indices, row band one-hot, explicit bias input.
-  const int inputs = kEnergies + params_.row_bands + 1;
-  const int nodes_per_row = kEnergies + (params_.row_bands > 0 ? 1 : 0) + 1 + 1;  // + terminator
+  const int inputs = MonoDepthFeatureExtractor::kFeatures + params_.row_bands + 1;
+  const int nodes_per_row = MonoDepthFeatureExtractor::kFeatures + (params_.row_bands > 0 ? 1 : 0) +
+                            1 + 1;  // + terminator
   std::vector<feature_node> nodes(n * nodes_per_row);
   std::vector<feature_node*> rows(n);
   std::vector<double> y(n);
@@ -82,10 +83,11 @@ MonoDepthModel MonoDepthTrainer::Train(MonoDepthTrainingReport* report) const {
   for (std::size_t i = 0; i < n; ++i) {
     feature_node* node = &nodes[i * nodes_per_row];
     rows[i] = node;
-    for (int j = 0; j < kEnergies; ++j) {
+    for (int j = 0; j < MonoDepthFeatureExtractor::kFeatures; ++j) {
       *node++ = {j + 1, (log_energies_[i][j] - mean[j]) / std_dev[j]};
     }
-    if (params_.row_bands > 0) *node++ = {kEnergies + bands_[i] + 1, 1.0};
+    if (params_.row_bands > 0)
+      *node++ = {MonoDepthFeatureExtractor::kFeatures + bands_[i] + 1, 1.0};
     *node++ = {inputs, 1.0};  // bias
     *node = {-1, 0.0};
     y[i] = labels_[i];
@@ -135,9 +137,9 @@ MonoDepthModel MonoDepthTrainer::Train(MonoDepthTrainingReport* report) const {
     std::size_t correct = 0;
     for (std::size_t i = 0; i < n; ++i) {
       Eigen::VectorXf input = Eigen::VectorXf::Zero(inputs);
-      input.head(kEnergies) =
+      input.head(MonoDepthFeatureExtractor::kFeatures) =
           ((log_energies_[i].cast<double>() - mean).cwiseQuotient(std_dev)).cast<float>();
-      if (params_.row_bands > 0) input[kEnergies + bands_[i]] = 1.0f;
+      if (params_.row_bands > 0) input[MonoDepthFeatureExtractor::kFeatures + bands_[i]] = 1.0f;
       input[inputs - 1] = 1.0f;
       Eigen::Index best = 0;
       (weights * input).maxCoeff(&best);

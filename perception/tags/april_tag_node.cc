@@ -6,6 +6,7 @@
 #include <limits>
 #include <opencv2/imgproc.hpp>
 
+#include "control/constants.h"
 #include "control/so3.h"
 #include "perception/sensor_data.h"
 #include "perception/tags/tag_front_end_params_io.h"
@@ -14,7 +15,7 @@
 namespace aperture::perception {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using control::kNaN;
 constexpr const char* kTagsCsv = "tags.csv";
 constexpr const char* kMapYaml = "tag_map.yaml";
 constexpr const char* kMapPng = "tag_map.png";

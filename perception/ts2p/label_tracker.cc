@@ -9,19 +9,14 @@
 #include <opencv2/video/tracking.hpp>
 #include <stdexcept>
 
+#include "perception/elapsed_time.h"
+#include "perception/ts2p/disk_kernel.h"
+
 namespace aperture::perception {
 namespace {
 
 using Clock = std::chrono::steady_clock;
 constexpr int kSmallFactor = 4;  // |set| is counted on masks at 1/4 resolution
-
-double MsSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
-cv::Mat Disk(int radius) {
-  return cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * radius + 1, 2 * radius + 1));
-}
 
 // Least squares of [x 1 0; y 0 1] [alpha; c_x; c_y] = [dx; dy] over the tracks with `use`.
 bool SolveExpansion(const std::vector<Eigen::Vector2d>& before,
@@ -177,9 +172,9 @@ void LabelTracker::Initialize(const cv::Mat& gray, const cv::Mat& opening,
   }
   image_size_ = gray.size();
   cv::Mat outer, inner, background;
-  cv::dilate(opening, outer, Disk(Radius(params_.foreground_outer_radius_px)));
-  cv::dilate(opening, inner, Disk(Radius(params_.foreground_inner_radius_px)));
-  cv::erode(opening, background, Disk(Radius(params_.background_erosion_px)));
+  cv::dilate(opening, outer, DiskKernel(Radius(params_.foreground_outer_radius_px)));
+  cv::dilate(opening, inner, DiskKernel(Radius(params_.foreground_inner_radius_px)));
+  cv::erode(opening, background, DiskKernel(Radius(params_.background_erosion_px)));
   sets_[0].initial_mask = outer & ~inner;
   sets_[1].initial_mask = background;
   std::vector<Eigen::Vector2d> polygon;
@@ -226,7 +221,7 @@ OpeningTrack LabelTracker::Track(const cv::Mat& gray, double t_s, int index) {
     cv::calcOpticalFlowPyrLK(previous_pyramid_, pyramid, before, after, status, error, window,
                              params_.klt_pyramid_levels);
   }
-  track.klt_ms = MsSince(start);
+  track.klt_ms = MillisecondsSince(start);
 
   std::size_t first = 0;
   for (int s = 0; s < 2; ++s) {
@@ -258,7 +253,7 @@ OpeningTrack LabelTracker::Track(const cv::Mat& gray, double t_s, int index) {
       set.x_s_px = fit.Apply(set.x_s_px);
       for (Eigen::Vector2d& p : set.contour_px) p = fit.Apply(p);
     }
-    track.propagation_ms += MsSince(stage);
+    track.propagation_ms += MillisecondsSince(stage);
     const int k = s == 0 ? params_.foreground_min_corners : params_.background_min_corners;
     const bool reset = static_cast<int>(set.corners.size()) <= k;
     (s == 0 ? track.foreground_corners : track.background_corners) =
@@ -266,7 +261,7 @@ OpeningTrack LabelTracker::Track(const cv::Mat& gray, double t_s, int index) {
     if (reset) {
       stage = Clock::now();
       DetectCorners(gray, &set);
-      track.klt_ms += MsSince(stage);
+      track.klt_ms += MillisecondsSince(stage);
       (s == 0 ? track.foreground_reset : track.background_reset) = true;
     }
   }
@@ -283,7 +278,7 @@ OpeningTrack LabelTracker::Track(const cv::Mat& gray, double t_s, int index) {
   track.foe_px = chosen.last_fit.foe_px;
   track.divergence = chosen.last_fit.alpha;
   track.valid = sets_[0].last_fit.ok || sets_[1].last_fit.ok;
-  track.propagation_ms += MsSince(stage);
+  track.propagation_ms += MillisecondsSince(stage);
   return track;
 }
 

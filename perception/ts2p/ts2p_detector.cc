@@ -6,19 +6,18 @@
 #include <cmath>
 #include <ctime>
 #include <limits>
-#include <optional>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/ximgproc/edge_filter.hpp>
+#include <optional>
 #include <stdexcept>
+
+#include "perception/elapsed_time.h"
+#include "perception/ts2p/disk_kernel.h"
 
 namespace aperture::perception {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double MsSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 // CPU time of the calling thread [ms]: the cost on one core, whatever else loads the machine.
 double ThreadCpuMs() {
@@ -27,11 +26,7 @@ double ThreadCpuMs() {
   return now.tv_sec * 1e3 + now.tv_nsec * 1e-6;
 }
 
-cv::Mat Disk(int radius) {
-  return cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * radius + 1, 2 * radius + 1));
-}
-
-cv::Mat ToGray(const cv::Mat& image) {
+cv::Mat GrayOfOneOrThreeChannels(const cv::Mat& image) {
   if (image.channels() == 1) return image;
   cv::Mat gray;
   cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY);
@@ -340,9 +335,9 @@ cv::Mat Ts2pDetector::Derotate(const cv::Mat& frame, const Eigen::Matrix3d& R_Ck
 cv::Mat Ts2pDetector::SegmentRegion(const cv::Mat& mean_flow, double threshold) const {
   const int radius = MorphologyRadius(mean_flow.cols);
   cv::Mat low = mean_flow < threshold;  // NaN compares false: not part of O
-  cv::morphologyEx(low, low, cv::MORPH_OPEN, Disk(radius));
+  cv::morphologyEx(low, low, cv::MORPH_OPEN, DiskKernel(radius));
   cv::Mat opening = FillHoles(CentralComponent(low));
-  cv::morphologyEx(opening, opening, cv::MORPH_CLOSE, Disk(radius));
+  cv::morphologyEx(opening, opening, cv::MORPH_CLOSE, DiskKernel(radius));
   return opening;
 }
 
@@ -357,7 +352,7 @@ cv::Mat Ts2pDetector::SegmentEdges(const cv::Mat& inverse_flow, double inverse_f
                          -255.0 * inverse_foreground / (inverse_background - inverse_foreground));
   cv::Mat edges;
   cv::Canny(normalized, edges, params_.canny_low, params_.canny_high);
-  cv::morphologyEx(edges, edges, cv::MORPH_CLOSE, Disk(2 * radius));
+  cv::morphologyEx(edges, edges, cv::MORPH_CLOSE, DiskKernel(2 * radius));
   // Regions enclosed by the closed edges; the one at / nearest the centre is O (then eroded back
   // by the edge band so O ends at the contour's inner side, as the paper's "eroded version").
   cv::Mat enclosed = FillHoles(edges);
@@ -365,7 +360,7 @@ cv::Mat Ts2pDetector::SegmentEdges(const cv::Mat& inverse_flow, double inverse_f
   cv::subtract(enclosed, edges, interior);
   cv::Mat opening = CentralComponent(interior);
   if (cv::countNonZero(opening) == 0) return opening;
-  cv::dilate(opening, opening, Disk(radius));
+  cv::dilate(opening, opening, DiskKernel(radius));
   return opening;
 }
 
@@ -398,7 +393,7 @@ Ts2pDetection Ts2pDetector::Detect(const cv::Mat& reference, const std::vector<c
   const cv::Size full = reference.size();
   const double scale = params_.flow_scale;
   const auto resize = [&](const cv::Mat& image) {
-    const cv::Mat gray = ToGray(image);
+    const cv::Mat gray = GrayOfOneOrThreeChannels(image);
     if (scale == 1.0) return gray;
     cv::Mat small;
     cv::resize(gray, small, cv::Size(), scale, scale, cv::INTER_AREA);
@@ -413,11 +408,11 @@ Ts2pDetection Ts2pDetector::Detect(const cv::Mat& reference, const std::vector<c
     if (!R_CkCr.empty()) {
       frame = Derotate(frames[k], R_CkCr[k], &unseen);
       if (scale != 1.0) cv::resize(unseen, unseen, reference_small.size(), 0, 0, cv::INTER_NEAREST);
-      detection.timing.derotation_ms += MsSince(stage);
+      detection.timing.derotation_ms += MillisecondsSince(stage);
       stage = Clock::now();
     }
     const cv::Mat flow = flow_.Compute(reference_small, resize(frame));
-    detection.timing.flow_ms += MsSince(stage);
+    detection.timing.flow_ms += MillisecondsSince(stage);
     stage = Clock::now();
     std::vector<cv::Mat> uv;
     cv::split(flow, uv);
@@ -425,17 +420,17 @@ Ts2pDetection Ts2pDetector::Detect(const cv::Mat& reference, const std::vector<c
     cv::magnitude(uv[0], uv[1], magnitude);
     if (!unseen.empty()) magnitude.setTo(std::numeric_limits<float>::quiet_NaN(), unseen);
     sum += magnitude;
-    detection.timing.stacking_ms += MsSince(stage);
+    detection.timing.stacking_ms += MillisecondsSince(stage);
   }
   auto stage = Clock::now();
   // Back to full-resolution pixels (flow magnitudes scale with the image).
   cv::Mat mean_flow = sum / (static_cast<double>(frames.size()) * scale);
   if (scale != 1.0) cv::resize(mean_flow, mean_flow, full, 0, 0, cv::INTER_LINEAR);
-  detection.timing.stacking_ms += MsSince(stage);
+  detection.timing.stacking_ms += MillisecondsSince(stage);
   if (params_.edge_aware_lambda > 0.0) {
     stage = Clock::now();
-    mean_flow = EdgeAwareSmooth(ToGray(reference), mean_flow);
-    detection.timing.edge_aware_ms = MsSince(stage);
+    mean_flow = EdgeAwareSmooth(GrayOfOneOrThreeChannels(reference), mean_flow);
+    detection.timing.edge_aware_ms = MillisecondsSince(stage);
   }
   stage = Clock::now();
   cv::Mat inverse_flow;
@@ -445,7 +440,7 @@ Ts2pDetection Ts2pDetector::Detect(const cv::Mat& reference, const std::vector<c
   cv::Sobel(inverse_flow, dy, CV_32F, 0, 1, 3, 1.0 / 8.0);
   cv::magnitude(dx, dy, detection.xi);
   detection.mean_flow_px = mean_flow;
-  detection.timing.stacking_ms += MsSince(stage);
+  detection.timing.stacking_ms += MillisecondsSince(stage);
 
   stage = Clock::now();
   detection.opening = cv::Mat::zeros(full, CV_8U);
@@ -502,7 +497,7 @@ Ts2pDetection Ts2pDetector::Detect(const cv::Mat& reference, const std::vector<c
     detection.opening.setTo(0);
     detection.area_px = 0.0;
   }
-  detection.timing.segmentation_ms = MsSince(stage);
+  detection.timing.segmentation_ms = MillisecondsSince(stage);
   if (detection.status == "ok" && detection.area_px > 0.0) {
     stage = Clock::now();
     std::vector<std::vector<cv::Point>> contours;
@@ -514,11 +509,11 @@ Ts2pDetection Ts2pDetector::Detect(const cv::Mat& reference, const std::vector<c
           [](const auto& a, const auto& b) { return cv::contourArea(a) < cv::contourArea(b); });
     }
     detection.safe_point_px = GeometricMedian(detection.opening, params_.weiszfeld_iterations);
-    detection.timing.safe_point_ms = MsSince(stage);
+    detection.timing.safe_point_ms = MillisecondsSince(stage);
     detection.valid = true;
     detection.status = "ok";
   }
-  detection.timing.total_ms = MsSince(start);
+  detection.timing.total_ms = MillisecondsSince(start);
   detection.timing.cpu_ms = ThreadCpuMs() - cpu_start_ms;
   return detection;
 }

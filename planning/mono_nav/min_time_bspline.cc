@@ -27,7 +27,7 @@ struct Problem {
 };
 
 // Objective (21): sum over samples of (|s'(u)| chi_i - v_max)^2.
-double Objective(const std::vector<double>& chi, std::vector<double>& grad, void* data) {
+double SpeedExcessObjective(const std::vector<double>& chi, std::vector<double>& grad, void* data) {
   auto* problem = static_cast<Problem*>(data);
   ++problem->evaluations;
   if (!grad.empty()) std::fill(grad.begin(), grad.end(), 0.0);
@@ -240,7 +240,7 @@ MinTimeBSplineResult PlanMinTimeBSpline(const std::vector<Eigen::Vector3d>& path
   }
   nlopt::opt optimizer(nlopt::LD_SLSQP, intervals);
   optimizer.set_lower_bounds(std::vector<double>(intervals, 1e-9));
-  optimizer.set_min_objective(Objective, &problem);
+  optimizer.set_min_objective(SpeedExcessObjective, &problem);
   optimizer.add_inequality_mconstraint(Constraints, &problem,
                                        std::vector<double>(7 * problem.samples.size(), 1e-12));
   optimizer.set_xtol_rel(params.nlopt_relative_tolerance);

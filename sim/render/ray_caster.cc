@@ -10,10 +10,12 @@
 #include <optional>
 #include <stdexcept>
 
+#include "control/constants.h"
+
 namespace aperture::sim {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using control::kInf;
 constexpr double kMinT = 1e-9;  // ignore hits at the ray origin [m]
 constexpr size_t kMaxCachedCameras = 4;
 // LED blob: ground-truth mask radius in sigmas (the window: kLedWindowSigmas, ray_caster.h).
@@ -45,14 +47,14 @@ struct FrameObject {
   const Material* material;
   int id;
   Eigen::Matrix3d R_OC;
-  Eigen::Vector3d p_OC;          // camera centre in O
-  Eigen::Vector3d to_light_O;    // unit vector towards the light, in O
-  bool hard_edged;               // texture with hard edges (Texture::has_hard_edges)
-  bool planar;                   // Rectangle or GroundPlane: the plane z_O = 0
-  Eigen::Vector3d n_C;           // planar: z_O in C
-  double plane_offset_m;         // planar: n_C . (origin of O in C)
+  Eigen::Vector3d p_OC;        // camera centre in O
+  Eigen::Vector3d to_light_O;  // unit vector towards the light, in O
+  bool hard_edged;             // texture with hard edges (Texture::has_hard_edges)
+  bool planar;                 // Rectangle or GroundPlane: the plane z_O = 0
+  Eigen::Vector3d n_C;         // planar: z_O in C
+  double plane_offset_m;       // planar: n_C . (origin of O in C)
   bool bounded;
-  Eigen::Vector3d center_C;      // bounding sphere centre in C
+  Eigen::Vector3d center_C;  // bounding sphere centre in C
   double center_sq;
   double radius;
   double radius_sq;
@@ -150,8 +152,7 @@ Rgb Shade(const Scene& scene, const FrameContext& frame, const Eigen::Vector3d& 
     cos_incidence = -cos_incidence;
   }
   const float lambert = static_cast<float>(std::max(0.0, n_O.dot(f.to_light_O)));
-  const double footprint_m =
-      hit.t_m * sample_angle_rad / std::sqrt(std::max(cos_incidence, 1e-3));
+  const double footprint_m = hit.t_m * sample_angle_rad / std::sqrt(std::max(cos_incidence, 1e-3));
   const Rgb surface_albedo = f.material->Albedo(hit.uv_m, footprint_m);
   if (albedo) *albedo = surface_albedo;
   return surface_albedo * (scene.lighting.ambient + scene.lighting.directional * lambert);
@@ -169,7 +170,8 @@ std::vector<double> PixelIntegrals(double mu, double sigma, int first, int n) {
 }
 
 Eigen::Vector3d AnyPerpendicular(const Eigen::Vector3d& v) {
-  const Eigen::Vector3d a = std::abs(v.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d a =
+      std::abs(v.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
   return v.cross(a).normalized();
 }
 
@@ -247,10 +249,10 @@ std::optional<double> ConeLowerDistance(const FrameObject& f, const RayCone& con
 
 // What adaptive supersampling compares between neighbouring pixel centres.
 struct RayCaster::CenterSample {
-  int index;               // frame object index, -1 for sky
-  bool hard_edged;         // the object's texture has hard edges
+  int index;        // frame object index, -1 for sky
+  bool hard_edged;  // the object's texture has hard edges
   float albedo_luminance;
-  Eigen::Vector3f n_O;     // surface normal as hit, in the object frame
+  Eigen::Vector3f n_O;  // surface normal as hit, in the object frame
 
   // True when an edge lies between this and a neighbouring centre sample (thresholds above).
   bool EdgeTo(const CenterSample& other) const {
@@ -304,26 +306,27 @@ const RayCaster::RayTable& RayCaster::Rays(const perception::CameraModel& camera
   const int k = supersampling;
   table->center.resize(static_cast<size_t>(w) * camera.height());
   if (k > 1) table->sub.resize(table->center.size() * static_cast<size_t>(k * k));
-  tbb::parallel_for(tbb::blocked_range<int>(0, camera.height()), [&](const tbb::blocked_range<int>& rows) {
-    for (int y = rows.begin(); y < rows.end(); ++y) {
-      for (int x = 0; x < w; ++x) {
-        const size_t p = static_cast<size_t>(y) * w + x;
-        table->center[p] = camera.Unproject({double(x), double(y)}).normalized().cast<float>();
-        for (int sy = 0; sy < k && k > 1; ++sy) {
-          for (int sx = 0; sx < k; ++sx) {
-            // One sample per cell of a k x k grid, shifted inside its cell so that all k^2
-            // samples have distinct x and distinct y offsets (n-rooks within strata): edge
-            // coverage of near-axis-aligned edges is then quantized in k^2 steps, not k.
-            const double ox = (sx * k + sy + 0.5) / (k * k);
-            const double oy = (sy * k + sx + 0.5) / (k * k);
-            const Eigen::Vector2d px(x - 0.5 + ox, y - 0.5 + oy);
-            table->sub[p * k * k + static_cast<size_t>(sy * k + sx)] =
-                camera.Unproject(px).normalized().cast<float>();
+  tbb::parallel_for(
+      tbb::blocked_range<int>(0, camera.height()), [&](const tbb::blocked_range<int>& rows) {
+        for (int y = rows.begin(); y < rows.end(); ++y) {
+          for (int x = 0; x < w; ++x) {
+            const size_t p = static_cast<size_t>(y) * w + x;
+            table->center[p] = camera.Unproject({double(x), double(y)}).normalized().cast<float>();
+            for (int sy = 0; sy < k && k > 1; ++sy) {
+              for (int sx = 0; sx < k; ++sx) {
+                // One sample per cell of a k x k grid, shifted inside its cell so that all k^2
+                // samples have distinct x and distinct y offsets (n-rooks within strata): edge
+                // coverage of near-axis-aligned edges is then quantized in k^2 steps, not k.
+                const double ox = (sx * k + sy + 0.5) / (k * k);
+                const double oy = (sy * k + sx + 0.5) / (k * k);
+                const Eigen::Vector2d px(x - 0.5 + ox, y - 0.5 + oy);
+                table->sub[p * k * k + static_cast<size_t>(sy * k + sx)] =
+                    camera.Unproject(px).normalized().cast<float>();
+              }
+            }
           }
         }
-      }
-    }
-  });
+      });
   table->pixel_angle_rad.resize(table->center.size());
   const int h = camera.height();
   tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
@@ -357,7 +360,8 @@ const RayCaster::RayTable& RayCaster::Rays(const perception::CameraModel& camera
   };
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
-      for_each_ray(x, y, [&](const Eigen::Vector3d& d) { table->tile_axis[table->Tile(x, y)] += d; });
+      for_each_ray(x, y,
+                   [&](const Eigen::Vector3d& d) { table->tile_axis[table->Tile(x, y)] += d; });
     }
   }
   for (Eigen::Vector3d& axis : table->tile_axis) axis.normalize();
@@ -365,7 +369,8 @@ const RayCaster::RayTable& RayCaster::Rays(const perception::CameraModel& camera
     for (int x = 0; x < w; ++x) {
       const size_t t = table->Tile(x, y);
       for_each_ray(x, y, [&](const Eigen::Vector3d& d) {
-        const double angle = std::acos(std::clamp(table->tile_axis[t].dot(d) / d.norm(), -1.0, 1.0));
+        const double angle =
+            std::acos(std::clamp(table->tile_axis[t].dot(d) / d.norm(), -1.0, 1.0));
         table->tile_half_angle_rad[t] = std::max(table->tile_half_angle_rad[t], angle);
       });
     }

@@ -3,12 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "control/constants.h"
 #include "sim/scene/counter_hash.h"
 
 namespace aperture::sim {
 namespace {
 
-constexpr double kDegToRad = M_PI / 180.0;
+using control::kDegToRad;
 
 }  // namespace
 

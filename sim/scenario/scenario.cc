@@ -4,6 +4,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "control/constants.h"
 #include "perception/camera/camera_factory.h"
 #include "sim/scene/apriltag_object.h"
 #include "sim/scene/counter_hash.h"
@@ -12,7 +13,7 @@
 namespace aperture::sim {
 namespace {
 
-constexpr double kDegToRad = M_PI / 180.0;
+using control::kDegToRad;
 // Tags float this far above the surface they lie on so the surface never wins the depth test.
 constexpr double kTagLift_m = 0.001;
 

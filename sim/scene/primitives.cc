@@ -5,12 +5,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "control/constants.h"
 #include "control/require.h"
 
 namespace aperture::sim {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using control::kInf;
 constexpr double kTwoPi = 6.283185307179586;
 
 // Even-odd crossing test: true when p lies inside the simple polygon.
@@ -57,8 +58,8 @@ bool IntersectRectangle(const Rectangle& r, const Eigen::Vector3d& o, const Eige
   return true;
 }
 
-bool IntersectBox(const Box& box, const Eigen::Vector3d& o, const Eigen::Vector3d& d,
-                  double t_min, double t_max, LocalHit* hit) {
+bool IntersectBox(const Box& box, const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t_min,
+                  double t_max, LocalHit* hit) {
   // Slab method: entry = max of per-axis near planes, exit = min of far planes.
   double t_near = -kInf;
   double t_far = kInf;
@@ -172,8 +173,8 @@ bool IntersectSphere(const Sphere& s, const Eigen::Vector3d& o, const Eigen::Vec
   return false;
 }
 
-bool IntersectGround(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t_min,
-                     double t_max, LocalHit* hit) {
+bool IntersectGround(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t_min, double t_max,
+                     LocalHit* hit) {
   if (d.z() == 0.0) return false;
   const double t = -o.z() / d.z();
   if (!(t > t_min && t < t_max)) return false;

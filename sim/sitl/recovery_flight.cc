@@ -5,6 +5,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "control/constants.h"
 #include "sim/sensors/imu_sensor.h"
 
 namespace aperture::sim {
@@ -12,7 +13,7 @@ namespace aperture::sim {
 HandThrow SampleHandThrow(std::uint64_t seed, const HandThrowRanges& ranges) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  const double kPi = 3.14159265358979323846;
+  using control::kPi;
   const auto random_direction = [&] {
     // Uniform on the sphere: z uniform in [-1, 1], azimuth uniform.
     const double z = 2.0 * unit(rng) - 1.0;
@@ -37,8 +38,8 @@ HandThrow SampleHandThrow(std::uint64_t seed, const HandThrowRanges& ranges) {
 }
 
 void RecoveryFlightParams::Validate() const {
-  if (!p_release_W.allFinite() || !hand_throw.v_W.allFinite() ||
-      !hand_throw.omega_B.allFinite() || !hand_throw.q_WB.coeffs().allFinite()) {
+  if (!p_release_W.allFinite() || !hand_throw.v_W.allFinite() || !hand_throw.omega_B.allFinite() ||
+      !hand_throw.q_WB.coeffs().allFinite()) {
     throw std::invalid_argument("RecoveryFlightParams: release point and throw must be finite");
   }
   if (!std::isfinite(held_s) || held_s < 0.0) {
@@ -74,9 +75,8 @@ RecoveryFlightResult FlyRecoveryFlight(const RecoveryFlightParams& params) {
   ImuSensorParams held_imu = sitl.imu;
   held_imu.seed = sitl.imu.seed + 1;
   ImuSensor hand_imu(held_imu);
-  const Eigen::Vector3d f_held_B =
-      sitl.initial_state.q_WB.conjugate() *
-      Eigen::Vector3d(0.0, 0.0, params.dynamics.vehicle.gravity_mps2);
+  const Eigen::Vector3d f_held_B = sitl.initial_state.q_WB.conjugate() *
+                                   Eigen::Vector3d(0.0, 0.0, params.dynamics.vehicle.gravity_mps2);
   const double dt_s = 1.0 / sitl.dynamics_rate_hz;
   for (int k = static_cast<int>(std::ceil(params.held_s / dt_s)); k >= 1; --k) {
     for (const perception::ImuSample& sample :

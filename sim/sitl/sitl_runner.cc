@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "control/require.h"
+#include "perception/elapsed_time.h"
 #include "sim/sensors/sample_schedule.h"
 
 namespace aperture::sim {
@@ -17,9 +18,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double SecondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
+using perception::SecondsSince;
 
 // Ground-truth poses of the last few steps, for motion blur over an exposure that ends now.
 class PoseHistory {

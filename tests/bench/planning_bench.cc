@@ -8,12 +8,13 @@
 #include <Eigen/Geometry>
 #include <vector>
 
+#include "control/constants.h"
 #include "planning/approach_planner.h"
 
 namespace aperture::planning {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using control::kPi;
 
 GapPose Gap(double roll_deg, double pitch_deg) {
   Eigen::Matrix3d R0;

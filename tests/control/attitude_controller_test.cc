@@ -21,17 +21,18 @@ double AngleBetween(const Eigen::Matrix3d& A, const Eigen::Matrix3d& B) {
   return Eigen::AngleAxisd(A.transpose() * B).angle();
 }
 
-struct LoopRun {
+struct AttitudeLoopRun {
   std::vector<double> tilt_rad;  // alpha of (B.11) per step
   std::vector<double> full_rad;  // angle between R and R_des per step
   Eigen::Quaterniond final_q;
 };
 
 // Kinematic closed loop: the body follows the commanded rates exactly (perfect inner loop).
-LoopRun Simulate(const AttitudeControllerGains& gains, const Eigen::Quaterniond& q0,
-                 const Eigen::Vector3d& z_des, double heading, double duration_s, double dt) {
+AttitudeLoopRun SimulateAttitudeLoop(const AttitudeControllerGains& gains,
+                                     const Eigen::Quaterniond& q0, const Eigen::Vector3d& z_des,
+                                     double heading, double duration_s, double dt) {
   const AttitudeController controller(gains);
-  LoopRun run;
+  AttitudeLoopRun run;
   Eigen::Quaterniond q = q0;
   for (double t = 0.0; t < duration_s; t += dt) {
     const AttitudeFeedback fb = controller.Compute(q, z_des, heading);
@@ -48,16 +49,17 @@ const Eigen::Quaterniond kStart(Eigen::AngleAxisd(2.3, Eigen::Vector3d(1, 2, 0).
                                 Eigen::AngleAxisd(-1.1, Eigen::Vector3d::UnitZ()));
 const Eigen::Vector3d kZDes = Eigen::Vector3d(0.3, -0.2, 1.0).normalized();
 constexpr double kHeading = 1.5;
-constexpr double kDt = 1e-4;
+constexpr double kAttitudeLoopDt_s = 1e-4;
 
 TEST(AttitudeControllerTest, TiltErrorFollowsAnalyticDecayOfB15) {
   const AttitudeControllerGains gains;
-  const LoopRun run = Simulate(gains, kStart, kZDes, kHeading, 1.0, kDt);
+  const AttitudeLoopRun run =
+      SimulateAttitudeLoop(gains, kStart, kZDes, kHeading, 1.0, kAttitudeLoopDt_s);
   ASSERT_GT(run.tilt_rad.front(), 1.9);
   // alpha' = -2 p_rp sin(alpha/2)  =>  tan(alpha/4) = tan(alpha0/4) exp(-p_rp t).
   double max_error = 0.0;
   for (size_t k = 0; k < run.tilt_rad.size(); ++k) {
-    const double t = k * kDt;
+    const double t = k * kAttitudeLoopDt_s;
     const double exact =
         4.0 * std::atan(std::tan(run.tilt_rad.front() / 4.0) * std::exp(-gains.p_rp_per_s * t));
     max_error = std::max(max_error, std::abs(run.tilt_rad[k] - exact));
@@ -70,8 +72,10 @@ TEST(AttitudeControllerTest, TiltErrorFollowsAnalyticDecayOfB15) {
 TEST(AttitudeControllerTest, RollPitchHasPriorityAndIsDecoupledFromYaw) {
   AttitudeControllerGains no_yaw;
   no_yaw.p_yaw_per_s = 0.0;
-  const LoopRun with_yaw = Simulate(AttitudeControllerGains{}, kStart, kZDes, kHeading, 1.0, kDt);
-  const LoopRun without_yaw = Simulate(no_yaw, kStart, kZDes, kHeading, 1.0, kDt);
+  const AttitudeLoopRun with_yaw = SimulateAttitudeLoop(AttitudeControllerGains{}, kStart, kZDes,
+                                                        kHeading, 1.0, kAttitudeLoopDt_s);
+  const AttitudeLoopRun without_yaw =
+      SimulateAttitudeLoop(no_yaw, kStart, kZDes, kHeading, 1.0, kAttitudeLoopDt_s);
   double max_difference = 0.0;
   for (size_t k = 0; k < with_yaw.tilt_rad.size(); ++k) {
     max_difference =
@@ -81,7 +85,7 @@ TEST(AttitudeControllerTest, RollPitchHasPriorityAndIsDecoupledFromYaw) {
   // couples them at O(dt).
   EXPECT_LT(max_difference, 2e-3);
   // After 0.25 s the tilt (gain 16.6) is nearly gone while the heading (gain 5) is not.
-  const size_t k = static_cast<size_t>(0.25 / kDt);
+  const size_t k = static_cast<size_t>(0.25 / kAttitudeLoopDt_s);
   EXPECT_LT(with_yaw.tilt_rad[k], 0.05 * with_yaw.tilt_rad.front());
   EXPECT_GT(with_yaw.full_rad[k], 0.2 * with_yaw.full_rad.front());
   // The roll/pitch command does not depend on the heading at all.
@@ -96,7 +100,8 @@ TEST(AttitudeControllerTest, ConvergesToFullDesiredAttitudeFromLargeError) {
   for (const Eigen::Quaterniond& start :
        {kStart, Eigen::Quaterniond(Eigen::AngleAxisd(kHeading + 3.0, Eigen::Vector3d::UnitZ())),
         Eigen::Quaterniond(Eigen::AngleAxisd(2.9, Eigen::Vector3d(0.2, 1.0, 0.1).normalized()))}) {
-    const LoopRun run = Simulate(AttitudeControllerGains{}, start, kZDes, kHeading, 4.0, 1e-3);
+    const AttitudeLoopRun run =
+        SimulateAttitudeLoop(AttitudeControllerGains{}, start, kZDes, kHeading, 4.0, 1e-3);
     EXPECT_GT(run.full_rad.front(), 1.9);  // more than 110 deg away
     // Yaw decays like exp(-5 t): 4 s leaves ~1e-8 of the initial error.
     EXPECT_LT(run.full_rad.back(), 1e-6);

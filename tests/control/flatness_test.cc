@@ -8,19 +8,17 @@
 #include <stdexcept>
 #include <string>
 
+#include "control/constants.h"
 #include "control/reference_trajectories.h"
+#include "control/so3.h"
+#include "tests/support/scientific.h"
 
 namespace aperture::control {
 namespace {
 
-// Measured figure for the XML test report, in scientific notation.
-std::string Sci(double value) {
-  std::ostringstream os;
-  os << std::scientific << std::setprecision(2) << value;
-  return os.str();
-}
+using test_support::Sci;
 
-constexpr double kDegPerRad = 180.0 / M_PI;
+// Measured figure for the XML test report, in scientific notation.
 
 // A smooth 3D test trajectory with analytic derivatives: every axis a sum of a sinusoid and a
 // slow drift, heading psi(t) = 0.2 t + 0.4 sin(0.9 t). Accelerations stay below 5 m/s^2 so the
@@ -45,7 +43,7 @@ TrajectoryPoint WobbleTrajectory(double t) {
 }
 
 // All drag terms non-zero and asymmetric (dz != 0 exercises every term of F.17-F.30).
-VehicleParameters DragVehicle() {
+VehicleParameters FullDragVehicle() {
   VehicleParameters vehicle;
   vehicle.rotor_drag_D_per_s = Eigen::Vector3d(0.544, 0.386, 0.1);
   vehicle.thrust_velocity_coeff_kh = 0.009;  // F.7.3
@@ -59,10 +57,6 @@ VehicleParameters DragFreeVehicle() {
   vehicle.rotor_drag_D_per_s.setZero();
   vehicle.thrust_velocity_coeff_kh = 0.0;
   return vehicle;
-}
-
-Eigen::Vector3d Vee(const Eigen::Matrix3d& m) {
-  return 0.5 * Eigen::Vector3d(m(2, 1) - m(1, 2), m(0, 2) - m(2, 0), m(1, 0) - m(0, 1));
 }
 
 // Body rates from central differences of R(t): omega^ = R' dR/dt (F.3).
@@ -109,7 +103,7 @@ TEST(FlatnessTest, DragFreeCaseEqualsClassicThrustDirectionAndRates) {
 }
 
 TEST(FlatnessTest, OrientationIsRotationAndSatisfiesDragModelF2AndThrustModelF5) {
-  const VehicleParameters vehicle = DragVehicle();
+  const VehicleParameters vehicle = FullDragVehicle();
   const Eigen::Matrix3d D = vehicle.rotor_drag_D_per_s.asDiagonal();
   double max_residual = 0.0;
   for (double t = 0.0; t < 10.0; t += 0.13) {
@@ -140,7 +134,7 @@ TEST(FlatnessTest, OrientationIsRotationAndSatisfiesDragModelF2AndThrustModelF5)
 }
 
 TEST(FlatnessTest, BodyRatesMatchNumericDerivativeOfOrientation) {
-  for (const VehicleParameters& vehicle : {DragFreeVehicle(), DragVehicle()}) {
+  for (const VehicleParameters& vehicle : {DragFreeVehicle(), FullDragVehicle()}) {
     double max_error = 0.0;
     for (double t = 0.05; t < 10.0; t += 0.11) {
       const FlatnessResult r = ComputeFlatnessOutputs(WobbleTrajectory(t), vehicle);
@@ -154,7 +148,7 @@ TEST(FlatnessTest, BodyRatesMatchNumericDerivativeOfOrientation) {
 }
 
 TEST(FlatnessTest, AngularAccelerationAndThrustRateMatchNumericDerivatives) {
-  for (const VehicleParameters& vehicle : {DragFreeVehicle(), DragVehicle()}) {
+  for (const VehicleParameters& vehicle : {DragFreeVehicle(), FullDragVehicle()}) {
     double max_error = 0.0, max_c_dot_error = 0.0;
     const double h = 1e-5;
     for (double t = 0.05; t < 10.0; t += 0.11) {
@@ -174,7 +168,7 @@ TEST(FlatnessTest, AngularAccelerationAndThrustRateMatchNumericDerivatives) {
 }
 
 TEST(FlatnessTest, TorqueSatisfiesRigidBodyDynamicsF4) {
-  const VehicleParameters vehicle = DragVehicle();
+  const VehicleParameters vehicle = FullDragVehicle();
   const Eigen::Matrix3d J = vehicle.Inertia();
   const double h = 1e-5;
   for (double t = 0.05; t < 10.0; t += 0.29) {
@@ -203,8 +197,8 @@ TEST(FlatnessTest, CircleReproducesThesisThrustAndBodyRates) {
   const VehicleParameters vehicle = DragFreeVehicle();
   for (double t = 4.0; t < 8.0; t += 0.25) {  // inside the full-speed part (ramp ends at 3 s)
     const FlatnessResult r = ComputeFlatnessOutputs(circle.Evaluate(t), vehicle);
-    EXPECT_NEAR(r.collective_thrust_mps2, 13.24, 0.005);              // thesis rounds to 0.01
-    EXPECT_NEAR(r.omega_B.head<2>().norm() * kDegPerRad, 85.0, 0.5);  // thesis rounds to 1 deg/s
+    EXPECT_NEAR(r.collective_thrust_mps2, 13.24, 0.005);             // thesis rounds to 0.01
+    EXPECT_NEAR(r.omega_B.head<2>().norm() * kRadToDeg, 85.0, 0.5);  // thesis rounds to 1 deg/s
   }
 }
 
@@ -216,7 +210,7 @@ TEST(FlatnessTest, LemniscateReproducesThesisPeakThrustAndBodyRates) {
   for (double t = 4.0; t < 4.0 + 2.0 * M_PI / std::sqrt(2.0); t += 1e-3) {
     const FlatnessResult r = ComputeFlatnessOutputs(lemniscate.Evaluate(t), vehicle);
     max_c = std::max(max_c, r.collective_thrust_mps2);
-    max_omega = std::max(max_omega, r.omega_B.norm() * kDegPerRad);
+    max_omega = std::max(max_omega, r.omega_B.norm() * kRadToDeg);
   }
   EXPECT_NEAR(max_c, 12.98, 0.005);
   EXPECT_NEAR(max_omega, 136.0, 0.5);
@@ -246,7 +240,7 @@ TEST(FlatnessTest, BodyFrameVelocitiesMatchThesisForHeadingZero) {
 }
 
 TEST(FlatnessTest, YawSingularityGivesFiniteOutputsFlagAndUprightLimit) {
-  const VehicleParameters vehicle = DragVehicle();
+  const VehicleParameters vehicle = FullDragVehicle();
   TrajectoryPoint ref;
   ref.heading_rad = 0.0;  // y_C = y_W
   ref.heading_rate_radps = 0.5;
@@ -272,7 +266,7 @@ TEST(FlatnessTest, YawSingularityGivesFiniteOutputsFlagAndUprightLimit) {
 }
 
 TEST(FlatnessTest, FreeFallReferenceGivesHeadingRotationAndFlag) {
-  const VehicleParameters vehicle = DragVehicle();
+  const VehicleParameters vehicle = FullDragVehicle();
   TrajectoryPoint ref;
   ref.a_W = Eigen::Vector3d(0.0, 0.0, -vehicle.gravity_mps2);
   ref.j_W = Eigen::Vector3d(1.0, 2.0, 0.0);

@@ -6,12 +6,13 @@
 #include <random>
 #include <stdexcept>
 
+#include "control/constants.h"
+
 namespace aperture::control {
 namespace {
 
 constexpr double kImuDt = 0.002;  // 500 Hz prediction (B.27)
 constexpr int kImuPerRange = 5;   // 100 Hz range updates (B.28), the filter's default period
-constexpr double kPi = 3.14159265358979323846;
 
 // Known height profile z(t) = 1.5 + 0.5 sin(2 pi 0.4 t) (a vehicle bobbing in height).
 double TrueZ(double t) { return 1.5 + 0.5 * std::sin(2.0 * kPi * 0.4 * t); }
@@ -26,7 +27,7 @@ struct TrackingErrors {
   double filter_z_dot_rms = 0.0;
 };
 
-TrackingErrors Track(double accel_sigma, double range_sigma, unsigned seed) {
+TrackingErrors TrackHeight(double accel_sigma, double range_sigma, unsigned seed) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> normal(0.0, 1.0);
   HeightFilter filter;
@@ -53,7 +54,7 @@ TrackingErrors Track(double accel_sigma, double range_sigma, unsigned seed) {
 
 TEST(HeightFilter, TracksHeightProfileBetterThanRawRange) {
   // Accelerometer 0.3 m/s^2 per sample, TeraRanger-class range noise 2 cm.
-  const TrackingErrors e = Track(0.3, 0.02, 21);
+  const TrackingErrors e = TrackHeight(0.3, 0.02, 21);
   RecordProperty("filter_z_rms_m", std::to_string(e.filter_z_rms));
   RecordProperty("range_z_rms_m", std::to_string(e.range_z_rms));
   RecordProperty("filter_z_dot_rms_mps", std::to_string(e.filter_z_dot_rms));
@@ -96,8 +97,7 @@ TEST(HeightFilter, UnknownInitialVelocityConvergesWithinRecoverySettlingTime) {
     filter.Predict(kImuDt, 0.0);
     if (k % kImuPerRange == 0) filter.Update(2.0 + v * t);
   }
-  RecordProperty("velocity_error_after_0_3s_mps",
-                 std::to_string(filter.estimate().z_dot_mps - v));
+  RecordProperty("velocity_error_after_0_3s_mps", std::to_string(filter.estimate().z_dot_mps - v));
   EXPECT_LT(std::abs(filter.estimate().z_dot_mps - v), 0.3);
 }
 

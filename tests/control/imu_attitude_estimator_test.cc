@@ -6,16 +6,16 @@
 #include <random>
 #include <stdexcept>
 
+#include "control/constants.h"
+
 namespace aperture::control {
 namespace {
 
-constexpr double kG = 9.81;
-constexpr double kRate = 500.0;  // Hz, the thesis' IMU rate (B.2.5)
-constexpr double kDt = 1.0 / kRate;
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kImuRate_hz = 500.0;  // Hz, the thesis' IMU rate (B.2.5)
+constexpr double kImuDt_s = 1.0 / kImuRate_hz;
 // Per-sample white noise of a MEMS IMU at 500 Hz (a few times the sim's MPU-6000 densities).
-constexpr double kAccelSigma = 0.05;   // m/s^2
-constexpr double kGyroSigma = 0.002;   // rad/s
+constexpr double kAccelSigma = 0.05;  // m/s^2
+constexpr double kGyroSigma = 0.002;  // rad/s
 
 // Roll/pitch error: angle between the true and the estimated up direction in B (yaw-free).
 double TiltError(const Eigen::Quaterniond& q_true, const Eigen::Quaterniond& q_est) {
@@ -31,15 +31,15 @@ class RotatingVehicle {
   RotatingVehicle(const Eigen::Quaterniond& q0, const Eigen::Vector3d& omega_B, unsigned seed)
       : q_WB_(q0), omega_B_(omega_B), rng_(seed) {}
   void Step() {
-    t_ += kDt;
-    const double angle = omega_B_.norm() * kDt;
+    t_ += kImuDt_s;
+    const double angle = omega_B_.norm() * kImuDt_s;
     if (angle > 0.0) {
       q_WB_ = (q_WB_ * Eigen::Quaterniond(Eigen::AngleAxisd(angle, omega_B_.normalized())))
                   .normalized();
     }
   }
   Eigen::Vector3d Accel() {
-    return q_WB_.conjugate() * Eigen::Vector3d(0, 0, kG) + kAccelSigma * Noise();
+    return q_WB_.conjugate() * Eigen::Vector3d(0, 0, kGravity_mps2) + kAccelSigma * Noise();
   }
   Eigen::Vector3d Gyro() { return omega_B_ + kGyroSigma * Noise(); }
   void set_omega_B(const Eigen::Vector3d& omega_B) { omega_B_ = omega_B; }
@@ -63,17 +63,17 @@ struct EstimatorRun {
 
 // Feeds the estimator for duration_s; steady-state statistics over the last steady_s.
 EstimatorRun Feed(ImuAttitudeEstimator& estimator, RotatingVehicle& vehicle, double duration_s,
-         double steady_s) {
+                  double steady_s) {
   EstimatorRun run;
   double sum_sq = 0.0;
   int n = 0;
-  const int steps = static_cast<int>(std::lround(duration_s * kRate));
+  const int steps = static_cast<int>(std::lround(duration_s * kImuRate_hz));
   for (int k = 0; k < steps; ++k) {
     vehicle.Step();
     estimator.AddImu(vehicle.t(), vehicle.Accel(), vehicle.Gyro());
     const double e = TiltError(vehicle.q_WB(), estimator.q_WB());
     if (run.convergence_time_s < 0.0 && e < kPi / 180.0) run.convergence_time_s = vehicle.t();
-    if (k >= steps - static_cast<int>(steady_s * kRate)) {
+    if (k >= steps - static_cast<int>(steady_s * kImuRate_hz)) {
       sum_sq += e * e;
       ++n;
       run.steady_max_rad = std::max(run.steady_max_rad, e);
@@ -86,14 +86,14 @@ EstimatorRun Feed(ImuAttitudeEstimator& estimator, RotatingVehicle& vehicle, dou
 // Pure correction (B.25) shrinks the tilt error by (1 - k_corr) per sample: from pi to 1 deg in
 // ln(180) / -ln(1 - k) samples.
 double PredictedConvergenceTime(double k_corr) {
-  return std::log(180.0) / -std::log(1.0 - k_corr) / kRate;
+  return std::log(180.0) / -std::log(1.0 - k_corr) / kImuRate_hz;
 }
 
 // Steady-state tilt RMS from accelerometer direction noise (sigma_a / g per axis) through the
 // first-order low pass x <- (1 - k) x + k n: per-axis std sigma sqrt(k / (2 - k)); the tilt is
 // the norm of two such axes. Gyro noise adds sigma_g dt / sqrt(2k) = 3e-5 rad, negligible.
 double PredictedSteadyRms(double k_corr) {
-  return std::sqrt(2.0) * kAccelSigma / kG * std::sqrt(k_corr / (2.0 - k_corr));
+  return std::sqrt(2.0) * kAccelSigma / kGravity_mps2 * std::sqrt(k_corr / (2.0 - k_corr));
 }
 
 const Eigen::Quaterniond kTrueStart(Eigen::AngleAxisd(0.6, Eigen::Vector3d::UnitZ()) *
@@ -174,7 +174,8 @@ TEST(ImuAttitudeEstimator, InitializesRollPitchFromFirstGravityMeasurement) {
   EXPECT_TRUE(estimator.AddImu(vehicle.t(), vehicle.Accel(), vehicle.Gyro()));
   EXPECT_TRUE(estimator.initialized());
   // One noisy sample: direction error ~ sqrt(2) sigma_a / g = 7e-3 rad; 4 sigma bound.
-  EXPECT_LT(TiltError(vehicle.q_WB(), estimator.q_WB()), 4.0 * std::sqrt(2.0) * kAccelSigma / kG);
+  EXPECT_LT(TiltError(vehicle.q_WB(), estimator.q_WB()),
+            4.0 * std::sqrt(2.0) * kAccelSigma / kGravity_mps2);
   const Eigen::Vector3d rpy = estimator.RollPitchYawRad();
   EXPECT_NEAR(rpy.x(), 0.2, 0.03);
   EXPECT_NEAR(rpy.y(), -0.1, 0.03);
@@ -185,16 +186,16 @@ TEST(ImuAttitudeEstimator, GateRejectsAccelerationAwayFromGravity) {
   // the estimate towards the wrong up direction; one with 5 m/s^2 (|f| = 11.0) is gated out.
   ImuAttitudeEstimator estimator;
   estimator.Reset(Eigen::Quaterniond::Identity());
-  const Eigen::Vector3d f_B(5.0, 0.0, kG);
+  const Eigen::Vector3d f_B(5.0, 0.0, kGravity_mps2);
   for (int k = 1; k <= 100; ++k) {
-    EXPECT_FALSE(estimator.AddImu(k * kDt, f_B, Eigen::Vector3d::Zero()));
+    EXPECT_FALSE(estimator.AddImu(k * kImuDt_s, f_B, Eigen::Vector3d::Zero()));
   }
   EXPECT_NEAR(estimator.TiltRad(), 0.0, 1e-12);
   // And a gated-in sample does correct: tilt moves by k_corr of the 0.29 rad angle.
-  const Eigen::Vector3d f_tilted(3.0, 0.0, kG);
-  EXPECT_TRUE(estimator.AddImu(101 * kDt, f_tilted, Eigen::Vector3d::Zero()));
+  const Eigen::Vector3d f_tilted(3.0, 0.0, kGravity_mps2);
+  EXPECT_TRUE(estimator.AddImu(101 * kImuDt_s, f_tilted, Eigen::Vector3d::Zero()));
   EXPECT_NEAR(estimator.TiltRad(),
-              estimator.params().correction_gain * std::atan2(3.0, kG), 1e-9);
+              estimator.params().correction_gain * std::atan2(3.0, kGravity_mps2), 1e-9);
 }
 
 TEST(ImuAttitudeEstimator, RemovesCalibratedGyroBias) {
@@ -225,11 +226,12 @@ TEST(ImuAttitudeEstimator, RejectsBadInput) {
   params.correction_gain = 1.5;
   EXPECT_THROW(ImuAttitudeEstimator{params}, std::invalid_argument);
   ImuAttitudeEstimator estimator;
-  estimator.AddImu(1.0, Eigen::Vector3d(0, 0, kG), Eigen::Vector3d::Zero());
-  EXPECT_THROW(estimator.AddImu(1.0, Eigen::Vector3d(0, 0, kG), Eigen::Vector3d::Zero()),
+  estimator.AddImu(1.0, Eigen::Vector3d(0, 0, kGravity_mps2), Eigen::Vector3d::Zero());
+  EXPECT_THROW(estimator.AddImu(1.0, Eigen::Vector3d(0, 0, kGravity_mps2), Eigen::Vector3d::Zero()),
                std::invalid_argument);
-  EXPECT_THROW(estimator.AddImu(2.0, Eigen::Vector3d(NAN, 0, kG), Eigen::Vector3d::Zero()),
-               std::invalid_argument);
+  EXPECT_THROW(
+      estimator.AddImu(2.0, Eigen::Vector3d(NAN, 0, kGravity_mps2), Eigen::Vector3d::Zero()),
+      std::invalid_argument);
   EXPECT_THROW(estimator.Reset(Eigen::Quaterniond(0, 0, 0, 0)), std::invalid_argument);
 }
 

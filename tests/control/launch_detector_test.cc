@@ -2,18 +2,17 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <random>
 #include <stdexcept>
 
-#include <Eigen/Geometry>
+#include "control/constants.h"
 
 namespace aperture::control {
 namespace {
 
-constexpr double kG = 9.81;
-constexpr double kDt = 0.002;  // 500 Hz IMU
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kLaunchImuDt_s = 0.002;  // 500 Hz IMU
 constexpr double kNoise = 0.3;  // m/s^2 per sample: accelerometer noise plus rotor-idle vibration
 
 class NoisyAccel {
@@ -21,7 +20,7 @@ class NoisyAccel {
   explicit NoisyAccel(unsigned seed) : rng_(seed) {}
   // Specific force of a body with attitude q_WB and acceleration a_W: R^T (a + g z_W) + noise.
   Eigen::Vector3d Measure(const Eigen::Quaterniond& q_WB, const Eigen::Vector3d& a_W) {
-    return q_WB.conjugate() * (a_W + kG * Eigen::Vector3d::UnitZ()) +
+    return q_WB.conjugate() * (a_W + kGravity_mps2 * Eigen::Vector3d::UnitZ()) +
            kNoise * Eigen::Vector3d(normal_(rng_), normal_(rng_), normal_(rng_));
   }
 
@@ -46,9 +45,9 @@ TEST(LaunchDetector, QuietAtRestAndInHover) {
   for (int k = 0; k < 2000; ++k) {
     // On the ground level, then hovering tilted (hover: a = 0 whatever the attitude).
     const Eigen::Quaterniond q = k < 1000 ? Eigen::Quaterniond::Identity() : tilted;
-    EXPECT_FALSE(detector.AddSample(k * kDt, accel.Measure(q, Eigen::Vector3d::Zero())));
+    EXPECT_FALSE(detector.AddSample(k * kLaunchImuDt_s, accel.Measure(q, Eigen::Vector3d::Zero())));
   }
-  EXPECT_NEAR(detector.MeanAccelNorm(), kG, 0.1);
+  EXPECT_NEAR(detector.MeanAccelNorm(), kGravity_mps2, 0.1);
 }
 
 TEST(LaunchDetector, QuietWhenShakenByHand) {
@@ -59,7 +58,7 @@ TEST(LaunchDetector, QuietWhenShakenByHand) {
   NoisyAccel accel(2);
   double min_mean = 1e9;
   for (int k = 0; k < 2000; ++k) {
-    const double t = k * kDt;
+    const double t = k * kLaunchImuDt_s;
     const double phase = 2.0 * kPi * 3.0 * t;
     const Eigen::Quaterniond q(Eigen::AngleAxisd(0.5 * std::sin(phase), Eigen::Vector3d::UnitY()));
     const Eigen::Vector3d a_W(6.0 * std::cos(phase), 0.0, 6.0 * std::sin(phase));
@@ -69,8 +68,8 @@ TEST(LaunchDetector, QuietWhenShakenByHand) {
   RecordProperty("min_window_mean_mps2", std::to_string(min_mean));
   // The vertical part alone gives the bound; the lateral part only adds to the norm (measured
   // 4.2 m/s^2). 0.1 m/s^2 allows for the averaged noise (0.3 / sqrt(25) = 0.06).
-  EXPECT_GT(min_mean, kG - 6.0 * std::sin(0.15 * kPi) / (0.15 * kPi) - 0.1);
-  EXPECT_LT(min_mean, kG - 6.0 * std::sin(0.15 * kPi) / (0.15 * kPi) + 0.5);
+  EXPECT_GT(min_mean, kGravity_mps2 - 6.0 * std::sin(0.15 * kPi) / (0.15 * kPi) - 0.1);
+  EXPECT_LT(min_mean, kGravity_mps2 - 6.0 * std::sin(0.15 * kPi) / (0.15 * kPi) + 0.5);
 }
 
 TEST(LaunchDetector, FiresOnFreeFallAfterThrow) {
@@ -83,16 +82,17 @@ TEST(LaunchDetector, FiresOnFreeFallAfterThrow) {
   Eigen::Quaterniond q = Eigen::Quaterniond::Identity();
   double t = 0.0;
   for (int k = 0; t < 1.0; ++k) {
-    t = k * kDt;
+    t = k * kLaunchImuDt_s;
     Eigen::Vector3d f_B;
     if (t < 0.5) {
       f_B = accel.Measure(q, Eigen::Vector3d::Zero());
     } else if (t < t_release) {
       f_B = accel.Measure(q, Eigen::Vector3d(0.0, 0.0, 15.0));
     } else {
-      q = q * Eigen::Quaterniond(Eigen::AngleAxisd(10.0 * kDt, Eigen::Vector3d::UnitX()));
+      q = q *
+          Eigen::Quaterniond(Eigen::AngleAxisd(10.0 * kLaunchImuDt_s, Eigen::Vector3d::UnitX()));
       f_B = params.idle_thrust_mps2 * Eigen::Vector3d::UnitZ() +
-            accel.Measure(q, -kG * Eigen::Vector3d::UnitZ());  // free fall: a = -g z_W
+            accel.Measure(q, -kGravity_mps2 * Eigen::Vector3d::UnitZ());  // free fall: a = -g z_W
     }
     const bool launched = detector.AddSample(t, f_B);
     EXPECT_EQ(launched, t >= detector.launch_time_s() && detector.launched());
@@ -113,8 +113,9 @@ TEST(LaunchDetector, FiresOnFreeFallAfterThrow) {
 TEST(LaunchDetector, NeedsAFullWindowBeforeFiring) {
   LaunchDetector detector;
   const Eigen::Vector3d free_fall = Eigen::Vector3d::Zero();
-  for (int k = 0; k < 25; ++k) EXPECT_FALSE(detector.AddSample(k * kDt, free_fall));  // 48 ms
-  EXPECT_TRUE(detector.AddSample(25 * kDt, free_fall));                             // 50 ms
+  for (int k = 0; k < 25; ++k)
+    EXPECT_FALSE(detector.AddSample(k * kLaunchImuDt_s, free_fall));  // 48 ms
+  EXPECT_TRUE(detector.AddSample(25 * kLaunchImuDt_s, free_fall));    // 50 ms
 }
 
 TEST(LaunchDetector, RejectsBadInput) {

@@ -9,7 +9,7 @@
 namespace aperture::control {
 namespace {
 
-constexpr double kDt = 1e-3;  // 1 kHz low-level loop
+constexpr double kLowLevelDt_s = 1e-3;  // 1 kHz low-level loop
 
 // Rigid-body rates (G.6) driven by four rotors with the asymmetric lag (G.7) and torques (G.1);
 // a RotorThrustEstimator integrates (G.7) exactly, so it plays the true rotors here.
@@ -23,22 +23,22 @@ struct Vehicle {
     constexpr int kSubsteps = 10;
     const Eigen::Matrix3d J = params.Inertia();
     for (int s = 0; s < kSubsteps; ++s) {
-      rotors.Propagate(command, kDt / kSubsteps);
-      omega_B +=
-          kDt / kSubsteps * J.inverse() * (rotors.BodyTorque_B() - omega_B.cross(J * omega_B));
+      rotors.Propagate(command, kLowLevelDt_s / kSubsteps);
+      omega_B += kLowLevelDt_s / kSubsteps * J.inverse() *
+                 (rotors.BodyTorque_B() - omega_B.cross(J * omega_B));
     }
   }
 };
 
-struct LoopRun {
+struct LowLevelLoopRun {
   double integral_abs_error = 0.0;  // [rad]
   Eigen::Vector3d final_error = Eigen::Vector3d::Zero();
   int saturated_steps = 0;
   double max_estimate_mismatch_N = 0.0;
 };
 
-LoopRun Track(LowLevelControllerParameters::BodyRateLaw law, const Eigen::Vector3d& omega_des,
-              double duration_s) {
+LowLevelLoopRun TrackBodyRate(LowLevelControllerParameters::BodyRateLaw law,
+                              const Eigen::Vector3d& omega_des, double duration_s) {
   const VehicleParameters vehicle_params;
   LowLevelControllerParameters params;
   params.body_rate_law = law;
@@ -47,9 +47,9 @@ LoopRun Track(LowLevelControllerParameters::BodyRateLaw law, const Eigen::Vector
   ThrustRatesCommand command;
   command.collective_thrust_mps2 = vehicle_params.gravity_mps2;
   command.omega_des_B = omega_des;
-  LoopRun run;
-  for (double t = 0.0; t < duration_s; t += kDt) {
-    const LowLevelOutput out = controller.Step(command, vehicle.omega_B, kDt);
+  LowLevelLoopRun run;
+  for (double t = 0.0; t < duration_s; t += kLowLevelDt_s) {
+    const LowLevelOutput out = controller.Step(command, vehicle.omega_B, kLowLevelDt_s);
     const MixerResult& mix = out.mix;
     run.saturated_steps +=
         mix.yaw_torque_saturated || mix.collective_thrust_saturated || mix.clipped;
@@ -59,7 +59,7 @@ LoopRun Track(LowLevelControllerParameters::BodyRateLaw law, const Eigen::Vector
         run.max_estimate_mismatch_N,
         (controller.estimator().thrust_N() - vehicle.rotors.thrust_N()).cwiseAbs().maxCoeff());
     run.final_error = omega_des - vehicle.omega_B;
-    run.integral_abs_error += kDt * run.final_error.cwiseAbs().sum();
+    run.integral_abs_error += kLowLevelDt_s * run.final_error.cwiseAbs().sum();
   }
   return run;
 }
@@ -69,7 +69,7 @@ TEST(LowLevelController, HoverCommandGivesEqualHoverThrusts) {
   LowLevelController controller(vehicle);
   ThrustRatesCommand command;
   command.collective_thrust_mps2 = vehicle.gravity_mps2;
-  const LowLevelOutput out = controller.Step(command, Eigen::Vector3d::Zero(), kDt);
+  const LowLevelOutput out = controller.Step(command, Eigen::Vector3d::Zero(), kLowLevelDt_s);
   EXPECT_NEAR(out.torque_des_B.norm(), 0.0, 1e-15);
   EXPECT_TRUE(out.mix.command.thrust_N.isApproxToConstant(
       0.25 * vehicle.mass_kg * vehicle.gravity_mps2, 1e-12));
@@ -81,8 +81,10 @@ TEST(LowLevelController, HoverCommandGivesEqualHoverThrusts) {
 
 TEST(LowLevelController, LqrLoopTracksRateStepThroughMixerAndRotorLag) {
   const Eigen::Vector3d omega_des(2.0, 1.0, -1.0);
-  const LoopRun lqr = Track(LowLevelControllerParameters::BodyRateLaw::kLqr, omega_des, 0.6);
-  const LoopRun p = Track(LowLevelControllerParameters::BodyRateLaw::kProportional, omega_des, 0.6);
+  const LowLevelLoopRun lqr =
+      TrackBodyRate(LowLevelControllerParameters::BodyRateLaw::kLqr, omega_des, 0.6);
+  const LowLevelLoopRun p =
+      TrackBodyRate(LowLevelControllerParameters::BodyRateLaw::kProportional, omega_des, 0.6);
   EXPECT_EQ(lqr.saturated_steps, 0);  // a linear-regime test: no saturation involved
   EXPECT_LT(lqr.max_estimate_mismatch_N, 1e-12);
   // Rotor lag asymmetry and kappa(f) are not in the LQR design model, yet the loop settles.
@@ -94,8 +96,8 @@ TEST(LowLevelController, LqrLoopTracksRateStepThroughMixerAndRotorLag) {
 TEST(LowLevelController, EstimatorFollowsSaturatedThrusts) {
   // A violent step saturates the mixer; the estimator is fed the limited thrusts and still
   // matches the rotors, and the loop recovers to the (feasible) rate.
-  const LoopRun run =
-      Track(LowLevelControllerParameters::BodyRateLaw::kLqr, Eigen::Vector3d(25.0, 0.0, 8.0), 1.0);
+  const LowLevelLoopRun run = TrackBodyRate(LowLevelControllerParameters::BodyRateLaw::kLqr,
+                                            Eigen::Vector3d(25.0, 0.0, 8.0), 1.0);
   EXPECT_GT(run.saturated_steps, 0);
   EXPECT_LT(run.max_estimate_mismatch_N, 1e-12);
   EXPECT_LT(run.final_error.norm(), 1e-2) << run.final_error.transpose();
@@ -105,7 +107,8 @@ TEST(LowLevelController, RejectsNonFiniteInput) {
   LowLevelController controller{VehicleParameters()};
   ThrustRatesCommand command;
   command.omega_des_B.x() = std::nan("");
-  EXPECT_THROW(controller.Step(command, Eigen::Vector3d::Zero(), kDt), std::invalid_argument);
+  EXPECT_THROW(controller.Step(command, Eigen::Vector3d::Zero(), kLowLevelDt_s),
+               std::invalid_argument);
   EXPECT_THROW(controller.Step(ThrustRatesCommand(), Eigen::Vector3d::Zero(), 0.0),
                std::invalid_argument);
 }

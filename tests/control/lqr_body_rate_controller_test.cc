@@ -7,12 +7,11 @@
 #include <functional>
 #include <stdexcept>
 
+#include "control/constants.h"
 #include "control/proportional_body_rate_controller.h"
 
 namespace aperture::control {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Body-rate plant of the design: rigid body (G.6) with the coupling term, torques following the
 // commanded torque through the first-order lag (G.8) with alpha = (alpha_up + alpha_dwn) / 2.
@@ -35,7 +34,7 @@ struct BodyRatePlant {
   }
 };
 
-constexpr double kDt = 1e-3;
+constexpr double kBodyRateDt_s = 1e-3;
 
 using TorqueLaw = std::function<Eigen::Vector3d(const ThrustRatesCommand&, const BodyRatePlant&)>;
 using Reference = std::function<ThrustRatesCommand(double)>;
@@ -48,16 +47,16 @@ struct Tracking {
   Eigen::Vector3d final_error = Eigen::Vector3d::Zero();
 };
 
-Tracking Simulate(const TorqueLaw& law, const Reference& reference, double duration_s) {
+Tracking SimulateBodyRateLoop(const TorqueLaw& law, const Reference& reference, double duration_s) {
   const VehicleParameters vehicle;
   BodyRatePlant plant{vehicle.Inertia(), BuildBodyRateLinearModel(vehicle).time_constant_s};
   Tracking tracking;
-  for (double t = 0.0; t < duration_s; t += kDt) {
+  for (double t = 0.0; t < duration_s; t += kBodyRateDt_s) {
     const ThrustRatesCommand command = reference(t);
-    plant.Step(law(command, plant), kDt);
-    const ThrustRatesCommand next = reference(t + kDt);
+    plant.Step(law(command, plant), kBodyRateDt_s);
+    const ThrustRatesCommand next = reference(t + kBodyRateDt_s);
     tracking.final_error = next.omega_des_B - plant.omega_B;
-    tracking.integral_abs_error += kDt * tracking.final_error.cwiseAbs().sum();
+    tracking.integral_abs_error += kBodyRateDt_s * tracking.final_error.cwiseAbs().sum();
     tracking.max_omega_x = std::max(tracking.max_omega_x, plant.omega_B.x());
   }
   return tracking;
@@ -115,9 +114,9 @@ TEST(LqrBodyRateController, TracksRateStepBetterThanProportionalControllers) {
   const LqrBodyRateController lqr(vehicle);
   const ProportionalBodyRateController low(vehicle, ProportionalBodyRateParameters::LowGain());
   const ProportionalBodyRateController high(vehicle, ProportionalBodyRateParameters::HighGain());
-  const Tracking t_lqr = Simulate(Lqr(lqr), StepReference, 0.6);
-  const Tracking t_low = Simulate(Proportional(low), StepReference, 0.6);
-  const Tracking t_high = Simulate(Proportional(high), StepReference, 0.6);
+  const Tracking t_lqr = SimulateBodyRateLoop(Lqr(lqr), StepReference, 0.6);
+  const Tracking t_low = SimulateBodyRateLoop(Proportional(low), StepReference, 0.6);
+  const Tracking t_high = SimulateBodyRateLoop(Proportional(high), StepReference, 0.6);
   // Table G.1: the LQR tracks much better than the low-gain P controller (a) ...
   EXPECT_LT(t_lqr.integral_abs_error, 0.7 * t_low.integral_abs_error)
       << "LQR " << t_lqr.integral_abs_error << " low-gain P " << t_low.integral_abs_error;
@@ -139,7 +138,7 @@ TEST(LqrBodyRateController, ZeroSteadyStateErrorWithGyroscopicCoupling) {
     command.omega_des_B = Eigen::Vector3d(4.0, -5.0, 6.0);
     return command;
   };
-  const Tracking tracking = Simulate(Lqr(lqr), reference, 1.0);
+  const Tracking tracking = SimulateBodyRateLoop(Lqr(lqr), reference, 1.0);
   // Closed-loop poles at <= -20 1/s: after 1 s the transient is below 1e-8 of the step.
   EXPECT_LT(tracking.final_error.norm(), 1e-6);
 }
@@ -158,9 +157,9 @@ TEST(LqrBodyRateController, AngularAccelerationFeedForwardReducesTrackingError) 
     }
     return command;
   };
-  const Tracking with = Simulate(
+  const Tracking with = SimulateBodyRateLoop(
       Lqr(lqr), [&](double t) { return reference(t, true); }, 1.0);
-  const Tracking without = Simulate(
+  const Tracking without = SimulateBodyRateLoop(
       Lqr(lqr), [&](double t) { return reference(t, false); }, 1.0);
   EXPECT_LT(with.integral_abs_error, 0.5 * without.integral_abs_error)
       << with.integral_abs_error << " vs " << without.integral_abs_error;

@@ -10,18 +10,15 @@
 #include <vector>
 
 #include "control/reference_trajectories.h"
+#include "tests/support/scientific.h"
 
 namespace aperture::control {
 namespace {
 
-// Measured figure for the XML test report, in scientific notation.
-std::string Sci(double value) {
-  std::ostringstream os;
-  os << std::scientific << std::setprecision(2) << value;
-  return os.str();
-}
+using test_support::Sci;
 
-VehicleParameters DragVehicle() {
+// Measured figure for the XML test report, in scientific notation.
+VehicleParameters CircleDragVehicle() {
   VehicleParameters vehicle;
   vehicle.rotor_drag_D_per_s = Eigen::Vector3d(0.544, 0.386, 0.0);  // F.7.3, circle
   vehicle.thrust_velocity_coeff_kh = 0.009;                         // F.7.3
@@ -58,7 +55,7 @@ std::vector<TrajectoryPoint> References() {
 }
 
 TEST(PositionControllerTest, ZeroErrorCommandEqualsFlatnessOutputs) {
-  const VehicleParameters vehicle = DragVehicle();
+  const VehicleParameters vehicle = CircleDragVehicle();
   const PositionController controller(vehicle);
   for (const TrajectoryPoint& ref : References()) {
     const FlatnessResult flat = ComputeFlatnessOutputs(ref, vehicle);
@@ -78,14 +75,14 @@ TEST(PositionControllerTest, ZeroErrorCommandEqualsFlatnessOutputs) {
 TEST(PositionControllerTest, CompensationOffUsesDragFreeModel) {
   PositionControllerParams params;
   params.compensate_rotor_drag = false;
-  const PositionController controller(DragVehicle(), params);
+  const PositionController controller(CircleDragVehicle(), params);
   EXPECT_EQ(controller.model().rotor_drag_D_per_s, Eigen::Vector3d::Zero());
   EXPECT_EQ(controller.model().thrust_velocity_coeff_kh, 0.0);
-  VehicleParameters drag_free = DragVehicle();
+  VehicleParameters drag_free = CircleDragVehicle();
   drag_free.rotor_drag_D_per_s.setZero();
   drag_free.thrust_velocity_coeff_kh = 0.0;
   const TrajectoryPoint ref = CircleTrajectory().Evaluate(5.0);
-  const FlatnessResult with_drag = ComputeFlatnessOutputs(ref, DragVehicle());
+  const FlatnessResult with_drag = ComputeFlatnessOutputs(ref, CircleDragVehicle());
   const FlatnessResult without = ComputeFlatnessOutputs(ref, drag_free);
   const PositionControllerOutput out = controller.Compute(StateOf(ref, without), ref);
   EXPECT_NEAR(out.command.collective_thrust_mps2, without.thrust_command_mps2, 1e-10);
@@ -95,7 +92,7 @@ TEST(PositionControllerTest, CompensationOffUsesDragFreeModel) {
 }
 
 TEST(PositionControllerTest, FeedbackUsesTableA2GainsAndThrustProjectionF36) {
-  const VehicleParameters vehicle = DragVehicle();
+  const VehicleParameters vehicle = CircleDragVehicle();
   const PositionController controller(vehicle);
   const TrajectoryPoint ref = LemniscateTrajectory().Evaluate(4.2);
   const FlatnessResult flat = ComputeFlatnessOutputs(ref, vehicle);
@@ -121,7 +118,7 @@ TEST(PositionControllerTest, FeedbackUsesTableA2GainsAndThrustProjectionF36) {
 // kinematics (F.3), the body rates following omega_des exactly (ideal inner loop). RK4 with the
 // controller evaluated at every stage keeps the integration error far below the checked bounds.
 double MaxTrackingError(const PositionControllerParams& params, double from_s, double to_s) {
-  const VehicleParameters vehicle = DragVehicle();
+  const VehicleParameters vehicle = CircleDragVehicle();
   const PositionController controller(vehicle, params);
   const CircleTrajectory circle;
   struct X {
@@ -192,7 +189,7 @@ TEST(PositionControllerTest, ClosedLoopWithoutDragCompensationLagsBehind) {
 }
 
 TEST(PositionControllerTest, FreeFallCommandIsFiniteAndFlagged) {
-  const PositionController controller(DragVehicle());
+  const PositionController controller(CircleDragVehicle());
   TrajectoryPoint ref;
   ref.a_W = Eigen::Vector3d(0.0, 0.0, -9.81);
   QuadState state;
@@ -205,14 +202,14 @@ TEST(PositionControllerTest, FreeFallCommandIsFiniteAndFlagged) {
 }
 
 TEST(PositionControllerTest, InvalidStateOrGainsThrow) {
-  const PositionController controller(DragVehicle());
+  const PositionController controller(CircleDragVehicle());
   QuadState state;
   state.v_W.x() = std::nan("");
   EXPECT_THROW(controller.Compute(state, TrajectoryPoint{}), std::invalid_argument);
   PositionControllerParams params;
   params.d_z_per_s = -1.0;
   try {
-    PositionController bad(DragVehicle(), params);
+    PositionController bad(CircleDragVehicle(), params);
     FAIL() << "expected std::invalid_argument";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("d_z_per_s"), std::string::npos) << e.what();

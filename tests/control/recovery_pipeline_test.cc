@@ -4,26 +4,27 @@
 
 #include <Eigen/Geometry>
 
+#include "control/constants.h"
+
 namespace aperture::control {
 namespace {
 
-constexpr double kDt = 0.002;
-constexpr double kG = 9.81;
+constexpr double kPipelineDt_s = 0.002;
 
 TEST(RecoveryPipeline, RestartRecoversWithoutThrowAndInitializesHeightOnRequest) {
   // A vehicle hovering level at 1.2 m (IMU reads g along z_B) loses its vision estimate:
   // Restart() must run attitude -> vertical velocity -> height without any launch.
   RecoveryPipeline pipeline{VehicleParameters()};
-  const Eigen::Vector3d f_hover(0.0, 0.0, kG);
+  const Eigen::Vector3d f_hover(0.0, 0.0, kGravity_mps2);
   double t = 0.0;
   auto tick = [&](bool range) {
-    t += kDt;
+    t += kPipelineDt_s;
     pipeline.AddImu(t, f_hover, Eigen::Vector3d::Zero());
     if (range) pipeline.AddRange(1.2);
     return pipeline.Step(t);
   };
   for (int k = 0; k < 50; ++k) EXPECT_EQ(tick(true).stage, RecoveryStage::kWaitingForLaunch);
-  EXPECT_FALSE(pipeline.launch_detector().launched());  // hover is not a launch
+  EXPECT_FALSE(pipeline.launch_detector().launched());   // hover is not a launch
   EXPECT_FALSE(pipeline.height_filter().initialized());  // range ignored before the request
 
   pipeline.Restart(t);
@@ -42,7 +43,8 @@ TEST(RecoveryPipeline, RestartRecoversWithoutThrowAndInitializesHeightOnRequest)
     ++steps;
   }
   EXPECT_EQ(pipeline.state_machine().stage(), RecoveryStage::kHeight);
-  EXPECT_NEAR(steps * kDt, RecoveryParams().min_height_filter_time_s, 2.5 * kDt);
+  EXPECT_NEAR(steps * kPipelineDt_s, RecoveryParams().min_height_filter_time_s,
+              2.5 * kPipelineDt_s);
   EXPECT_NEAR(pipeline.state_machine().reference_height_m(), 1.2, 1e-9);
 }
 
@@ -50,21 +52,22 @@ TEST(RecoveryPipeline, ThrowIsDetectedFromRawImuSamples) {
   RecoveryPipeline pipeline{VehicleParameters()};
   double t = 0.0;
   for (int k = 0; k < 100; ++k) {  // held: |f| = g
-    t += kDt;
-    pipeline.AddImu(t, Eigen::Vector3d(0.0, 0.0, kG), Eigen::Vector3d::Zero());
+    t += kPipelineDt_s;
+    pipeline.AddImu(t, Eigen::Vector3d(0.0, 0.0, kGravity_mps2), Eigen::Vector3d::Zero());
     pipeline.Step(t);
   }
   int steps = 0;
   while (pipeline.state_machine().stage() == RecoveryStage::kWaitingForLaunch && steps < 100) {
-    t += kDt;
-    pipeline.AddImu(t, Eigen::Vector3d(0.0, 0.0, 0.4), Eigen::Vector3d(5.0, 0.0, 0.0));  // free fall
+    t += kPipelineDt_s;
+    pipeline.AddImu(t, Eigen::Vector3d(0.0, 0.0, 0.4),
+                    Eigen::Vector3d(5.0, 0.0, 0.0));  // free fall
     pipeline.Step(t);
     ++steps;
   }
   EXPECT_EQ(pipeline.state_machine().stage(), RecoveryStage::kAttitude);
   // (B.29): mean over 50 ms of {g, 0.4} falls below 0.44 + 2 after 80 % of the window is free
   // fall (41 ms), plus the command-then-transition step.
-  EXPECT_NEAR(steps * kDt, 0.042, 0.004);
+  EXPECT_NEAR(steps * kPipelineDt_s, 0.042, 0.004);
 }
 
 }  // namespace

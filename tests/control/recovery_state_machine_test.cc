@@ -6,11 +6,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "control/constants.h"
+
 namespace aperture::control {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDt = 0.002;
+constexpr double kStateMachineDt_s = 0.002;
 
 Eigen::Quaterniond Tilted(double angle_rad) {
   return Eigen::Quaterniond(Eigen::AngleAxisd(angle_rad, Eigen::Vector3d(1, 1, 0).normalized()));
@@ -32,7 +33,7 @@ class Script {
  public:
   explicit Script(const RecoveryParams& params = {}) : machine_(vehicle_, params) {}
   RecoveryOutput Step(RecoveryInputs in) {
-    in.t_s = (++step_) * kDt;
+    in.t_s = (++step_) * kStateMachineDt_s;
     return machine_.Step(in);
   }
   RecoveryStateMachine& machine() { return machine_; }
@@ -220,7 +221,7 @@ TEST(RecoveryStateMachine, SatisfiedStagesLastOneStepAndNoneIsSkipped) {
   for (int k = 0; k < 5; ++k) {
     EXPECT_EQ(static_cast<int>(transitions[k].from), k);
     EXPECT_EQ(static_cast<int>(transitions[k].to), k + 1);
-    EXPECT_NEAR(transitions[k].t_s, (k + 1) * kDt, 1e-12);
+    EXPECT_NEAR(transitions[k].t_s, (k + 1) * kStateMachineDt_s, 1e-12);
   }
   script.Step(in);
   EXPECT_EQ(script.machine().stage(), RecoveryStage::kPosition);  // terminal

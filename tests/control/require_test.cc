@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "control/constants.h"
+
 namespace aperture::control {
 namespace {
 
@@ -21,9 +23,6 @@ std::string MessageOf(F f) {
   }
   return "";
 }
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 TEST(RequireTest, MessagesNameTheValueAndTheRule) {
   EXPECT_EQ(MessageOf([] { RequirePositive(-1.5, "GapMissionParams.hover_s"); }),

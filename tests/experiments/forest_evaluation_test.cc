@@ -17,7 +17,7 @@ using ::testing::HasSubstr;
 
 // A straight flight along x at height 1.5 m and lateral offset y_m, from x = 0 to x_end_m at
 // 1 m/s, sampled every 1 ms.
-std::vector<control::QuadState> StraightFlight(double x_end_m, double y_m) {
+std::vector<control::QuadState> StraightForestFlight(double x_end_m, double y_m) {
   std::vector<control::QuadState> trajectory;
   for (int k = 0; k <= static_cast<int>(std::lround(x_end_m * 1000)); ++k) {
     control::QuadState x;
@@ -41,7 +41,7 @@ sim::Scene OneTrunk() {
 TEST(ForestEvaluation, ReachedWithoutCollisionPassesWithTheAnalyticFigures) {
   const sim::Scene scene = OneTrunk();
   const Eigen::Vector3d goal(10.0, 1.0, 1.5);
-  const ForestEvaluation e = EvaluateForestFlight(StraightFlight(10.0, 1.0), {}, goal, scene);
+  const ForestEvaluation e = EvaluateForestFlight(StraightForestFlight(10.0, 1.0), {}, goal, scene);
   EXPECT_TRUE(e.success);
   EXPECT_TRUE(e.reached_goal);
   // First sample within 1 m of the goal: x = 9 m at 1 m/s.
@@ -58,14 +58,14 @@ TEST(ForestEvaluation, ACollisionOrAMissedGoalFails) {
   const sim::Scene scene = OneTrunk();
   const Eigen::Vector3d goal(10.0, 1.0, 1.5);
   const ForestEvaluation crashed = EvaluateForestFlight(
-      StraightFlight(10.0, 1.0), std::string("collision: body with 'trunk'"), goal, scene);
+      StraightForestFlight(10.0, 1.0), std::string("collision: body with 'trunk'"), goal, scene);
   EXPECT_FALSE(crashed.success);
   EXPECT_TRUE(crashed.reached_goal);
   EXPECT_THAT(crashed.failure_reason, HasSubstr("trunk"));
 
   // Stops at x = 8.9 m: 1.1 m short, just outside the radius.
   const ForestEvaluation short_of_goal =
-      EvaluateForestFlight(StraightFlight(8.9, 1.0), {}, goal, scene);
+      EvaluateForestFlight(StraightForestFlight(8.9, 1.0), {}, goal, scene);
   EXPECT_FALSE(short_of_goal.success);
   EXPECT_FALSE(short_of_goal.reached_goal);
   EXPECT_TRUE(std::isnan(short_of_goal.time_to_goal_s));

@@ -8,11 +8,12 @@
 #include <limits>
 
 #include "control/attitude_controller.h"
+#include "control/constants.h"
 
 namespace aperture::experiments {
 namespace {
 
-constexpr double kDegToRad = M_PI / 180.0;
+using control::kDegToRad;
 
 // The scenario's gap frame at roll/pitch (sim/scenario/scenario_params.h): x_G = -y_W,
 // y_G = -z_W, z_G = x_W at zero angles, then rotated about y_W (pitch) and x_W (roll).
@@ -75,19 +76,18 @@ TEST(FindGapCrossing, TellsInsideFromOutsideOfTheOpeningAndIgnoresBackwardCrossi
   gap.T_WG = GapPoseW(45.0, 0.0, Eigen::Vector3d(5.0, 0.0, 1.5));
   const Eigen::Vector3d along_W = gap.T_WG.linear() * Eigen::Vector3d(0, 0, 2.0);
   const auto through = [&](double x_G, double y_G) {
-    return FindGapCrossing(
-        Line(gap.T_WG * Eigen::Vector3d(x_G, y_G, 0.0), along_W, 1.0, 2.0,
-             Eigen::Quaterniond::Identity()),
-        gap);
+    return FindGapCrossing(Line(gap.T_WG * Eigen::Vector3d(x_G, y_G, 0.0), along_W, 1.0, 2.0,
+                                Eigen::Quaterniond::Identity()),
+                           gap);
   };
   EXPECT_TRUE(through(0.39, 0.13)->inside_opening);
-  EXPECT_FALSE(through(0.41, 0.0)->inside_opening);  // beyond the long side's half width 0.4
+  EXPECT_FALSE(through(0.41, 0.0)->inside_opening);   // beyond the long side's half width 0.4
   EXPECT_FALSE(through(0.0, -0.15)->inside_opening);  // beyond the short side's 0.14
   // Flying the other way (from z_G > 0 to z_G < 0) is not a traversal.
-  EXPECT_FALSE(FindGapCrossing(Line(gap.T_WG.translation(), -along_W, 1.0, 2.0,
-                                    Eigen::Quaterniond::Identity()),
-                               gap)
-                   .has_value());
+  EXPECT_FALSE(
+      FindGapCrossing(
+          Line(gap.T_WG.translation(), -along_W, 1.0, 2.0, Eigen::Quaterniond::Identity()), gap)
+          .has_value());
 }
 
 TEST(ComputeErrorAtGap, MapsTheDesiredStateFromTheEstimatedOntoTheTrueGap) {
@@ -114,7 +114,8 @@ TEST(ComputeErrorAtGap, MapsTheDesiredStateFromTheEstimatedOntoTheTrueGap) {
   const auto trajectory = Line(p_cross, v_W, 2.0, 3.0, Eigen::Quaterniond(R_desired_true));
   const std::optional<GapCrossing> crossing = FindGapCrossing(trajectory, gap);
   ASSERT_TRUE(crossing.has_value());
-  const GapStateError error = ComputeErrorAtGap(*crossing, gap, plan, 2.0 - plan.time_to_gap_s() - 0.02);
+  const GapStateError error =
+      ComputeErrorAtGap(*crossing, gap, plan, 2.0 - plan.time_to_gap_s() - 0.02);
 
   const Eigen::Vector3d expected_p = gap.T_WG.linear() * Eigen::Vector3d(0.03, -0.02, 0.0);
   const Eigen::Vector3d expected_v = gap.T_WG.linear() * Eigen::Vector3d(0.1, 0.0, 0.2);
@@ -168,8 +169,7 @@ TEST(EvaluateGapTrial, SucceedsThroughTheOpeningIntoAHover) {
   GapGeometry gap;
   gap.T_WG = GapPoseW(20.0, 5.0, Eigen::Vector3d(5.0, 0.0, 1.5));
   const planning::TraverseTrajectory plan(ToGapPose(gap.T_WG), 1.0, 0.5, 9.81);
-  const GapTrialEvaluation evaluation =
-      EvaluateGapTrial(ThroughAndHover(gap, 0.0), gap, plan, 0.5);
+  const GapTrialEvaluation evaluation = EvaluateGapTrial(ThroughAndHover(gap, 0.0), gap, plan, 0.5);
   EXPECT_TRUE(evaluation.success) << evaluation.failure_reason;
   EXPECT_TRUE(evaluation.failure_reason.empty());
   ASSERT_TRUE(evaluation.crossing.has_value());
@@ -207,14 +207,15 @@ TEST(EvaluateGapTrial, NamesTheFirstFailedCriterion) {
   sim::SitlResult beside = ThroughAndHover(gap, 0.0);
   for (control::QuadState& s : beside.trajectory) s.p_WB += gap.T_WG.linear().col(0) * 0.5;
   const GapTrialEvaluation outside = EvaluateGapTrial(beside, gap, plan, 0.5);
-  EXPECT_EQ(outside.failure_reason.rfind(
-                "crossed the gap plane outside the opening at x_G = 0.500 m", 0),
-            0u)
+  EXPECT_EQ(
+      outside.failure_reason.rfind("crossed the gap plane outside the opening at x_G = 0.500 m", 0),
+      0u)
       << outside.failure_reason;
 
   sim::SitlResult short_of_gap = ThroughAndHover(gap, 0.0);
   short_of_gap.trajectory.resize(900);  // ends before t = 1 s
-  const GapTrialEvaluation never = EvaluateGapTrial(short_of_gap, gap, std::nullopt, std::numeric_limits<double>::quiet_NaN());
+  const GapTrialEvaluation never =
+      EvaluateGapTrial(short_of_gap, gap, std::nullopt, std::numeric_limits<double>::quiet_NaN());
   EXPECT_EQ(never.failure_reason, "never crossed the gap plane (no traverse plan)");
   EXPECT_FALSE(never.error.has_value());
 }

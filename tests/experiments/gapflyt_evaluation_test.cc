@@ -27,7 +27,7 @@ GapflytOpening Box() {
 }
 
 // Level flight along +x_W at 1 m/s through (y, z), sampled at 100 Hz from x = 0 to x_end.
-sim::SitlResult StraightFlight(double y, double z, double x_end = 4.0) {
+sim::SitlResult StraightGapflytFlight(double y, double z, double x_end = 4.0) {
   sim::SitlResult result;
   for (int k = 0; k * 0.01 <= x_end + 1e-9; ++k) {
     control::QuadState state;
@@ -43,7 +43,7 @@ TEST(GapflytEvaluationTest, CentredCrossingPassesWithTheFootprintsClearance) {
   const control::VehicleParameters vehicle;
   const sim::CollisionParams collision;
   const GapflytEvaluation e =
-      EvaluateGapflytFlight(StraightFlight(0.0, 1.5), Box(), vehicle, collision);
+      EvaluateGapflytFlight(StraightGapflytFlight(0.0, 1.5), Box(), vehicle, collision);
   ASSERT_TRUE(e.passed) << e.failure_reason;
   ASSERT_TRUE(e.crossing);
   EXPECT_NEAR(e.crossing->t_s, 2.6, 1e-9);  // x = 2.6 m at 1 m/s
@@ -65,7 +65,7 @@ TEST(GapflytEvaluationTest, OffsetCrossingReportsTheOffsetAndTheSideClearance) {
   const sim::CollisionParams collision;
   // 0.3 m to the left of the centre (+y_W = -x_O): 0.2 m to the left edge.
   const GapflytEvaluation e =
-      EvaluateGapflytFlight(StraightFlight(0.3, 1.5), Box(), vehicle, collision);
+      EvaluateGapflytFlight(StraightGapflytFlight(0.3, 1.5), Box(), vehicle, collision);
   ASSERT_TRUE(e.passed);
   EXPECT_NEAR(e.crossing->offset_from_centroid_m.x(), -0.3, 1e-9);
   EXPECT_NEAR(e.crossing->offset_from_centroid_m.y(), 0.0, 1e-9);
@@ -78,16 +78,17 @@ TEST(GapflytEvaluationTest, FailuresNameTheirReason) {
   const control::VehicleParameters vehicle;
   const sim::CollisionParams collision;
   // Beside the opening (the wall is not in this constructed run, so no collision either).
-  GapflytEvaluation e = EvaluateGapflytFlight(StraightFlight(0.8, 1.5), Box(), vehicle, collision);
+  GapflytEvaluation e =
+      EvaluateGapflytFlight(StraightGapflytFlight(0.8, 1.5), Box(), vehicle, collision);
   EXPECT_FALSE(e.passed);
   EXPECT_EQ(e.failure_reason, "crossed the wall plane outside the opening");
   EXPECT_LT(e.crossing->centre_to_edge_m, 0.0);
   // Stopped before the wall.
-  e = EvaluateGapflytFlight(StraightFlight(0.0, 1.5, 2.0), Box(), vehicle, collision);
+  e = EvaluateGapflytFlight(StraightGapflytFlight(0.0, 1.5, 2.0), Box(), vehicle, collision);
   EXPECT_FALSE(e.passed);
   EXPECT_EQ(e.failure_reason, "did not cross the wall plane");
   // Through the centre but with a collision in the run.
-  sim::SitlResult hit = StraightFlight(0.0, 1.5);
+  sim::SitlResult hit = StraightGapflytFlight(0.0, 1.5);
   hit.collision = sim::Collision{"gap", "propeller 1", Eigen::Vector3d(2.6, 0.5, 1.5)};
   e = EvaluateGapflytFlight(hit, Box(), vehicle, collision);
   EXPECT_FALSE(e.passed);

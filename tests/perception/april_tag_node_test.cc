@@ -26,7 +26,7 @@ const std::filesystem::path kPhoto =
                               : "/usr/share/visp-images-data") /
     "ViSP-images" / "AprilTag" / "AprilTag.pgm";
 
-FrontEndResources Resources(const std::string& output_directory = "") {
+FrontEndResources TagNodeResources(const std::string& output_directory = "") {
   FrontEndResources resources;
   CameraCalibration calibration;
   // ViSP's testAprilTag.cpp intrinsics of the photo.
@@ -37,7 +37,7 @@ FrontEndResources Resources(const std::string& output_directory = "") {
   return resources;
 }
 
-std::string ErrorOf(const std::function<void()>& body) {
+std::string TagNodeErrorOf(const std::function<void()>& body) {
   try {
     body();
   } catch (const std::invalid_argument& error) {
@@ -56,7 +56,7 @@ TEST(AprilTagNode, WritesTagsCsvPoseStreamsAndTheMap) {
   tree.ApplySet("apriltag.map=true");
   tree.ApplySet("apriltag.mapping.origin_id=8");  // the photo shows ids 8-19
   config::ParamReader root = tree.Reader();
-  FrameGraph graph = registry.BuildGraph({"apriltag"}, root, Resources(dir.path().string()));
+  FrameGraph graph = registry.BuildGraph({"apriltag"}, root, TagNodeResources(dir.path().string()));
   SerialExecutor executor(graph);
   Frame frame;
   frame.image = cv::imread(kPhoto.string(), cv::IMREAD_GRAYSCALE);
@@ -106,23 +106,23 @@ TEST(AprilTagNode, ClearErrorsForMissingInputs) {
     config::ParamReader root = tree.Reader();
     registry.BuildGraph({"apriltag"}, root, resources);
   };
-  EXPECT_THAT(ErrorOf([&] { build({}, Resources()); }), HasSubstr("apriltag.size_m"));
-  EXPECT_THAT(ErrorOf([&] { build({"apriltag.size_m=0.1"}, FrontEndResources{}); }),
+  EXPECT_THAT(TagNodeErrorOf([&] { build({}, TagNodeResources()); }), HasSubstr("apriltag.size_m"));
+  EXPECT_THAT(TagNodeErrorOf([&] { build({"apriltag.size_m=0.1"}, FrontEndResources{}); }),
               HasSubstr("--calib"));
-  EXPECT_THAT(ErrorOf([&] {
-                build({"apriltag.size_m=0.1", "apriltag.detector=nope"}, Resources());
+  EXPECT_THAT(TagNodeErrorOf([&] {
+                build({"apriltag.size_m=0.1", "apriltag.detector=nope"}, TagNodeResources());
               }),
               HasSubstr("apriltag"));
-  EXPECT_THAT(ErrorOf([&] {
-                build({"apriltag.size_m=0.1", "apriltag.families=[tag99h1]"}, Resources());
+  EXPECT_THAT(TagNodeErrorOf([&] {
+                build({"apriltag.size_m=0.1", "apriltag.families=[tag99h1]"}, TagNodeResources());
               }),
               HasSubstr("tag99h1"));
-  EXPECT_THAT(ErrorOf([&] {
-                build({"apriltag.size_m=0.1", "apriltag.sizes.x=0.2"}, Resources());
+  EXPECT_THAT(TagNodeErrorOf([&] {
+                build({"apriltag.size_m=0.1", "apriltag.sizes.x=0.2"}, TagNodeResources());
               }),
               HasSubstr("tag ids"));
-  EXPECT_THAT(ErrorOf([&] {
-                build({"apriltag.size_m=0.1", "apriltag.typo=1"}, Resources());
+  EXPECT_THAT(TagNodeErrorOf([&] {
+                build({"apriltag.size_m=0.1", "apriltag.typo=1"}, TagNodeResources());
               }),
               HasSubstr("typo"));
 }

@@ -24,13 +24,16 @@
 #include <sstream>
 #include <string>
 
-#include "perception/camera/pinhole_camera.h"
 #include "control/so3.h"
+#include "perception/camera/pinhole_camera.h"
 #include "perception/tags/apriltag_library_detector.h"
 #include "perception/tags/tag_pose_estimator.h"
+#include "tests/support/rotation_error.h"
 
 namespace aperture::perception {
 namespace {
+
+using test_support::RotationErrorDeg;
 
 // ViSP's own lookup: $VISP_INPUT_IMAGE_PATH, else Debian's install location of the package.
 std::filesystem::path AprilTagDataDir() {
@@ -49,10 +52,6 @@ Eigen::Isometry3d VispToOurTagFrame(const Eigen::Isometry3d& T_CO) {
   Eigen::Isometry3d T_OT = Eigen::Isometry3d::Identity();
   T_OT.linear() = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix();
   return T_CO * T_OT;
-}
-
-double RotationErrorDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
-  return control::LogSo3(a.linear().transpose() * b.linear()).norm() * 180.0 / M_PI;
 }
 
 cv::Mat ReadGray(const std::filesystem::path& path) {

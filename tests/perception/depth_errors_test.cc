@@ -10,7 +10,7 @@
 namespace aperture::perception {
 namespace {
 
-PatchGrid Grid(int rows, int cols, double patch_px) {
+PatchGrid SquareGrid(int rows, int cols, double patch_px) {
   PatchGrid grid;
   grid.rows = rows;
   grid.cols = cols;
@@ -19,7 +19,7 @@ PatchGrid Grid(int rows, int cols, double patch_px) {
 }
 
 TEST(PatchDepthFromMillimetres, TakesTheMedianAndTreatsNoSurfaceAsFar) {
-  const PatchGrid grid = Grid(2, 3, 4.0);
+  const PatchGrid grid = SquareGrid(2, 3, 4.0);
   cv::Mat depth_mm(8, 12, CV_16U);
   for (int r = 0; r < 2; ++r) {
     for (int c = 0; c < 3; ++c) {
@@ -36,9 +36,9 @@ TEST(PatchDepthFromMillimetres, TakesTheMedianAndTreatsNoSurfaceAsFar) {
 }
 
 TEST(PatchDepthFromMillimetres, RejectsAWrongTypeOrTooSmallImage) {
-  EXPECT_THROW(PatchDepthFromMillimetres(cv::Mat(8, 12, CV_32F), Grid(2, 3, 4.0)),
+  EXPECT_THROW(PatchDepthFromMillimetres(cv::Mat(8, 12, CV_32F), SquareGrid(2, 3, 4.0)),
                std::invalid_argument);
-  EXPECT_THROW(PatchDepthFromMillimetres(cv::Mat(8, 8, CV_16U), Grid(2, 3, 4.0)),
+  EXPECT_THROW(PatchDepthFromMillimetres(cv::Mat(8, 8, CV_16U), SquareGrid(2, 3, 4.0)),
                std::invalid_argument);
 }
 

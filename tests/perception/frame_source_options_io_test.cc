@@ -14,38 +14,38 @@ namespace {
 
 using ::testing::HasSubstr;
 
-FrameSourceOptions Load(const std::string& yaml) {
+FrameSourceOptions LoadOptions(const std::string& yaml) {
   config::ParamReader reader(YAML::Load(yaml), "source.yaml");
   FrameSourceOptions options;
   LoadParams(reader, &options);
   return options;
 }
 
-std::string ErrorOf(const std::string& yaml) {
-  return test_support::MessageOf([&] { Load(yaml); });
+std::string OptionsErrorOf(const std::string& yaml) {
+  return test_support::MessageOf([&] { LoadOptions(yaml); });
 }
 
 TEST(FrameSourceOptionsIo, ReadsEveryFieldAndKeepsDefaultsForAbsentKeys) {
   const FrameSourceOptions all =
-      Load("color_mode: color\nfps: 20\nskip_bad_frames: true\ncamera_id: 2\n");
+      LoadOptions("color_mode: color\nfps: 20\nskip_bad_frames: true\ncamera_id: 2\n");
   EXPECT_EQ(all.color_mode, ColorMode::kColor);
   EXPECT_EQ(all.fps, 20.0);
   EXPECT_TRUE(all.skip_bad_frames);
   EXPECT_EQ(all.camera_id, 2);
 
   const FrameSourceOptions defaults;
-  const FrameSourceOptions partial = Load("fps: 30\n");
+  const FrameSourceOptions partial = LoadOptions("fps: 30\n");
   EXPECT_EQ(partial.fps, 30.0);
   EXPECT_EQ(partial.color_mode, defaults.color_mode);
   EXPECT_EQ(partial.skip_bad_frames, defaults.skip_bad_frames);
 }
 
 TEST(FrameSourceOptionsIo, BadValuesNameTheLocationAndTheFix) {
-  EXPECT_THAT(ErrorOf("color_mode: rgb\n"), HasSubstr("gray, color"));
-  EXPECT_THAT(ErrorOf("fps: -1\n"), HasSubstr("source.yaml:1:"));
-  EXPECT_THAT(ErrorOf("fps: -1\n"), HasSubstr("positive rate"));
-  EXPECT_THAT(ErrorOf("fps: fast\n"), HasSubstr("fps"));
-  EXPECT_THAT(ErrorOf("skip_bad_frame: true\n"), HasSubstr("skip_bad_frame"));
+  EXPECT_THAT(OptionsErrorOf("color_mode: rgb\n"), HasSubstr("gray, color"));
+  EXPECT_THAT(OptionsErrorOf("fps: -1\n"), HasSubstr("source.yaml:1:"));
+  EXPECT_THAT(OptionsErrorOf("fps: -1\n"), HasSubstr("positive rate"));
+  EXPECT_THAT(OptionsErrorOf("fps: fast\n"), HasSubstr("fps"));
+  EXPECT_THAT(OptionsErrorOf("skip_bad_frame: true\n"), HasSubstr("skip_bad_frame"));
 }
 
 TEST(FrameSourceOptionsIo, ParsesColorModeWords) {

@@ -42,9 +42,7 @@ void WriteImage(const fs::path& file, const cv::Mat& image) {
 void WriteText(const fs::path& file, const std::string& text) { std::ofstream(file) << text; }
 
 // Keeps the first half of `file`, as an interrupted copy would.
-void TruncateToHalf(const fs::path& file) {
-  fs::resize_file(file, fs::file_size(file) / 2);
-}
+void TruncateToHalf(const fs::path& file) { fs::resize_file(file, fs::file_size(file) / 2); }
 
 std::vector<Frame> ReadAll(FrameSource& source) {
   std::vector<Frame> frames;
@@ -52,7 +50,7 @@ std::vector<Frame> ReadAll(FrameSource& source) {
   return frames;
 }
 
-FrameSourceOptions Options(double fps, bool skip = false, ColorMode mode = ColorMode::kGray) {
+FrameSourceOptions SourceOptions(double fps, bool skip = false, ColorMode mode = ColorMode::kGray) {
   FrameSourceOptions options;
   options.fps = fps;
   options.skip_bad_frames = skip;
@@ -62,7 +60,8 @@ FrameSourceOptions Options(double fps, bool skip = false, ColorMode mode = Color
 
 // Writes frame1.png .. frame<n>.png (natural order differs from lexical order for n >= 10).
 void WriteSequence(const fs::path& folder, int n) {
-  for (int k = 1; k <= n; ++k) WriteImage(folder / ("frame" + std::to_string(k) + ".png"), GrayFrame(k));
+  for (int k = 1; k <= n; ++k)
+    WriteImage(folder / ("frame" + std::to_string(k) + ".png"), GrayFrame(k));
 }
 
 // ---------------------------------------------------------------- image folders: good input
@@ -70,7 +69,7 @@ void WriteSequence(const fs::path& folder, int n) {
 TEST(ImageFolderSource, PlaysInNaturalOrderTimedByFps) {
   test_support::TempDirectory dir;
   WriteSequence(dir.path(), 12);
-  ImageFolderSource source(dir.path(), Options(20.0));
+  ImageFolderSource source(dir.path(), SourceOptions(20.0));
   EXPECT_EQ(source.SizeHint(), std::optional<size_t>(12));
   EXPECT_EQ(source.TimeSource(), "fps");
   const std::vector<Frame> frames = ReadAll(source);
@@ -95,7 +94,7 @@ TEST(ImageFolderSource, ColorModeGivesBgrOrGrayFromEveryFormat) {
   }
   WriteImage(dir.path() / ("f" + std::to_string(extensions.size()) + ".pgm"), GrayFrame(3));
 
-  ImageFolderSource color_source(dir.path(), Options(10.0, false, ColorMode::kColor));
+  ImageFolderSource color_source(dir.path(), SourceOptions(10.0, false, ColorMode::kColor));
   const std::vector<Frame> color_frames = ReadAll(color_source);
   ASSERT_EQ(color_frames.size(), extensions.size() + 1);
   for (size_t k = 0; k < extensions.size(); ++k) {
@@ -112,7 +111,7 @@ TEST(ImageFolderSource, ColorModeGivesBgrOrGrayFromEveryFormat) {
   EXPECT_DOUBLE_EQ(pgm_mean[0], 35);
   EXPECT_DOUBLE_EQ(pgm_mean[2], 35);
 
-  ImageFolderSource gray_source(dir.path(), Options(10.0, false, ColorMode::kGray));
+  ImageFolderSource gray_source(dir.path(), SourceOptions(10.0, false, ColorMode::kGray));
   const std::vector<Frame> gray_frames = ReadAll(gray_source);
   ASSERT_EQ(gray_frames.size(), extensions.size() + 1);
   for (size_t k = 0; k < extensions.size(); ++k) {
@@ -125,7 +124,7 @@ TEST(ImageFolderSource, TimesTxtSingleColumnIsPositional) {
   test_support::TempDirectory dir;
   WriteSequence(dir.path(), 3);
   WriteText(dir.path() / "times.txt", "# seconds\n1.5\n1.6\n1.75\n");
-  ImageFolderSource source(dir.path(), Options(99.0));  // times.txt wins over fps
+  ImageFolderSource source(dir.path(), SourceOptions(99.0));  // times.txt wins over fps
   EXPECT_EQ(source.TimeSource(), "times.txt");
   const std::vector<Frame> frames = ReadAll(source);
   ASSERT_EQ(frames.size(), 3u);
@@ -138,7 +137,7 @@ TEST(ImageFolderSource, TimesTxtPairsMatchByNameInAnyLineOrder) {
   test_support::TempDirectory dir;
   WriteSequence(dir.path(), 3);
   WriteText(dir.path() / "times.txt", "frame3.png 0.3\nframe1 0.1\n0.2 frame2.png\n");
-  ImageFolderSource source(dir.path(), Options(0.0));
+  ImageFolderSource source(dir.path(), SourceOptions(0.0));
   const std::vector<Frame> frames = ReadAll(source);
   ASSERT_EQ(frames.size(), 3u);
   for (int i = 0; i < 3; ++i) {
@@ -168,7 +167,7 @@ TEST(ImageFolderSource, EurocDataCsvFromCameraFolderOrItsDataFolder) {
   const fs::path cam0 = WriteEurocCamera(dir.path());
   // With a trailing separator too: the parent of "cam0/data/" must still be cam0.
   for (const fs::path& spec : {cam0, cam0 / "data", cam0 / "data" / ""}) {
-    ImageFolderSource source(spec, Options(0.0));
+    ImageFolderSource source(spec, SourceOptions(0.0));
     EXPECT_EQ(source.TimeSource(), "data.csv") << spec;
     const std::vector<Frame> frames = ReadAll(source);
     ASSERT_EQ(frames.size(), 3u);
@@ -190,16 +189,16 @@ TEST(ImageFolderSource, NanosecondFileNamesAreTimesSmallNumbersNeedFps) {
   WriteImage(counters / "000001.png", GrayFrame(0));
   WriteImage(counters / "000002.png", GrayFrame(1));
 
-  ImageFolderSource from_names(ns, Options(0.0));
+  ImageFolderSource from_names(ns, SourceOptions(0.0));
   EXPECT_EQ(from_names.TimeSource(), "file names");
   EXPECT_NEAR(from_names.Times()[1] - from_names.Times()[0], 0.049999872, 5e-7);
 
   const std::string message =
-      MessageOf<std::invalid_argument>([&] { ImageFolderSource(counters, Options(0.0)); });
+      MessageOf<std::invalid_argument>([&] { ImageFolderSource(counters, SourceOptions(0.0)); });
   EXPECT_THAT(message, HasSubstr(counters.string()));
   EXPECT_THAT(message, HasSubstr("--fps"));
   EXPECT_THAT(message, HasSubstr("times.txt"));
-  ImageFolderSource with_fps(counters, Options(30.0));
+  ImageFolderSource with_fps(counters, SourceOptions(30.0));
   EXPECT_EQ(with_fps.TimeSource(), "fps");
   EXPECT_DOUBLE_EQ(with_fps.Times()[1], 1.0 / 30.0);
 }
@@ -209,7 +208,7 @@ TEST(ImageFolderSource, NanosecondFileNamesAreTimesSmallNumbersNeedFps) {
 // Whole-sequence errors throw in both modes.
 class BothModes : public ::testing::TestWithParam<bool> {
  protected:
-  FrameSourceOptions options(double fps = 10.0) const { return Options(fps, GetParam()); }
+  FrameSourceOptions options(double fps = 10.0) const { return SourceOptions(fps, GetParam()); }
 };
 
 TEST_P(BothModes, MissingFolderNamesIt) {
@@ -288,8 +287,8 @@ INSTANTIATE_TEST_SUITE_P(ImageFolderSource, BothModes, ::testing::Bool(),
 struct BadFrameCase {
   std::string name;
   std::function<void(const fs::path& file)> spoil;  // turns the good file frame3.png bad
-  std::string strict_exception;                    // "runtime_error" or "invalid_argument"
-  std::string reason;                              // expected in message and skip reason
+  std::string strict_exception;                     // "runtime_error" or "invalid_argument"
+  std::string reason;                               // expected in message and skip reason
 };
 
 void PrintTo(const BadFrameCase& bad_frame, std::ostream* os) { *os << bad_frame.name; }
@@ -301,7 +300,7 @@ TEST_P(BadFrame, StrictModeThrowsNamingTheFile) {
   WriteSequence(dir.path(), 5);
   const fs::path bad = dir.path() / "frame3.png";
   GetParam().spoil(bad);
-  ImageFolderSource source(dir.path(), Options(10.0, false));
+  ImageFolderSource source(dir.path(), SourceOptions(10.0, false));
   ASSERT_TRUE(source.Next().has_value());
   ASSERT_TRUE(source.Next().has_value());
   std::string message;
@@ -320,7 +319,7 @@ TEST_P(BadFrame, SkipModeRecordsAndWarns) {
   WriteSequence(dir.path(), 5);
   const fs::path bad = dir.path() / "frame3.png";
   GetParam().spoil(bad);
-  ImageFolderSource source(dir.path(), Options(10.0, true));
+  ImageFolderSource source(dir.path(), SourceOptions(10.0, true));
   ::testing::internal::CaptureStderr();
   const std::vector<Frame> frames = ReadAll(source);
   const std::string stderr_text = ::testing::internal::GetCapturedStderr();
@@ -369,12 +368,12 @@ TEST(ImageFolderSource, ListedButMissingFilesAndUntimedImagesThrowOrAreRecorded)
   WriteText(dir.path() / "times.txt", "frame1.png 0.1\nframe2.png 0.2\nframe9.png 0.9\n");
   // frame3.png has no line; frame9.png has a line but no file.
   const std::string message =
-      MessageOf<std::invalid_argument>([&] { ImageFolderSource(dir.path(), Options(0.0)); });
+      MessageOf<std::invalid_argument>([&] { ImageFolderSource(dir.path(), SourceOptions(0.0)); });
   EXPECT_THAT(message, HasSubstr((dir.path() / "frame3.png").string()));
   EXPECT_THAT(message, HasSubstr("has no timestamp"));
 
   ::testing::internal::CaptureStderr();
-  ImageFolderSource source(dir.path(), Options(0.0, true));
+  ImageFolderSource source(dir.path(), SourceOptions(0.0, true));
   const std::string stderr_text = ::testing::internal::GetCapturedStderr();
   EXPECT_EQ(ReadAll(source).size(), 2u);
   ASSERT_EQ(source.SkippedFrames().size(), 2u);
@@ -388,7 +387,7 @@ TEST(ImageFolderSource, AllFramesBadInSkipModeEndsWithEveryOneRecorded) {
   test_support::TempDirectory dir;
   WriteText(dir.path() / "a.png", "not a png");
   WriteText(dir.path() / "b.png", "not a png either");
-  ImageFolderSource source(dir.path(), Options(10.0, true));
+  ImageFolderSource source(dir.path(), SourceOptions(10.0, true));
   ::testing::internal::CaptureStderr();
   EXPECT_FALSE(source.Next().has_value());
   ::testing::internal::GetCapturedStderr();
@@ -413,7 +412,7 @@ TEST(VideoFileSource, ReadsBackEveryFrameInOrderWithContainerTimes) {
   test_support::TempDirectory dir;
   const fs::path video = dir.path() / "clip.avi";
   WriteVideo(video, 7, 10.0);
-  VideoFileSource source(video, Options(0.0, false, ColorMode::kGray));
+  VideoFileSource source(video, SourceOptions(0.0, false, ColorMode::kGray));
   EXPECT_EQ(source.SizeHint(), std::optional<size_t>(7));
   const std::vector<Frame> frames = ReadAll(source);
   ASSERT_EQ(frames.size(), 7u);
@@ -430,7 +429,7 @@ TEST(VideoFileSource, ExplicitFpsOverridesContainerTimesAndColorModeApplies) {
   test_support::TempDirectory dir;
   const fs::path video = dir.path() / "clip.avi";
   WriteVideo(video, 4, 10.0);
-  VideoFileSource source(video, Options(25.0, false, ColorMode::kColor));
+  VideoFileSource source(video, SourceOptions(25.0, false, ColorMode::kColor));
   const std::vector<Frame> frames = ReadAll(source);
   ASSERT_EQ(frames.size(), 4u);
   EXPECT_DOUBLE_EQ(frames[3].t_s, 3 / 25.0);
@@ -445,7 +444,7 @@ TEST(VideoFileSource, TruncatedFileThrowsOrRecordsTheMissingFrames) {
   WriteVideo(video, 20, 10.0);
   fs::resize_file(video, fs::file_size(video) * 3 / 4);
 
-  VideoFileSource strict(video, Options(0.0, false));
+  VideoFileSource strict(video, SourceOptions(0.0, false));
   ASSERT_EQ(strict.SizeHint(), std::optional<size_t>(20));
   std::string message;
   int delivered = 0;
@@ -461,7 +460,7 @@ TEST(VideoFileSource, TruncatedFileThrowsOrRecordsTheMissingFrames) {
   EXPECT_THAT(message, HasSubstr("ended after " + std::to_string(delivered) + " of the 20"));
   EXPECT_THAT(message, HasSubstr("--skip-bad-frames"));
 
-  VideoFileSource skipping(video, Options(0.0, true));
+  VideoFileSource skipping(video, SourceOptions(0.0, true));
   ::testing::internal::CaptureStderr();
   const std::vector<Frame> frames = ReadAll(skipping);
   const std::string stderr_text = ::testing::internal::GetCapturedStderr();
@@ -475,13 +474,13 @@ TEST(VideoFileSource, TruncatedFileThrowsOrRecordsTheMissingFrames) {
 TEST(VideoFileSource, MissingAndUndecodableFilesNameTheFile) {
   test_support::TempDirectory dir;
   const fs::path missing = dir.path() / "missing.avi";
-  EXPECT_THAT(MessageOf<std::runtime_error>([&] { VideoFileSource(missing, Options(0.0)); }),
+  EXPECT_THAT(MessageOf<std::runtime_error>([&] { VideoFileSource(missing, SourceOptions(0.0)); }),
               HasSubstr(missing.string()));
   const fs::path garbage = dir.path() / "garbage.avi";
   WriteText(garbage, "not a video");
   ::testing::internal::CaptureStderr();  // OpenCV backends log their failed attempts
   const std::string message =
-      MessageOf<std::runtime_error>([&] { VideoFileSource(garbage, Options(0.0)); });
+      MessageOf<std::runtime_error>([&] { VideoFileSource(garbage, SourceOptions(0.0)); });
   ::testing::internal::GetCapturedStderr();
   EXPECT_THAT(message, HasSubstr(garbage.string()));
   EXPECT_THAT(message, HasSubstr("cannot open video"));
@@ -494,22 +493,26 @@ TEST(OpenFrameSource, DispatchesFolderVideoAndCameraSpecs) {
   WriteSequence(dir.path(), 2);
   const fs::path video = dir.path() / "clip.avi";
   WriteVideo(video, 3, 10.0);
-  EXPECT_THAT(OpenFrameSource(dir.path().string(), Options(10.0))->Describe(),
+  EXPECT_THAT(OpenFrameSource(dir.path().string(), SourceOptions(10.0))->Describe(),
               HasSubstr("image folder"));
-  const std::unique_ptr<FrameSource> video_source = OpenFrameSource(video.string(), Options(0.0));
+  const std::unique_ptr<FrameSource> video_source =
+      OpenFrameSource(video.string(), SourceOptions(0.0));
   EXPECT_THAT(video_source->Describe(), HasSubstr("video file"));
   EXPECT_EQ(ReadAll(*video_source).size(), 3u);
 
-  EXPECT_THAT(MessageOf<std::invalid_argument>(
-                  [&] { OpenFrameSource((dir.path() / "frame1.png").string(), Options(0.0)); }),
+  EXPECT_THAT(MessageOf<std::invalid_argument>([&] {
+                OpenFrameSource((dir.path() / "frame1.png").string(), SourceOptions(0.0));
+              }),
               HasSubstr("single image"));
   EXPECT_THAT(MessageOf<std::runtime_error>(
-                  [&] { OpenFrameSource((dir.path() / "nope").string(), Options(0.0)); }),
+                  [&] { OpenFrameSource((dir.path() / "nope").string(), SourceOptions(0.0)); }),
               HasSubstr("camera:<N>"));
-  EXPECT_THAT(MessageOf<std::invalid_argument>([&] { OpenFrameSource("camera:x", Options(0.0)); }),
-              HasSubstr("camera:<N>"));
-  EXPECT_THAT(MessageOf<std::invalid_argument>([&] { OpenFrameSource("camera:", Options(0.0)); }),
-              HasSubstr("'camera:'"));
+  EXPECT_THAT(
+      MessageOf<std::invalid_argument>([&] { OpenFrameSource("camera:x", SourceOptions(0.0)); }),
+      HasSubstr("camera:<N>"));
+  EXPECT_THAT(
+      MessageOf<std::invalid_argument>([&] { OpenFrameSource("camera:", SourceOptions(0.0)); }),
+      HasSubstr("'camera:'"));
 }
 
 TEST(CameraDeviceSource, NonExistentDeviceGivesAClearError) {

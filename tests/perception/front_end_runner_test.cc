@@ -11,13 +11,10 @@
 #include "perception/gap/gap_node.h"
 #include "perception/graph/builtin_front_ends.h"
 #include "tests/perception/gap_test_images.h"
+#include "tests/support/pinhole_752x480.h"
 
 namespace aperture::perception {
 namespace {
-
-std::shared_ptr<const CameraModel> Pinhole() {
-  return std::make_shared<PinholeCamera>(752, 480, PinholeIntrinsics{420.0, 420.0, 375.5, 239.5});
-}
 
 Frame GapFrame(const CameraModel& camera, const Eigen::Isometry3d& T_CG, double t_s) {
   Frame frame;
@@ -27,7 +24,7 @@ Frame GapFrame(const CameraModel& camera, const Eigen::Isometry3d& T_CG, double 
 }
 
 TEST(FrontEndRunnerTest, HandsOnEachFramesPoseObservationsStampedWithTheFrameTime) {
-  const auto camera = Pinhole();
+  const auto camera = test_support::Pinhole752x480();
   std::vector<std::unique_ptr<Node>> nodes;
   nodes.push_back(std::make_unique<GapNode>(GapDetectorParams{}, camera));
   FrontEndRunner runner(std::move(nodes));
@@ -61,7 +58,8 @@ TEST(FrontEndRunnerTest, BuildsFromTheRegistryLikeApertureRun) {
   FrontEndRegistry registry;
   RegisterBuiltinFrontEnds(registry);
   FrontEndResources resources;
-  resources.calibration = CameraCalibration{Pinhole(), Eigen::Isometry3d::Identity(), "cam0", ""};
+  resources.calibration =
+      CameraCalibration{test_support::Pinhole752x480(), Eigen::Isometry3d::Identity(), "cam0", ""};
   const config::ConfigTree tree =
       config::ConfigTree::FromCommandLine("", {}, {"image_quality.histogram_bins=16"});
   config::ParamReader root = tree.Reader();

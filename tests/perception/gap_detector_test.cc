@@ -13,17 +13,15 @@
 #include "perception/graph/frame_graph.h"
 #include "perception/sensor_data.h"
 #include "tests/perception/gap_test_images.h"
+#include "tests/support/pinhole_752x480.h"
 
 namespace aperture::perception {
 namespace {
 
-std::shared_ptr<const CameraModel> Pinhole() {
-  return std::make_shared<PinholeCamera>(752, 480, PinholeIntrinsics{420.0, 420.0, 375.5, 239.5});
-}
-
 Eigen::Isometry3d MakePose(double roll, double pitch, double yaw, const Eigen::Vector3d& p_CG) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitY()) * Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitX()) *
+  T.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitY()) *
+                Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitX()) *
                 Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitZ()))
                    .toRotationMatrix();
   T.translation() = p_CG;
@@ -43,28 +41,32 @@ TEST(GapDetectorTest, RejectsInvalidParameters) {
   p.canny_high = 10.0;  // below canny_low
   EXPECT_THROW(ValidateGapDetectorParams(p), std::invalid_argument);
   EXPECT_THROW(GapDetector(GapDetectorParams{}, nullptr), std::invalid_argument);
-  GapDetector detector(GapDetectorParams{}, Pinhole());
+  GapDetector detector(GapDetectorParams{}, test_support::Pinhole752x480());
   EXPECT_THROW(detector.Detect(cv::Mat(100, 100, CV_8UC1, cv::Scalar(0))), std::invalid_argument);
 }
 
 TEST(GapDetectorTest, DrawnPatternGivesExactPoseWithSymmetryConvention) {
-  const auto camera = Pinhole();
+  const auto camera = test_support::Pinhole752x480();
   GapDetectorParams params;
   GapDetector detector(params, camera);
   std::mt19937 rng(4);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (int trial = 0; trial < 8; ++trial) {
     const double distance = 1.5 + 0.4 * trial;
-    const Eigen::Isometry3d T_CG = MakePose(0.4 * u(rng), 0.4 * u(rng), 0.4 * u(rng),
-                                            Eigen::Vector3d(0.15 * distance * u(rng), 0.1 * distance * u(rng), distance));
+    const Eigen::Isometry3d T_CG =
+        MakePose(0.4 * u(rng), 0.4 * u(rng), 0.4 * u(rng),
+                 Eigen::Vector3d(0.15 * distance * u(rng), 0.1 * distance * u(rng), distance));
     const cv::Mat image = DrawGapPattern(*camera, params, T_CG);
     const GapDetection d = detector.DetectFullImage(image);
     ASSERT_TRUE(d.detected()) << "trial " << trial << ": " << GapDetectionStatusName(d.status);
     // cv::fillConvexPoly includes boundary pixels: each drawn edge lies up to one fine pixel
     // (1/8 px) outside the true one, which biases the corners ~0.1 px outwards and the pose by
     // up to ~0.3 % / 0.3 deg (the renderer test measures the detector's own accuracy).
-    EXPECT_LT((d.T_CG.translation() - T_CG.translation()).norm(), 5e-3 * distance) << "trial " << trial;
-    EXPECT_LT(Eigen::AngleAxisd(d.T_CG.linear().transpose() * T_CG.linear()).angle(), 0.5 * M_PI / 180) << "trial " << trial;
+    EXPECT_LT((d.T_CG.translation() - T_CG.translation()).norm(), 5e-3 * distance)
+        << "trial " << trial;
+    EXPECT_LT(Eigen::AngleAxisd(d.T_CG.linear().transpose() * T_CG.linear()).angle(),
+              0.5 * M_PI / 180)
+        << "trial " << trial;
     EXPECT_LT(d.corner_rms_px, 0.3);
     ASSERT_EQ(d.corners_px.size(), 8u);
     // Corner labels follow G: corner i is the projection of model corner i.
@@ -78,11 +80,13 @@ TEST(GapDetectorTest, DrawnPatternGivesExactPoseWithSymmetryConvention) {
   // representative with x_G to the right.
   const Eigen::Isometry3d T_CG = MakePose(0.2, 0.1, 0.0, Eigen::Vector3d(0.0, 0.0, 2.5));
   Eigen::Isometry3d T_flipped = T_CG;
-  T_flipped.linear() = T_CG.linear() * Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T_flipped.linear() =
+      T_CG.linear() * Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   const GapDetection d = detector.DetectFullImage(DrawGapPattern(*camera, params, T_flipped));
   ASSERT_TRUE(d.detected());
   EXPECT_GT(d.T_CG.linear()(0, 0), 0.0);
-  EXPECT_LT(Eigen::AngleAxisd(d.T_CG.linear().transpose() * T_CG.linear()).angle(), 0.5 * M_PI / 180);
+  EXPECT_LT(Eigen::AngleAxisd(d.T_CG.linear().transpose() * T_CG.linear()).angle(),
+            0.5 * M_PI / 180);
   // z_G points away from the camera (camera on the -z_G side).
   EXPECT_GT(d.T_CG.linear().col(2).dot(d.T_CG.translation()), 0.0);
 }
@@ -93,14 +97,15 @@ TEST(GapNodeTest, RegisteredAndNeedsCalibration) {
   ASSERT_TRUE(registry.Contains("gap"));
   EXPECT_THROW(registry.Create("gap"), std::invalid_argument);
   FrontEndResources resources;
-  resources.calibration = CameraCalibration{Pinhole(), Eigen::Isometry3d::Identity(), "cam0", ""};
+  resources.calibration =
+      CameraCalibration{test_support::Pinhole752x480(), Eigen::Isometry3d::Identity(), "cam0", ""};
   EXPECT_NE(registry.Create("gap", resources), nullptr);
 }
 
 // The node reports T_CG of the fixed target G (the stream records T_GC), its metrics and nothing
 // on a miss.
 TEST(GapNodeTest, ReportsCameraPoseInGapFrame) {
-  const auto camera = Pinhole();
+  const auto camera = test_support::Pinhole752x480();
   std::vector<std::unique_ptr<Node>> nodes;
   nodes.push_back(std::make_unique<GapNode>(GapDetectorParams{}, camera));
   FrameGraph graph(std::move(nodes));

@@ -12,7 +12,7 @@
 namespace aperture::perception {
 namespace {
 
-std::unique_ptr<CameraModel> MakeCamera(bool distorted) {
+std::unique_ptr<CameraModel> MakeLedCamera(bool distorted) {
   const PinholeIntrinsics k{420.0, 420.0, 375.5, 239.5};
   if (!distorted) return std::make_unique<PinholeCamera>(752, 480, k);
   return std::make_unique<RadTanCamera>(752, 480, k,
@@ -27,7 +27,7 @@ Eigen::Isometry3d TruePose() {
 }
 
 // The perturbation of the header: (Exp(delta_phi) R, p + delta_t).
-Eigen::Isometry3d Perturbed(const Eigen::Isometry3d& T, const control::Vector6d& delta) {
+Eigen::Isometry3d PerturbedPose(const Eigen::Isometry3d& T, const control::Vector6d& delta) {
   Eigen::Isometry3d result = T;
   result.translation() += delta.head<3>();
   result.linear() = control::ExpSo3(delta.tail<3>()) * T.linear();
@@ -36,7 +36,7 @@ Eigen::Isometry3d Perturbed(const Eigen::Isometry3d& T, const control::Vector6d&
 
 class LedPoseRefinerTest : public ::testing::TestWithParam<bool> {
  protected:
-  std::unique_ptr<CameraModel> camera_ = MakeCamera(GetParam());
+  std::unique_ptr<CameraModel> camera_ = MakeLedCamera(GetParam());
   LedConfiguration configuration_ = LedConfiguration::Default();
 };
 
@@ -51,9 +51,9 @@ TEST_P(LedPoseRefinerTest, JacobianMatchesNumericDifferentiation) {
     for (int k = 0; k < 6; ++k) {
       Eigen::Vector2d plus, minus;
       ASSERT_TRUE(
-          ProjectLed(*camera_, Perturbed(T_CT, h * control::Vector6d::Unit(k)), p_T, &plus));
+          ProjectLed(*camera_, PerturbedPose(T_CT, h * control::Vector6d::Unit(k)), p_T, &plus));
       ASSERT_TRUE(
-          ProjectLed(*camera_, Perturbed(T_CT, -h * control::Vector6d::Unit(k)), p_T, &minus));
+          ProjectLed(*camera_, PerturbedPose(T_CT, -h * control::Vector6d::Unit(k)), p_T, &minus));
       J_numeric.col(k) = (plus - minus) / (2 * h);
     }
     // Entries are O(100-400) px per m or rad; 1e-4 px is the numeric noise floor above.
@@ -71,7 +71,7 @@ TEST_P(LedPoseRefinerTest, ConvergesToTheTruePoseFromAPerturbedStart) {
   const control::Vector6d offset =
       (control::Vector6d() << 0.03, -0.02, 0.1, 0.05, -0.04, 0.06).finished();
   const LedPoseRefinement refined =
-      RefineLedPose(*camera_, configuration_.p_T(), px, Perturbed(T_CT, offset));
+      RefineLedPose(*camera_, configuration_.p_T(), px, PerturbedPose(T_CT, offset));
   ASSERT_TRUE(refined.valid);
   EXPECT_LT((refined.T_CT.matrix() - T_CT.matrix()).cwiseAbs().maxCoeff(), 1e-8);
   EXPECT_LT(refined.rms_px, 1e-6);

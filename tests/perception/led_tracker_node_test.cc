@@ -23,7 +23,7 @@ using test_support::MessageOf;
 
 using ::testing::HasSubstr;
 
-FrontEndResources Resources() {
+FrontEndResources LedNodeResources() {
   FrontEndResources resources;
   CameraCalibration calibration;
   calibration.camera =
@@ -35,7 +35,7 @@ FrontEndResources Resources() {
 TEST(LedTrackerNodeTest, ReportsThePoseStreamWithCovarianceMetricsAndOverlay) {
   FrontEndRegistry registry;
   RegisterBuiltinFrontEnds(registry);
-  const FrontEndResources resources = Resources();
+  const FrontEndResources resources = LedNodeResources();
   config::ConfigTree tree;
   tree.ApplySet("led.p3p=ap3p");
   config::ParamReader root = tree.Reader();
@@ -90,12 +90,12 @@ TEST(LedTrackerNodeTest, NeedsACalibrationAndAValidConfiguration) {
   config::ConfigTree tree;
   tree.ApplySet("config=" + path);
   config::ParamReader params = tree.Reader();
-  EXPECT_THAT(MessageOf([&] { registry.Create("led", params, Resources()); }),
+  EXPECT_THAT(MessageOf([&] { registry.Create("led", params, LedNodeResources()); }),
               ::testing::AllOf(HasSubstr("square.yaml"), HasSubstr("coplanar")));
   config::ConfigTree bad_method;
   bad_method.ApplySet("p3p=epnp");
   config::ParamReader bad_params = bad_method.Reader();
-  EXPECT_THAT(MessageOf([&] { registry.Create("led", bad_params, Resources()); }),
+  EXPECT_THAT(MessageOf([&] { registry.Create("led", bad_params, LedNodeResources()); }),
               HasSubstr("epnp"));
 }
 

@@ -26,7 +26,7 @@ MonoDepthModel RowBandModel() {
                         Eigen::VectorXf::Constant(kEnergies, 2.0f), weights);
 }
 
-PatchGrid Grid(int rows, int cols) {
+PatchGrid ExtractorGrid(int rows, int cols) {
   PatchGrid grid;
   grid.rows = rows;
   grid.cols = cols;
@@ -36,7 +36,7 @@ PatchGrid Grid(int rows, int cols) {
 
 TEST(MonoDepthModel, PredictsTheLabelOfTheLargestScore) {
   const MonoDepthModel model = RowBandModel();
-  const PatchGrid grid = Grid(6, 2);
+  const PatchGrid grid = ExtractorGrid(6, 2);
   const Eigen::MatrixXf energies = Eigen::MatrixXf::Ones(12, kEnergies);
   const cv::Mat labels = model.PredictLabels(energies, grid);
   const cv::Mat depth = model.PredictDepth(energies, grid);
@@ -65,8 +65,8 @@ TEST(MonoDepthModel, TextFormatRoundTrips) {
   EXPECT_EQ(loaded.labels().Count(), 6);
   EXPECT_TRUE(loaded.weights().isApprox(model.weights(), 1e-7f));
   const Eigen::MatrixXf energies = Eigen::MatrixXf::Random(12, kEnergies).cwiseAbs();
-  EXPECT_TRUE(
-      loaded.Inputs(energies, Grid(6, 2)).isApprox(model.Inputs(energies, Grid(6, 2)), 1e-6f));
+  EXPECT_TRUE(loaded.Inputs(energies, ExtractorGrid(6, 2))
+                  .isApprox(model.Inputs(energies, ExtractorGrid(6, 2)), 1e-6f));
 }
 
 std::string ParseError(const std::string& text) {

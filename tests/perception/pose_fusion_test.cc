@@ -8,10 +8,13 @@
 
 #include <random>
 
+#include "control/constants.h"
 #include "control/so3.h"
 
 namespace aperture::perception {
 namespace {
+
+using control::kGravity_mps2;
 
 using ::testing::HasSubstr;
 
@@ -48,7 +51,8 @@ Perturbed PerturbedObservation(PoseObservation::Fixed fixed, std::mt19937_64* rn
 
 Vector6d Residual(const Eigen::Isometry3d& T, const Eigen::Isometry3d& T_perturbed) {
   Vector6d r;
-  r << T_perturbed.translation() - T.translation(), control::LogSo3(T.linear().transpose() * T_perturbed.linear());
+  r << T_perturbed.translation() - T.translation(),
+      control::LogSo3(T.linear().transpose() * T_perturbed.linear());
   return r;
 }
 
@@ -138,12 +142,10 @@ TEST(ToPoseMeasurementTest, RejectsNonRigidTransformsAndMissingCovariancesNaming
   EXPECT_THROW(ToPoseMeasurement(observation, rig), std::invalid_argument);
 }
 
-constexpr double kG = 9.81;
-
 ImuSample RestingImu(double t_s) {
   ImuSample sample;
   sample.t_s = t_s;
-  sample.specific_force_B = Eigen::Vector3d(0.0, 0.0, kG);
+  sample.specific_force_B = Eigen::Vector3d(0.0, 0.0, kGravity_mps2);
   return sample;
 }
 

@@ -14,19 +14,19 @@
 namespace aperture::perception {
 namespace {
 
-PoseImuFilterParams Load(const std::string& yaml) {
+PoseImuFilterParams LoadFilterParams(const std::string& yaml) {
   config::ParamReader reader(YAML::Load(yaml), "filter.yaml");
   PoseImuFilterParams params;
   LoadParams(reader, &params);
   return params;
 }
 
-std::string ErrorOf(const std::string& yaml) {
-  return test_support::MessageOf([&] { Load(yaml); });
+std::string FilterParamsErrorOf(const std::string& yaml) {
+  return test_support::MessageOf([&] { LoadFilterParams(yaml); });
 }
 
 TEST(PoseImuFilterParamsIoTest, LoadsGivenKeysAndKeepsDefaults) {
-  const PoseImuFilterParams params = Load(R"(
+  const PoseImuFilterParams params = LoadFilterParams(R"(
 accel_noise_density: 0.01
 gyro_bias_random_walk: 1.0e-4
 history_duration_s: 0.2
@@ -41,10 +41,10 @@ mahalanobis_gate: .inf
 }
 
 TEST(PoseImuFilterParamsIoTest, RejectsUnknownKeysAndInvalidValuesNamingThem) {
-  const std::string unknown = ErrorOf("accel_noise_densty: 0.01\n");
+  const std::string unknown = FilterParamsErrorOf("accel_noise_densty: 0.01\n");
   EXPECT_NE(unknown.find("accel_noise_densty"), std::string::npos) << unknown;
   EXPECT_NE(unknown.find("filter.yaml"), std::string::npos) << unknown;
-  const std::string invalid = ErrorOf("history_duration_s: -1\n");
+  const std::string invalid = FilterParamsErrorOf("history_duration_s: -1\n");
   EXPECT_NE(invalid.find("history_duration_s"), std::string::npos) << invalid;
   EXPECT_NE(invalid.find("filter.yaml"), std::string::npos) << invalid;
 }

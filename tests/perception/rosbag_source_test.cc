@@ -33,8 +33,8 @@ cv::Mat Pattern(int seed) {
   return bgr;
 }
 
-FrameSourceOptions Options(const std::string& image_topic, ColorMode mode = ColorMode::kColor,
-                           const std::string& imu_topic = "") {
+FrameSourceOptions BagOptions(const std::string& image_topic, ColorMode mode = ColorMode::kColor,
+                              const std::string& imu_topic = "") {
   FrameSourceOptions options;
   options.image_topic = image_topic;
   options.imu_topic = imu_topic;
@@ -66,7 +66,7 @@ TEST(RosbagSourceTest, ReadsEveryEncodingAsTheBgrImageWritten) {
       bag.WriteImage("/cam0/image_raw", 100.0 + 0.05 * i, data, e);
     }
   }
-  RosbagSource source(path, Options("/cam0/image_raw"));
+  RosbagSource source(path, BagOptions("/cam0/image_raw"));
   EXPECT_EQ(source.SizeHint(), encodings.size());
   EXPECT_THAT(source.Describe(), HasSubstr("/cam0/image_raw"));
   for (size_t i = 0; i < encodings.size(); ++i) {
@@ -97,11 +97,10 @@ TEST(RosbagSourceTest, CompressedPngFramesDecodeExactlyAndImuSamplesArriveBetwee
                    Eigen::Vector3d(0, 0, k));
     }
     for (int i = 0; i < 3; ++i) {
-      bag.WriteCompressedImage("/cam0/image_raw/compressed", 1.0125 + 0.05 * i, Pattern(i),
-                               ".png");
+      bag.WriteCompressedImage("/cam0/image_raw/compressed", 1.0125 + 0.05 * i, Pattern(i), ".png");
     }
   }
-  RosbagSource source(path, Options("/cam0/image_raw/compressed", ColorMode::kColor, "/imu0"));
+  RosbagSource source(path, BagOptions("/cam0/image_raw/compressed", ColorMode::kColor, "/imu0"));
   std::vector<ImuSample> all;
   for (int i = 0; i < 3; ++i) {
     const std::optional<Frame> frame = source.Next();
@@ -130,7 +129,7 @@ TEST(RosbagSourceTest, OpenFrameSourceReadsABagInTheColourModeAsked) {
     bag.WriteImage("/cam", 1.0, Pattern(1), "bgr8");
   }
   const std::unique_ptr<FrameSource> source =
-      OpenFrameSource(path, Options("/cam", ColorMode::kGray));
+      OpenFrameSource(path, BagOptions("/cam", ColorMode::kGray));
   const std::optional<Frame> frame = source->Next();
   ASSERT_TRUE(frame);
   cv::Mat gray;
@@ -150,28 +149,28 @@ TEST(RosbagSourceTest, BadInputNamesTheTopicTheEncodingOrTheTime) {
     bag.WriteImage("/depth", 1.0, depth, "16UC1");
     bag.WriteImu("/imu0", 1.0, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
   }
-  const std::string missing = MessageOf([&] { RosbagSource(path, Options("/cam1/image_raw")); });
+  const std::string missing = MessageOf([&] { RosbagSource(path, BagOptions("/cam1/image_raw")); });
   EXPECT_THAT(missing, HasSubstr("no topic '/cam1/image_raw'"));
   EXPECT_THAT(missing, HasSubstr("/cam0/image_raw (sensor_msgs/Image)"));  // lists what there is
-  EXPECT_THAT(MessageOf([&] { RosbagSource(path, Options("")); }), HasSubstr("--image-topic"));
-  EXPECT_THAT(MessageOf([&] { RosbagSource(path, Options("/imu0")); }),
+  EXPECT_THAT(MessageOf([&] { RosbagSource(path, BagOptions("")); }), HasSubstr("--image-topic"));
+  EXPECT_THAT(MessageOf([&] { RosbagSource(path, BagOptions("/imu0")); }),
               HasSubstr("'/imu0' carries sensor_msgs/Imu"));
   EXPECT_THAT(MessageOf([&] {
-                RosbagSource(path, Options("/cam0/image_raw", ColorMode::kColor, "/imu1"));
+                RosbagSource(path, BagOptions("/cam0/image_raw", ColorMode::kColor, "/imu1"));
               }),
               HasSubstr("no topic '/imu1'"));
 
-  RosbagSource depth(path, Options("/depth"));
+  RosbagSource depth(path, BagOptions("/depth"));
   const std::string encoding = MessageOf([&] { depth.Next(); });
   EXPECT_THAT(encoding, HasSubstr("encoding '16UC1'"));
   EXPECT_THAT(encoding, HasSubstr("topic '/depth'"));
 
-  RosbagSource backwards(path, Options("/cam0/image_raw"));
+  RosbagSource backwards(path, BagOptions("/cam0/image_raw"));
   ASSERT_TRUE(backwards.Next());
   EXPECT_THAT(MessageOf([&] { backwards.Next(); }), HasSubstr("does not increase"));
 
   EXPECT_THAT(MessageOf<std::runtime_error>(
-                  [&] { RosbagSource((dir.path() / "missing.bag").string(), Options("/cam")); }),
+                  [&] { RosbagSource((dir.path() / "missing.bag").string(), BagOptions("/cam")); }),
               HasSubstr("missing.bag"));
 }
 

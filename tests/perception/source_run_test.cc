@@ -18,20 +18,20 @@ namespace {
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 
-std::shared_ptr<const CameraModel> Pinhole(int width, int height) {
+std::shared_ptr<const CameraModel> CenteredPinhole(int width, int height) {
   return std::make_shared<PinholeCamera>(
       width, height, PinholeIntrinsics{420.0, 420.0, 0.5 * width - 0.5, 0.5 * height - 0.5});
 }
 
 class SourceRunTest : public ::testing::Test {
  protected:
-  SourceRunTest() : camera_(Pinhole(752, 480)), graph_(Nodes()), executor_(graph_) {
+  SourceRunTest() : camera_(CenteredPinhole(752, 480)), graph_(Nodes()), executor_(graph_) {
     resources_.calibration = CameraCalibration{camera_, Eigen::Isometry3d::Identity(), "cam0", ""};
   }
 
   std::vector<std::unique_ptr<Node>> Nodes() const {
     std::vector<std::unique_ptr<Node>> nodes;
-    nodes.push_back(std::make_unique<GapNode>(GapDetectorParams{}, Pinhole(752, 480)));
+    nodes.push_back(std::make_unique<GapNode>(GapDetectorParams{}, CenteredPinhole(752, 480)));
     return nodes;
   }
 
@@ -91,7 +91,7 @@ TEST_F(SourceRunTest, AnEmptySourceIsAnErrorNamingIt) {
 }
 
 TEST_F(SourceRunTest, ACalibrationOfAnotherImageSizeIsRejectedBeforeAnyNodeRuns) {
-  resources_.calibration->camera = Pinhole(640, 480);
+  resources_.calibration->camera = CenteredPinhole(640, 480);
   PushGapFrames(1);
   int seen = 0;
   try {

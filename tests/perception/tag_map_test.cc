@@ -17,9 +17,12 @@
 #include "perception/tags/tag_map_writer.h"
 #include "perception/tags/tag_pose_estimator.h"
 #include "temp_directory.h"
+#include "tests/support/rotation_error.h"
 
 namespace aperture::perception {
 namespace {
+
+using test_support::RotationErrorDeg;
 
 // A paper-D-like field: the origin tag plus 12 tags of 0.25 m lying flat (z_T down) at random
 // spots and yaws in 4 x 6 m, some on 0.4 m boxes; a downward 90 deg 640x480 camera (the `tags`
@@ -38,7 +41,7 @@ struct Field {
   int flips = 0;
 };
 
-constexpr double kTagSize_m = 0.25;
+constexpr double kMapTagSize_m = 0.25;
 constexpr double kCornerSigma_px = 0.3;
 
 Eigen::Isometry3d Pose(const Eigen::Vector3d& p, double yaw, double roll = M_PI) {
@@ -48,10 +51,6 @@ Eigen::Isometry3d Pose(const Eigen::Vector3d& p, double yaw, double roll = M_PI)
                    .toRotationMatrix();
   T.translation() = p;
   return T;
-}
-
-double RotationErrorDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
-  return control::LogSo3(a.linear().transpose() * b.linear()).norm() * 180 / M_PI;
 }
 
 Field MakeField(std::uint32_t seed, int flip_every) {
@@ -105,14 +104,14 @@ Field MakeField(std::uint32_t seed, int flip_every) {
       std::array<Eigen::Vector2d, 4> corners_px;
       bool inside = true;
       for (int k = 0; k < 4; ++k) {
-        inside = inside && camera.Project(T_CT * TagCorner(k, kTagSize_m), &corners_px[k]) &&
+        inside = inside && camera.Project(T_CT * TagCorner(k, kMapTagSize_m), &corners_px[k]) &&
                  corners_px[k].x() > 2 && corners_px[k].y() > 2 && corners_px[k].x() < 637 &&
                  corners_px[k].y() < 477;
         corners_px[k] += kCornerSigma_px * Eigen::Vector2d(normal(rng), normal(rng));
       }
       if (!inside) continue;
       const std::optional<TagPose> pose =
-          EstimateTagPose(camera, corners_px, kTagSize_m, pose_params);
+          EstimateTagPose(camera, corners_px, kMapTagSize_m, pose_params);
       if (!pose) continue;
       const bool alternative_nearer =
           pose->alternative &&
@@ -123,7 +122,7 @@ Field MakeField(std::uint32_t seed, int flip_every) {
         ++field.flips;
       }
       const TagPoseCandidate& chosen = use_alternative ? *pose->alternative : pose->best;
-      image.push_back({"tag36h11", id, kTagSize_m, chosen.T_CT, chosen.covariance});
+      image.push_back({"tag36h11", id, kMapTagSize_m, chosen.T_CT, chosen.covariance});
     }
     const Eigen::Vector3d tilt_noise(normal(rng), normal(rng), normal(rng));
     field.down_C.push_back(control::ExpSo3(tilt_noise * M_PI / 180.0) * T_WC.linear().transpose() *
@@ -248,9 +247,9 @@ TEST(TagMap, OdometryJoinsAnImageThatSeesNoMappedTag) {
   const Eigen::Isometry3d T_OW = Pose({10.0, -4.0, 1.0}, 1.2, 0.0);
   const Matrix6d covariance = 1e-6 * Matrix6d::Identity();
   const std::vector<TagMapObservation> first{
-      {"tag36h11", 0, kTagSize_m, T_WC1.inverse() * T_W0, covariance}};
+      {"tag36h11", 0, kMapTagSize_m, T_WC1.inverse() * T_W0, covariance}};
   const std::vector<TagMapObservation> second{
-      {"tag36h11", 5, kTagSize_m, T_WC2.inverse() * T_W5, covariance}};
+      {"tag36h11", 5, kMapTagSize_m, T_WC2.inverse() * T_W5, covariance}};
   for (const bool odometry : {false, true}) {
     TagMap map;
     map.AddImage(0.0, first, {std::nullopt, odometry ? std::optional(T_OW * T_WC1) : std::nullopt});

@@ -11,13 +11,16 @@
 #include "perception/camera/equidistant_camera.h"
 #include "perception/camera/pinhole_camera.h"
 #include "perception/camera/radtan_camera.h"
+#include "tests/support/rotation_error.h"
 
 namespace aperture::perception {
 namespace {
 
-constexpr double kTagSize_m = 0.2;
+using test_support::RotationErrorDeg;
 
-std::unique_ptr<CameraModel> MakeCamera(const std::string& model) {
+constexpr double kEstimatorTagSize_m = 0.2;
+
+std::unique_ptr<CameraModel> MakeTagCamera(const std::string& model) {
   const PinholeIntrinsics k{400.0, 400.0, 319.5, 239.5};
   if (model == "pinhole") return std::make_unique<PinholeCamera>(640, 480, k);
   if (model == "radtan") {
@@ -44,14 +47,10 @@ std::array<Eigen::Vector2d, 4> ProjectCorners(const CameraModel& camera,
   std::normal_distribution<double> noise(0.0, noise_px);
   std::array<Eigen::Vector2d, 4> corners;
   for (int k = 0; k < 4; ++k) {
-    EXPECT_TRUE(camera.Project(T_CT * TagCorner(k, kTagSize_m), &corners[k]));
+    EXPECT_TRUE(camera.Project(T_CT * TagCorner(k, kEstimatorTagSize_m), &corners[k]));
     if (noise_px > 0) corners[k] += Eigen::Vector2d(noise(*rng), noise(*rng));
   }
   return corners;
-}
-
-double RotationErrorDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
-  return control::LogSo3(a.linear().transpose() * b.linear()).norm() * 180.0 / M_PI;
 }
 
 class TagPoseEstimatorTest : public ::testing::TestWithParam<std::string> {};
@@ -59,13 +58,13 @@ class TagPoseEstimatorTest : public ::testing::TestWithParam<std::string> {};
 // Noise-free corners through every camera model: the estimate is exact (Gauss-Newton drives the
 // reprojection error to round-off), whether the true pose is `best` or `alternative`.
 TEST_P(TagPoseEstimatorTest, RecoversThePoseExactlyThroughTheCameraModel) {
-  const std::unique_ptr<CameraModel> camera = MakeCamera(GetParam());
+  const std::unique_ptr<CameraModel> camera = MakeTagCamera(GetParam());
   std::mt19937 rng(1);
   for (const double tilt_deg : {0.0, 20.0, 50.0, 70.0}) {
     // Off-centre (0.4, -0.3) m at 1.2 m: where the fisheye's distortion is strong.
     const Eigen::Isometry3d T_CT = TrueTagPose(1.2, tilt_deg, {0.4, -0.3});
     const std::optional<TagPose> pose =
-        EstimateTagPose(*camera, ProjectCorners(*camera, T_CT, 0.0, &rng), kTagSize_m);
+        EstimateTagPose(*camera, ProjectCorners(*camera, T_CT, 0.0, &rng), kEstimatorTagSize_m);
     ASSERT_TRUE(pose) << "tilt " << tilt_deg;
     EXPECT_LT((pose->best.T_CT.translation() - T_CT.translation()).norm(), 1e-7);
     EXPECT_LT(RotationErrorDeg(pose->best.T_CT, T_CT), 1e-5) << "tilt " << tilt_deg;
@@ -76,15 +75,15 @@ TEST_P(TagPoseEstimatorTest, RecoversThePoseExactlyThroughTheCameraModel) {
 // Corner noise of 0.3 px on a small distant head-on tag: the two solutions fit about equally
 // (ratio near 1) and one of them is the truth; at 60 deg tilt the image decides (ratio << 1).
 TEST_P(TagPoseEstimatorTest, KeepsBothAmbiguitySolutionsAndRanksThem) {
-  const std::unique_ptr<CameraModel> camera = MakeCamera(GetParam());
+  const std::unique_ptr<CameraModel> camera = MakeTagCamera(GetParam());
   std::mt19937 rng(7);
   int near_one = 0, trials = 40;
   TagPoseParams params;
   params.refiner.detection_sigma_px = 0.3;
   for (int trial = 0; trial < trials; ++trial) {
     const Eigen::Isometry3d T_CT = TrueTagPose(3.0, 8.0, {0.1, 0.05});
-    const std::optional<TagPose> pose =
-        EstimateTagPose(*camera, ProjectCorners(*camera, T_CT, 0.3, &rng), kTagSize_m, params);
+    const std::optional<TagPose> pose = EstimateTagPose(
+        *camera, ProjectCorners(*camera, T_CT, 0.3, &rng), kEstimatorTagSize_m, params);
     ASSERT_TRUE(pose);
     ASSERT_TRUE(pose->alternative);
     const double best_error = RotationErrorDeg(pose->best.T_CT, T_CT);
@@ -104,7 +103,7 @@ TEST_P(TagPoseEstimatorTest, KeepsBothAmbiguitySolutionsAndRanksThem) {
   EXPECT_GT(near_one, trials / 2) << "a distant head-on tag should mostly be ambiguous";
   const Eigen::Isometry3d oblique = TrueTagPose(1.0, 60.0, {0.0, 0.0});
   const std::optional<TagPose> pose =
-      EstimateTagPose(*camera, ProjectCorners(*camera, oblique, 0.3, &rng), kTagSize_m);
+      EstimateTagPose(*camera, ProjectCorners(*camera, oblique, 0.3, &rng), kEstimatorTagSize_m);
   ASSERT_TRUE(pose);
   EXPECT_LT(RotationErrorDeg(pose->best.T_CT, oblique), 3.0);
   EXPECT_LT(pose->ambiguity_ratio, 0.05);
@@ -114,7 +113,7 @@ TEST_P(TagPoseEstimatorTest, KeepsBothAmbiguitySolutionsAndRanksThem) {
 // estimation error squared of the pose (6 DOF) averages ~6 (chi^2 mean), within sampling and
 // linearization slack [3, 10].
 TEST_P(TagPoseEstimatorTest, CovarianceMatchesTheScatter) {
-  const std::unique_ptr<CameraModel> camera = MakeCamera(GetParam());
+  const std::unique_ptr<CameraModel> camera = MakeTagCamera(GetParam());
   std::mt19937 rng(3);
   const Eigen::Isometry3d T_CT = TrueTagPose(0.8, 40.0, {0.1, 0.1});
   TagPoseParams params;
@@ -122,8 +121,8 @@ TEST_P(TagPoseEstimatorTest, CovarianceMatchesTheScatter) {
   double nees_sum = 0.0;
   const int trials = 200;
   for (int trial = 0; trial < trials; ++trial) {
-    const std::optional<TagPose> pose =
-        EstimateTagPose(*camera, ProjectCorners(*camera, T_CT, 0.5, &rng), kTagSize_m, params);
+    const std::optional<TagPose> pose = EstimateTagPose(
+        *camera, ProjectCorners(*camera, T_CT, 0.5, &rng), kEstimatorTagSize_m, params);
     ASSERT_TRUE(pose);
     control::Vector6d error;
     error.head<3>() = pose->best.T_CT.translation() - T_CT.translation();
@@ -139,7 +138,7 @@ INSTANTIATE_TEST_SUITE_P(CameraModels, TagPoseEstimatorTest,
                          ::testing::Values("pinhole", "radtan", "equidistant"));
 
 TEST(TagPoseEstimator, RejectsANonPositiveSize) {
-  const std::unique_ptr<CameraModel> camera = MakeCamera("pinhole");
+  const std::unique_ptr<CameraModel> camera = MakeTagCamera("pinhole");
   std::array<Eigen::Vector2d, 4> corners{};
   EXPECT_THROW(EstimateTagPose(*camera, corners, 0.0), std::invalid_argument);
 }

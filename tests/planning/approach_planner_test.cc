@@ -8,10 +8,12 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "control/constants.h"
+
 namespace aperture::planning {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using control::kPi;
 
 // Body attitude from thrust direction and heading, Faessler thesis (F.9)-(F.11).
 Eigen::Matrix3d AttitudeFromHeading(const Eigen::Vector3d& z_B, double psi) {

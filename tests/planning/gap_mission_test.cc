@@ -15,17 +15,13 @@
 #include "planning/gap_mission/gap_mission_params_io.h"
 #include "planning/primitive_feasibility.h"
 #include "tests/perception/gap_test_images.h"
+#include "tests/support/pinhole_752x480.h"
 
 namespace aperture::planning {
 namespace {
 
 constexpr double kGravity = 9.81;
 constexpr double kRollRad = 30.0 * M_PI / 180.0;
-
-std::shared_ptr<const perception::CameraModel> Pinhole() {
-  return std::make_shared<perception::PinholeCamera>(
-      752, 480, perception::PinholeIntrinsics{420.0, 420.0, 375.5, 239.5});
-}
 
 // Forward camera 10 cm ahead of the centre of mass: z_C = x_B, x_C = -y_B, y_C = -z_B.
 Eigen::Isometry3d ForwardCameraMount() {
@@ -50,11 +46,13 @@ Eigen::Isometry3d TrueGap() {
 class GapMissionTest : public ::testing::Test {
  protected:
   explicit GapMissionTest(const GapMissionParams& params = GapMissionParams{})
-      : mission_(params, Pinhole(), ForwardCameraMount(), control::VehicleParameters{}) {
+      : mission_(params, test_support::Pinhole752x480(), ForwardCameraMount(),
+                 control::VehicleParameters{}) {
     Eigen::Isometry3d T_WB = Eigen::Isometry3d::Identity();
     T_WB.translation() = p_WB_;
     const Eigen::Isometry3d T_CG = (T_WB * ForwardCameraMount()).inverse() * TrueGap();
-    gap_image_ = perception::DrawGapPattern(*Pinhole(), perception::GapDetectorParams{}, T_CG);
+    gap_image_ = perception::DrawGapPattern(*test_support::Pinhole752x480(),
+                                            perception::GapDetectorParams{}, T_CG);
     blank_image_ = cv::Mat(480, 752, CV_8UC1, cv::Scalar(90));
   }
 
@@ -274,7 +272,8 @@ TEST(GapMissionParamsTest, RejectsInvalidValuesAndInputs) {
       std::invalid_argument);
   Eigen::Isometry3d scaled = ForwardCameraMount();
   scaled.linear() *= 2.0;
-  EXPECT_THROW(GapMission(GapMissionParams{}, Pinhole(), scaled, control::VehicleParameters{}),
+  EXPECT_THROW(GapMission(GapMissionParams{}, test_support::Pinhole752x480(), scaled,
+                          control::VehicleParameters{}),
                std::invalid_argument);
 }
 

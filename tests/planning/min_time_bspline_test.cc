@@ -21,16 +21,16 @@ std::vector<Eigen::Vector3d> CurvedPath() {
   return points;
 }
 
-struct Case {
+struct BsplineCase {
   const char* name;
   DynamicLimits limits;
   Eigen::Vector3d v0;
 };
 
-class MinTimeBSplineTest : public ::testing::TestWithParam<Case> {};
+class MinTimeBSplineTest : public ::testing::TestWithParam<BsplineCase> {};
 
 TEST_P(MinTimeBSplineTest, RespectsEveryLimitAtEverySampleAndSaturatesOne) {
-  const Case& c = GetParam();
+  const BsplineCase& c = GetParam();
   const std::vector<Eigen::Vector3d> path = CurvedPath();
   const MinTimeBSplineResult result =
       PlanMinTimeBSpline(path, c.v0, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
@@ -80,12 +80,13 @@ DynamicLimits Limits(double v, double a, double j) {
 
 INSTANTIATE_TEST_SUITE_P(
     Limits, MinTimeBSplineTest,
-    ::testing::Values(Case{"paper_fig6", Limits(1.3, 0.5, 0.5), Eigen::Vector3d::Zero()},
-                      Case{"speed_bound", Limits(1.0, 4.0, 20.0), Eigen::Vector3d::Zero()},
-                      Case{"jerk_bound", Limits(5.0, 5.0, DynamicLimits::JerkBound(5.0, 0.2)),
-                           Eigen::Vector3d::Zero()},
-                      Case{"moving_start", Limits(2.0, 1.5, 3.0), Eigen::Vector3d(0.8, 0.0, 0.0)}),
-    [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
+    ::testing::Values(
+        BsplineCase{"paper_fig6", Limits(1.3, 0.5, 0.5), Eigen::Vector3d::Zero()},
+        BsplineCase{"speed_bound", Limits(1.0, 4.0, 20.0), Eigen::Vector3d::Zero()},
+        BsplineCase{"jerk_bound", Limits(5.0, 5.0, DynamicLimits::JerkBound(5.0, 0.2)),
+                    Eigen::Vector3d::Zero()},
+        BsplineCase{"moving_start", Limits(2.0, 1.5, 3.0), Eigen::Vector3d(0.8, 0.0, 0.0)}),
+    [](const ::testing::TestParamInfo<BsplineCase>& info) { return std::string(info.param.name); });
 
 TEST(MinTimeBSpline, JerkBoundIsThrustTimesRateOverSqrt3) {
   EXPECT_NEAR(DynamicLimits::JerkBound(6.0, 3.0), 18.0 / std::sqrt(3.0), 1e-12);

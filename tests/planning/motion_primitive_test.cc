@@ -8,12 +8,12 @@
 namespace aperture::planning {
 namespace {
 
-struct Case {
+struct PrimitiveCase {
   Eigen::Vector3d p0, v0, a0, pf, vf, af;
   double T;
 };
 
-Case RandomCase(std::mt19937& rng) {
+PrimitiveCase RandomCase(std::mt19937& rng) {
   std::uniform_real_distribution<double> u(-3.0, 3.0);
   std::uniform_real_distribution<double> duration(0.2, 5.0);
   auto vec = [&] { return Eigen::Vector3d(u(rng), u(rng), u(rng)); };
@@ -30,7 +30,7 @@ TEST_P(MotionPrimitiveEndTest, MeetsBoundaryConditions) {
   const EndConstraint end = GetParam();
   std::mt19937 rng(7);
   for (int n = 0; n < 200; ++n) {
-    const Case c = RandomCase(rng);
+    const PrimitiveCase c = RandomCase(rng);
     const MotionPrimitive primitive(c.p0, c.v0, c.a0, c.pf, c.vf, c.af, c.T, end);
     EXPECT_LT((primitive.Position(0.0) - c.p0).norm(), 1e-9);
     EXPECT_LT((primitive.Velocity(0.0) - c.v0).norm(), 1e-9);
@@ -58,7 +58,7 @@ TEST_P(MotionPrimitiveEndTest, MeetsBoundaryConditions) {
 TEST_P(MotionPrimitiveEndTest, CostMatchesNumericalIntegralOfJerkSquared) {
   std::mt19937 rng(11);
   for (int n = 0; n < 50; ++n) {
-    const Case c = RandomCase(rng);
+    const PrimitiveCase c = RandomCase(rng);
     const MotionPrimitive primitive(c.p0, c.v0, c.a0, c.pf, c.vf, c.af, c.T, GetParam());
     const int panels = 2000;
     const double h = c.T / panels;
@@ -78,7 +78,7 @@ TEST_P(MotionPrimitiveEndTest, PerturbationsDoNotLowerTheCost) {
   // The bump below vanishes with its first 3 derivatives at both ends, so it is admissible for
   // every end constraint.
   std::mt19937 rng(3);
-  const Case c = RandomCase(rng);
+  const PrimitiveCase c = RandomCase(rng);
   const MotionPrimitive primitive(c.p0, c.v0, c.a0, c.pf, c.vf, c.af, c.T, GetParam());
   const int panels = 4000;
   const double h = c.T / panels;
@@ -109,7 +109,7 @@ INSTANTIATE_TEST_SUITE_P(AllEnds, MotionPrimitiveEndTest,
 // Derivatives are consistent: central differences of p, v, a, j match v, a, j, s.
 TEST(MotionPrimitive, DerivativesAreConsistent) {
   std::mt19937 rng(5);
-  const Case c = RandomCase(rng);
+  const PrimitiveCase c = RandomCase(rng);
   const MotionPrimitive primitive(c.p0, c.v0, c.a0, c.pf, c.vf, c.af, c.T);
   const double h = 1e-5;
   for (double t : {0.1 * c.T, 0.5 * c.T, 0.9 * c.T}) {

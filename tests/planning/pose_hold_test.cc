@@ -6,16 +6,18 @@
 #include <functional>
 #include <vector>
 
+#include "control/constants.h"
+
 namespace aperture::planning {
 namespace {
 
-constexpr double kG = 9.81;
+using control::kGravity_mps2;
 
 // IMU at rest, level: the accelerometer reads +g along z_B.
 perception::ImuSample RestingImu(double t_s) {
   perception::ImuSample sample;
   sample.t_s = t_s;
-  sample.specific_force_B = Eigen::Vector3d(0.0, 0.0, kG);
+  sample.specific_force_B = Eigen::Vector3d(0.0, 0.0, kGravity_mps2);
   return sample;
 }
 
@@ -65,7 +67,7 @@ TEST_F(PoseHoldTest, FirstPoseStartsTheFilterAtTheBodyPoseAndReplaysTheImu) {
   // At the set-point, at rest: hover thrust, no rates (no drag terms at zero velocity).
   const perception::AutopilotCommand command = hold.Step(0.1);
   ASSERT_EQ(command.kind, perception::AutopilotCommand::Kind::kThrustRates);
-  EXPECT_NEAR(command.thrust_rates.collective_thrust_mps2, kG, 1e-6);
+  EXPECT_NEAR(command.thrust_rates.collective_thrust_mps2, kGravity_mps2, 1e-6);
   EXPECT_LT(command.thrust_rates.omega_des_B.norm(), 1e-6);
   EXPECT_EQ(hold.status(0.1), "hold");
 }

@@ -7,10 +7,12 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "control/constants.h"
+
 namespace aperture::planning {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using control::kPi;
 
 // A gap facing +x_W with its long side along y_W, then rolled about x_W and pitched about y_W
 // (positive pitch tilts the traverse direction downward).

@@ -19,8 +19,8 @@ using testing::ForwardCameraMount;
 using testing::FreeCameraSimulation;
 using testing::LevelPose;
 
-constexpr double kDt_s = 0.04;  // 25 Hz, the rate of ViSP's Bebop 2 servo example
-constexpr int kSteps = 300;     // 12 s: the adaptive gain >= 0.7 /s leaves e^-8 of the error
+constexpr double kMomentServoDt_s = 0.04;  // 25 Hz, the rate of ViSP's Bebop 2 servo example
+constexpr int kSteps = 300;  // 12 s: the adaptive gain >= 0.7 /s leaves e^-8 of the error
 
 // A free camera servoed from a displaced pose to the pose that saw the desired view.
 struct MomentCase {
@@ -62,10 +62,10 @@ TEST_P(MomentServoConvergenceTest, FeatureErrorDecreasesMonotonicallyToTheGoalPo
   MomentServoParams params;
   params.yaw = c.yaw;
   MomentServo servo(params, c.T_BC);
-  const FreeCameraSimulation goal(c.T_WB_goal * c.T_BC, kDt_s);
+  const FreeCameraSimulation goal(c.T_WB_goal * c.T_BC, kMomentServoDt_s);
   servo.SetDesired(goal.Project(c.polygon_W), c.goal_depth_m);
 
-  FreeCameraSimulation camera(c.T_WB_start * c.T_BC, kDt_s);
+  FreeCameraSimulation camera(c.T_WB_start * c.T_BC, kMomentServoDt_s);
   double previous_norm = std::numeric_limits<double>::infinity();
   double first_norm = 0.0;
   for (int k = 0; k < kSteps; ++k) {
@@ -106,7 +106,7 @@ TEST(MomentServoTest, ErrorIsZeroAtTheGoalAndIndependentOfVertexOrder) {
   params.yaw = YawMode::kOrientation;
   MomentServo servo(params, DownwardCameraMount());
   const MomentCase c = DownwardCase();
-  const FreeCameraSimulation goal(c.T_WB_goal * c.T_BC, kDt_s);
+  const FreeCameraSimulation goal(c.T_WB_goal * c.T_BC, kMomentServoDt_s);
   std::vector<Eigen::Vector2d> view = goal.Project(c.polygon_W);
   servo.SetDesired(view, c.goal_depth_m);
   EXPECT_LT(servo.Step(view).error_norm, 1e-12);
@@ -122,10 +122,11 @@ TEST(MomentServoTest, CentreAndAreaErrorsPointTheVelocityTheRightWay) {
   // for this mount) and smaller than desired (too high): the body must move along -y_B and down.
   MomentServo servo(MomentServoParams{}, DownwardCameraMount());
   const MomentCase c = DownwardCase();
-  servo.SetDesired(FreeCameraSimulation(c.T_WB_goal * c.T_BC, kDt_s).Project(c.polygon_W), 1.5);
+  servo.SetDesired(
+      FreeCameraSimulation(c.T_WB_goal * c.T_BC, kMomentServoDt_s).Project(c.polygon_W), 1.5);
   const Eigen::Isometry3d T_WB = LevelPose({0.0, 0.3, 1.85}, 0.0);  // target to the right, far
   const ServoStepResult step =
-      servo.Step(FreeCameraSimulation(T_WB * c.T_BC, kDt_s).Project(c.polygon_W));
+      servo.Step(FreeCameraSimulation(T_WB * c.T_BC, kMomentServoDt_s).Project(c.polygon_W));
   EXPECT_GT(step.error[0], 0.0);  // x_n - x_n*: target right of where it should be
   EXPECT_GT(step.error[2], 0.0);  // a_n - a_n*: farther than desired
   EXPECT_LT(step.reference.v_B.y(), 0.0);

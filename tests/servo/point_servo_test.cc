@@ -17,7 +17,7 @@ using testing::DownwardCameraMount;
 using testing::FreeCameraSimulation;
 using testing::LevelPose;
 
-constexpr double kDt_s = 0.04;
+constexpr double kPointServoDt_s = 0.04;
 
 // Corners of a 0.3 m tag on the ground, centred at `centre_W`.
 std::vector<Eigen::Vector3d> TagCorners(const Eigen::Vector3d& centre_W) {
@@ -36,14 +36,17 @@ TEST(PointServoTest, FeatureErrorDecreasesMonotonicallyToTheGoalPose) {
   const std::vector<Eigen::Vector3d> tag_W = TagCorners(Eigen::Vector3d::Zero());
   const Eigen::Isometry3d T_WB_goal = LevelPose({0.0, 0.0, 2.05}, 0.0);  // camera 2 m up
   PointServo servo(PointServoParams{}, T_BC);
-  servo.SetDesired(ToCorners(FreeCameraSimulation(T_WB_goal * T_BC, kDt_s).Project(tag_W)), 2.0);
+  servo.SetDesired(
+      ToCorners(FreeCameraSimulation(T_WB_goal * T_BC, kPointServoDt_s).Project(tag_W)), 2.0);
 
-  FreeCameraSimulation camera(LevelPose({0.5, -0.4, 2.6}, 40.0 * M_PI / 180.0) * T_BC, kDt_s);
+  FreeCameraSimulation camera(LevelPose({0.5, -0.4, 2.6}, 40.0 * M_PI / 180.0) * T_BC,
+                              kPointServoDt_s);
   double previous_norm = std::numeric_limits<double>::infinity();
   double first_norm = 0.0;
   for (int k = 0; k < 300; ++k) {
     const double depth_m = camera.T_WC().translation().z();  // a range sensor's reading
-    const ServoStepResult step = servo.Step(k * kDt_s, ToCorners(camera.Project(tag_W)), depth_m);
+    const ServoStepResult step =
+        servo.Step(k * kPointServoDt_s, ToCorners(camera.Project(tag_W)), depth_m);
     ASSERT_EQ(step.error.size(), 8);
     if (k == 0) first_norm = step.error_norm;
     if (previous_norm > 1e-9) {
@@ -71,12 +74,13 @@ double WorstTagOffsetWhileDriving(bool compensate) {
   params.compensate_target_motion = compensate;
   PointServo servo(params, T_BC);
   servo.SetDesired(
-      ToCorners(FreeCameraSimulation(T_WB * T_BC, kDt_s).Project(TagCorners({0, 0, 0}))), 2.0);
-  FreeCameraSimulation camera(T_WB * T_BC, kDt_s);
+      ToCorners(FreeCameraSimulation(T_WB * T_BC, kPointServoDt_s).Project(TagCorners({0, 0, 0}))),
+      2.0);
+  FreeCameraSimulation camera(T_WB * T_BC, kPointServoDt_s);
   const Eigen::Vector3d v_robot_W(0.3 * std::cos(0.5), 0.3 * std::sin(0.5), 0.0);
   double worst = 0.0;
   for (int k = 0; k < 250; ++k) {  // 10 s; the robot starts under the camera
-    const double t_s = k * kDt_s;
+    const double t_s = k * kPointServoDt_s;
     const std::vector<Eigen::Vector2d> image = camera.Project(TagCorners(v_robot_W * t_s));
     const Eigen::Vector2d centre = 0.25 * (image[0] + image[1] + image[2] + image[3]);
     if (t_s >= 2.0) worst = std::max(worst, centre.norm());  // after the start transient
@@ -100,13 +104,15 @@ TEST(PointServoTest, YawErrorTurnsTheBodyBack) {
   const std::vector<Eigen::Vector3d> tag_W = TagCorners(Eigen::Vector3d::Zero());
   PointServo servo(PointServoParams{}, T_BC);
   servo.SetDesired(
-      ToCorners(FreeCameraSimulation(LevelPose({0, 0, 2.05}, 0.0) * T_BC, kDt_s).Project(tag_W)),
-      2.0);
-  const ServoStepResult step = servo.Step(
-      0.0,
-      ToCorners(FreeCameraSimulation(LevelPose({0, 0, 2.05}, 20.0 * M_PI / 180.0) * T_BC, kDt_s)
+      ToCorners(FreeCameraSimulation(LevelPose({0, 0, 2.05}, 0.0) * T_BC, kPointServoDt_s)
                     .Project(tag_W)),
       2.0);
+  const ServoStepResult step =
+      servo.Step(0.0,
+                 ToCorners(FreeCameraSimulation(LevelPose({0, 0, 2.05}, 20.0 * M_PI / 180.0) * T_BC,
+                                                kPointServoDt_s)
+                               .Project(tag_W)),
+                 2.0);
   EXPECT_LT(step.reference.yaw_rate_radps, 0.0);
   // No horizontal motion (the tag is centred). Point IBVS drives the corners along straight
   // lines, so a rotation about the optical axis also asks to retreat (Chaumette 1998, "Potential

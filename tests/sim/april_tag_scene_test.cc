@@ -17,7 +17,7 @@
 namespace aperture::sim {
 namespace {
 
-struct Case {
+struct TagSceneCase {
   const char* name;
   std::vector<std::string> sets;
   double max_translation_error_m;  // per metre of distance
@@ -38,7 +38,7 @@ perception::TagFrontEnd MakeFrontEnd(const Scenario& scenario, const ScenarioCam
       params);
 }
 
-class AprilTagSceneTest : public ::testing::TestWithParam<Case> {};
+class AprilTagSceneTest : public ::testing::TestWithParam<TagSceneCase> {};
 
 TEST_P(AprilTagSceneTest, DetectsEveryVisibleTagAtItsTruePose) {
   std::vector<std::string> sets = GetParam().sets;
@@ -65,8 +65,7 @@ TEST_P(AprilTagSceneTest, DetectsEveryVisibleTagAtItsTruePose) {
     bool inside = T_CT.translation().normalized().z() > std::cos(50.0 * M_PI / 180.0);
     for (int k = 0; k < 4; ++k) {
       Eigen::Vector2d px;
-      inside = inside &&
-               camera.model->Project(T_CT * perception::TagCorner(k, size_m), &px) &&
+      inside = inside && camera.model->Project(T_CT * perception::TagCorner(k, size_m), &px) &&
                px.x() > 5 && px.y() > 5 && px.x() < camera.model->width() - 5 &&
                px.y() < camera.model->height() - 5;
     }
@@ -120,10 +119,10 @@ TEST_P(AprilTagSceneTest, DetectsEveryVisibleTagAtItsTruePose) {
 TEST(AprilTagScene, CornersFollowSubPixelMotion) {
   const double f_px = 320.0;  // the tags scenario's 640 px, 90 deg camera
   const double fov_deg = 2.0 * std::atan(80.0 / f_px) * 180.0 / M_PI;
-  Scenario scenario = BuildScenario(LoadScenarioParams(
-      ScenarioConfig("tags", {},
-                     {"cameras.down.width=160", "cameras.down.height=120",
-                      "cameras.down.fov_deg=" + std::to_string(fov_deg)})));
+  Scenario scenario = BuildScenario(
+      LoadScenarioParams(ScenarioConfig("tags", {},
+                                        {"cameras.down.width=160", "cameras.down.height=120",
+                                         "cameras.down.fov_deg=" + std::to_string(fov_deg)})));
   const ScenarioCamera& camera = scenario.camera("down");
   perception::TagFrontEnd front_end = MakeFrontEnd(scenario, camera);
   const Eigen::Isometry3d T_W0 = scenario.scene().object("tag0").T_WO;
@@ -161,11 +160,11 @@ TEST(AprilTagScene, CornersFollowSubPixelMotion) {
 
 INSTANTIATE_TEST_SUITE_P(
     Cameras, AprilTagSceneTest,
-    ::testing::Values(Case{"pinhole", {}, 0.01},
-                      Case{"fisheye",
-                           {"cameras.down.model=equidistant", "cameras.down.fov_deg=180",
-                            "cameras.down.distortion=[0.02, -0.005, 0.0, 0.0]"},
-                           0.03}),  // tags near the 180 deg lens' rim, ~55 deg off axis
+    ::testing::Values(TagSceneCase{"pinhole", {}, 0.01},
+                      TagSceneCase{"fisheye",
+                                   {"cameras.down.model=equidistant", "cameras.down.fov_deg=180",
+                                    "cameras.down.distortion=[0.02, -0.005, 0.0, 0.0]"},
+                                   0.03}),  // tags near the 180 deg lens' rim, ~55 deg off axis
     [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace

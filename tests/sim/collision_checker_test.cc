@@ -9,7 +9,7 @@
 namespace aperture::sim {
 namespace {
 
-control::QuadState StateAt(const Eigen::Vector3d& p_W, double roll_rad = 0.0) {
+control::QuadState StateAtPosition(const Eigen::Vector3d& p_W, double roll_rad = 0.0) {
   control::QuadState state;
   state.p_WB = p_W;
   state.q_WB = Eigen::Quaterniond(Eigen::AngleAxisd(roll_rad, Eigen::Vector3d::UnitX()));
@@ -25,9 +25,9 @@ class CollisionCheckerTest : public ::testing::Test {
 TEST_F(CollisionCheckerTest, LevelVehicleHitsGroundWithItsBodySphere) {
   const CollisionChecker checker(dynamics_, params_);
   const Eigen::Vector3d p(1.0, 2.0, 0.081);
-  EXPECT_FALSE(checker.Check(nullptr, StateAt(p), p).has_value());
+  EXPECT_FALSE(checker.Check(nullptr, StateAtPosition(p), p).has_value());
   const Eigen::Vector3d low(1.0, 2.0, 0.079);
-  const std::optional<Collision> hit = checker.Check(nullptr, StateAt(low), low);
+  const std::optional<Collision> hit = checker.Check(nullptr, StateAtPosition(low), low);
   ASSERT_TRUE(hit.has_value());
   EXPECT_EQ(hit->object_name, "ground");
   EXPECT_EQ(hit->part, "body");
@@ -42,9 +42,9 @@ TEST_F(CollisionCheckerTest, TiltedVehicleHitsGroundWithAPropellerFirst) {
                                           params_.propeller_radius_m);
   ASSERT_GT(drop_m, params_.body_radius_m);  // so the propeller, not the body, is lowest
   const Eigen::Vector3d clear(0.0, 0.0, drop_m + 1e-4);
-  EXPECT_FALSE(checker.Check(nullptr, StateAt(clear, roll), clear).has_value());
+  EXPECT_FALSE(checker.Check(nullptr, StateAtPosition(clear, roll), clear).has_value());
   const Eigen::Vector3d low(0.0, 0.0, drop_m - 1e-4);
-  const std::optional<Collision> hit = checker.Check(nullptr, StateAt(low, roll), low);
+  const std::optional<Collision> hit = checker.Check(nullptr, StateAtPosition(low, roll), low);
   ASSERT_TRUE(hit.has_value());
   EXPECT_EQ(hit->part.rfind("propeller", 0), 0u) << hit->part;
   EXPECT_DOUBLE_EQ(hit->contact_p_W.z(), 0.0);
@@ -65,11 +65,11 @@ TEST_F(CollisionCheckerTest, DetectsAWallWithinTheBodyRadiusOnly) {
   params_.ground_enabled = false;
   const CollisionChecker checker(dynamics_, params_);
   const Eigen::Vector3d far(0.0, 0.0, 4.95 - params_.body_radius_m - 0.005);
-  EXPECT_FALSE(checker.Check(&scene, StateAt(far), far).has_value());
+  EXPECT_FALSE(checker.Check(&scene, StateAtPosition(far), far).has_value());
   // Fibonacci rays: the best one is within ~15 deg of the normal for 64 rays, so a surface
   // at 0.9 radius is always seen.
   const Eigen::Vector3d near(0.0, 0.0, 4.95 - 0.9 * params_.body_radius_m);
-  const std::optional<Collision> hit = checker.Check(&scene, StateAt(near), near);
+  const std::optional<Collision> hit = checker.Check(&scene, StateAtPosition(near), near);
   ASSERT_TRUE(hit.has_value());
   EXPECT_EQ(hit->object_name, "ceiling");
   EXPECT_EQ(hit->part, "body");
@@ -77,7 +77,7 @@ TEST_F(CollisionCheckerTest, DetectsAWallWithinTheBodyRadiusOnly) {
   // An ignored object is transparent to the check.
   params_.ignored_objects = {"ceiling"};
   const CollisionChecker ignoring(dynamics_, params_);
-  EXPECT_FALSE(ignoring.Check(&scene, StateAt(near), near).has_value());
+  EXPECT_FALSE(ignoring.Check(&scene, StateAtPosition(near), near).has_value());
 }
 
 TEST_F(CollisionCheckerTest, PropellerDiskHitsASceneObjectBeyondTheBodyAndArm) {
@@ -99,7 +99,7 @@ TEST_F(CollisionCheckerTest, PropellerDiskHitsASceneObjectBeyondTheBodyAndArm) {
   params_.ground_enabled = false;
   const CollisionChecker checker(dynamics_, params_);
   const Eigen::Vector3d p(0.0, 0.0, 2.0);
-  const std::optional<Collision> hit = checker.Check(&scene, StateAt(p), p);
+  const std::optional<Collision> hit = checker.Check(&scene, StateAtPosition(p), p);
   ASSERT_TRUE(hit.has_value());
   EXPECT_EQ(hit->object_name, "wall");
   EXPECT_EQ(hit->part, "propeller " + std::to_string(rotor + 1));
@@ -109,7 +109,7 @@ TEST_F(CollisionCheckerTest, PropellerDiskHitsASceneObjectBeyondTheBodyAndArm) {
   T_WO.translation().x() += 0.03;
   Scene farther;
   farther.AddObject({"wall", Box{Eigen::Vector3d(0.2, 1.0, 1.0)}, Material{}, T_WO});
-  EXPECT_FALSE(checker.Check(&farther, StateAt(p), p).has_value());
+  EXPECT_FALSE(checker.Check(&farther, StateAtPosition(p), p).has_value());
 }
 
 TEST_F(CollisionCheckerTest, SweepCatchesTunnellingThroughAThinPlate) {
@@ -123,8 +123,8 @@ TEST_F(CollisionCheckerTest, SweepCatchesTunnellingThroughAThinPlate) {
   const CollisionChecker checker(dynamics_, params_);
   // Both positions 0.5 m from the plate, on opposite sides: only the swept segment crosses it.
   const Eigen::Vector3d before(0.5, 0.0, 2.0), after(1.5, 0.0, 2.0);
-  EXPECT_FALSE(checker.Check(&scene, StateAt(after), after).has_value());
-  const std::optional<Collision> hit = checker.Check(&scene, StateAt(after), before);
+  EXPECT_FALSE(checker.Check(&scene, StateAtPosition(after), after).has_value());
+  const std::optional<Collision> hit = checker.Check(&scene, StateAtPosition(after), before);
   ASSERT_TRUE(hit.has_value());
   EXPECT_EQ(hit->part, "sweep");
   EXPECT_NEAR(hit->contact_p_W.x(), 1.0, 1e-9);
@@ -149,13 +149,14 @@ TEST_F(CollisionCheckerTest, BroadPhaseKeepsFarCentredWallsAndSweptSmallPlates) 
   params_.ground_enabled = false;
   const CollisionChecker checker(dynamics_, params_);
   const Eigen::Vector3d near_wall(1.0 - 0.9 * params_.body_radius_m, 0.0, 2.0);
-  const std::optional<Collision> wall_hit = checker.Check(&scene, StateAt(near_wall), near_wall);
+  const std::optional<Collision> wall_hit =
+      checker.Check(&scene, StateAtPosition(near_wall), near_wall);
   ASSERT_TRUE(wall_hit.has_value());
   EXPECT_EQ(wall_hit->object_name, "wall");
   EXPECT_NEAR(wall_hit->contact_p_W.x(), 1.0, 1e-9);
   const Eigen::Vector3d before(-2.0, 0.0, 2.0), after(0.0, 0.0, 2.0);
-  EXPECT_FALSE(checker.Check(&scene, StateAt(after), after).has_value());
-  const std::optional<Collision> plate_hit = checker.Check(&scene, StateAt(after), before);
+  EXPECT_FALSE(checker.Check(&scene, StateAtPosition(after), after).has_value());
+  const std::optional<Collision> plate_hit = checker.Check(&scene, StateAtPosition(after), before);
   ASSERT_TRUE(plate_hit.has_value());
   EXPECT_EQ(plate_hit->object_name, "plate");
   EXPECT_EQ(plate_hit->part, "sweep");
@@ -175,7 +176,7 @@ TEST_F(CollisionCheckerTest, TouchdownBeyondTheLimitsIsAGroundCollision) {
   params_.max_touchdown_tilt_rad = 0.4;
   const CollisionChecker checker(dynamics_, params_);
   const Eigen::Vector3d p(1.0, 2.0, 0.6);  // resting on the gear: clear of the ground
-  EXPECT_FALSE(checker.Check(nullptr, StateAt(p), p).has_value());
+  EXPECT_FALSE(checker.Check(nullptr, StateAtPosition(p), p).has_value());
   EXPECT_FALSE(checker.CheckTouchdown(p, 0.9, 0.3).has_value());
   for (const auto& [speed, tilt] : {std::pair{1.1, 0.0}, std::pair{0.2, 0.5}}) {
     const std::optional<Collision> hit = checker.CheckTouchdown(p, speed, tilt);

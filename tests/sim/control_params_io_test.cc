@@ -15,7 +15,7 @@ namespace {
 
 using test_support::MessageOf;
 
-ControlStackParams Load(const std::string& yaml) {
+ControlStackParams LoadControlParams(const std::string& yaml) {
   config::ParamReader reader(YAML::Load(yaml), "control.yaml");
   ControlStackParams params;
   LoadParams(reader, &params);
@@ -27,7 +27,7 @@ using Mixing = control::MixerParameters::Mixing;
 using Saturation = control::MixerParameters::Saturation;
 
 TEST(ControlParamsIoTest, DefaultsAreTheThesisStack) {
-  const ControlStackParams params = Load("{}");
+  const ControlStackParams params = LoadControlParams("{}");
   EXPECT_TRUE(params.position.compensate_rotor_drag);
   EXPECT_EQ(BodyRateName(params.low_level), "lqr");
   EXPECT_EQ(params.low_level.mixer.mixing, Mixing::kIterative);
@@ -35,7 +35,7 @@ TEST(ControlParamsIoTest, DefaultsAreTheThesisStack) {
 }
 
 TEST(ControlParamsIoTest, SelectsEveryBaselineAndGains) {
-  const ControlStackParams params = Load(R"(
+  const ControlStackParams params = LoadControlParams(R"(
 drag_compensation: false
 body_rate: p_high
 mixer: one_shot
@@ -58,7 +58,7 @@ lqr: {state_weights: [1, 2, 3, 4, 5, 6]}
   EXPECT_EQ(params.position.attitude.p_rp_per_s, 12.0);
   EXPECT_EQ(params.low_level.lqr.state_weights(5), 6.0);
 
-  const ControlStackParams low = Load("body_rate: p_low");
+  const ControlStackParams low = LoadControlParams("body_rate: p_low");
   EXPECT_EQ(low.low_level.body_rate_law, BodyRateLaw::kProportional);
   EXPECT_EQ(low.low_level.proportional.rate_gains_per_s,
             control::ProportionalBodyRateParameters::LowGain().rate_gains_per_s);
@@ -66,29 +66,33 @@ lqr: {state_weights: [1, 2, 3, 4, 5, 6]}
 }
 
 TEST(ControlParamsIoTest, UnknownKeyIsNamedWithTheKnownKeys) {
-  const std::string error = MessageOf([] { Load("drag_compensaton: true"); });
+  const std::string error = MessageOf([] { LoadControlParams("drag_compensaton: true"); });
   EXPECT_NE(error.find("drag_compensaton"), std::string::npos) << error;
   EXPECT_NE(error.find("drag_compensation"), std::string::npos) << error;
-  const std::string nested = MessageOf([] { Load("position: {p_xy: 3}"); });
+  const std::string nested = MessageOf([] { LoadControlParams("position: {p_xy: 3}"); });
   EXPECT_NE(nested.find("position.p_xy"), std::string::npos) << nested;
 }
 
 TEST(ControlParamsIoTest, BadEnumValueListsTheAllowedValues) {
-  const std::string error = MessageOf([] { Load("body_rate: pid"); });
+  const std::string error = MessageOf([] { LoadControlParams("body_rate: pid"); });
   EXPECT_NE(error.find("body_rate"), std::string::npos) << error;
   EXPECT_NE(error.find("lqr, p_low, p_high"), std::string::npos) << error;
-  const std::string mixer = MessageOf([] { Load("mixer: fancy"); });
+  const std::string mixer = MessageOf([] { LoadControlParams("mixer: fancy"); });
   EXPECT_NE(mixer.find("iterative, one_shot"), std::string::npos) << mixer;
-  const std::string saturation = MessageOf([] { Load("saturation: none"); });
+  const std::string saturation = MessageOf([] { LoadControlParams("saturation: none"); });
   EXPECT_NE(saturation.find("prioritized, clipping"), std::string::npos) << saturation;
 }
 
 TEST(ControlParamsIoTest, NonPhysicalValuesAreRejectedWithTheirName) {
-  EXPECT_NE(MessageOf([] { Load("lqr: {input_weights: [1, 0, 1]}"); }).find("input_weights"),
-            std::string::npos);
-  EXPECT_NE(MessageOf([] { Load("position: {p_xy_per_s2: -1}"); }).find("control.yaml"),
-            std::string::npos);
-  EXPECT_NE(MessageOf([] { Load("assured_yaw_torque_Nm: -1"); }).find("assured_yaw_torque_Nm"),
+  EXPECT_NE(
+      MessageOf([] { LoadControlParams("lqr: {input_weights: [1, 0, 1]}"); }).find("input_weights"),
+      std::string::npos);
+  EXPECT_NE(
+      MessageOf([] { LoadControlParams("position: {p_xy_per_s2: -1}"); }).find("control.yaml"),
+      std::string::npos);
+  EXPECT_NE(MessageOf([] {
+              LoadControlParams("assured_yaw_torque_Nm: -1");
+            }).find("assured_yaw_torque_Nm"),
             std::string::npos);
 }
 
@@ -99,14 +103,14 @@ TEST(ControlParamsIoTest, RoundTripsThroughItsDump) {
   custom.low_level.proportional.rate_gains_per_s = Eigen::Vector3d(21.0, 22.0, 9.0);
   const std::string yaml = config::DumpYaml(custom);
   EXPECT_NE(yaml.find("body_rate: p_custom"), std::string::npos) << yaml;
-  const ControlStackParams loaded = Load(yaml);
+  const ControlStackParams loaded = LoadControlParams(yaml);
   EXPECT_EQ(loaded.low_level.body_rate_law, BodyRateLaw::kProportional);
   EXPECT_EQ(loaded.low_level.proportional.rate_gains_per_s, Eigen::Vector3d(21.0, 22.0, 9.0));
 }
 
 // A preset set over a dumped configuration wins: the dump of a preset carries no gains.
 TEST(ControlParamsIoTest, PresetOverADumpedPresetTakesEffect) {
-  ControlStackParams low = Load("body_rate: p_low");
+  ControlStackParams low = LoadControlParams("body_rate: p_low");
   YAML::Node dump = config::DumpParams(low);
   EXPECT_FALSE(dump["p_rate_gains_per_s"]);
   dump["body_rate"] = "p_high";

@@ -14,9 +14,12 @@
 #include "control/mixer.h"
 #include "control/reference_trajectories.h"
 #include "sim/vehicle/quadrotor_dynamics.h"
+#include "tests/support/scientific.h"
 
 namespace aperture {
 namespace {
+
+using test_support::Sci;
 
 using control::FlatnessResult;
 using control::TrajectoryPoint;
@@ -33,12 +36,6 @@ VehicleParameters RoundTripVehicle() {
 }
 
 // Measured figure for the XML test report, in scientific notation.
-std::string Sci(double value) {
-  std::ostringstream os;
-  os << std::scientific << std::setprecision(2) << value;
-  return os.str();
-}
-
 struct RoundTripError {
   double position_m = 0.0;
   double attitude_rad = 0.0;

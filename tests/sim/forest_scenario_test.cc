@@ -16,13 +16,13 @@ namespace aperture::sim {
 namespace {
 
 // An obstacle as the vertical cylinder the placement checked (boxes: the circumscribed one).
-struct Footprint {
+struct TrunkFootprint {
   Eigen::Vector2d p_W;
   double radius_m = 0.0;
 };
 
-std::vector<Footprint> Footprints(const Scenario& scenario) {
-  std::vector<Footprint> out;
+std::vector<TrunkFootprint> Footprints(const Scenario& scenario) {
+  std::vector<TrunkFootprint> out;
   for (const SceneObject& object : scenario.scene().objects()) {
     const Eigen::Vector2d p = object.T_WO.translation().head<2>();
     if (const auto* cylinder = std::get_if<Cylinder>(&object.primitive)) {
@@ -54,18 +54,18 @@ TEST(ForestScenario, LayoutsKeepTheGapsAndTheEndsFreeButNotTheLineToTheGoal) {
   for (int seed = 0; seed < kSeeds; ++seed) {
     const Scenario scenario = Forest(seed);
     const ForestParams& f = scenario.params().forest;
-    const std::vector<Footprint> obstacles = Footprints(scenario);
+    const std::vector<TrunkFootprint> obstacles = Footprints(scenario);
     ASSERT_EQ(static_cast<int>(obstacles.size()), f.trees + f.boxes) << "seed " << seed;
     const Eigen::Vector2d start = scenario.T_WB_start().translation().head<2>();
     const Eigen::Vector2d goal = f.goal_m.head<2>();
     EXPECT_GE((goal - start).norm(), 20.0);
     bool line_blocked = false;
     for (size_t i = 0; i < obstacles.size(); ++i) {
-      const Footprint& a = obstacles[i];
+      const TrunkFootprint& a = obstacles[i];
       EXPECT_GE((a.p_W - start).norm() - a.radius_m, f.keep_out_m - 1e-9) << "seed " << seed;
       EXPECT_GE((a.p_W - goal).norm() - a.radius_m, f.keep_out_m - 1e-9) << "seed " << seed;
       for (size_t j = i + 1; j < obstacles.size(); ++j) {
-        const Footprint& b = obstacles[j];
+        const TrunkFootprint& b = obstacles[j];
         EXPECT_GE((a.p_W - b.p_W).norm() - a.radius_m - b.radius_m, f.min_gap_m - 1e-9)
             << "seed " << seed << " obstacles " << i << ", " << j;
       }
@@ -79,9 +79,9 @@ TEST(ForestScenario, LayoutsKeepTheGapsAndTheEndsFreeButNotTheLineToTheGoal) {
 }
 
 TEST(ForestScenario, SeedsGiveDifferentLayoutsAndTheSameSeedTheSame) {
-  const std::vector<Footprint> a = Footprints(Forest(3));
-  const std::vector<Footprint> b = Footprints(Forest(3));
-  const std::vector<Footprint> c = Footprints(Forest(4));
+  const std::vector<TrunkFootprint> a = Footprints(Forest(3));
+  const std::vector<TrunkFootprint> b = Footprints(Forest(3));
+  const std::vector<TrunkFootprint> c = Footprints(Forest(4));
   ASSERT_EQ(a.size(), b.size());
   for (size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i].p_W, b[i].p_W);
   EXPECT_GT((a.front().p_W - c.front().p_W).norm(), 1e-3);

@@ -2,7 +2,6 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -17,9 +16,12 @@
 #include "sim/render/ray_caster.h"
 #include "sim/scene/gap_pattern_object.h"
 #include "sim/scene/scene.h"
+#include "tests/support/rotation_error.h"
 
 namespace aperture::sim {
 namespace {
+
+using test_support::RotationErrorDeg;
 
 using perception::CameraModel;
 using perception::GapDetection;
@@ -54,7 +56,8 @@ const ClutterTextures& Textures() {
 // Ground with grass, a noise-textured wall seen through the opening, trees and boxes.
 void AddClutter(Scene* scene, double wall_x_m) {
   const ClutterTextures& tex = Textures();
-  scene->AddObject({"ground", GroundPlane{}, {tex.grass, Rgb::Ones(), 1.0}, Eigen::Isometry3d::Identity()});
+  scene->AddObject(
+      {"ground", GroundPlane{}, {tex.grass, Rgb::Ones(), 1.0}, Eigen::Isometry3d::Identity()});
   Eigen::Isometry3d T_wall = Eigen::Isometry3d::Identity();
   T_wall.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;  // faces -x_W
   T_wall.translation() = Eigen::Vector3d(wall_x_m, 0.0, 3.0);
@@ -62,11 +65,14 @@ void AddClutter(Scene* scene, double wall_x_m) {
   for (int i = 0; i < 6; ++i) {
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
     T.translation() = Eigen::Vector3d(wall_x_m - 1.5 - 0.7 * i, -7.0 + 2.8 * i, 0.0);
-    scene->AddObject({"tree" + std::to_string(i), Cylinder{0.2, 4.0}, {tex.bark, Rgb::Ones(), 1.0}, T});
+    scene->AddObject(
+        {"tree" + std::to_string(i), Cylinder{0.2, 4.0}, {tex.bark, Rgb::Ones(), 1.0}, T});
     T.translation() += Eigen::Vector3d(-1.0, 1.2, 0.4);
     T.linear() = Eigen::AngleAxisd(0.4 * i, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-    scene->AddObject({"box" + std::to_string(i), Box{Eigen::Vector3d(0.8, 0.6, 0.8)},
-                      {tex.newspaper, Rgb::Ones(), 1.0}, T});
+    scene->AddObject({"box" + std::to_string(i),
+                      Box{Eigen::Vector3d(0.8, 0.6, 0.8)},
+                      {tex.newspaper, Rgb::Ones(), 1.0},
+                      T});
   }
 }
 
@@ -84,24 +90,23 @@ Eigen::Isometry3d GapPose(double roll, double pitch, const Eigen::Vector3d& p_W)
 
 // The detector's symmetry convention (gap_detector.h) applied to a ground-truth pose.
 Eigen::Isometry3d Canonical(Eigen::Isometry3d T_CG) {
-  if (T_CG.linear()(0, 0) < 0.0) T_CG.linear() = T_CG.linear() * Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitZ());
+  if (T_CG.linear()(0, 0) < 0.0)
+    T_CG.linear() = T_CG.linear() * Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitZ());
   return T_CG;
-}
-
-double RotationErrorDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
-  return Eigen::AngleAxisd(a.linear().transpose() * b.linear()).angle() * 180.0 / M_PI;
 }
 
 // True when the whole pattern (outer corners and 1/4 of the white margin around them) is in the
 // image, in front of the camera and the gap panel is what the camera sees at the corners.
-bool PatternInView(const CameraModel& camera, const GapDetector& detector, const Eigen::Isometry3d& T_CG,
-                   const cv::Mat& object_id, int gap_id) {
+bool PatternInView(const CameraModel& camera, const GapDetector& detector,
+                   const Eigen::Isometry3d& T_CG, const cv::Mat& object_id, int gap_id) {
   const std::vector<Eigen::Vector3d> corners = detector.ModelCorners();
   for (int k = 0; k < 4; ++k) {
     const Eigen::Vector3d p_G = corners[k] * 1.05;
     Eigen::Vector2d px;
     if (!camera.Project(T_CG * p_G, &px) || !camera.IsInImage(px, 3.0)) return false;
-    if (object_id.at<int>(static_cast<int>(std::lround(px.y())), static_cast<int>(std::lround(px.x()))) != gap_id) return false;
+    if (object_id.at<int>(static_cast<int>(std::lround(px.y())),
+                          static_cast<int>(std::lround(px.x()))) != gap_id)
+      return false;
   }
   return true;
 }
@@ -122,8 +127,9 @@ enum class Lens { kPinhole, kFisheye };
 class GapDetectorRenderTest : public ::testing::TestWithParam<Lens> {
  protected:
   std::shared_ptr<const CameraModel> MakeCamera() const {
-    return GetParam() == Lens::kPinhole ? std::shared_ptr<const CameraModel>(testing::MakeTestPinhole())
-                                        : std::shared_ptr<const CameraModel>(testing::MakeTestFisheye());
+    return GetParam() == Lens::kPinhole
+               ? std::shared_ptr<const CameraModel>(testing::MakeTestPinhole())
+               : std::shared_ptr<const CameraModel>(testing::MakeTestFisheye());
   }
 };
 
@@ -163,9 +169,13 @@ TEST_P(GapDetectorRenderTest, PoseAccuracyAndDetectionRate) {
     const Eigen::Vector3d p_WC = T_WG * (-distance * dir_G);
     // Look at a point beside the gap so it appears off-centre (more so on the fisheye).
     const double spread = GetParam() == Lens::kPinhole ? 0.25 : 0.8;
-    const Eigen::Vector3d target_W = T_WG.translation() + spread * distance * Eigen::Vector3d((unit(rng) - 0.5), (unit(rng) - 0.5), 0.6 * (unit(rng) - 0.5));
+    const Eigen::Vector3d target_W =
+        T_WG.translation() +
+        spread * distance *
+            Eigen::Vector3d((unit(rng) - 0.5), (unit(rng) - 0.5), 0.6 * (unit(rng) - 0.5));
     Eigen::Isometry3d T_WC = testing::LookAt(p_WC, target_W - p_WC);
-    T_WC.linear() = T_WC.linear() * Eigen::AngleAxisd((unit(rng) - 0.5) * 30.0 * M_PI / 180.0, Eigen::Vector3d::UnitZ());
+    T_WC.linear() = T_WC.linear() * Eigen::AngleAxisd((unit(rng) - 0.5) * 30.0 * M_PI / 180.0,
+                                                      Eigen::Vector3d::UnitZ());
 
     const RenderOutput out = caster.Render(scene, *camera, T_WC, options);
     const cv::Mat image = CameraEffects(effects).ToImage8U(out.radiance, frame);
@@ -174,7 +184,8 @@ TEST_P(GapDetectorRenderTest, PoseAccuracyAndDetectionRate) {
     ++in_view;
     const GapDetection d = detector.Detect(image);
     if (!d.detected()) {
-      ADD_FAILURE() << "frame " << frame << " missed at " << distance << " m: " << GapDetectionStatusName(d.status);
+      ADD_FAILURE() << "frame " << frame << " missed at " << distance
+                    << " m: " << GapDetectionStatusName(d.status);
       continue;
     }
     ++detected;
@@ -201,9 +212,12 @@ TEST_P(GapDetectorRenderTest, PoseAccuracyAndDetectionRate) {
       rot.push_back(s.rotation_error_deg);
     }
     if (pos.empty()) continue;
-    std::printf("[%s] %-8s n=%2zu position error %% of distance: median %.3f max %.3f | rotation deg: median %.3f max %.3f\n",
-                GetParam() == Lens::kPinhole ? "pinhole" : "fisheye", band, pos.size(), Median(pos),
-                *std::max_element(pos.begin(), pos.end()), Median(rot), *std::max_element(rot.begin(), rot.end()));
+    std::printf(
+        "[%s] %-8s n=%2zu position error %% of distance: median %.3f max %.3f | rotation deg: "
+        "median %.3f max %.3f\n",
+        GetParam() == Lens::kPinhole ? "pinhole" : "fisheye", band, pos.size(), Median(pos),
+        *std::max_element(pos.begin(), pos.end()), Median(rot),
+        *std::max_element(rot.begin(), rot.end()));
   }
   for (const Sample& s : samples) {
     relative_position.push_back(s.position_error_m / s.distance_m);
@@ -230,9 +244,11 @@ TEST_P(GapDetectorRenderTest, RoiTrackingMatchesFullSearch) {
   options.supersampling = 2;
   int from_roi = 0;
   for (int frame = 0; frame < 6; ++frame) {
-    const Eigen::Vector3d p_WC = T_WG * Eigen::Vector3d(0.3 - 0.05 * frame, 0.1, -3.5 + 0.3 * frame);
+    const Eigen::Vector3d p_WC =
+        T_WG * Eigen::Vector3d(0.3 - 0.05 * frame, 0.1, -3.5 + 0.3 * frame);
     const Eigen::Isometry3d T_WC = testing::LookAt(p_WC, T_WG.translation() - p_WC);
-    const cv::Mat image = CameraEffects({}).ToImage8U(caster.Render(scene, *camera, T_WC, options).radiance, frame);
+    const cv::Mat image =
+        CameraEffects({}).ToImage8U(caster.Render(scene, *camera, T_WC, options).radiance, frame);
     const GapDetection tracked = tracker.Detect(image);
     const GapDetection searched = full.DetectFullImage(image);
     ASSERT_TRUE(tracked.detected()) << "frame " << frame;
@@ -240,13 +256,15 @@ TEST_P(GapDetectorRenderTest, RoiTrackingMatchesFullSearch) {
     from_roi += tracked.from_roi ? 1 : 0;
     // Both refine on the same edge samples up to the rough corners that seed the sampling:
     // agreement within 1 mm and 0.05 deg is far below the 1 % / 1 deg accuracy.
-    EXPECT_LT((tracked.T_CG.translation() - searched.T_CG.translation()).norm(), 1e-3) << "frame " << frame;
+    EXPECT_LT((tracked.T_CG.translation() - searched.T_CG.translation()).norm(), 1e-3)
+        << "frame " << frame;
     EXPECT_LT(RotationErrorDeg(tracked.T_CG, searched.T_CG), 0.05) << "frame " << frame;
   }
   EXPECT_EQ(from_roi, 5);  // every frame after the first is found in the ROI
 }
 
-INSTANTIATE_TEST_SUITE_P(Lenses, GapDetectorRenderTest, ::testing::Values(Lens::kPinhole, Lens::kFisheye),
+INSTANTIATE_TEST_SUITE_P(Lenses, GapDetectorRenderTest,
+                         ::testing::Values(Lens::kPinhole, Lens::kFisheye),
                          [](const ::testing::TestParamInfo<Lens>& info) {
                            return info.param == Lens::kPinhole ? "Pinhole" : "Fisheye";
                          });
@@ -263,10 +281,13 @@ TEST(GapDetectorCloseUpTest, FisheyeCloseUpWithCurvedSides) {
   RayCaster caster;
   RenderOptions options;
   options.supersampling = 2;
-  for (const Eigen::Vector3d& p_GC : {Eigen::Vector3d(0.0, 0.0, -0.75), Eigen::Vector3d(0.0, 0.0, -0.9), Eigen::Vector3d(0.2, -0.1, -0.8)}) {
+  for (const Eigen::Vector3d& p_GC :
+       {Eigen::Vector3d(0.0, 0.0, -0.75), Eigen::Vector3d(0.0, 0.0, -0.9),
+        Eigen::Vector3d(0.2, -0.1, -0.8)}) {
     const Eigen::Vector3d p_WC = T_WG * p_GC;
     const Eigen::Isometry3d T_WC = testing::LookAt(p_WC, T_WG.translation() - p_WC);
-    const cv::Mat image = CameraEffects({}).ToImage8U(caster.Render(scene, *camera, T_WC, options).radiance, 0);
+    const cv::Mat image =
+        CameraEffects({}).ToImage8U(caster.Render(scene, *camera, T_WC, options).radiance, 0);
     const GapDetection d = detector.DetectFullImage(image);
     ASSERT_TRUE(d.detected()) << p_GC.transpose() << ": " << GapDetectionStatusName(d.status);
     const Eigen::Isometry3d T_CG_true = Canonical(T_WC.inverse() * T_WG);
@@ -288,9 +309,12 @@ TEST(GapDetectorNegativeTest, NoDetectionWithoutGap) {
     options.supersampling = 2;
     for (int view = 0; view < 3; ++view) {
       const Eigen::Vector3d p_WC(0.0, -1.5 + 1.5 * view, 1.5);
-      const Eigen::Isometry3d T_WC = testing::LookAt(p_WC, Eigen::Vector3d(1.0, 0.3 * (1 - view), -0.15));
-      const cv::Mat image = CameraEffects({}).ToImage8U(caster.Render(scene, *camera, T_WC, options).radiance, view);
-      EXPECT_FALSE(detector.DetectFullImage(image).detected()) << camera->model_name() << " view " << view;
+      const Eigen::Isometry3d T_WC =
+          testing::LookAt(p_WC, Eigen::Vector3d(1.0, 0.3 * (1 - view), -0.15));
+      const cv::Mat image =
+          CameraEffects({}).ToImage8U(caster.Render(scene, *camera, T_WC, options).radiance, view);
+      EXPECT_FALSE(detector.DetectFullImage(image).detected())
+          << camera->model_name() << " view " << view;
     }
     const cv::Mat black(camera->height(), camera->width(), CV_8UC1, cv::Scalar(0));
     const cv::Mat white(camera->height(), camera->width(), CV_8UC1, cv::Scalar(255));

@@ -17,7 +17,7 @@
 namespace aperture {
 namespace {
 
-constexpr double kDt = 0.002;
+constexpr double kHoverCalibrationDt_s = 0.002;
 
 TEST(HoverCalibrationSim, RecoversRotorScalesAndImuBiasesInHover) {
   const control::VehicleParameters nominal;  // what the flight controller believes
@@ -40,16 +40,17 @@ TEST(HoverCalibrationSim, RecoversRotorScalesAndImuBiasesInHover) {
   control::TrajectoryPoint hover;
   hover.p_W = start.p_WB;
 
-  Eigen::Vector3d mean_accel_bias = Eigen::Vector3d::Zero(), mean_gyro_bias = Eigen::Vector3d::Zero();
+  Eigen::Vector3d mean_accel_bias = Eigen::Vector3d::Zero(),
+                  mean_gyro_bias = Eigen::Vector3d::Zero();
   int bias_samples = 0;
   for (int k = 1; k <= 4000; ++k) {  // 3 s to settle, then 5 s of calibration data
-    const double t = k * kDt;
+    const double t = k * kHoverCalibrationDt_s;
     const control::QuadState& truth = dynamics.state();
     const control::ThrustRatesCommand command = position.Compute(truth, hover).command;
     const control::MixerResult mixed = mixer.Mix(
         rates.ComputeTorque(command.omega_des_B, truth.omega_B), command.collective_thrust_mps2);
     dynamics.SetRotorThrustCommand(mixed.command);
-    dynamics.Step(kDt);
+    dynamics.Step(kHoverCalibrationDt_s);
     const bool calibrating = t > 3.0;
     for (const perception::ImuSample& s :
          imu.Update(t, dynamics.SpecificForce_B(), dynamics.state().omega_B)) {
@@ -83,8 +84,8 @@ TEST(HoverCalibrationSim, RecoversRotorScalesAndImuBiasesInHover) {
   // computed for the nominal model: the torque-free hover thrusts are then exact.
   const control::MixerResult hover_mix = mixer.Mix(Eigen::Vector3d::Zero(), nominal.gravity_mps2);
   control::RotorThrustCommand calibrated;
-  calibrated.thrust_N = control::HoverCalibration::ToNominalThrust(hover_mix.command.thrust_N,
-                                                                    thrust.lambda);
+  calibrated.thrust_N =
+      control::HoverCalibration::ToNominalThrust(hover_mix.command.thrust_N, thrust.lambda);
   dynamics.SetRotorThrustCommand(hover_mix.command);
   dynamics.SettleRotors();
   const double uncalibrated_torque = dynamics.RotorTorque_B().head<2>().norm();

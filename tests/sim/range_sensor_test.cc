@@ -1,9 +1,9 @@
 #include "sim/sensors/range_sensor.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <stdexcept>
-
-#include <gtest/gtest.h>
 
 namespace aperture::sim {
 namespace {
@@ -14,7 +14,7 @@ RangeSensorParams NoiselessRange() {
   return params;
 }
 
-control::QuadState StateAt(double height_m, const Eigen::Quaterniond& q_WB) {
+control::QuadState StateAtHeight(double height_m, const Eigen::Quaterniond& q_WB) {
   control::QuadState state;
   state.p_WB = Eigen::Vector3d(3.0, -1.0, height_m);
   state.q_WB = q_WB;
@@ -23,7 +23,7 @@ control::QuadState StateAt(double height_m, const Eigen::Quaterniond& q_WB) {
 
 TEST(RangeSensorTest, LevelVehicleMeasuresItsHeight) {
   RangeSensor sensor(NoiselessRange());
-  const auto reading = sensor.Measure(StateAt(2.5, Eigen::Quaterniond::Identity()));
+  const auto reading = sensor.Measure(StateAtHeight(2.5, Eigen::Quaterniond::Identity()));
   EXPECT_TRUE(reading.valid);
   EXPECT_NEAR(reading.range_m, 2.5, 1e-12);
 }
@@ -36,7 +36,7 @@ TEST(RangeSensorTest, TiltedRayMeasuresHeightOverCosineOfTilt) {
     // Yaw does not change the tilt of the ray.
     const Eigen::Quaterniond q_WB =
         Eigen::AngleAxisd(1.0, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(tilt, axis);
-    const auto reading = sensor.Measure(StateAt(2.0, q_WB));
+    const auto reading = sensor.Measure(StateAtHeight(2.0, q_WB));
     EXPECT_TRUE(reading.valid);
     EXPECT_NEAR(reading.range_m, 2.0 / std::cos(tilt), 1e-12);
   }
@@ -46,15 +46,28 @@ TEST(RangeSensorTest, InvalidBeyondTiltLimitRangeLimitsOrUpsideDown) {
   RangeSensor sensor(NoiselessRange());
   const Eigen::Quaterniond level = Eigen::Quaterniond::Identity();
   const double limit = sensor.params().max_tilt_rad;
-  EXPECT_TRUE(sensor.Measure(StateAt(1.0, Eigen::Quaterniond(Eigen::AngleAxisd(limit - 1e-3, Eigen::Vector3d::UnitX())))).valid);
-  EXPECT_FALSE(sensor.Measure(StateAt(1.0, Eigen::Quaterniond(Eigen::AngleAxisd(limit + 1e-3, Eigen::Vector3d::UnitX())))).valid);
-  EXPECT_FALSE(sensor.Measure(StateAt(1.0, Eigen::Quaterniond(Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX())))).valid);
-  EXPECT_FALSE(sensor.Measure(StateAt(0.1, level)).valid);   // below min_range_m = 0.2
-  EXPECT_TRUE(sensor.Measure(StateAt(13.9, level)).valid);
-  EXPECT_FALSE(sensor.Measure(StateAt(14.1, level)).valid);  // beyond max_range_m = 14
-  EXPECT_FALSE(sensor.Measure(StateAt(-1.0, level)).valid);  // under the ground
+  EXPECT_TRUE(sensor
+                  .Measure(StateAtHeight(1.0, Eigen::Quaterniond(Eigen::AngleAxisd(
+                                                  limit - 1e-3, Eigen::Vector3d::UnitX()))))
+                  .valid);
+  EXPECT_FALSE(sensor
+                   .Measure(StateAtHeight(1.0, Eigen::Quaterniond(Eigen::AngleAxisd(
+                                                   limit + 1e-3, Eigen::Vector3d::UnitX()))))
+                   .valid);
+  EXPECT_FALSE(sensor
+                   .Measure(StateAtHeight(
+                       1.0, Eigen::Quaterniond(Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()))))
+                   .valid);
+  EXPECT_FALSE(sensor.Measure(StateAtHeight(0.1, level)).valid);  // below min_range_m = 0.2
+  EXPECT_TRUE(sensor.Measure(StateAtHeight(13.9, level)).valid);
+  EXPECT_FALSE(sensor.Measure(StateAtHeight(14.1, level)).valid);  // beyond max_range_m = 14
+  EXPECT_FALSE(sensor.Measure(StateAtHeight(-1.0, level)).valid);  // under the ground
   // Tilted: 13 m height at 25 deg tilt is 14.34 m of ray, beyond the maximum.
-  EXPECT_FALSE(sensor.Measure(StateAt(13.0, Eigen::Quaterniond(Eigen::AngleAxisd(25.0 * M_PI / 180.0, Eigen::Vector3d::UnitY())))).valid);
+  EXPECT_FALSE(
+      sensor
+          .Measure(StateAtHeight(13.0, Eigen::Quaterniond(Eigen::AngleAxisd(
+                                           25.0 * M_PI / 180.0, Eigen::Vector3d::UnitY()))))
+          .valid);
 }
 
 TEST(RangeSensorTest, MountOffsetIsRotatedIntoWorld) {
@@ -62,7 +75,8 @@ TEST(RangeSensorTest, MountOffsetIsRotatedIntoWorld) {
   params.p_BS = Eigen::Vector3d(0.1, 0.0, -0.05);
   RangeSensor sensor(params);
   const double pitch = 0.3;  // nose down for +pitch about y_B: the forward sensor drops
-  const auto reading = sensor.Measure(StateAt(1.0, Eigen::Quaterniond(Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()))));
+  const auto reading = sensor.Measure(
+      StateAtHeight(1.0, Eigen::Quaterniond(Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()))));
   const double sensor_height = 1.0 - 0.1 * std::sin(pitch) - 0.05 * std::cos(pitch);
   ASSERT_TRUE(reading.valid);
   EXPECT_NEAR(reading.range_m, sensor_height / std::cos(pitch), 1e-12);
@@ -70,10 +84,11 @@ TEST(RangeSensorTest, MountOffsetIsRotatedIntoWorld) {
 
 TEST(RangeSensorTest, GroundHeightShiftsTheReading) {
   RangeSensor sensor(NoiselessRange(), RangeWorld{0.5, nullptr, {}});
-  const auto reading = sensor.Measure(StateAt(2.5, Eigen::Quaterniond::Identity()));
+  const auto reading = sensor.Measure(StateAtHeight(2.5, Eigen::Quaterniond::Identity()));
   ASSERT_TRUE(reading.valid);
   EXPECT_NEAR(reading.range_m, 2.0, 1e-12);
-  EXPECT_FALSE(sensor.Measure(StateAt(0.4, Eigen::Quaterniond::Identity())).valid);  // below it
+  EXPECT_FALSE(
+      sensor.Measure(StateAtHeight(0.4, Eigen::Quaterniond::Identity())).valid);  // below it
 }
 
 TEST(RangeSensorTest, SeesSceneObjectsBelowExceptThoseItLooksThrough) {
@@ -84,9 +99,9 @@ TEST(RangeSensorTest, SeesSceneObjectsBelowExceptThoseItLooksThrough) {
   scene.AddObject({"box", Box{Eigen::Vector3d(0.5, 0.5, 0.4)}, Material{}, T_WBox});
   Eigen::Isometry3d T_WPart = Eigen::Isometry3d::Identity();
   T_WPart.translation() = Eigen::Vector3d(3.0, -1.0, 2.0);
-  const int part = scene.AddObject({"body", Box{Eigen::Vector3d(0.2, 0.2, 0.1)}, Material{},
-                                    T_WPart});
-  const control::QuadState above_box = StateAt(2.0, Eigen::Quaterniond::Identity());
+  const int part =
+      scene.AddObject({"body", Box{Eigen::Vector3d(0.2, 0.2, 0.1)}, Material{}, T_WPart});
+  const control::QuadState above_box = StateAtHeight(2.0, Eigen::Quaterniond::Identity());
 
   RangeSensor sees_part(NoiselessRange(), RangeWorld{0.0, &scene, {}});
   EXPECT_FALSE(sees_part.Measure(above_box).valid);  // 0.05 m to the part: below min_range_m
@@ -97,8 +112,8 @@ TEST(RangeSensorTest, SeesSceneObjectsBelowExceptThoseItLooksThrough) {
   EXPECT_NEAR(over_box.range_m, 1.6, 1e-12);
   // Tilted 0.1 rad about x_W: the ray meets the box top 1.6 tan(0.1) = 0.16 m off centre.
   const double tilt = 0.1;
-  const auto tilted =
-      sensor.Measure(StateAt(2.0, Eigen::Quaterniond(Eigen::AngleAxisd(tilt, Eigen::Vector3d::UnitX()))));
+  const auto tilted = sensor.Measure(
+      StateAtHeight(2.0, Eigen::Quaterniond(Eigen::AngleAxisd(tilt, Eigen::Vector3d::UnitX()))));
   ASSERT_TRUE(tilted.valid);
   EXPECT_NEAR(tilted.range_m, 1.6 / std::cos(tilt), 1e-12);
   // Beside the box: the ground.
@@ -115,7 +130,7 @@ TEST(RangeSensorTest, NoiseStdMatchesSigmaAndIsDeterministic) {
   RangeSensor a(params), b(params);
   const int n = 20000;
   double sum = 0.0, sum_sq = 0.0;
-  const control::QuadState state = StateAt(5.0, Eigen::Quaterniond::Identity());
+  const control::QuadState state = StateAtHeight(5.0, Eigen::Quaterniond::Identity());
   for (int k = 0; k < n; ++k) {
     const auto ra = a.Measure(state), rb = b.Measure(state);
     ASSERT_TRUE(ra.valid);
@@ -131,7 +146,7 @@ TEST(RangeSensorTest, NoiseStdMatchesSigmaAndIsDeterministic) {
 
 TEST(RangeSensorTest, UpdateProducesReadingsAtTheSensorRate) {
   RangeSensor sensor(NoiselessRange());  // 100 Hz
-  control::QuadState state = StateAt(1.0, Eigen::Quaterniond::Identity());
+  control::QuadState state = StateAtHeight(1.0, Eigen::Quaterniond::Identity());
   int readings = 0;
   for (int k = 1; k <= 1000; ++k) {
     state.t_s = k * 1e-3;

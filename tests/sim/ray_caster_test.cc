@@ -118,7 +118,8 @@ double ChessboardCornerError(const perception::CameraModel& camera, const Eigen:
   Scene scene;
   SceneObject board;
   board.name = "board";
-  board.primitive = Rectangle{{kSquaresX * square_m + 2 * margin, kSquaresY * square_m + 2 * margin}, {}, {}};
+  board.primitive =
+      Rectangle{{kSquaresX * square_m + 2 * margin, kSquaresY * square_m + 2 * margin}, {}, {}};
   board.material.texture = std::make_shared<const Texture>(
       Texture::Checkerboard(square_m, kSquaresX, kSquaresY, margin));
   board.material.color = Rgb::Ones();
@@ -147,7 +148,8 @@ double ChessboardCornerError(const perception::CameraModel& camera, const Eigen:
   for (int j = 1; j < kSquaresY; ++j) {
     for (int i = 1; i < kSquaresX; ++i) {
       // Inner corner (i, j) at u, v = margin + (i, j) * square; p_O = uv - size / 2.
-      const Eigen::Vector3d p_O((i - 0.5 * kSquaresX) * square_m, (j - 0.5 * kSquaresY) * square_m, 0.0);
+      const Eigen::Vector3d p_O((i - 0.5 * kSquaresX) * square_m, (j - 0.5 * kSquaresY) * square_m,
+                                0.0);
       Eigen::Vector2d px;
       if (!camera.Project(T_CO * p_O, &px)) return std::numeric_limits<double>::infinity();
       projected.push_back(px);
@@ -199,18 +201,22 @@ INSTANTIATE_TEST_SUITE_P(PinholeAndFisheye, RayCasterCameraTest, ::testing::Bool
                          [](const auto& info) { return info.param ? "Fisheye" : "Pinhole"; });
 
 // A textured scene with every primitive type, for determinism tests.
-Scene TexturedScene() {
+Scene TexturedGapScene() {
   Scene scene;
   ProceduralTextureParams params;
   params.size_px = 128;
-  SceneObject ground{"ground", GroundPlane{}, {MakeGrassTexture(params)}, Pose({0, 0, 0}, {0, 0, -1.5})};
+  SceneObject ground{
+      "ground", GroundPlane{}, {MakeGrassTexture(params)}, Pose({0, 0, 0}, {0, 0, -1.5})};
   scene.AddObject(ground);
   Rectangle wall{{3.0, 2.0}, {{{-0.5, -0.4}, {0.5, -0.4}, {0.5, 0.4}, {-0.5, 0.4}}}, {}};
-  scene.AddObject({"gap", wall, {MakeNewspaperTexture(params)},
-                   Pose({0.0, M_PI / 2, 0.0}, {3.0, 0.0, 0.0})});
-  scene.AddObject({"back", Rectangle{{10.0, 6.0}, {}, {}}, {MakeValueNoiseTexture(params)},
+  scene.AddObject(
+      {"gap", wall, {MakeNewspaperTexture(params)}, Pose({0.0, M_PI / 2, 0.0}, {3.0, 0.0, 0.0})});
+  scene.AddObject({"back",
+                   Rectangle{{10.0, 6.0}, {}, {}},
+                   {MakeValueNoiseTexture(params)},
                    Pose({0.0, M_PI / 2, 0.0}, {6.0, 0.0, 0.0})});
-  scene.AddObject({"tree", Cylinder{0.2, 4.0}, {MakeBarkTexture(params)}, Pose({0, 0, 0}, {4.0, 1.5, -1.5})});
+  scene.AddObject(
+      {"tree", Cylinder{0.2, 4.0}, {MakeBarkTexture(params)}, Pose({0, 0, 0}, {4.0, 1.5, -1.5})});
   scene.AddObject({"ball", Sphere{0.3}, {}, Pose({0, 0, 0}, {2.0, -1.0, 0.5})});
   scene.AddObject({"crate", Box{{0.5, 0.5, 0.5}}, {}, Pose({0, 0, 0.3}, {2.5, 1.0, -1.0})});
   SceneObject led{"led", Led{}, {}, Pose({0, 0, 0}, {2.0, 0.3, 0.2})};
@@ -219,7 +225,7 @@ Scene TexturedScene() {
 }
 
 TEST(RayCasterTest, OutputIsIndependentOfThreadCountAndRepeatable) {
-  const Scene scene = TexturedScene();
+  const Scene scene = TexturedGapScene();
   // Half resolution keeps the three renders (and ray tables) fast.
   const auto camera = testing::MakeTestFisheye()->Scaled(376, 240);
   const Eigen::Isometry3d T_WC = LookAt({0, 0, 0}, {1.0, 0.05, -0.1});
@@ -229,7 +235,7 @@ TEST(RayCasterTest, OutputIsIndependentOfThreadCountAndRepeatable) {
   RenderOutput parallel, serial, again;
   RayCaster caster;
   caster.Render(scene, *camera, T_WC, options, &parallel);
-  RayCaster(). Render(scene, *camera, T_WC, options, &again);
+  RayCaster().Render(scene, *camera, T_WC, options, &again);
   {
     tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
     RayCaster().Render(scene, *camera, T_WC, options, &serial);
@@ -247,9 +253,10 @@ TEST(RayCasterTest, OutputIsIndependentOfThreadCountAndRepeatable) {
 
 TEST(RayCasterTest, AdaptiveSupersamplingEqualsFullSupersamplingWhereItMatters) {
   // Every primitive with smooth textures, plus a checkerboard (hard-edged texture) in view.
-  Scene scene = TexturedScene();
+  Scene scene = TexturedGapScene();
   const int board = scene.AddObject(
-      {"board", Rectangle{{1.2, 0.9}, {}, {}},
+      {"board",
+       Rectangle{{1.2, 0.9}, {}, {}},
        {std::make_shared<const Texture>(Texture::Checkerboard(0.1, 10, 7, 0.1)), Rgb::Ones()},
        Pose({0.3, M_PI / 2 + 0.4, 0.0}, {2.2, 0.6, 0.3})});
   const auto camera = testing::MakeTestFisheye()->Scaled(376, 240);
@@ -287,10 +294,10 @@ TEST(RayCasterTest, AdaptiveSupersamplingEqualsFullSupersamplingWhereItMatters) 
       }
     }
   }
-  std::printf("adaptive vs full 2x2: worst at %d object edges %.2g, worst on board %.2g, mean "
-              "elsewhere %.2g (k = 1 at edges: mean %.2g)\n",
-              edges, worst_at_edges, worst_on_board, sum_elsewhere / elsewhere,
-              single_at_edges / edges);
+  std::printf(
+      "adaptive vs full 2x2: worst at %d object edges %.2g, worst on board %.2g, mean "
+      "elsewhere %.2g (k = 1 at edges: mean %.2g)\n",
+      edges, worst_at_edges, worst_on_board, sum_elsewhere / elsewhere, single_at_edges / edges);
   ASSERT_GT(edges, 1000);
   ASSERT_GT(board_pixels, 1000);
   // Object edges and the checkerboard's texture edges get the same k x k rays as full
@@ -310,7 +317,7 @@ TEST(RayCasterTest, IdsAndDepthsMatchBruteForceIntersectionInClutter) {
   // and stops at the first candidate that cannot be nearer than the hit so far; Scene::Intersect
   // tests every object. Clutter: every primitive, rows of objects hiding each other at several
   // depths, a plane behind the camera and one seen edge-on.
-  Scene scene = TexturedScene();
+  Scene scene = TexturedGapScene();
   for (int i = 0; i < 6; ++i) {
     const double x = 1.5 + 0.6 * i;
     scene.AddObject({"post" + std::to_string(i),

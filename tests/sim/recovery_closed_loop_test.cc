@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "control/constants.h"
 #include "control/mixer.h"
 #include "control/proportional_body_rate_controller.h"
 #include "control/recovery_pipeline.h"
@@ -26,13 +27,13 @@ namespace {
 
 using control::RecoveryStage;
 
-constexpr double kDt = 0.002;  // control and IMU period, 500 Hz (B.2.5)
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kRecoveryLoopDt_s = 0.002;  // control and IMU period, 500 Hz (B.2.5)
+using control::kPi;
 
 struct ThrowCase {
   std::string name;
-  Eigen::Quaterniond q_held;      // attitude in the hand
-  Eigen::Vector3d v_release_W;    // [m/s]
+  Eigen::Quaterniond q_held;        // attitude in the hand
+  Eigen::Vector3d v_release_W;      // [m/s]
   Eigen::Vector3d omega_release_B;  // [rad/s]
 };
 
@@ -45,7 +46,7 @@ struct RecoveryRun {
   double final_tilt_rad = 0.0;
   double final_speed_mps = 0.0;
   double final_position_error_m = 0.0;  // from the locked position (vision frame)
-  double final_height_error_m = 0.0;     // height filter vs truth
+  double final_height_error_m = 0.0;    // height filter vs truth
   double max_tilt_after_launch_rad = 0.0;
 };
 
@@ -71,17 +72,17 @@ RecoveryRun Throw(const ThrowCase& c) {
   bool vision_ready = false;
   RecoveryRun run;
 
-  for (double t = kDt; t < 6.0; t += kDt) {
+  for (double t = kRecoveryLoopDt_s; t < 6.0; t += kRecoveryLoopDt_s) {
     if (!released && t >= t_release) {
       released = true;
-      dynamics.ApplyImpulse(vehicle.mass_kg * c.v_release_W,
-                            vehicle.Inertia() * c.omega_release_B);
+      dynamics.ApplyImpulse(vehicle.mass_kg * c.v_release_W, vehicle.Inertia() * c.omega_release_B);
     }
-    if (released) dynamics.Step(kDt);  // in the hand the vehicle does not move
+    if (released) dynamics.Step(kRecoveryLoopDt_s);  // in the hand the vehicle does not move
     const control::QuadState& truth = dynamics.state();
-    const Eigen::Vector3d f_B = released ? dynamics.SpecificForce_B()
-                                         : Eigen::Vector3d(truth.q_WB.conjugate() *
-                                                           Eigen::Vector3d(0, 0, vehicle.gravity_mps2));
+    const Eigen::Vector3d f_B =
+        released
+            ? dynamics.SpecificForce_B()
+            : Eigen::Vector3d(truth.q_WB.conjugate() * Eigen::Vector3d(0, 0, vehicle.gravity_mps2));
     for (const perception::ImuSample& sample : imu.Update(t, f_B, truth.omega_B)) {
       recovery.AddImu(sample.t_s, sample.specific_force_B, sample.omega_B);
     }
@@ -103,9 +104,9 @@ RecoveryRun Throw(const ThrowCase& c) {
     const Eigen::Vector3d torque_B =
         rate_controller.ComputeTorque(out.command.omega_des_B, omega_hat_B);
     dynamics.SetRotorThrustCommand(
-        mixer.Mix(out.stage == RecoveryStage::kWaitingForLaunch ? Eigen::Vector3d::Zero()
-                                                                : torque_B,
-                  out.command.collective_thrust_mps2)
+        mixer
+            .Mix(out.stage == RecoveryStage::kWaitingForLaunch ? Eigen::Vector3d::Zero() : torque_B,
+                 out.command.collective_thrust_mps2)
             .command);
 
     if (recovery.launch_detector().launched()) {
@@ -118,15 +119,16 @@ RecoveryRun Throw(const ThrowCase& c) {
       }
       run.max_tilt_error_rad = std::max(run.max_tilt_error_rad, e);
       run.final_tilt_error_rad = e;
-      run.max_tilt_after_launch_rad = std::max(
-          run.max_tilt_after_launch_rad,
-          std::acos(std::clamp((truth.q_WB * Eigen::Vector3d::UnitZ()).z(), -1.0, 1.0)));
+      run.max_tilt_after_launch_rad =
+          std::max(run.max_tilt_after_launch_rad,
+                   std::acos(std::clamp((truth.q_WB * Eigen::Vector3d::UnitZ()).z(), -1.0, 1.0)));
     }
     run.min_height_m = std::min(run.min_height_m, truth.p_WB.z());
   }
   const control::QuadState& truth = dynamics.state();
   run.transitions = recovery.state_machine().transitions();
-  run.final_tilt_rad = std::acos(std::clamp((truth.q_WB * Eigen::Vector3d::UnitZ()).z(), -1.0, 1.0));
+  run.final_tilt_rad =
+      std::acos(std::clamp((truth.q_WB * Eigen::Vector3d::UnitZ()).z(), -1.0, 1.0));
   run.final_speed_mps = truth.v_W.norm();
   run.final_position_error_m =
       (truth.p_WB + vision_offset_W - recovery.state_machine().locked_position_W()).norm();
@@ -147,8 +149,10 @@ TEST_P(RecoveryClosedLoop, ThrownVehicleReachesPositionHold) {
            std::to_string(run.transitions[k].t_s) + " ";
   }
   RecordProperty("stage_entries", log);
-  RecordProperty("max_tilt_after_launch_deg", std::to_string(run.max_tilt_after_launch_rad * 180 / kPi));
-  RecordProperty("max_estimator_tilt_error_deg", std::to_string(run.max_tilt_error_rad * 180 / kPi));
+  RecordProperty("max_tilt_after_launch_deg",
+                 std::to_string(run.max_tilt_after_launch_rad * 180 / kPi));
+  RecordProperty("max_estimator_tilt_error_deg",
+                 std::to_string(run.max_tilt_error_rad * 180 / kPi));
   RecordProperty("min_height_m", std::to_string(run.min_height_m));
   RecordProperty("final_position_error_m", std::to_string(run.final_position_error_m));
   // Launch detected within the 50 ms window after release at 0.4 s (B.29).
@@ -186,13 +190,12 @@ TEST_P(RecoveryClosedLoop, ThrownVehicleReachesPositionHold) {
 
 INSTANTIATE_TEST_SUITE_P(
     Throws, RecoveryClosedLoop,
-    ::testing::Values(
-        ThrowCase{"held_level_tossed_with_flip",
-                  Eigen::Quaterniond::Identity(), Eigen::Vector3d(2.0, 1.0, 4.0),
-                  Eigen::Vector3d(18.0, -4.0, 3.0)},
-        ThrowCase{"held_upside_down",
-                  Eigen::Quaterniond(Eigen::AngleAxisd(0.9 * kPi, Eigen::Vector3d::UnitY())),
-                  Eigen::Vector3d(-1.5, 2.5, 3.0), Eigen::Vector3d(-3.0, 5.0, -6.0)}),
+    ::testing::Values(ThrowCase{"held_level_tossed_with_flip", Eigen::Quaterniond::Identity(),
+                                Eigen::Vector3d(2.0, 1.0, 4.0), Eigen::Vector3d(18.0, -4.0, 3.0)},
+                      ThrowCase{"held_upside_down",
+                                Eigen::Quaterniond(Eigen::AngleAxisd(0.9 * kPi,
+                                                                     Eigen::Vector3d::UnitY())),
+                                Eigen::Vector3d(-1.5, 2.5, 3.0), Eigen::Vector3d(-3.0, 5.0, -6.0)}),
     [](const ::testing::TestParamInfo<ThrowCase>& info) { return info.param.name; });
 
 }  // namespace

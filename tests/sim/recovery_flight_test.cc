@@ -6,10 +6,12 @@
 
 #include <cmath>
 
+#include "control/constants.h"
+
 namespace aperture::sim {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using control::kPi;
 
 TEST(RecoveryFlightTest, SampledThrowsAreDeterministicAndWithinTheRanges) {
   HandThrowRanges ranges;
@@ -47,7 +49,8 @@ TEST_P(RecoveryFlightHeadingTest, UpsideDownThrowEndsInAStableHover) {
   // Launch detected within the 50 ms window after the release at t = 0 (B.29), plus a sample.
   EXPECT_LT(flight.transitions[0].t_s, 0.06);
   EXPECT_GT(flight.min_height_m, 0.3);
-  // Measured: level within 1 deg, < 3 cm/s. After hold_s = 4 s of position control: level (< 3 deg) and still (< 0.1 m/s).
+  // Measured: level within 1 deg, < 3 cm/s. After hold_s = 4 s of position control: level (< 3 deg)
+  // and still (< 0.1 m/s).
   EXPECT_LT(flight.final_tilt_rad, 3.0 * kPi / 180.0);
   EXPECT_LT(flight.final_speed_mps, 0.1);
 }

@@ -46,8 +46,8 @@ class TempFile {
   std::string path_;
 };
 
-ScenarioParams Load(const std::string& name, const std::vector<std::string>& sets = {},
-                    const std::vector<std::string>& files = {}) {
+ScenarioParams LoadScenario(const std::string& name, const std::vector<std::string>& sets = {},
+                            const std::vector<std::string>& files = {}) {
   return LoadScenarioParams(ScenarioConfig(name, files, sets));
 }
 
@@ -95,7 +95,7 @@ bool AnyStartsWith(const std::set<std::string>& names, const std::string& prefix
 class BuiltinScenarioTest : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(BuiltinScenarioTest, LoadsAndRendersItsKeyObjects) {
-  Scenario scenario = BuildScenario(Load(GetParam()));
+  Scenario scenario = BuildScenario(LoadScenario(GetParam()));
   EXPECT_EQ(scenario.kind(), GetParam());
   const RenderOutput out = RenderAt(scenario, scenario.T_WB_start());
   cv::Scalar mean, stddev;
@@ -131,7 +131,8 @@ INSTANTIATE_TEST_SUITE_P(AllBuiltins, BuiltinScenarioTest,
 class GapPatternTest : public ::testing::TestWithParam<double> {};
 
 TEST_P(GapPatternTest, PatternAppearsWhereItProjects) {
-  Scenario scenario = BuildScenario(Load("gap", {"gap.roll_deg=" + std::to_string(GetParam())}));
+  Scenario scenario =
+      BuildScenario(LoadScenario("gap", {"gap.roll_deg=" + std::to_string(GetParam())}));
   const GapParams& gap = scenario.params().gap;
   Eigen::Isometry3d T_WB = scenario.T_WB_start();
   T_WB.translation().x() = gap.center_W.x() - 2.0;  // 2 m in front of the gap
@@ -179,8 +180,8 @@ INSTANTIATE_TEST_SUITE_P(Rolls, GapPatternTest, ::testing::Values(0.0, 30.0));
 // gap.pitch_deg rotates the panel about y_W (scenario_params.h): R_WG = Ry(pitch) * R_WG(0),
 // centre unchanged, so the part above the opening leans away from the approach (+x_W).
 TEST(GapScenarioTest, PitchRotatesThePanelAboutYWorld) {
-  const Scenario level = BuildScenario(Load("gap"));
-  const Scenario pitched = BuildScenario(Load("gap", {"gap.pitch_deg=25"}));
+  const Scenario level = BuildScenario(LoadScenario("gap"));
+  const Scenario pitched = BuildScenario(LoadScenario("gap", {"gap.pitch_deg=25"}));
   const Eigen::Isometry3d& T_WG0 = level.scene().object("gap").T_WO;
   const Eigen::Isometry3d& T_WG = pitched.scene().object("gap").T_WO;
   const double pitch = 25.0 * M_PI / 180.0;
@@ -199,7 +200,7 @@ TEST(GapScenarioTest, PitchRotatesThePanelAboutYWorld) {
 class GapFlytShapeTest : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(GapFlytShapeTest, OpeningIsCutWithItsAnalyticArea) {
-  ScenarioParams params = Load("gapflyt", {"gapflyt.shape=" + GetParam()});
+  ScenarioParams params = LoadScenario("gapflyt", {"gapflyt.shape=" + GetParam()});
   params.cameras.front().second.width = 320;
   params.cameras.front().second.height = 240;
   Scenario scenario = BuildScenario(params);
@@ -252,8 +253,8 @@ TEST_P(GapFlytShapeTest, OpeningIsCutWithItsAnalyticArea) {
 INSTANTIATE_TEST_SUITE_P(FiveKinds, GapFlytShapeTest,
                          ::testing::Values("ellipse", "polygon", "triangle", "notched", "star"));
 
-// Footprint of a box on the ground: centre, yaw-only rotation, half extents.
-struct Footprint {
+// RectangleFootprint of a box on the ground: centre, yaw-only rotation, half extents.
+struct RectangleFootprint {
   std::string name;
   Eigen::Vector2d center;
   Eigen::Matrix2d R;
@@ -261,11 +262,11 @@ struct Footprint {
 };
 
 // Separating-axis test of two oriented rectangles.
-bool Overlap(const Footprint& a, const Footprint& b) {
-  for (const Footprint* f : {&a, &b}) {
+bool Overlap(const RectangleFootprint& a, const RectangleFootprint& b) {
+  for (const RectangleFootprint* f : {&a, &b}) {
     for (int axis = 0; axis < 2; ++axis) {
       const Eigen::Vector2d n = f->R.col(axis);
-      const auto reach = [&](const Footprint& g) {
+      const auto reach = [&](const RectangleFootprint& g) {
         return g.half.x() * std::abs(n.dot(g.R.col(0))) + g.half.y() * std::abs(n.dot(g.R.col(1)));
       };
       if (std::abs(n.dot(b.center - a.center)) > reach(a) + reach(b)) return false;
@@ -281,8 +282,8 @@ TEST(TagsScenarioTest, AreaHoldsEveryTaggedObjectKind) {
   for (const int seed : {0, 1, 2}) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     Scenario scenario =
-        BuildScenario(Load("tags", {"seed=" + std::to_string(seed), "tags.fixed_obstacles=2",
-                                    "tags.movable_obstacles=4"}));
+        BuildScenario(LoadScenario("tags", {"seed=" + std::to_string(seed),
+                                            "tags.fixed_obstacles=2", "tags.movable_obstacles=4"}));
     const TagsSceneParams& t = scenario.params().tags;
     const Scene& scene = scenario.scene();
     struct Tagged {
@@ -311,8 +312,9 @@ TEST(TagsScenarioTest, AreaHoldsEveryTaggedObjectKind) {
     EXPECT_NE(scene.object("fixed0").material.color, scene.object("movable0").material.color);
 
     const double origin_half = std::get<Rectangle>(scene.object("tag0").primitive).size_m.x() / 2;
-    std::vector<Footprint> footprints{{"tag0", Eigen::Vector2d::Zero(), Eigen::Matrix2d::Identity(),
-                                       Eigen::Vector2d::Constant(origin_half)}};
+    std::vector<RectangleFootprint> footprints{{"tag0", Eigen::Vector2d::Zero(),
+                                                Eigen::Matrix2d::Identity(),
+                                                Eigen::Vector2d::Constant(origin_half)}};
     for (const Tagged& object : tagged) {
       SCOPED_TRACE(object.name);
       const SceneObject& box = scene.object(object.name);
@@ -328,8 +330,9 @@ TEST(TagsScenarioTest, AreaHoldsEveryTaggedObjectKind) {
       const double pattern_m = std::get<Rectangle>(tag.primitive).size_m.x();
       EXPECT_NEAR(pattern_m, AprilTagPatternSize(t.family, object.tag_size_m), 1e-12);
       EXPECT_LE(pattern_m, object.size_m.head<2>().minCoeff());  // the tag fits on the top
-      Footprint footprint{object.name, p_WO.head<2>(), box.T_WO.linear().topLeftCorner<2, 2>(),
-                          object.size_m.head<2>() / 2};
+      RectangleFootprint footprint{object.name, p_WO.head<2>(),
+                                   box.T_WO.linear().topLeftCorner<2, 2>(),
+                                   object.size_m.head<2>() / 2};
       for (int corner = 0; corner < 4; ++corner) {
         const Eigen::Vector2d sign(corner % 2 ? 1 : -1, corner / 2 ? 1 : -1);
         const Eigen::Vector2d c =
@@ -378,7 +381,7 @@ TEST(TagsScenarioTest, AreaHoldsEveryTaggedObjectKind) {
 // detector (default parameters = the scenario's default pattern) finds the gap in the captured,
 // noisy frames and its pose matches the scene's ground truth T_CG = T_WC^-1 * T_WG.
 TEST(GapScenarioTest, DetectorRecoversGroundTruthAlongTheApproach) {
-  ScenarioParams params = Load("gap");
+  ScenarioParams params = LoadScenario("gap");
   params.cameras.front().second.supersampling = 1;
   Scenario scenario = BuildScenario(params);
   const ScenarioCamera& camera = scenario.render_camera();
@@ -401,7 +404,7 @@ TEST(GapScenarioTest, DetectorRecoversGroundTruthAlongTheApproach) {
 }
 
 TEST(GapScenarioTest, DefaultPatternIsTheDetectorsDefault) {
-  const GapParams gap = Load("gap").gap;
+  const GapParams gap = LoadScenario("gap").gap;
   const perception::GapDetectorParams detector;
   EXPECT_EQ(gap.opening_m, detector.opening_size_m);
   EXPECT_EQ(gap.pattern_inner_m, detector.inner_size_m);
@@ -411,7 +414,7 @@ TEST(GapScenarioTest, DefaultPatternIsTheDetectorsDefault) {
 TEST(ScenarioLoadTest, UnknownKeyNamesFileLineAndKey) {
   const TempFile file("scenario_typo", "seed: 3\ngap:\n  rol_deg: 30\n");
   try {
-    Load("gap", {}, {file.path()});
+    LoadScenario("gap", {}, {file.path()});
     FAIL() << "unknown key accepted";
   } catch (const std::invalid_argument& e) {
     EXPECT_THAT(e.what(), AllOf(HasSubstr(file.path() + ":3:3"), HasSubstr("gap.rol_deg"),
@@ -420,29 +423,29 @@ TEST(ScenarioLoadTest, UnknownKeyNamesFileLineAndKey) {
 }
 
 TEST(ScenarioLoadTest, SectionOfAnotherKindIsRejected) {
-  EXPECT_THROW(Load("gap", {"forest.trees=3"}), std::invalid_argument);
+  EXPECT_THROW(LoadScenario("gap", {"forest.trees=3"}), std::invalid_argument);
 }
 
 TEST(ScenarioLoadTest, BadValuesNameTheKey) {
   EXPECT_THAT(
       [] {
         try {
-          Load("gap", {"cameras.front.model=fisheye"});
+          LoadScenario("gap", {"cameras.front.model=fisheye"});
         } catch (const std::invalid_argument& e) {
           return std::string(e.what());
         }
         return std::string();
       }(),
       AllOf(HasSubstr("cameras.front.model"), HasSubstr("equidistant")));
-  EXPECT_THROW(Load("gap", {"gap.pattern_inner_m=[0.7, 0.2]"}), std::invalid_argument);
-  EXPECT_THROW(Load("nope"), std::invalid_argument);
+  EXPECT_THROW(LoadScenario("gap", {"gap.pattern_inner_m=[0.7, 0.2]"}), std::invalid_argument);
+  EXPECT_THROW(LoadScenario("nope"), std::invalid_argument);
 }
 
 TEST(ScenarioLoadTest, LedConfigFileSetsTheLeds) {
   const TempFile file("leds",
                       "leds: [[0.2, 0, 0], [0, 0.2, 0], [-0.2, 0, 0], [0, -0.2, 0], "
                       "[0.1, 0.1, -0.05]]\n");
-  Scenario scenario = BuildScenario(Load("led", {"led.config=" + file.path()}));
+  Scenario scenario = BuildScenario(LoadScenario("led", {"led.config=" + file.path()}));
   ASSERT_EQ(scenario.params().led.leds_B.size(), 5u);
   EXPECT_GE(scenario.scene().FindId("led4"), 1);
   // Attached objects follow the vehicle: led4 sits at T_WB * p_B.
@@ -460,7 +463,7 @@ TEST(ScenarioLoadTest, LedConfigFileSetsTheLeds) {
 TEST(ScenarioLoadTest, LedLayoutsGetTheLedConfigurationChecks) {
   const auto message = [](const std::vector<std::string>& sets) {
     try {
-      Load("led", sets);
+      LoadScenario("led", sets);
     } catch (const std::invalid_argument& e) {
       return std::string(e.what());
     }
@@ -476,12 +479,12 @@ TEST(ScenarioLoadTest, LedLayoutsGetTheLedConfigurationChecks) {
                       "[-0.1, -0.1, 0.1]]\n");
   EXPECT_THAT(message({"led.config=" + file.path()}),
               AllOf(HasSubstr(file.path()), HasSubstr("symmetric")));
-  EXPECT_THROW(Load("led", {"led.config=" + file.path() + ".missing"}), std::runtime_error);
+  EXPECT_THROW(LoadScenario("led", {"led.config=" + file.path() + ".missing"}), std::runtime_error);
 }
 
 TEST(ScenarioLoadTest, LedFalseSpotsAreSeededEmittersInTheArea) {
-  const Scenario a = BuildScenario(Load("led", {"led.false_spots=3", "seed=4"}));
-  const Scenario b = BuildScenario(Load("led", {"led.false_spots=3", "seed=4"}));
+  const Scenario a = BuildScenario(LoadScenario("led", {"led.false_spots=3", "seed=4"}));
+  const Scenario b = BuildScenario(LoadScenario("led", {"led.false_spots=3", "seed=4"}));
   const LedSceneParams& led = a.params().led;
   for (int k = 0; k < 3; ++k) {
     const std::string name = "false_spot" + std::to_string(k);
@@ -507,7 +510,7 @@ TEST(ScenarioLoadTest, ObjectEllipseHolesAreCut) {
                       "    size_m: [1.0, 1.0, 0]\n"
                       "    pose: {p_m: [1.1, 0.0, 1.5], rpy_deg: [-90, 0, -90]}\n"
                       "    ellipse_holes: [[0.2, 0.0, 0.15, 0.06, 30]]\n");
-  ScenarioParams params = Load("gap", {}, {file.path()});
+  ScenarioParams params = LoadScenario("gap", {}, {file.path()});
   params.cameras.front().second.width = 376;
   params.cameras.front().second.height = 240;
   Scenario scenario = BuildScenario(params);
@@ -529,15 +532,15 @@ TEST(ScenarioLoadTest, ObjectEllipseHolesAreCut) {
   EXPECT_NE(id_at(centre + 0.11 * major), plate_id);  // inside: semi-major 0.15
   EXPECT_EQ(id_at(centre + 0.11 * minor), plate_id);  // outside: semi-minor 0.06
   EXPECT_EQ(id_at(Eigen::Vector2d(-0.2, 0.0)), plate_id);
-  EXPECT_THROW(
-      Load("gap", {"objects.crate.shape=box", "objects.crate.ellipse_holes=[[0, 0, 0.1, 0.1, 0]]"}),
-      std::invalid_argument);
+  EXPECT_THROW(LoadScenario("gap", {"objects.crate.shape=box",
+                                    "objects.crate.ellipse_holes=[[0, 0, 0.1, 0.1, 0]]"}),
+               std::invalid_argument);
 }
 
 // Image hash of a captured frame at a small resolution; `noise` false: no read or shot noise, so
 // the image depends only on the scene.
 std::size_t FrameHash(const std::string& name, int seed, bool noise = true) {
-  ScenarioParams params = Load(name, {"seed=" + std::to_string(seed)});
+  ScenarioParams params = LoadScenario(name, {"seed=" + std::to_string(seed)});
   CameraParams& c = params.cameras.front().second;
   c.width = 188;
   c.height = 120;
@@ -573,8 +576,8 @@ TEST(ScenarioSeedTest, SeedChangesTexturesWithNoiseOff) {
 
 TEST(ScenarioSeedTest, LightSigmaJittersTheLightingPerSeed) {
   const auto lighting = [](int seed, double sigma) {
-    return BuildScenario(Load("gap", {"seed=" + std::to_string(seed),
-                                      "randomize.light_sigma=" + std::to_string(sigma)}))
+    return BuildScenario(LoadScenario("gap", {"seed=" + std::to_string(seed),
+                                              "randomize.light_sigma=" + std::to_string(sigma)}))
         .scene()
         .lighting;
   };
@@ -601,9 +604,9 @@ TEST(ScenarioSeedTest, LightSigmaJittersTheLightingPerSeed) {
 // position_sigma_m is 0), reproducibly per seed.
 TEST(ScenarioSeedTest, YawSigmaTurnsObjectsAboutZWorld) {
   const std::vector<std::string> sets{"randomize.yaw_sigma_deg=5", "seed=5"};
-  const Eigen::Isometry3d T_a = BuildScenario(Load("gap", sets)).scene().object("gap").T_WO;
-  const Eigen::Isometry3d T_b = BuildScenario(Load("gap", sets)).scene().object("gap").T_WO;
-  const Eigen::Isometry3d T_nominal = BuildScenario(Load("gap")).scene().object("gap").T_WO;
+  const Eigen::Isometry3d T_a = BuildScenario(LoadScenario("gap", sets)).scene().object("gap").T_WO;
+  const Eigen::Isometry3d T_b = BuildScenario(LoadScenario("gap", sets)).scene().object("gap").T_WO;
+  const Eigen::Isometry3d T_nominal = BuildScenario(LoadScenario("gap")).scene().object("gap").T_WO;
   EXPECT_EQ(T_a.matrix(), T_b.matrix());
   EXPECT_TRUE(T_a.translation().isApprox(T_nominal.translation(), 1e-12));
   const Eigen::AngleAxisd delta(T_a.linear() * T_nominal.linear().transpose());
@@ -611,7 +614,7 @@ TEST(ScenarioSeedTest, YawSigmaTurnsObjectsAboutZWorld) {
   EXPECT_LT(delta.angle(), 5.0 * 5.0 * M_PI / 180.0);  // within 5 sigma
   EXPECT_NEAR(std::abs(delta.axis().z()), 1.0, 1e-9);
   const Eigen::Isometry3d T_other =
-      BuildScenario(Load("gap", {"randomize.yaw_sigma_deg=5", "seed=6"}))
+      BuildScenario(LoadScenario("gap", {"randomize.yaw_sigma_deg=5", "seed=6"}))
           .scene()
           .object("gap")
           .T_WO;
@@ -620,9 +623,9 @@ TEST(ScenarioSeedTest, YawSigmaTurnsObjectsAboutZWorld) {
 
 TEST(ScenarioSeedTest, RandomizationMovesObjectsReproducibly) {
   const std::vector<std::string> sets{"randomize.position_sigma_m=0.2", "seed=5"};
-  const Scenario a = BuildScenario(Load("gap", sets));
-  const Scenario b = BuildScenario(Load("gap", sets));
-  const Scenario nominal = BuildScenario(Load("gap"));
+  const Scenario a = BuildScenario(LoadScenario("gap", sets));
+  const Scenario b = BuildScenario(LoadScenario("gap", sets));
+  const Scenario nominal = BuildScenario(LoadScenario("gap"));
   const Eigen::Vector3d p_a = a.scene().object("gap").T_WO.translation();
   EXPECT_EQ(p_a, b.scene().object("gap").T_WO.translation());
   EXPECT_GT((p_a - nominal.scene().object("gap").T_WO.translation()).norm(), 1e-6);

@@ -33,13 +33,13 @@ Eigen::Isometry3d RandomPose(std::mt19937& rng) {
   return Pose(RandomUnit(rng) * 2.0, Eigen::Vector3d(u(rng), u(rng), u(rng)));
 }
 
-struct Case {
+struct IntersectionCase {
   Primitive primitive;
   Eigen::Vector3d p_O;  // surface point in O
   Eigen::Vector3d n_O;  // outward normal there
 };
 
-void ExpectEntryHit(const Case& c, const Eigen::Isometry3d& T_WO, std::mt19937& rng,
+void ExpectEntryHit(const IntersectionCase& c, const Eigen::Isometry3d& T_WO, std::mt19937& rng,
                     Eigen::Vector2d* uv_out = nullptr) {
   Scene scene;
   const int id = scene.AddObject({"object", c.primitive, {}, T_WO});
@@ -96,9 +96,10 @@ TEST(SceneIntersectionTest, CylinderMantleAndCapsHitAtAnalyticDistance) {
     const double r = 0.19 * std::sqrt(u(rng));
     const double phi = 6.283185307179586 * u(rng);
     const bool top = i % 2;
-    ExpectEntryHit({Cylinder{0.2, 3.0}, Eigen::Vector3d(r * std::cos(phi), r * std::sin(phi), top ? 3.0 : 0.0),
-                    Eigen::Vector3d(0.0, 0.0, top ? 1.0 : -1.0)},
-                   RandomPose(rng), rng);
+    ExpectEntryHit(
+        {Cylinder{0.2, 3.0}, Eigen::Vector3d(r * std::cos(phi), r * std::sin(phi), top ? 3.0 : 0.0),
+         Eigen::Vector3d(0.0, 0.0, top ? 1.0 : -1.0)},
+        RandomPose(rng), rng);
   }
 }
 
@@ -147,16 +148,18 @@ TEST(SceneIntersectionTest, HolesLetRaysThroughToTheObjectBehind) {
   // Wall in the plane x_W = 2 (its z_O along +x_W), backdrop at x_W = 5.
   const Eigen::Isometry3d T_WO = Pose({0.0, M_PI / 2, 0.0}, {2.0, 0.0, 0.0});
   const int wall_id = scene.AddObject({"gap", wall, {}, T_WO});
-  const int back_id = scene.AddObject({"backdrop", Rectangle{{20.0, 20.0}, {}, {}}, {},
+  const int back_id = scene.AddObject({"backdrop",
+                                       Rectangle{{20.0, 20.0}, {}, {}},
+                                       {},
                                        Pose({0.0, M_PI / 2, 0.0}, {5.0, 0.0, 0.0})});
   auto id_through = [&](const Eigen::Vector2d& q_O) {
     const Eigen::Vector3d target_W = T_WO * Eigen::Vector3d(q_O.x(), q_O.y(), 0.0);
     const auto hit = scene.Intersect(Eigen::Vector3d::Zero(), target_W);
     return hit ? hit->object_id : 0;
   };
-  EXPECT_EQ(id_through({-0.8, 0.0}), back_id);   // inside the triangle
-  EXPECT_EQ(id_through({-0.8, 0.6}), wall_id);   // above its apex
-  EXPECT_EQ(id_through({-0.3, -0.45}), wall_id); // right of its base corner
+  EXPECT_EQ(id_through({-0.8, 0.0}), back_id);    // inside the triangle
+  EXPECT_EQ(id_through({-0.8, 0.6}), wall_id);    // above its apex
+  EXPECT_EQ(id_through({-0.3, -0.45}), wall_id);  // right of its base corner
   // Ellipse: major axis at 0.5 rad; 0.38 m along it is inside, 0.17 m along the minor is not.
   const Eigen::Vector2d major(std::cos(0.5), std::sin(0.5));
   const Eigen::Vector2d minor(-std::sin(0.5), std::cos(0.5));

@@ -16,7 +16,7 @@ namespace {
 using test_support::MessageOf;
 
 template <typename Params>
-Params Load(const std::string& yaml) {
+Params LoadSimParams(const std::string& yaml) {
   config::ParamReader reader(YAML::Load(yaml), "test.yaml");
   Params params;
   LoadParams(reader, &params);
@@ -24,7 +24,7 @@ Params Load(const std::string& yaml) {
 }
 
 TEST(SimParamsIoTest, LoadsVehicleAndDynamicsKeepingDefaultsForAbsentKeys) {
-  const auto params = Load<QuadrotorDynamicsParams>(R"(
+  const auto params = LoadSimParams<QuadrotorDynamicsParams>(R"(
 vehicle:
   mass_kg: 0.6
   rotor_drag_D_per_s: [0.4, 0.3, 0.1]
@@ -45,7 +45,7 @@ rotor_lag_enabled: false
 }
 
 TEST(SimParamsIoTest, LoadsGustsAndPushesFromRows) {
-  const auto params = Load<DisturbanceParams>(R"(
+  const auto params = LoadSimParams<DisturbanceParams>(R"(
 steady_wind_W_mps: [1, 0, 0]
 gusts: [[2.0, 0.5, 0, 3, 0]]
 pushes: [[1.0, 0.5, 0, 0], [3.0, 0, 0, 0.2, 0, 0, 1e-3]]
@@ -61,30 +61,32 @@ pushes: [[1.0, 0.5, 0, 0], [3.0, 0, 0, 0.2, 0, 0, 1e-3]]
 }
 
 TEST(SimParamsIoTest, LoadsSensors) {
-  const auto imu = Load<ImuSensorParams>("{rate_hz: 1000, latency_s: 0.001, seed: 42, stamp_at_delivery: true}");
+  const auto imu = LoadSimParams<ImuSensorParams>(
+      "{rate_hz: 1000, latency_s: 0.001, seed: 42, stamp_at_delivery: true}");
   EXPECT_EQ(imu.rate_hz, 1000.0);
   EXPECT_EQ(imu.seed, 42u);
   EXPECT_TRUE(imu.stamp_at_delivery);
-  const auto range = Load<RangeSensorParams>("{max_range_m: 4, p_BS: [0.05, 0, -0.02]}");
+  const auto range = LoadSimParams<RangeSensorParams>("{max_range_m: 4, p_BS: [0.05, 0, -0.02]}");
   EXPECT_EQ(range.max_range_m, 4.0);
   EXPECT_EQ(range.p_BS, Eigen::Vector3d(0.05, 0, -0.02));
 }
 
 TEST(SimParamsIoTest, RejectsUnknownKeysMalformedRowsAndInvalidValuesNamingThem) {
   EXPECT_NE(MessageOf([] {
-              Load<QuadrotorDynamicsParams>("vehicle: {rotor: {tau_up: 0.01}}");
+              LoadSimParams<QuadrotorDynamicsParams>("vehicle: {rotor: {tau_up: 0.01}}");
             }).find("tau_up"),
             std::string::npos);
   const std::string push_error =
-      MessageOf([] { Load<DisturbanceParams>("pushes: [[1.0, 0.5, 0]]"); });
+      MessageOf([] { LoadSimParams<DisturbanceParams>("pushes: [[1.0, 0.5, 0]]"); });
   EXPECT_NE(push_error.find("pushes[0]"), std::string::npos) << push_error;
-  const std::string imu_error = MessageOf([] { Load<ImuSensorParams>("{latency_s: -1}"); });
+  const std::string imu_error =
+      MessageOf([] { LoadSimParams<ImuSensorParams>("{latency_s: -1}"); });
   EXPECT_NE(imu_error.find("test.yaml"), std::string::npos) << imu_error;
   EXPECT_NE(imu_error.find("latency_s"), std::string::npos) << imu_error;
   const std::string mass_error =
-      MessageOf([] { Load<QuadrotorDynamicsParams>("vehicle: {mass_kg: 0}"); });
+      MessageOf([] { LoadSimParams<QuadrotorDynamicsParams>("vehicle: {mass_kg: 0}"); });
   EXPECT_NE(mass_error.find("mass_kg"), std::string::npos) << mass_error;
-  EXPECT_NE(MessageOf([] { Load<RangeSensorParams>("{seed: -3}"); }).find("seed"),
+  EXPECT_NE(MessageOf([] { LoadSimParams<RangeSensorParams>("{seed: -3}"); }).find("seed"),
             std::string::npos);
 }
 

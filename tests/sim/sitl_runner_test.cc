@@ -56,7 +56,7 @@ SitlCamera ForwardCamera(double rate_hz) {
   return camera;
 }
 
-Scene TexturedScene() {
+Scene TexturedBoxScene() {
   Scene scene;
   ProceduralTextureParams texture;
   scene.AddObject({"ground", GroundPlane{}, Material{MakeValueNoiseTexture(texture)}});
@@ -167,7 +167,7 @@ CameraRunOutput RunWithCamera(std::uint64_t seed, const Scene& scene) {
 }
 
 TEST(SitlRunner, SameSeedGivesIdenticalTrajectoryAndImages) {
-  const Scene scene = TexturedScene();
+  const Scene scene = TexturedBoxScene();
   const CameraRunOutput a = RunWithCamera(5, scene);
   const CameraRunOutput b = RunWithCamera(5, scene);
   const CameraRunOutput c = RunWithCamera(6, scene);
@@ -222,7 +222,7 @@ class RecordingAutopilot : public GroundTruthAutopilot {
 };
 
 TEST(SitlRunner, FramesAreDroppedAtTheConfiguredRate) {
-  const Scene scene = TexturedScene();
+  const Scene scene = TexturedBoxScene();
   SitlRunnerParams params = QuietParams(10.0);
   SitlCamera camera = ForwardCamera(30.0);
   camera.model = std::make_shared<perception::PinholeCamera>(
@@ -255,7 +255,7 @@ TEST(SitlRunner, FramesAreDroppedAtTheConfiguredRate) {
 
 TEST(SitlRunner, TwoCamerasDeliverAtTheirOwnRatesTheirOwnViews) {
   // A forward camera at 30 Hz sees the box ahead; a downward one at 20 Hz sees only the ground.
-  const Scene scene = TexturedScene();
+  const Scene scene = TexturedBoxScene();
   SitlRunnerParams params = QuietParams(1.0);
   params.initial_state.p_WB = Eigen::Vector3d(0.0, 0.0, 1.0);
   SitlCamera front = ForwardCamera(30.0);
@@ -320,7 +320,7 @@ TEST(SitlRunner, RangeSensorSeesABoxBelowAndLooksThroughIgnoredParts) {
 }
 
 TEST(SitlRunner, LatencyDelaysDeliveryByTheConfiguredAmount) {
-  const Scene scene = TexturedScene();
+  const Scene scene = TexturedBoxScene();
   SitlRunnerParams params = QuietParams(1.0);
   params.control_rate_hz = 1000.0;  // Step every dynamics step: arrival known to 1 ms
   params.range_latency_s = 0.02;
@@ -540,7 +540,7 @@ TEST(SitlRunner, PushDisturbsTheHoverWhichRecovers) {
 // A world-fixed camera sees the same (noise-free) images whatever the vehicle does; a body
 // camera does not.
 TEST(SitlRunner, WorldFixedCameraIgnoresTheVehiclePose) {
-  const Scene scene = TexturedScene();
+  const Scene scene = TexturedBoxScene();
   const auto hashes = [&scene](const Eigen::Vector3d& goal, bool fixed) {
     SitlRunnerParams params = QuietParams(0.3);
     SitlCamera camera = ForwardCamera(30.0);
@@ -574,7 +574,7 @@ TEST(SitlRunner, RejectsInconsistentParameters) {
   params = SitlRunnerParams();
   params.cameras.push_back(ForwardCamera(30.0));
   params.cameras.back().drop_probability = 1.0;
-  const Scene scene = TexturedScene();
+  const Scene scene = TexturedBoxScene();
   EXPECT_THROW(SitlRunner(params, &scene), std::invalid_argument);
   params.cameras.back().drop_probability = 0.0;
   EXPECT_THROW(SitlRunner(params, nullptr), std::invalid_argument);  // cameras need a scene
