@@ -20,19 +20,36 @@ GroundMissionScene SlalomField() {
   return field;
 }
 
+GroundMissionScene PassageField() {
+  GroundMissionScene field;
+  field.area_min_W = Eigen::Vector2d::Zero();
+  field.area_max_W = Eigen::Vector2d(4.0, 3.0);
+  field.fixed_obstacles = {{Eigen::Vector2d(2.0, 0.8), Eigen::Vector2d(0.3, 1.6), 0.0}};
+  field.robot_p_W = Eigen::Vector2d(0.6, 0.6);
+  field.robot_yaw_rad = 0.0;
+  field.goal_p_W = Eigen::Vector2d(3.4, 0.6);
+  return field;
+}
+
+std::pair<Eigen::Vector2d, Eigen::Vector2d> PassageRegion() {
+  return {Eigen::Vector2d(1.2, 1.4), Eigen::Vector2d(2.8, 3.0)};
+}
+
 GroundMissionScene RandomMissionScene(const RandomMissionSceneParams& params, std::uint64_t seed) {
   GroundMissionScene scene = params.field;
   scene.movable_obstacles.clear();
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const double radius_m = params.movable_size_m.norm() / 2;
-  const Eigen::Vector2d extent_W = scene.area_max_W - scene.area_min_W;
+  const bool in_region = (params.region_min_W.array() <= params.region_max_W.array()).all();
+  const Eigen::Vector2d min_W = in_region ? params.region_min_W : scene.area_min_W;
+  const Eigen::Vector2d extent_W = (in_region ? params.region_max_W : scene.area_max_W) - min_W;
   for (int draw = 0;
        draw < 10000 && static_cast<int>(scene.movable_obstacles.size()) < params.movable_obstacles;
        ++draw) {
     GroundBox box;
     box.size_m = params.movable_size_m;
-    box.p_W = scene.area_min_W + Eigen::Vector2d(unit(rng), unit(rng)).cwiseProduct(extent_W);
+    box.p_W = min_W + Eigen::Vector2d(unit(rng), unit(rng)).cwiseProduct(extent_W);
     box.yaw_rad = (2.0 * unit(rng) - 1.0) * control::kPi;
     const double keep_m = radius_m + params.clearance_m;
     bool free = ((box.p_W - scene.area_min_W).array() >= keep_m).all() &&
