@@ -1,19 +1,22 @@
 // aperture bench tags: the AprilTag front end and tag map against rendered ground truth
 // (issue 15).
 //
-//   aperture bench tags --out DIR [--seed S] [--quick] [--threads T] [--shard K/N]
+//   aperture bench tags --out DIR [--seed S] [--quick] [--section KEY]... [--threads T]
+//                       [--shard K/N]
 //
-// Writes DIR/summary.json (sections detection, mapping, acceptance; see
+// Writes DIR/summary.json (sections detection, mapping, missions, acceptance; see
 // experiments/tags/tag_bench.h), DIR/frames.csv (every detection-section frame per detector),
 // DIR/observations.csv (every tag observation of the mapping pass) and DIR/report.html, or
-// with --shard K/N the K-th block of the two sections (a trial is a section,
+// with --shard K/N the K-th block of the sections (a trial is a section,
 // experiments/tags/tags_monte_carlo_bench.h) for `aperture bench merge`. The detectors: the
 // built-in ones and ViSP's (BenchRegistry).
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "apps/commands.h"
 #include "apps/monte_carlo_command.h"
+#include "experiments/tags/tag_bench.h"
 #include "experiments/tags/tags_monte_carlo_bench.h"
 #include "output/output_folder.h"
 #include "servo/visp_tag_detector.h"
@@ -25,6 +28,7 @@ struct BenchTagsOptions {
   std::string out_dir;
   long long seed = 1;
   bool quick = false;
+  std::vector<std::string> sections;
   MonteCarloCommandOptions monte_carlo;
 };
 
@@ -38,6 +42,10 @@ void AddBenchTagsCommand(CLI::App& bench, int* exit_code) {
   command->add_option("--seed", options->seed, "Seed of the views, noise and the tag field")
       ->check(CLI::NonNegativeNumber);
   command->add_flag("--quick", options->quick, "Fewer frames per section (same code paths)");
+  command
+      ->add_option("--section", options->sections,
+                   "Run only this section (repeatable): detection, mapping, missions")
+      ->check(CLI::IsMember(experiments::TagBenchSectionKeys()));
   AddMonteCarloOptions(command, &options->monte_carlo);
   command->callback([options, exit_code] {
     output::OutputFolder out(options->out_dir);
@@ -45,9 +53,10 @@ void AddBenchTagsCommand(CLI::App& bench, int* exit_code) {
       experiments::TagBenchOptions bench;
       bench.seed = static_cast<std::uint64_t>(options->seed);
       bench.quick = options->quick;
+      bench.sections = options->sections;
       bench.detectors.Register(servo::kVispTagDetectorName, &servo::CreateVispTagDetector);
-      RunMonteCarloCommand(experiments::kTagsBenchName,
-                           experiments::TagsBenchConfiguration(bench), options->monte_carlo, out);
+      RunMonteCarloCommand(experiments::kTagsBenchName, experiments::TagsBenchConfiguration(bench),
+                           options->monte_carlo, out);
     });
     *exit_code = 0;
   });

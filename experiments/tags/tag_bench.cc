@@ -15,6 +15,7 @@
 #include "control/so3.h"
 #include "experiments/bench/sample_statistics.h"
 #include "experiments/bench/section_record.h"
+#include "experiments/tags/missions_bench_section.h"
 #include "experiments/tags/tag_map_evaluation.h"
 #include "experiments/tags/tags_scenario_field.h"
 #include "output/csv_writer.h"
@@ -406,7 +407,26 @@ void RunMapping(const TagBenchOptions& options, nlohmann::json* summary, output:
 
 }  // namespace
 
-std::vector<std::string> TagBenchSectionKeys() { return {"detection", "mapping"}; }
+std::vector<std::string> TagBenchSectionKeys() { return {"detection", "mapping", "missions"}; }
+
+std::vector<std::string> SelectedTagBenchSections(const TagBenchOptions& options) {
+  const std::vector<std::string> keys = TagBenchSectionKeys();
+  for (const std::string& key : options.sections) {
+    if (std::find(keys.begin(), keys.end(), key) == keys.end()) {
+      throw std::invalid_argument("bench tags: unknown section '" + key +
+                                  "'; known: detection, mapping, missions");
+    }
+  }
+  if (options.sections.empty()) return keys;
+  std::vector<std::string> selected;
+  for (const std::string& key : keys) {
+    if (std::find(options.sections.begin(), options.sections.end(), key) !=
+        options.sections.end()) {
+      selected.push_back(key);
+    }
+  }
+  return selected;
+}
 
 nlohmann::json RunTagBenchSection(const std::string& key, const TagBenchOptions& options) {
   nlohmann::json frames = nlohmann::json::array();
@@ -420,9 +440,13 @@ nlohmann::json RunTagBenchSection(const std::string& key, const TagBenchOptions&
     record = RecordSection([&](nlohmann::json* summary, output::HtmlReport* report) {
       RunMapping(options, summary, report, &observations);
     });
+  } else if (key == "missions") {
+    record = RecordSection([&](nlohmann::json* summary, output::HtmlReport* report) {
+      RunMissionsSection(options, summary, report);
+    });
   } else {
     throw std::invalid_argument("bench tags: unknown section '" + key +
-                                "'; known: detection, mapping");
+                                "'; known: detection, mapping, missions");
   }
   record["section"] = key;
   record["frames"] = std::move(frames);

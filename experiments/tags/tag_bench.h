@@ -12,7 +12,11 @@
 //              position RMS before (chained initialisation) and after optimization, in the
 //              origin tag's frame, with and without the odometry edges; tags whose mapped
 //              rotation is > 10 deg off (flipped) for resolved and unresolved inputs
-//   acceptance booleans: map RMS <= 2 cm, no flipped tag in the map
+//   missions   paper D's ground-robot mission planner on random scenes: planning time per number
+//              of movable obstacles, solve rate, Alg. 2 against exhaustive search
+//              (missions_bench_section.h)
+//   acceptance booleans: map RMS <= 2 cm, no flipped tag in the map; missions solved >= 99 %,
+//              Alg. 2 equal to the exhaustive search
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -30,10 +34,15 @@ struct TagBenchOptions {
   std::string frames_csv_path;  // per detection frame of the detection section; empty = none
   // Per tag observation of the mapping pass (its pose and corners against the truth); empty = none
   std::string observations_csv_path;
+  // The sections to run, in TagBenchSectionKeys() order whatever the order here; empty = all.
+  std::vector<std::string> sections;
 };
 
-// The section keys in the order they run: "detection", "mapping".
+// The section keys in the order they run: "detection", "mapping", "missions".
 std::vector<std::string> TagBenchSectionKeys();
+// The keys of options.sections in run order (all when empty); std::invalid_argument naming an
+// unknown one.
+std::vector<std::string> SelectedTagBenchSections(const TagBenchOptions& options);
 
 // Runs section `key` on its own (each draws from options.seed alone, so it gives the same
 // figures whatever else runs): its record {"section", "summary" (its keys; mapping also writes

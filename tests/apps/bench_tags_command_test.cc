@@ -1,5 +1,5 @@
-// `aperture bench tags --quick` end to end: every section of issue 15's bench is written and the
-// quick mapping pass meets the map acceptance against the scenario's ground truth.
+// `aperture bench tags --quick` end to end: every section of issues 15 and 16's bench is written
+// and the quick mapping pass meets the map acceptance against the scenario's ground truth.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -43,6 +43,27 @@ TEST(BenchTagsCommand, QuickRunMapsTheFieldWithinTwoCentimetres) {
             mapping["flip_rate_lowest_error"].get<double>());
   EXPECT_TRUE(std::filesystem::exists(out.path() + "/frames.csv"));
   EXPECT_TRUE(std::filesystem::exists(out.path() + "/report.html"));
+  EXPECT_EQ(summary["acceptance"]["missions_equal_exhaustive_search"], true);
+}
+
+// --section missions runs the ground-robot planner's section alone (no rendering): its figures
+// and acceptance, nothing of the other sections. An unknown section is a usage error.
+TEST(BenchTagsCommand, MissionsSectionAlone) {
+  TempFolder out("bench_tags_missions");
+  const CommandResult run =
+      RunAperture("bench tags --quick --section missions --out " + out.path());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const nlohmann::json summary = ReadJson(out.path() + "/summary.json");
+  EXPECT_FALSE(summary.contains("detection"));
+  EXPECT_FALSE(summary.contains("mapping"));
+  const nlohmann::json& missions = summary["missions"];
+  EXPECT_EQ(missions["scenes"], 50);  // quick: 10 per number of movable obstacles 1-5
+  EXPECT_EQ(missions["equal_to_exhaustive"], missions["compared_scenes"]);
+  EXPECT_EQ(summary["acceptance"]["missions_solved_at_least_99pct"], true);
+  EXPECT_EQ(missions["timing"].size(), 5u);
+  const CommandResult unknown =
+      RunAperture("bench tags --quick --section planning --out " + out.path() + "/unknown");
+  EXPECT_EQ(unknown.exit_code, 2) << unknown.output;
 }
 
 }  // namespace
