@@ -14,7 +14,8 @@
 namespace aperture::experiments {
 namespace {
 
-constexpr int kMaxMovableObstacles = 5;  // Fig. D.13: 5 x 50 = 250 scenes
+// Fig. D.13: 5 numbers of movable obstacles x 50 scenes = 250 scenes.
+constexpr int kMovableObstacleCounts[] = {2, 4, 6, 8, 10};
 
 // Seeds per (bench seed, count, trial), disjoint between the counts and the two scene kinds.
 std::uint64_t SceneSeed(std::uint64_t bench_seed, int kind, int count, int trial) {
@@ -32,7 +33,7 @@ void RunMissionsSection(const TagBenchOptions& options, nlohmann::json* summary,
   nlohmann::json per_count = nlohmann::json::object();
   std::vector<double> counts, median_times_ms;
   int scenes = 0, solved = 0;
-  for (int count = 1; count <= kMaxMovableObstacles; ++count) {
+  for (const int count : kMovableObstacleCounts) {
     planning::RandomMissionSceneParams scene_params;
     scene_params.field = planning::SlalomField();
     scene_params.movable_obstacles = count;

@@ -2,8 +2,8 @@
 // `aperture bench tags --section missions` (issue 16): paper D's ground-robot mission planner
 // (planning/ground_mission/ground_mission_planner.h) on random scenes, Sec. D.7.1:
 //   timing      Fig. D.13's analog: on the slalom field (4 x 6 m, two walls) 50 scenes per
-//               number of movable obstacles 1-5 (10 with quick); median and largest planning
-//               time and partial missions expanded per number (measured: under "timing")
+//               number of movable obstacles 2, 4, 6, 8, 10 (10 with quick); median and largest
+//               planning time and partial missions expanded per number (measured: under "timing")
 //   solve rate  of those 250 scenes (the paper: 248 of 250), each solved mission checked
 //   optimality  Alg. 2 against the exhaustive search over every order of every subset on 100
 //               small scenes (20 with quick: the passage field, 2-4 obstacles around its passage)

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "control/constants.h"
+#include "control/require.h"
 #include "planning/ground_mission/ground_polyline.h"
 #include "planning/ground_mission/place_search.h"
 
@@ -25,19 +26,10 @@ using control::kInf;
 // deg), rounded up so the bound stays below the true cost.
 constexpr double kOctilePerEuclidean = 1.0824;
 
-double WrapAngle(double angle_rad) { return std::remainder(angle_rad, 2.0 * control::kPi); }
-
 std::string Describe(const Eigen::Vector2d& p_W) {
   std::ostringstream out;
   out << "(" << p_W.x() << ", " << p_W.y() << ") m";
   return out.str();
-}
-
-void RequirePositive(double value, const char* name) {
-  if (!(value > 0.0) || !std::isfinite(value)) {
-    throw std::invalid_argument(std::string("GroundMissionParams: ") + name + " = " +
-                                std::to_string(value) + "; it must be positive and finite");
-  }
 }
 
 void ValidateScene(const GroundMissionScene& scene, const GroundMissionParams& params) {
@@ -117,15 +109,12 @@ std::ostream& operator<<(std::ostream& out, const GroundMission& mission) {
 GroundMissionPlanner::GroundMissionPlanner(const GroundMissionScene& scene,
                                            const GroundMissionParams& params)
     : scene_(scene), params_(params), fixed_grid_(BuildFixedGrid(scene, params)) {
-  RequirePositive(params.cell_size_m, "cell_size_m");
-  RequirePositive(params.robot_radius_m, "robot_radius_m");
-  RequirePositive(params.grasp_radius_m, "grasp_radius_m");
-  RequirePositive(params.driving_speed_mps, "driving_speed_mps");
-  RequirePositive(params.turn_rate_deg_s, "turn_rate_deg_s");
-  if (!(params.remove_time_s >= 0.0) || !std::isfinite(params.remove_time_s)) {
-    throw std::invalid_argument("GroundMissionParams: remove_time_s = " +
-                                std::to_string(params.remove_time_s) + "; it must be >= 0");
-  }
+  control::RequirePositive(params.cell_size_m, "GroundMissionParams.cell_size_m");
+  control::RequirePositive(params.robot_radius_m, "GroundMissionParams.robot_radius_m");
+  control::RequirePositive(params.grasp_radius_m, "GroundMissionParams.grasp_radius_m");
+  control::RequirePositive(params.driving_speed_mps, "GroundMissionParams.driving_speed_mps");
+  control::RequirePositive(params.turn_rate_deg_s, "GroundMissionParams.turn_rate_deg_s");
+  control::RequireNonNegative(params.remove_time_s, "GroundMissionParams.remove_time_s");
   ValidateScene(scene, params);
   const std::optional<int> start = fixed_grid_.CellAt(scene.robot_p_W);
   bool start_free = start && !fixed_grid_.blocked(*start);
@@ -170,7 +159,8 @@ std::optional<GroundMissionLeg> GroundMissionPlanner::MakeLeg(const OccupancyGri
   double yaw_rad = from.yaw_rad;
   for (size_t i = 0; i < leg.waypoints.size(); ++i) {
     if (i > 0) leg.length_m += (leg.waypoints[i].p_W - leg.waypoints[i - 1].p_W).norm();
-    leg.turn_rad += std::abs(WrapAngle(leg.waypoints[i].yaw_rad - yaw_rad));
+    leg.turn_rad +=
+        std::abs(std::remainder(leg.waypoints[i].yaw_rad - yaw_rad, 2.0 * control::kPi));
     yaw_rad = leg.waypoints[i].yaw_rad;
   }
   leg.time_s = leg.length_m / params_.driving_speed_mps +

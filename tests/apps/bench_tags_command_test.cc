@@ -57,7 +57,7 @@ TEST(BenchTagsCommand, MissionsSectionAlone) {
   EXPECT_FALSE(summary.contains("detection"));
   EXPECT_FALSE(summary.contains("mapping"));
   const nlohmann::json& missions = summary["missions"];
-  EXPECT_EQ(missions["scenes"], 50);  // quick: 10 per number of movable obstacles 1-5
+  EXPECT_EQ(missions["scenes"], 50);  // quick: 10 per number of movable obstacles 2-10
   EXPECT_EQ(missions["equal_to_exhaustive"], missions["compared_scenes"]);
   EXPECT_EQ(summary["acceptance"]["missions_solved_at_least_99pct"], true);
   EXPECT_EQ(missions["timing"].size(), 5u);

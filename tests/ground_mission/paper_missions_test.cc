@@ -12,9 +12,8 @@
 //         carried back to the corridor entrance, the last is placed at its exit.
 #include <gtest/gtest.h>
 
-#include <sstream>
-
 #include "planning/ground_mission/ground_mission_planner.h"
+#include "tests/support/ground_mission_checks.h"
 
 namespace aperture::planning {
 namespace {
@@ -26,12 +25,6 @@ GroundBox Cube(double x, double y) {
 GroundBox Block(double x_min, double y_min, double x_max, double y_max) {
   return {Eigen::Vector2d(x_min + x_max, y_min + y_max) / 2,
           Eigen::Vector2d(x_max - x_min, y_max - y_min), 0.0};
-}
-
-std::string Print(const GroundMission& mission) {
-  std::ostringstream out;
-  out << mission;
-  return out.str();
 }
 
 // Fig. D.9a: 6 x 4 m, block x 1.5-4.5 m, y 0.9-2.5 m; south corridor y 0-0.9 m, north corridor
@@ -74,28 +67,30 @@ constexpr double kCorridorExit_m = 4.5;
 TEST(PaperMissionsTest, Figure9aTakesTheNorthPathWithoutBackwardDriving) {
   const GroundMissionPlanner planner(Figure9aScene());
   const GroundMission mission = planner.Plan();
-  ASSERT_TRUE(mission.solved()) << Print(mission);
-  EXPECT_EQ(mission.Order(), std::vector<int>({2, 3})) << Print(mission);
-  EXPECT_EQ(mission.backward_s, 0.0) << Print(mission);
+  ASSERT_TRUE(mission.solved()) << mission;
+  EXPECT_EQ(mission.Order(), std::vector<int>({2, 3})) << mission;
+  EXPECT_EQ(mission.backward_s, 0.0) << mission;
+  testing::ExpectCollisionFree(planner.scene(), planner.params(), mission);
   // The south mission: shorter path, but the first cube is carried back out of the corridor.
   const GroundMission south = planner.EvaluateOrder({0, 1});
-  ASSERT_TRUE(south.solved()) << Print(south);
-  EXPECT_LT(south.path_length_m(), mission.path_length_m() - 1.0) << Print(south);
-  EXPECT_GT(south.removals[0].backward_m, 1.0) << Print(south);
-  EXPECT_GT(south.cost_s, mission.cost_s) << Print(south);
+  ASSERT_TRUE(south.solved()) << south;
+  EXPECT_LT(south.path_length_m(), mission.path_length_m() - 1.0) << south;
+  EXPECT_GT(south.removals[0].backward_m, 1.0) << south;
+  EXPECT_GT(south.cost_s, mission.cost_s) << south;
   EXPECT_DOUBLE_EQ(planner.PlanExhaustively().cost_s, mission.cost_s);
 }
 
 TEST(PaperMissionsTest, Figure9bTakesTheSouthPathAndCarriesTheFirstCubeBack) {
   const GroundMissionPlanner planner(Figure9bScene());
   const GroundMission mission = planner.Plan();
-  ASSERT_TRUE(mission.solved()) << Print(mission);
-  ASSERT_EQ(mission.Order(), std::vector<int>({0, 1})) << Print(mission);
+  ASSERT_TRUE(mission.solved()) << mission;
+  ASSERT_EQ(mission.Order(), std::vector<int>({0, 1})) << mission;
   // The first cube goes back out of the corridor's entrance, the second beyond its exit.
-  EXPECT_GT(mission.removals[0].backward_m, 1.0) << Print(mission);
-  EXPECT_LT(mission.removals[0].place_p_W.x(), kCorridorEntrance_m) << Print(mission);
-  EXPECT_EQ(mission.removals[1].backward_m, 0.0) << Print(mission);
-  EXPECT_GT(mission.removals[1].place_p_W.x(), kCorridorExit_m) << Print(mission);
+  EXPECT_GT(mission.removals[0].backward_m, 1.0) << mission;
+  EXPECT_LT(mission.removals[0].place_p_W.x(), kCorridorEntrance_m) << mission;
+  EXPECT_EQ(mission.removals[1].backward_m, 0.0) << mission;
+  EXPECT_GT(mission.removals[1].place_p_W.x(), kCorridorExit_m) << mission;
+  testing::ExpectCollisionFree(planner.scene(), planner.params(), mission);
   // The caption: this mission takes longer than the one of Fig. D.9a.
   EXPECT_GT(mission.cost_s, GroundMissionPlanner(Figure9aScene()).Plan().cost_s);
   EXPECT_DOUBLE_EQ(planner.PlanExhaustively().cost_s, mission.cost_s);
@@ -104,16 +99,17 @@ TEST(PaperMissionsTest, Figure9bTakesTheSouthPathAndCarriesTheFirstCubeBack) {
 TEST(PaperMissionsTest, Figure10CarriesAllButTheLastCubeBack) {
   const GroundMissionPlanner planner(Figure10Scene());
   const GroundMission mission = planner.Plan();
-  ASSERT_TRUE(mission.solved()) << Print(mission);
-  ASSERT_EQ(mission.Order(), std::vector<int>({0, 1, 2})) << Print(mission);
+  ASSERT_TRUE(mission.solved()) << mission;
+  ASSERT_EQ(mission.Order(), std::vector<int>({0, 1, 2})) << mission;
   for (int i = 0; i < 2; ++i) {
-    EXPECT_GT(mission.removals[i].backward_m, 0.0) << "removal " << i << ": " << Print(mission);
-    EXPECT_LT(mission.removals[i].place_p_W.x(), kCorridorEntrance_m) << Print(mission);
+    EXPECT_GT(mission.removals[i].backward_m, 0.0) << "removal " << i << ": " << mission;
+    EXPECT_LT(mission.removals[i].place_p_W.x(), kCorridorEntrance_m) << mission;
   }
-  EXPECT_EQ(mission.removals[2].backward_m, 0.0) << Print(mission);
-  EXPECT_GT(mission.removals[2].place_p_W.x(), kCorridorExit_m) << Print(mission);
+  EXPECT_EQ(mission.removals[2].backward_m, 0.0) << mission;
+  EXPECT_GT(mission.removals[2].place_p_W.x(), kCorridorExit_m) << mission;
   // The second cube is carried back further than the first (it lies deeper in the corridor).
-  EXPECT_GT(mission.removals[1].backward_m, mission.removals[0].backward_m) << Print(mission);
+  EXPECT_GT(mission.removals[1].backward_m, mission.removals[0].backward_m) << mission;
+  testing::ExpectCollisionFree(planner.scene(), planner.params(), mission);
   EXPECT_DOUBLE_EQ(planner.PlanExhaustively().cost_s, mission.cost_s);
 }
 
@@ -126,7 +122,7 @@ TEST(PaperMissionsTest, FreeFieldDrivesStraightToTheGoal) {
   scene.goal_p_W = Eigen::Vector2d(5.025, 2.025);
   const GroundMissionParams params;
   const GroundMission mission = GroundMissionPlanner(scene, params).Plan();
-  ASSERT_TRUE(mission.solved()) << Print(mission);
+  ASSERT_TRUE(mission.solved()) << mission;
   ASSERT_EQ(mission.legs.size(), 1u);
   EXPECT_EQ(mission.legs[0].waypoints.size(), 2u);
   EXPECT_NEAR(mission.path_length_m(), 4.0 - params.grasp_radius_m, params.cell_size_m);
