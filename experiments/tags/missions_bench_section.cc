@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <string>
 #include <tuple>
 #include <vector>
 
@@ -29,8 +28,8 @@ void RunMissionsSection(const TagBenchOptions& options, nlohmann::json* summary,
                         output::HtmlReport* report) {
   const planning::GroundMissionParams params;
   const int trials = options.quick ? 10 : 50;
-  nlohmann::json timing = nlohmann::json::object();
-  nlohmann::json per_count = nlohmann::json::object();
+  nlohmann::json timing = nlohmann::json::array();
+  nlohmann::json per_count = nlohmann::json::array();
   std::vector<double> counts, median_times_ms;
   int scenes = 0, solved = 0;
   for (const int count : kMovableObstacleCounts) {
@@ -54,13 +53,14 @@ void RunMissionsSection(const TagBenchOptions& options, nlohmann::json* summary,
     }
     scenes += trials;
     solved += solved_here;
-    const std::string key = std::to_string(count);
-    per_count[key] = {{"scenes", trials},
-                      {"solved", solved_here},
-                      {"expanded_median", UpperMedian(expanded)},
-                      {"removals_mean", FiniteOrNull(Mean(removals))}};
-    timing[key] = {{"planning_time_median_s", UpperMedian(times_s)},
-                   {"planning_time_max_s", *std::max_element(times_s.begin(), times_s.end())}};
+    per_count.push_back({{"movable_obstacles", count},
+                         {"scenes", trials},
+                         {"solved", solved_here},
+                         {"expanded_median", UpperMedian(expanded)},
+                         {"removals_mean", FiniteOrNull(Mean(removals))}});
+    timing.push_back({{"movable_obstacles", count},
+                      {"planning_time_median_s", UpperMedian(times_s)},
+                      {"planning_time_max_s", *std::max_element(times_s.begin(), times_s.end())}});
     counts.push_back(count);
     median_times_ms.push_back(1e3 * UpperMedian(times_s));
   }

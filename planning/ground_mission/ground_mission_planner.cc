@@ -63,7 +63,19 @@ void ValidateScene(const GroundMissionScene& scene, const GroundMissionParams& p
   }
 }
 
+void ValidateParams(const GroundMissionParams& params) {
+  control::RequirePositive(params.cell_size_m, "GroundMissionParams.cell_size_m");
+  control::RequirePositive(params.robot_radius_m, "GroundMissionParams.robot_radius_m");
+  control::RequirePositive(params.grasp_radius_m, "GroundMissionParams.grasp_radius_m");
+  control::RequirePositive(params.driving_speed_mps, "GroundMissionParams.driving_speed_mps");
+  control::RequirePositive(params.turn_rate_deg_s, "GroundMissionParams.turn_rate_deg_s");
+  control::RequireNonNegative(params.remove_time_s, "GroundMissionParams.remove_time_s");
+}
+
+// The map without movable obstacles, after checking the parameters and the scene.
 OccupancyGrid BuildFixedGrid(const GroundMissionScene& scene, const GroundMissionParams& params) {
+  ValidateParams(params);
+  ValidateScene(scene, params);
   OccupancyGrid grid(scene.area_min_W, scene.area_max_W, params.cell_size_m);
   grid.BlockBorder(params.robot_radius_m);
   for (const GroundBox& box : scene.fixed_obstacles) grid.BlockBox(box, params.robot_radius_m);
@@ -109,13 +121,6 @@ std::ostream& operator<<(std::ostream& out, const GroundMission& mission) {
 GroundMissionPlanner::GroundMissionPlanner(const GroundMissionScene& scene,
                                            const GroundMissionParams& params)
     : scene_(scene), params_(params), fixed_grid_(BuildFixedGrid(scene, params)) {
-  control::RequirePositive(params.cell_size_m, "GroundMissionParams.cell_size_m");
-  control::RequirePositive(params.robot_radius_m, "GroundMissionParams.robot_radius_m");
-  control::RequirePositive(params.grasp_radius_m, "GroundMissionParams.grasp_radius_m");
-  control::RequirePositive(params.driving_speed_mps, "GroundMissionParams.driving_speed_mps");
-  control::RequirePositive(params.turn_rate_deg_s, "GroundMissionParams.turn_rate_deg_s");
-  control::RequireNonNegative(params.remove_time_s, "GroundMissionParams.remove_time_s");
-  ValidateScene(scene, params);
   const std::optional<int> start = fixed_grid_.CellAt(scene.robot_p_W);
   bool start_free = start && !fixed_grid_.blocked(*start);
   for (const GroundBox& box : scene.movable_obstacles) {

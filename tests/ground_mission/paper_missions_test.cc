@@ -144,13 +144,16 @@ TEST(PaperMissionsTest, RemovalTimeDecidesBetweenDetourAndRemoval) {
   EXPECT_TRUE(GroundMissionPlanner(scene, slow).Plan().Order().empty());
 }
 
-TEST(PaperMissionsTest, RejectsAStartInsideAnObstacle) {
+TEST(PaperMissionsTest, RejectsACollidingStartAndBadParameters) {
   GroundMissionScene scene = Figure9aScene();
   scene.robot_p_W = Eigen::Vector2d(3.0, 1.7);  // inside the block
   EXPECT_THROW(GroundMissionPlanner{scene}, std::invalid_argument);
   GroundMissionParams params;
   params.grasp_radius_m = 0.4;  // below robot radius + cube radius
   EXPECT_THROW(GroundMissionPlanner(Figure9aScene(), params), std::invalid_argument);
+  GroundMissionParams standing;
+  standing.driving_speed_mps = 0.0;
+  EXPECT_THROW(GroundMissionPlanner(Figure9aScene(), standing), std::invalid_argument);
 }
 
 }  // namespace
