@@ -242,7 +242,7 @@ GroundMission GroundMissionPlanner::Complete(const Partial& partial,
         continue;
       }
       const GroundBox& box = scene_.movable_obstacles[k];
-      context.in_place.push_back({box.p_W, CircumscribedRadius(box), 0.0});
+      context.in_place.push_back({box.p_W, CircumscribedRadius(box)});
     }
     const double radius_m =
         CircumscribedRadius(scene_.movable_obstacles[static_cast<size_t>(obstacle)]);
@@ -262,7 +262,7 @@ GroundMission GroundMissionPlanner::Complete(const Partial& partial,
     removal.place_s_m = place->robot_s_m;
     removal.backward_m = std::max(0.0, stop_s_m[i] - place->robot_s_m);
     mission.removals.push_back(removal);
-    context.placed.push_back({place->p_W, radius_m, place->robot_s_m});
+    context.placed.push_back({place->p_W, radius_m});
     mission.remove_s += params_.remove_time_s;
     mission.backward_s += 2.0 * removal.backward_m / params_.driving_speed_mps;
   }

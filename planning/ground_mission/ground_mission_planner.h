@@ -10,7 +10,8 @@
 // the fixed obstacles, the goal footprint and the movable obstacles still in place (each as its
 // circumscribed disc, whatever its yaw). Grasp locations of an obstacle: the free cells within
 // grasp_radius_m of its centre; the leg to it ends at the nearest one (single-source Dijkstra,
-// grid_dijkstra.h) and is refined by Alg. 3 (path_refinement.h).
+// grid_dijkstra.h) and is refined by Alg. 3 (path_refinement.h). Waypoints are cell centres:
+// the first one lies within half a cell diagonal of the robot's pose.
 //
 // Cost (D.7): mission time = driven length / driving_speed_mps + heading changes / turn_rate
 // (the robot faces along each refined piece and, at the end of a leg, the obstacle or the goal;

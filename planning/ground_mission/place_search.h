@@ -12,12 +12,10 @@
 
 namespace aperture::planning {
 
-// An obstacle's footprint as a disc; placed_s_m: the arc length of the robot when it put the
-// obstacle down (obstacles still at their place in the scene: unused).
+// An obstacle's footprint as a disc (its circumscribed circle).
 struct PlacedDisc {
   Eigen::Vector2d p_W = Eigen::Vector2d::Zero();
   double radius_m = 0.0;
-  double placed_s_m = 0.0;
 };
 
 struct PlaceSearchContext {
