@@ -112,7 +112,12 @@ class ControlMonteCarloBench : public MonteCarloBench {
         "drag, rotor drag growing with thrust, motor time constants, thrust and torque maps, "
         "per-rotor fitness, battery sag, ESC delay, gyro vibration noise, command and estimate "
         "latency (not compensated). Every tracking and hover flight uses the bench vehicle drawn "
-        "from the seed; each throw of the recovery section draws its own.");
+        "from the seed; each throw of the recovery section draws its own. " +
+        std::string(options_.vehicle.hover_thrust_calibration
+                        ? "The flight controller knows the collective thrust scale a hover "
+                          "calibration (A.5.4) finds (vehicle.hover_thrust_calibration)."
+                        : "No hover thrust calibration: the flight controller flies the nominal "
+                          "thrust map."));
     report->AddTable(out["mismatch_bounds"], "vehicle.mismatch_bounds");
     report->AddTable(out["bench_vehicle"],
                      "bench vehicle (seed " + std::to_string(options_.seed) + ")");
