@@ -5,9 +5,11 @@
 //                          [--config FILE] [--set control.mixer=one_shot ...]
 //                          [--threads T] [--shard K/N]
 //
-// The bench vehicle and its control stack come from the sections `control`, `dynamics`, `imu` and
-// `range` (sim/control_params_io.h, sim/sim_params_io.h; defaults: the thesis' vehicle analog);
-// every section's flights start from them and vary only what the section compares.
+// The bench vehicle and its control stack come from the sections `control`, `dynamics`, `imu`,
+// `range` and `vehicle` (sim/control_params_io.h, sim/sim_params_io.h; defaults: the thesis'
+// vehicle analog, and a simulated vehicle that departs from the controllers' model:
+// vehicle.mismatch, sim/sitl/vehicle_mismatch.h); every section's flights start from them and
+// vary only what the section compares.
 // Runs every section of experiments::ControlBenchSections() (or those named by --only) in order
 // and writes DIR/summary.json (each section's figures under its key, plus timing.<key>_s) and
 // DIR/report.html (each section's plots and tables), or with --shard K/N the K-th block of the

@@ -27,7 +27,12 @@ Eigen::Matrix3d ComputeDesiredAttitude(const Eigen::Vector3d& z_des_W, double he
   const Eigen::Vector3d y_C(-x_C.y(), x_C.x(), 0.0);                             // (B.17)
   Eigen::Vector3d x_tilde = y_C.cross(z_des_W);                                  // (B.18)
   const bool defined = x_tilde.norm() >= kYawSingularity;
-  if (!defined) x_tilde = x_C - x_C.dot(z_des_W) * z_des_W;  // |x_tilde| ~ 1 here
+  if (!defined) {
+    x_tilde = x_C - x_C.dot(z_des_W) * z_des_W;  // |x_tilde| ~ 1 here
+  } else if (z_des_W.z() < 0.0) {
+    // B.18 text: with z_des pointing downwards y_C x z_des projects onto -x_C; negate it.
+    x_tilde = -x_tilde;
+  }
   if (heading_defined != nullptr) *heading_defined = defined;
   Eigen::Matrix3d R;
   R.col(0) = x_tilde.normalized();

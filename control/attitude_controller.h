@@ -10,10 +10,11 @@
 //    full desired attitude built from z_des and the heading psi; r_des = +-2 p_yaw q_e,y^(z).
 //
 // Desired attitude (B.16)-(B.19), identical to (F.33)-(F.35) and to (F.11)-(F.13) for a
-// drag-free reference: x_des = y_C x z_des / |y_C x z_des|, y_des = z_des x x_des. Unlike the B
-// text, x_des is not negated when z_des points downwards: (F.11) does not negate either, so at
-// zero tracking error R_des equals the flatness reference R_ref for any attitude and the feedback
-// vanishes (negating would make an inverted reference demand a 180 deg yaw).
+// drag-free reference: x_des = y_C x z_des / |y_C x z_des|, y_des = z_des x x_des, with the B.18
+// text's negation of x_des when z_des points downwards (z_des^z < 0): then y_C x z_des projects
+// onto -x_C, and the negation keeps the horizontal projection of x_des on the side of x_C, so the
+// heading psi means the same for an inverted vehicle (the recovery's throws). (F.11) does not
+// negate: for a reference whose thrust points downwards R_des is R_ref turned by pi about z_des.
 //
 // Special cases: z_B antiparallel to z_des (alpha = pi) makes the axis of (B.12) undefined; the
 // controller then rotates about the body x axis. When |y_C x z_des| < kYawSingularity the heading

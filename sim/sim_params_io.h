@@ -17,6 +17,20 @@
 //   ground_contact_enabled: false
 //   ground_height_m: 0.0            # in the SITL also the collision checker's ground
 //   landing_gear_height_m: 0.0      # origin of B above the ground when resting on the gear
+//   quadratic_drag_per_m: 0.0       # effects the controllers do not model (0 = none)
+//   drag_thrust_exponent: 0.0
+//   battery_sag_per_s: 0.0
+//
+//   vehicle:                        # VehicleMismatchParams (sim/sitl/vehicle_mismatch.h)
+//     mismatch: true                # the simulated vehicle is drawn per trial; false: = model
+//     hover_thrust_calibration: true  # the flight controller knows the collective thrust scale
+//     mismatch_bounds: {rotor_drag_relative: 0.2, thrust_velocity_coeff_kh_max: 0.02,
+//                       quadratic_drag_max_per_m: 0.03, drag_thrust_exponent_max: 0.5,
+//                       time_constant_relative: 0.3, thrust_map_relative: 0.3,
+//                       torque_map_relative: 0.3, rotor_fitness_relative: 0.1,
+//                       battery_sag_max_per_s: 0.001, esc_delay_max_s: 0.005,
+//                       gyro_vibration_noise_max: 0.002, command_latency_s: [0.01, 0.015],
+//                       estimate_latency_s: [0.01, 0.015]}
 //
 //   disturbances:
 //     steady_wind_W_mps: [0, 0, 0]
@@ -30,7 +44,8 @@
 //               max_touchdown_speed_mps: 1.0, max_touchdown_tilt_rad: 0.5,
 //               ignored_objects: [name, ...], sphere_rays: 64, disk_rays: 12}
 //   sitl: {dynamics_rate_hz: 1000, control_rate_hz: 100, command_latency_s: 0,     # the loop
-//          range_latency_s: 0, range_enabled: true, start_hovering: true}        # fields only
+//          range_latency_s: 0, estimate_latency_s: 0, esc_delay_s: 0,            # fields only
+//          range_enabled: true, start_hovering: true}
 //
 // All throw std::invalid_argument naming where the bad value is and what is expected.
 #include "config/yaml_read_archive.h"
@@ -42,6 +57,7 @@
 #include "sim/sensors/range_sensor.h"
 #include "sim/sitl/collision_checker.h"
 #include "sim/sitl/sitl_runner.h"
+#include "sim/sitl/vehicle_mismatch.h"
 #include "sim/vehicle/disturbances.h"
 #include "sim/vehicle/quadrotor_dynamics.h"
 
@@ -55,6 +71,52 @@ void Serialize(Archive* a, QuadrotorDynamicsParams* p) {
   a->Visit(APERTURE_NVP(p, ground_contact_enabled));
   a->Visit(APERTURE_NVP(p, ground_height_m));
   a->Visit(APERTURE_NVP(p, landing_gear_height_m));
+  a->Visit(APERTURE_NVP(p, quadratic_drag_per_m));
+  a->Visit(APERTURE_NVP(p, drag_thrust_exponent));
+  a->Visit(APERTURE_NVP(p, battery_sag_per_s));
+}
+
+template <typename Archive>
+void Serialize(Archive* a, VehicleMismatchBounds* p) {
+  a->Visit(APERTURE_NVP(p, rotor_drag_relative));
+  a->Visit(APERTURE_NVP(p, thrust_velocity_coeff_kh_max));
+  a->Visit(APERTURE_NVP(p, quadratic_drag_max_per_m));
+  a->Visit(APERTURE_NVP(p, drag_thrust_exponent_max));
+  a->Visit(APERTURE_NVP(p, time_constant_relative));
+  a->Visit(APERTURE_NVP(p, thrust_map_relative));
+  a->Visit(APERTURE_NVP(p, torque_map_relative));
+  a->Visit(APERTURE_NVP(p, rotor_fitness_relative));
+  a->Visit(APERTURE_NVP(p, battery_sag_max_per_s));
+  a->Visit(APERTURE_NVP(p, esc_delay_max_s));
+  a->Visit(APERTURE_NVP(p, gyro_vibration_noise_max));
+  a->Visit(APERTURE_NVP(p, command_latency_s));
+  a->Visit(APERTURE_NVP(p, estimate_latency_s));
+}
+
+template <typename Archive>
+void Serialize(Archive* a, VehicleMismatchParams* p) {
+  a->Visit(APERTURE_NVP(p, mismatch));
+  a->Visit(APERTURE_NVP(p, mismatch_bounds));
+  a->Visit(APERTURE_NVP(p, hover_thrust_calibration));
+}
+
+// A drawn vehicle (for reports: DumpParams).
+template <typename Archive>
+void Serialize(Archive* a, VehicleMismatch* p) {
+  a->Visit(APERTURE_NVP(p, rotor_drag_factor_xy));
+  a->Visit(APERTURE_NVP(p, thrust_velocity_coeff_kh));
+  a->Visit(APERTURE_NVP(p, quadratic_drag_per_m));
+  a->Visit(APERTURE_NVP(p, drag_thrust_exponent));
+  a->Visit(APERTURE_NVP(p, time_constant_up_factor));
+  a->Visit(APERTURE_NVP(p, time_constant_down_factor));
+  a->Visit(APERTURE_NVP(p, thrust_map_factor));
+  a->Visit(APERTURE_NVP(p, torque_map_factor));
+  a->Visit(APERTURE_NVP(p, rotor_fitness_factor));
+  a->Visit(APERTURE_NVP(p, battery_sag_per_s));
+  a->Visit(APERTURE_NVP(p, esc_delay_s));
+  a->Visit(APERTURE_NVP(p, gyro_vibration_noise));
+  a->Visit(APERTURE_NVP(p, command_latency_s));
+  a->Visit(APERTURE_NVP(p, estimate_latency_s));
 }
 
 // Leaf formats: a gust as [t_start_s, duration_s, wind_x, wind_y, wind_z], a push as
@@ -86,7 +148,8 @@ void Serialize(Archive* a, ImuSensorParams* p) {
   a->Visit(APERTURE_NVP(p, seed));
 }
 
-// OdometrySensorParams (the seed is the caller's: the forest flight derives it from the scenario's).
+// OdometrySensorParams (the seed is the caller's: the forest flight derives it from the
+// scenario's).
 template <typename Archive>
 void Serialize(Archive* a, OdometrySensorParams* p) {
   a->Visit(APERTURE_NVP(p, rate_hz));
@@ -125,6 +188,8 @@ void Serialize(Archive* a, SitlRunnerParams* p) {
   a->Visit(APERTURE_NVP(p, control_rate_hz));
   a->Visit(APERTURE_NVP(p, command_latency_s));
   a->Visit(APERTURE_NVP(p, range_latency_s));
+  a->Visit(APERTURE_NVP(p, estimate_latency_s));
+  a->Visit(APERTURE_NVP(p, esc_delay_s));
   a->Visit(APERTURE_NVP(p, range_enabled));
   a->Visit(APERTURE_NVP(p, start_hovering));
 }

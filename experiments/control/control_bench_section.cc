@@ -7,6 +7,7 @@ sim::TrackingFlightParams BenchTrackingFlight(const ControlBenchOptions& options
   params.control = options.control;
   params.dynamics = options.dynamics;
   params.imu = options.imu;
+  params.vehicle = options.vehicle;
   params.seed = options.seed;
   return params;
 }
@@ -17,6 +18,7 @@ sim::RecoveryFlightParams BenchRecoveryFlight(const ControlBenchOptions& options
   params.dynamics = options.dynamics;
   params.imu = options.imu;
   params.range = options.range;
+  params.vehicle = options.vehicle;
   return params;
 }
 

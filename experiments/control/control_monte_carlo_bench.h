@@ -7,7 +7,8 @@
 // "timing.<key>_s" holds each section's wall time (a measurement of the process that ran it).
 // Configuration:
 //   {"options": {"seed", "quick", "recovery_trials", "only"},
-//    "config": the vehicle and control stack, sections control, dynamics, imu, range (a partial
+//    "config": the vehicle and control stack, sections control, dynamics, imu, range, vehicle (a
+//    partial
 //              one is completed with the defaults; the bench records the full effective one)}
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -21,13 +22,14 @@ namespace aperture::experiments {
 inline constexpr const char* kControlBenchName = "control";
 
 // `config`: the configuration tree's JSON (config::ConfigTree::ToJson) with any of the sections
-// control, dynamics, imu and range; options' vehicle and stack fields are not read (`config` is).
+// control, dynamics, imu, range and vehicle; options' vehicle and stack fields are not read
+// (`config` is).
 nlohmann::json ControlBenchConfiguration(const ControlBenchOptions& options,
                                          const std::vector<std::string>& only,
                                          const nlohmann::json& config);
 
-// Reads the vehicle and control stack (sections control, dynamics, imu, range; unknown keys
-// rejected) from `tree` into options, then replaces those sections of `tree` by their full
+// Reads the vehicle and control stack (sections control, dynamics, imu, range, vehicle; unknown
+// keys rejected) from `tree` into options, then replaces those sections of `tree` by their full
 // effective values. std::invalid_argument naming the value's source (a file line, a --set item)
 // and key. The command calls it on its --config/--set tree so that mistakes are named there; the
 // bench calls it again on the configuration it is built from.

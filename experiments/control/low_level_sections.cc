@@ -17,6 +17,7 @@
 #include "sim/sitl/ground_truth_autopilot.h"
 #include "sim/sitl/sitl_runner.h"
 #include "sim/sitl/tracking_flight.h"
+#include "sim/sitl/vehicle_mismatch.h"
 
 namespace aperture::experiments {
 namespace {
@@ -64,7 +65,8 @@ double MaxAbs(const std::vector<double>& values) {
 }
 
 // SITL run of the bench vehicle and flight controller starting in hover at p_W: no cameras, no
-// range sensor, the bench IMU, every random stream from options.seed.
+// range sensor, the bench IMU, every random stream from options.seed. Its dynamics are still the
+// nominal model: WithBenchVehicle applies the mismatch once the section has set up the flight.
 sim::SitlRunnerParams BenchRunParams(const ControlBenchOptions& options, double duration_s,
                                      const Eigen::Vector3d& p_W) {
   sim::SitlRunnerParams params;
@@ -88,12 +90,21 @@ sim::GroundTruthAutopilotParams BenchAutopilot(const ControlBenchOptions& option
   return params;
 }
 
+// `params` with the simulated vehicle of the bench (vehicle.mismatch: drawn from options.seed,
+// the nominal dynamics becoming the flight controller's model).
+sim::SitlRunnerParams WithBenchVehicle(sim::SitlRunnerParams params,
+                                       const ControlBenchOptions& options) {
+  sim::ApplyVehicleMismatch(options.vehicle, options.seed, &params);
+  return params;
+}
+
+// A hover at the start point; the autopilot models the nominal vehicle of `params`.
 sim::SitlResult FlyHover(const sim::SitlRunnerParams& params, const ControlBenchOptions& options,
                          double heading_rad = 0.0) {
   sim::GroundTruthAutopilotParams autopilot_params = BenchAutopilot(options);
   autopilot_params.waypoints.push_back({params.initial_state.p_WB, heading_rad, 0.0});
   sim::GroundTruthAutopilot autopilot(params.dynamics.vehicle, autopilot_params);
-  sim::SitlRunner runner(params, nullptr);
+  sim::SitlRunner runner(WithBenchVehicle(params, options), nullptr);
   return runner.Run(autopilot);
 }
 
@@ -336,20 +347,27 @@ struct SaturationFlight {
 
 SaturationFlight FlySaturationStep(control::MixerParameters::Saturation saturation,
                                    const ControlBenchOptions& options) {
-  sim::SitlRunnerParams params = BenchRunParams(options, kStepTime_s + (options.quick ? 4.0 : 6.0),
-                                                Eigen::Vector3d(0.0, 0.0, kStepStartHeight_m));
+  // The bench vehicle first: the thrust limits below are the true rotors' (as far as the flight
+  // controller's model, hover-calibrated, knows them).
+  sim::SitlRunnerParams params =
+      WithBenchVehicle(BenchRunParams(options, kStepTime_s + (options.quick ? 4.0 : 6.0),
+                                      Eigen::Vector3d(0.0, 0.0, kStepStartHeight_m)),
+                       options);
   // G.6.4: single-rotor thrust limited to 0.8 / 1.6 N around 1.25 N hover: the same fractions of
   // our hover thrust, imposed through the motor command range (flight controller and motors).
-  control::VehicleParameters& vehicle = params.dynamics.vehicle;
-  const double hover_thrust_N = 0.25 * vehicle.mass_kg * vehicle.gravity_mps2;
-  const double min_command = vehicle.rotor.CommandFromThrust(0.8 / 1.25 * hover_thrust_N);
-  const double max_command = vehicle.rotor.CommandFromThrust(1.6 / 1.25 * hover_thrust_N);
-  vehicle.rotor.command_min = min_command;
-  vehicle.rotor.command_max = max_command;
+  control::VehicleParameters& model =
+      params.flight_controller_model ? *params.flight_controller_model : params.dynamics.vehicle;
+  const double hover_thrust_N = 0.25 * model.mass_kg * model.gravity_mps2;
+  const double min_command = model.rotor.CommandFromThrust(0.8 / 1.25 * hover_thrust_N);
+  const double max_command = model.rotor.CommandFromThrust(1.6 / 1.25 * hover_thrust_N);
+  for (control::VehicleParameters* vehicle : {&model, &params.dynamics.vehicle}) {
+    vehicle->rotor.command_min = min_command;
+    vehicle->rotor.command_max = max_command;
+  }
   params.flight_controller.low_level.mixer.saturation = saturation;
   // The same imbalance as in the mixer hover: holding attitude needs roll and pitch torques,
   // which clipping gives up while saturated.
-  params.disturbances.torque_B_Nm = CentreOfMassOffsetTorque(vehicle);
+  params.disturbances.torque_B_Nm = CentreOfMassOffsetTorque(model);
 
   sim::GroundTruthAutopilotParams autopilot_params = BenchAutopilot(options);
   const Eigen::Vector3d start_W = params.initial_state.p_WB;
@@ -358,7 +376,7 @@ SaturationFlight FlySaturationStep(control::MixerParameters::Saturation saturati
   autopilot_params.waypoints.push_back({start_W, 0.0, kStepTime_s});
   autopilot_params.waypoints.push_back({start_W + Eigen::Vector3d(0.0, 0.0, 1.0), kPi / 2, 0.0});
   autopilot_params.arrival_radius_m = 0.5;
-  sim::GroundTruthAutopilot autopilot(vehicle, autopilot_params);
+  sim::GroundTruthAutopilot autopilot(model, autopilot_params);
   sim::SitlRunner runner(params, nullptr);
   const sim::SitlResult result = runner.Run(autopilot);
 

@@ -27,6 +27,8 @@ void ConfigureSitlFromScenario(const Scenario& scenario, SitlRunnerParams* param
     params->control_rate_hz = loop->control_rate_hz;
     params->command_latency_s = loop->command_latency_s;
     params->range_latency_s = loop->range_latency_s;
+    params->estimate_latency_s = loop->estimate_latency_s;
+    params->esc_delay_s = loop->esc_delay_s;
     params->range_enabled = loop->range_enabled;
     params->start_hovering = loop->start_hovering;
   }

@@ -68,12 +68,14 @@ RecoveryFlightResult FlyRecoveryFlight(const RecoveryFlightParams& params) {
   sitl.initial_state.v_W = params.hand_throw.v_W;
   sitl.initial_state.omega_B = params.hand_throw.omega_B;
   sitl.SetSeed(params.seed);
+  ApplyVehicleMismatch(params.vehicle, params.seed, &sitl);
 
   RecoveryAutopilot autopilot(params.dynamics.vehicle, params.autopilot);
   // In the hand, t in [-held_s, 0): still, the accelerometer measures the reaction to gravity.
   // A separate noise stream (seed + 1), the same sensor model and rate as the SITL's IMU.
   ImuSensorParams held_imu = sitl.imu;
   held_imu.seed = sitl.imu.seed + 1;
+  held_imu.gyro_noise_density = params.imu.gyro_noise_density;  // motors off: no vibration
   ImuSensor hand_imu(held_imu);
   const Eigen::Vector3d f_held_B = sitl.initial_state.q_WB.conjugate() *
                                    Eigen::Vector3d(0.0, 0.0, params.dynamics.vehicle.gravity_mps2);

@@ -3,10 +3,11 @@
 // to upside-down, velocities of several m/s"). The simulator does not model the hand: for held_s
 // before the release at t = 0 the autopilot receives the IMU samples of the vehicle held still at
 // the throw's attitude (the attitude estimator settles on gravity, as on the real vehicle), then
-// the SITL starts at the release with the throw's attitude, velocity, body rates and idling motors; RecoveryAutopilot flies it from the
-// noisy IMU and range sensor through the five stages of B.3.2 while the flight controller runs the
-// configured body-rate law and mixer at 1 kHz. The flight ends 'recovered' when the position stage
-// has held for the autopilot's hold_s, 'crashed' on a collision (ground), else 'timeout'.
+// the SITL starts at the release with the throw's attitude, velocity, body rates and idling motors;
+// RecoveryAutopilot flies it from the noisy IMU and range sensor through the five stages of B.3.2
+// while the flight controller runs the configured body-rate law and mixer at 1 kHz. The flight ends
+// 'recovered' when the position stage has held for the autopilot's hold_s, 'crashed' on a collision
+// (ground), else 'timeout'.
 //
 //   RecoveryFlightParams params;
 //   params.hand_throw = SampleHandThrow(seed);
@@ -20,6 +21,7 @@
 #include "sim/control_params_io.h"
 #include "sim/sitl/recovery_autopilot.h"
 #include "sim/sitl/sitl_runner.h"
+#include "sim/sitl/vehicle_mismatch.h"
 
 namespace aperture::sim {
 
@@ -44,13 +46,16 @@ HandThrow SampleHandThrow(std::uint64_t seed, const HandThrowRanges& ranges = {}
 struct RecoveryFlightParams {
   HandThrow hand_throw;
   Eigen::Vector3d p_release_W{0.0, 0.0, 1.5};  // release point [m] (hand height)
-  double held_s = 0.5;  // held still in the hand before the release [s]
+  double held_s = 0.5;                         // held still in the hand before the release [s]
   ControlStackParams control;  // flight controller: body-rate law, mixer, saturation
   RecoveryAutopilotParams autopilot;
   QuadrotorDynamicsParams dynamics;
   ImuSensorParams imu;
   RangeSensorParams range;
-  std::uint64_t seed = 1;  // sensor noise (SitlRunnerParams::SetSeed)
+  // vehicle.mismatch: the simulated vehicle departs from `dynamics` (the controllers' model) by a
+  // VehicleMismatch drawn from `seed` (sim/sitl/vehicle_mismatch.h).
+  VehicleMismatchParams vehicle;
+  std::uint64_t seed = 1;    // sensor noise (SitlRunnerParams::SetSeed), the vehicle's draw
   double duration_s = 10.0;  // timeout [s]
   int trajectory_decimation = 10;
   // Throws std::invalid_argument naming the field.
@@ -62,8 +67,8 @@ struct RecoveryFlightResult {
   std::string outcome;  // "recovered", "crashed", "timeout"
   std::vector<control::RecoveryTransition> transitions;
   double vision_available_s = -1.0;
-  double min_height_m = 0.0;         // lowest ground-truth height [m]
-  double final_tilt_rad = 0.0;       // angle between z_B and z_W at the end
+  double min_height_m = 0.0;    // lowest ground-truth height [m]
+  double final_tilt_rad = 0.0;  // angle between z_B and z_W at the end
   double final_speed_mps = 0.0;
   bool recovered() const { return outcome == "recovered"; }
 };

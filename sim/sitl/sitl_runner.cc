@@ -91,7 +91,10 @@ void SitlRunnerParams::Validate() const {
   control::RequirePositive(control_rate_hz, "SitlRunnerParams.control_rate_hz");
   control::RequireNonNegative(command_latency_s, "SitlRunnerParams.command_latency_s");
   control::RequireNonNegative(range_latency_s, "SitlRunnerParams.range_latency_s");
+  control::RequireNonNegative(estimate_latency_s, "SitlRunnerParams.estimate_latency_s");
+  control::RequireNonNegative(esc_delay_s, "SitlRunnerParams.esc_delay_s");
   dynamics.Validate();
+  if (flight_controller_model) flight_controller_model->Validate();
   disturbances.Validate();
   flight_controller.Validate();
   imu.Validate();
@@ -156,7 +159,9 @@ class SitlFlight {
         dt_s_(1.0 / p.dynamics_rate_hz),
         steps_(std::lround(p.duration_s * p.dynamics_rate_hz)),
         vehicle_(p.dynamics, InitialState(p)),
-        flight_controller_(p.dynamics.vehicle, p.flight_controller),
+        controller_rotor_(p.flight_controller_model.value_or(p.dynamics.vehicle).rotor),
+        flight_controller_(p.flight_controller_model.value_or(p.dynamics.vehicle),
+                           p.flight_controller),
         disturbances_(p.disturbances),
         imu_(p.imu),
         range_(p.range, MakeRangeWorld(p, scene)),
@@ -188,6 +193,7 @@ class SitlFlight {
   void Fly() {
     result_->trajectory.push_back(vehicle_.state());
     history_.Add(vehicle_.state());
+    if (p_.estimate_latency_s > 0.0) estimate_history_.push_back(vehicle_.state());
     for (long k = 0;; ++k) {
       const double t_s = k * dt_s_;
       SampleSensors(t_s);
@@ -340,7 +346,7 @@ class SitlFlight {
   // leaves for the flight controller. Returns the command's `done`.
   bool StepAutopilot(double t_s) {
     if (!control_schedule_.Due(t_s)) return false;
-    if (wants_ground_truth_) autopilot_->OnGroundTruth(vehicle_.state());
+    if (wants_ground_truth_) autopilot_->OnGroundTruth(EstimatedState(t_s));
     const perception::AutopilotCommand command = autopilot_->Step(t_s);
     commands_in_flight_.emplace_back(t_s + p_.command_latency_s, command);
     result_->commands.push_back(SitlCommandRecord{t_s, command, rotor_thrusts_.thrust_N});
@@ -358,7 +364,15 @@ class SitlFlight {
     }
     if (flight_controller_schedule_.Due(t_s)) {
       rotor_thrusts_ = flight_controller_.Step();
-      vehicle_.SetRotorThrustCommand(rotor_thrusts_);
+      // The inverse of (G.3) as the flight controller knows it (it does not know gamma_i).
+      Eigen::Vector4d u;
+      for (int i = 0; i < 4; ++i)
+        u[i] = controller_rotor_.CommandFromThrust(rotor_thrusts_.thrust_N[i]);
+      motor_commands_in_flight_.emplace_back(t_s + p_.esc_delay_s, u);
+    }
+    while (!motor_commands_in_flight_.empty() && motor_commands_in_flight_.front().first <= due_s) {
+      vehicle_.SetMotorCommands(motor_commands_in_flight_.front().second);
+      motor_commands_in_flight_.pop_front();
     }
     previous_p_WB_ = vehicle_.state().p_WB;
     was_on_ground_ = vehicle_.on_ground();
@@ -368,6 +382,7 @@ class SitlFlight {
                                std::to_string(t_s) + " s (check the autopilot's commands)");
     }
     history_.Add(vehicle_.state());
+    if (p_.estimate_latency_s > 0.0) estimate_history_.push_back(vehicle_.state());
     if ((k + 1) % p_.trajectory_decimation == 0) result_->trajectory.push_back(vehicle_.state());
     result_->timing.dynamics_s += SecondsSince(section);
   }
@@ -394,6 +409,17 @@ class SitlFlight {
     return true;
   }
 
+  // The ground truth of t_s - estimate_latency_s: the latest recorded state not newer than that
+  // (the first state until then). Older states are dropped.
+  const control::QuadState& EstimatedState(double t_s) {
+    if (p_.estimate_latency_s <= 0.0) return vehicle_.state();
+    const double due_s = DueTime(t_s - p_.estimate_latency_s);
+    while (estimate_history_.size() > 1 && estimate_history_[1].t_s <= due_s) {
+      estimate_history_.pop_front();
+    }
+    return estimate_history_.front();
+  }
+
   // Rounding of accumulated times must not push a delivery to the next step.
   static double DueTime(double t_s) { return t_s + 1e-9; }
 
@@ -407,6 +433,7 @@ class SitlFlight {
   const long steps_;
 
   QuadrotorDynamics vehicle_;
+  const control::RotorParameters controller_rotor_;  // the flight controller's thrust map
   SimulatedFlightController flight_controller_;
   Disturbances disturbances_;
   ImuSensor imu_;
@@ -423,6 +450,8 @@ class SitlFlight {
   std::vector<perception::ImuSample> imu_samples_;  // taken in this step, delivered in step 2
   std::deque<std::pair<double, perception::RangeReading>> range_in_flight_;
   std::deque<std::pair<double, perception::AutopilotCommand>> commands_in_flight_;
+  std::deque<std::pair<double, Eigen::Vector4d>> motor_commands_in_flight_;  // ESC delay
+  std::deque<control::QuadState> estimate_history_;  // for estimate_latency_s > 0
   control::RotorThrustCommand rotor_thrusts_;
   Eigen::Vector3d previous_p_WB_ = Eigen::Vector3d::Zero();  // before the last vehicle step
   bool was_on_ground_ = false;

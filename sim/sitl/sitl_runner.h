@@ -11,9 +11,12 @@
 //      rendered (sim/render: the camera's model at T_WB * T_BC, camera_effects noise) and
 //      delivered at t + latency_s. Range readings are delivered latency_s after t.
 //   2. everything delivered by t goes to the autopilot (IMU also to the flight controller's gyro);
-//   3. at the control rate: ground truth (only if the autopilot UsesGroundTruth()), then
-//      Autopilot::Step(t); the command reaches the flight controller command_latency_s later;
-//   4. at the flight-controller rate: SimulatedFlightController -> rotor thrust commands;
+//   3. at the control rate: ground truth (only if the autopilot UsesGroundTruth(); the state of
+//      t - estimate_latency_s), then Autopilot::Step(t); the command reaches the flight
+//      controller command_latency_s later;
+//   4. at the flight-controller rate: SimulatedFlightController -> rotor thrust commands ->
+//      motor commands through its model's inverse thrust map, which reach the motors
+//      esc_delay_s later;
 //   5. the vehicle advances by one step under the disturbances (sim/vehicle/disturbances.h);
 //   6. collision check (sim/sitl/collision_checker.h), and with ground contact on
 //      (dynamics.ground_contact_enabled) the touchdown check of a step that landed.
@@ -46,6 +49,7 @@
 #include <vector>
 
 #include "control/quad_state.h"
+#include "control/vehicle_parameters.h"
 #include "perception/autopilot.h"
 #include "perception/camera/camera_model.h"
 #include "perception/sensor_data.h"
@@ -82,7 +86,18 @@ struct SitlRunnerParams {
   double dynamics_rate_hz = 1000.0;  // >= flight controller and IMU rates
   double control_rate_hz = 100.0;    // Autopilot::Step rate
   double command_latency_s = 0.0;    // autopilot -> flight controller [s]
-  QuadrotorDynamicsParams dynamics;  // its vehicle is also the flight controller's model
+  // Ground truth reaches an autopilot that uses it (UsesGroundTruth) this much later: it gets the
+  // recorded state of t - estimate_latency_s (the state at t = 0 before that), stamped with its
+  // own time [s]. The motion-capture estimate's age; resolution one dynamics step.
+  double estimate_latency_s = 0.0;
+  // Motor commands reach the motors this much after the flight controller issues them (ESC
+  // delay) [s].
+  double esc_delay_s = 0.0;
+  QuadrotorDynamicsParams dynamics;  // the simulated vehicle
+  // The flight controller's model of the vehicle (LQR torque estimate, mixer, and the inverse
+  // thrust map (G.3) that turns its thrusts into motor commands); unset: dynamics.vehicle, a
+  // perfectly identified vehicle. sim/sitl/vehicle_mismatch.h sets it to the nominal model.
+  std::optional<control::VehicleParameters> flight_controller_model;
   // true: the run starts with every rotor settled at hover thrust (airborne start).
   bool start_hovering = true;
   control::QuadState initial_state;  // t_s is ignored: the clock starts at 0

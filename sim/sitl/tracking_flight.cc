@@ -41,15 +41,14 @@ TrackingError ComputeTrackingError(const std::vector<control::QuadState>& trajec
 
 void TrackingFlightParams::Validate() const {
   if (!reference) throw std::invalid_argument("TrackingFlightParams.reference is null");
-  if (!std::isfinite(duration_s) ||
-      (duration_s <= 0.0 && !std::isfinite(reference->EndTimeS()))) {
+  if (!std::isfinite(duration_s) || (duration_s <= 0.0 && !std::isfinite(reference->EndTimeS()))) {
     throw std::invalid_argument(
         "TrackingFlightParams.duration_s must be set (> 0) for a reference that never stops");
   }
   if (!(error_begin_s < error_end_s) || error_begin_s > FlightDurationS(*this)) {
     throw std::invalid_argument("TrackingFlightParams: error window [" +
-                                std::to_string(error_begin_s) + ", " +
-                                std::to_string(error_end_s) + "] s misses the flight of " +
+                                std::to_string(error_begin_s) + ", " + std::to_string(error_end_s) +
+                                "] s misses the flight of " +
                                 std::to_string(FlightDurationS(*this)) + " s");
   }
   if (trajectory_decimation < 1) {
@@ -74,6 +73,7 @@ TrackingFlightResult FlyTrackingFlight(const TrackingFlightParams& params) {
   sitl.initial_state.v_W = start.v_W;
   sitl.initial_state.q_WB = Eigen::AngleAxisd(start.heading_rad, Eigen::Vector3d::UnitZ());
   sitl.SetSeed(params.seed);
+  ApplyVehicleMismatch(params.vehicle, params.seed, &sitl);
 
   TrajectoryTrackingAutopilotParams autopilot_params;
   autopilot_params.controller = params.control.position;
@@ -91,9 +91,9 @@ TrackingFlightResult FlyTrackingFlight(const TrackingFlightParams& params) {
   for (const control::QuadState& state : result.sitl.trajectory) {
     result.reference.push_back(params.reference->Evaluate(state.t_s));
   }
-  result.error = ComputeTrackingError(result.sitl.trajectory, *params.reference,
-                                      params.error_begin_s,
-                                      std::min(params.error_end_s, result.sitl.sim_time_s));
+  result.error =
+      ComputeTrackingError(result.sitl.trajectory, *params.reference, params.error_begin_s,
+                           std::min(params.error_end_s, result.sitl.sim_time_s));
   return result;
 }
 

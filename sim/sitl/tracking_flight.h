@@ -21,14 +21,15 @@
 #include "control/vehicle_parameters.h"
 #include "sim/control_params_io.h"
 #include "sim/sitl/sitl_runner.h"
+#include "sim/sitl/vehicle_mismatch.h"
 
 namespace aperture::sim {
 
 // Position error statistics of a flown trajectory against its reference, E_p^k = p^k - p_ref^k.
 struct TrackingError {
   int samples = 0;
-  double E_a_m = 0.0;  // sqrt(mean |E_p|^2), Faessler thesis (F.39)
-  double max_m = 0.0;  // max |E_p|
+  double E_a_m = 0.0;                                  // sqrt(mean |E_p|^2), Faessler thesis (F.39)
+  double max_m = 0.0;                                  // max |E_p|
   Eigen::Vector3d rmse_W_m = Eigen::Vector3d::Zero();  // per-axis RMSE [m]
 };
 
@@ -40,15 +41,18 @@ TrackingError ComputeTrackingError(const std::vector<control::QuadState>& trajec
 
 struct TrackingFlightParams {
   std::shared_ptr<const control::ReferenceTrajectory> reference;  // required
-  ControlStackParams control;          // controller gains, drag switch, body rates, mixer
-  QuadrotorDynamicsParams dynamics;    // the simulated vehicle (d_x = 0.5, d_y = 0.35 1/s)
+  ControlStackParams control;        // controller gains, drag switch, body rates, mixer
+  QuadrotorDynamicsParams dynamics;  // the simulated vehicle (d_x = 0.5, d_y = 0.35 1/s)
   // The controller's vehicle model; unset = the simulated vehicle (perfectly identified). Drag
   // identification flies with candidate drag coefficients here.
   std::optional<control::VehicleParameters> controller_model;
-  ImuSensorParams imu;                 // realistic noise by default; its seed is set from `seed`
-  std::uint64_t seed = 1;              // every sensor stream (SitlRunnerParams::SetSeed)
-  double control_rate_hz = 100.0;      // autopilot rate
-  double settle_s = 1.0;               // flown after the reference ends [s]
+  // vehicle.mismatch: the simulated vehicle departs from `dynamics` (which stays the flight
+  // controller's model) by a VehicleMismatch drawn from `seed` (sim/sitl/vehicle_mismatch.h).
+  VehicleMismatchParams vehicle;
+  ImuSensorParams imu;             // realistic noise by default; its seed is set from `seed`
+  std::uint64_t seed = 1;          // every sensor stream (SitlRunnerParams::SetSeed)
+  double control_rate_hz = 100.0;  // autopilot rate
+  double settle_s = 1.0;           // flown after the reference ends [s]
   // Flight duration [s]; <= 0: reference end + settle_s (required for endless references). When
   // set, the vehicle holds the reference's end point until then.
   double duration_s = 0.0;

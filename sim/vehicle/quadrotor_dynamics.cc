@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "control/require.h"
+
 namespace aperture::sim {
 namespace {
 
@@ -16,7 +18,9 @@ void RequireValidState(const control::QuadState& state) {
 }
 
 Eigen::Matrix3d RotationFromWxyz(const Eigen::Vector4d& q_wxyz) {
-  return Eigen::Quaterniond(q_wxyz[0], q_wxyz[1], q_wxyz[2], q_wxyz[3]).normalized().toRotationMatrix();
+  return Eigen::Quaterniond(q_wxyz[0], q_wxyz[1], q_wxyz[2], q_wxyz[3])
+      .normalized()
+      .toRotationMatrix();
 }
 
 }  // namespace
@@ -35,6 +39,10 @@ void QuadrotorDynamicsParams::Validate() const {
         "QuadrotorDynamicsParams.landing_gear_height_m must be finite and >= 0, got " +
         std::to_string(landing_gear_height_m));
   }
+  control::RequireNonNegative(quadratic_drag_per_m, "QuadrotorDynamicsParams.quadratic_drag_per_m");
+  control::RequireInRange(drag_thrust_exponent, 0.0, 2.0,
+                          "QuadrotorDynamicsParams.drag_thrust_exponent");
+  control::RequireNonNegative(battery_sag_per_s, "QuadrotorDynamicsParams.battery_sag_per_s");
   const double fastest_lag_s =
       std::min(vehicle.rotor.time_constant_up_s, vehicle.rotor.time_constant_down_s);
   if (rotor_lag_enabled && fastest_lag_s < max_integration_step_s) {
@@ -84,8 +92,14 @@ void QuadrotorDynamics::SetRotorThrustCommand(const control::RotorThrustCommand&
   SetMotorCommands(u);
 }
 
+double QuadrotorDynamics::TargetThrust(double u) const {
+  const double f_N = params_.vehicle.rotor.ThrustFromCommand(u);
+  if (params_.battery_sag_per_s == 0.0) return f_N;
+  return std::max(0.0, 1.0 - params_.battery_sag_per_s * state_.t_s) * f_N;
+}
+
 void QuadrotorDynamics::SettleRotors() {
-  for (int i = 0; i < 4; ++i) f_check_N_[i] = params_.vehicle.rotor.ThrustFromCommand(commands_[i]);
+  for (int i = 0; i < 4; ++i) f_check_N_[i] = TargetThrust(commands_[i]);
 }
 
 void QuadrotorDynamics::ApplyImpulse(const Eigen::Vector3d& impulse_W_Ns,
@@ -119,13 +133,21 @@ QuadrotorDynamics::Forces QuadrotorDynamics::ComputeForces(const Eigen::Matrix3d
   const double v_h = airspeed_B.x() + airspeed_B.y();  // v^T (x_B + y_B)
   forces.collective_thrust_mps2 =
       f_N.sum() / vehicle.mass_kg + vehicle.thrust_velocity_coeff_kh * v_h * v_h;  // (F.5)
+  Eigen::Vector3d drag_D_per_s = vehicle.rotor_drag_D_per_s;
+  if (params_.drag_thrust_exponent != 0.0) {
+    const double hover_ratio = f_N.sum() / (vehicle.mass_kg * vehicle.gravity_mps2);
+    drag_D_per_s *= std::pow(std::max(0.0, hover_ratio), params_.drag_thrust_exponent);
+  }
   forces.specific_force_B = forces.collective_thrust_mps2 * Eigen::Vector3d::UnitZ() -
-                            vehicle.rotor_drag_D_per_s.cwiseProduct(airspeed_B) +  // (F.2)
+                            drag_D_per_s.cwiseProduct(airspeed_B) +  // (F.2)
                             R_WB.transpose() * external_force_W_ / vehicle.mass_kg;
+  if (params_.quadratic_drag_per_m != 0.0) {
+    forces.specific_force_B -= params_.quadratic_drag_per_m * airspeed_B.norm() * airspeed_B;
+  }
 
   // (F.4) rotor-drag torques (tau_g = 0) and the external torque.
-  forces.torque_B = RotorTorqueFor(f_check_N) - vehicle.rotor_drag_A * airspeed_B - vehicle.rotor_drag_B * omega_B +
-                    external_torque_B_;
+  forces.torque_B = RotorTorqueFor(f_check_N) - vehicle.rotor_drag_A * airspeed_B -
+                    vehicle.rotor_drag_B * omega_B + external_torque_B_;
   return forces;
 }
 
@@ -194,14 +216,16 @@ QuadrotorDynamics::Derivative QuadrotorDynamics::ComputeDerivative(
   const Eigen::Matrix3d R_WB = RotationFromWxyz(x.q_wxyz);
   const Forces forces = ComputeForces(R_WB, x.v_W, x.omega_B, f_check_N);
   Derivative d;
-  d.p_dot = x.v_W;                                                                      // (F.1)
-  d.v_dot = R_WB * forces.specific_force_B - params_.vehicle.gravity_mps2 * Eigen::Vector3d::UnitZ();  // (F.2)
+  d.p_dot = x.v_W;  // (F.1)
+  d.v_dot = R_WB * forces.specific_force_B -
+            params_.vehicle.gravity_mps2 * Eigen::Vector3d::UnitZ();  // (F.2)
   // (F.3) as q' = 1/2 q (x) (0, omega).
   const double w = x.q_wxyz[0];
   const Eigen::Vector3d q_vec = x.q_wxyz.tail<3>();
   d.q_dot[0] = -0.5 * q_vec.dot(x.omega_B);
   d.q_dot.tail<3>() = 0.5 * (w * x.omega_B + q_vec.cross(x.omega_B));
-  d.omega_dot = inertia_inverse_ * (forces.torque_B - x.omega_B.cross(inertia_ * x.omega_B));  // (F.4)
+  d.omega_dot =
+      inertia_inverse_ * (forces.torque_B - x.omega_B.cross(inertia_ * x.omega_B));  // (F.4)
   return d;
 }
 
@@ -210,19 +234,21 @@ Eigen::Vector4d QuadrotorDynamics::RotorThrustsAfter(const Eigen::Vector4d& f_ch
   const control::RotorParameters& rotor = params_.vehicle.rotor;
   Eigen::Vector4d f;
   for (int i = 0; i < 4; ++i) {
-    const double target = rotor.ThrustFromCommand(commands_[i]);
+    const double target = TargetThrust(commands_[i]);
     // (G.7): the branch is fixed by the sign of (target - f) at the start of the interval, since
     // the exponential approach never crosses the target.
-    const double tau = target >= f_check_start[i] ? rotor.time_constant_up_s : rotor.time_constant_down_s;
+    const double tau =
+        target >= f_check_start[i] ? rotor.time_constant_up_s : rotor.time_constant_down_s;
     f[i] = target + (f_check_start[i] - target) * std::exp(-elapsed_s / tau);
   }
   return f;
 }
 
 void QuadrotorDynamics::StepRk4(double h_s) {
-  const RigidBody x0{state_.p_WB, state_.v_W,
-                     Eigen::Vector4d(state_.q_WB.w(), state_.q_WB.x(), state_.q_WB.y(), state_.q_WB.z()),
-                     state_.omega_B};
+  const RigidBody x0{
+      state_.p_WB, state_.v_W,
+      Eigen::Vector4d(state_.q_WB.w(), state_.q_WB.x(), state_.q_WB.y(), state_.q_WB.z()),
+      state_.omega_B};
   const Eigen::Vector4d f_start = f_check_N_;
   const Eigen::Vector4d f_mid = RotorThrustsAfter(f_start, 0.5 * h_s);
   const Eigen::Vector4d f_end = RotorThrustsAfter(f_start, h_s);

@@ -71,9 +71,22 @@ struct QuadrotorDynamicsParams {
   // Height of the origin of B above the ground when resting on the gear [m]; >= 0. The SITL needs
   // it above the collision body sphere's radius (else resting is a crash).
   double landing_gear_height_m = 0.0;
+  // Effects beyond (F.2)-(F.5) that the controllers do not model; zero by default (the vehicle is
+  // then the controllers' model). The mismatched bench vehicle sets them (sim/sitl/
+  // vehicle_mismatch.h):
+  //  * parasitic (fuselage) drag: -c_q |v_a| v_a is added to v' of (F.2), c_q mass-normalized
+  //    [1/m];
+  //  * thrust-dependent rotor drag: D of (F.2) is scaled by (sum_i f_i / (m g))^e, 1 in hover;
+  //    e = 0.5 is drag in proportion to rotor speed, the dependence F.7.4 names as not modelled;
+  //  * battery sag: every rotor's thrust map (G.3) is scaled by max(0, 1 - s t) at time t [1/s]
+  //    (the drag torque follows, through the effective command of (G.4)).
+  double quadratic_drag_per_m = 0.0;
+  double drag_thrust_exponent = 0.0;
+  double battery_sag_per_s = 0.0;
 
-  // Throws std::invalid_argument naming the field (delegates to VehicleParameters::Validate), and
-  // when the lag is enabled but a rotor time constant is shorter than max_integration_step_s.
+  // Throws std::invalid_argument naming the field (delegates to VehicleParameters::Validate;
+  // negative drag terms or sag, an exponent outside [0, 2]), and when the lag is enabled but a
+  // rotor time constant is shorter than max_integration_step_s.
   void Validate() const;
 };
 
@@ -147,7 +160,7 @@ class QuadrotorDynamics {
   struct Forces {
     double collective_thrust_mps2;
     Eigen::Vector3d specific_force_B;  // c z_B - D R^T v_a + R^T F_ext / m
-    Eigen::Vector3d torque_B;          // all torques of (F.4) right-hand side except omega x J omega
+    Eigen::Vector3d torque_B;  // all torques of (F.4) right-hand side except omega x J omega
   };
 
   Forces ComputeForces(const Eigen::Matrix3d& R_WB, const Eigen::Vector3d& v_W,
@@ -156,6 +169,8 @@ class QuadrotorDynamics {
   Derivative ComputeDerivative(const RigidBody& x, const Eigen::Vector4d& f_check_N) const;
   // Closed-form solution of (G.7) after `elapsed_s` from f_check_start.
   Eigen::Vector4d RotorThrustsAfter(const Eigen::Vector4d& f_check_start, double elapsed_s) const;
+  // Steady-state load-cell thrust of command u at the current time: (G.3) with the battery sag.
+  double TargetThrust(double u) const;
   void StepRk4(double h_s);
   void ResolveGroundContact();
   // Specific force of the free vehicle (no ground reaction) at the current state, in B.

@@ -14,8 +14,9 @@ namespace fs = std::filesystem;
 TEST(BenchControlCommand, QuickRunWritesTheDragKeysAndReport) {
   TempFolder temp("bench_control");
   const fs::path out = fs::path(temp.path()) / "out";
-  const CommandResult result =
-      RunAperture("bench control --quick --only drag,drag_id --seed 2 --out " + out.string());
+  const CommandResult result = RunAperture(
+      "bench control --quick --only drag,drag_id --seed 2 --set vehicle.mismatch=false --out " +
+      out.string());
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const nlohmann::json summary = ReadJson(out / "summary.json");
   EXPECT_EQ(summary["status"], "ok");
@@ -47,7 +48,7 @@ TEST(BenchControlCommand, ConfiguredVehicleIsTheOneTheSectionsFly) {
   const fs::path out = fs::path(temp.path()) / "out";
   const CommandResult result = RunAperture(
       "bench control --quick --only drag_id --set 'dynamics.vehicle.rotor_drag_D_per_s=[0.3, "
-      "0.2, 0]' --set control.mixer=one_shot --out " +
+      "0.2, 0]' --set control.mixer=one_shot --set vehicle.mismatch=false --out " +
       out.string());
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const nlohmann::json summary = ReadJson(out / "summary.json");
@@ -62,6 +63,8 @@ TEST(BenchControlCommand, ConfiguredVehicleIsTheOneTheSectionsFly) {
   EXPECT_EQ(config["control"]["position"]["p_xy_per_s2"], 5);  // defaults are written too
   EXPECT_TRUE(config.contains("imu"));
   EXPECT_TRUE(config.contains("range"));
+  EXPECT_EQ(config["vehicle"]["mismatch"], false);
+  EXPECT_TRUE(config["vehicle"].contains("mismatch_bounds"));
 
   const CommandResult typo =
       RunAperture("bench control --only drag_id --set control.mixr=x --out " +

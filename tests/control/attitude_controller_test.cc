@@ -127,6 +127,38 @@ TEST(AttitudeControllerTest, DesiredAttitudeFollowsHeadingDefinition) {
       1e-15);
 }
 
+// B.18 text: when z_des points downwards, x_des is negated so that its horizontal projection
+// still points along x_C (without it, y_C x z_des projects onto -x_C).
+TEST(AttitudeControllerTest, DownwardThrustKeepsHeadingOnTheSideOfXc) {
+  const Eigen::Vector3d x_C(std::cos(kHeading), std::sin(kHeading), 0.0);
+  const Eigen::Vector3d y_C(-x_C.y(), x_C.x(), 0.0);
+  for (const Eigen::Vector3d& z_des :
+       {Eigen::Vector3d(0.3, -0.2, -1.0).normalized(),
+        Eigen::Vector3d(-0.6, 0.1, -0.2).normalized(), Eigen::Vector3d(0.0, 0.0, -1.0)}) {
+    bool defined = false;
+    const Eigen::Matrix3d R = ComputeDesiredAttitude(z_des, kHeading, &defined);
+    EXPECT_TRUE(defined);
+    EXPECT_LT((R.transpose() * R - Eigen::Matrix3d::Identity()).norm(), 1e-12);
+    EXPECT_NEAR(R.determinant(), 1.0, 1e-12);
+    EXPECT_LT((R.col(2) - z_des).norm(), 1e-15);
+    EXPECT_NEAR(R.col(0).dot(y_C), 0.0, 1e-15);
+    EXPECT_GT(R.col(0).dot(x_C), 0.0) << z_des.transpose();
+    // The un-negated axis of (B.18) points the other way.
+    EXPECT_LT(y_C.cross(z_des).dot(x_C), 0.0);
+  }
+  // Upside down with thrust straight down: x_des = x_C, y_des = -y_C (a roll by pi of the
+  // level attitude with heading psi).
+  const Eigen::Matrix3d inverted = ComputeDesiredAttitude(-Eigen::Vector3d::UnitZ(), kHeading);
+  const Eigen::Matrix3d expected = (Eigen::AngleAxisd(kHeading, Eigen::Vector3d::UnitZ()) *
+                                    Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()))
+                                       .toRotationMatrix();
+  EXPECT_LT((inverted - expected).norm(), 1e-12);
+  // A vehicle inverted at that attitude has no yaw error to correct.
+  const AttitudeFeedback fb = AttitudeController{}.Compute(Eigen::Quaterniond(expected),
+                                                           -Eigen::Vector3d::UnitZ(), kHeading);
+  EXPECT_LT(fb.omega_fb_B.norm(), 1e-12);
+}
+
 TEST(AttitudeControllerTest, UpsideDownErrorRotatesAboutBodyX) {
   const AttitudeController controller;
   const AttitudeFeedback fb =

@@ -14,6 +14,7 @@ nlohmann::json RunRecovery(std::uint64_t seed) {
   ControlBenchOptions options;
   options.quick = true;
   options.seed = seed;
+  options.vehicle.mismatch = false;  // vehicle = model (the mismatched bench: mismatch.md)
   nlohmann::json summary;
   output::HtmlReport report("test");
   MakeRecoverySection().run(options, &summary, &report);
