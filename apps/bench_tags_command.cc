@@ -12,6 +12,7 @@
 #include <memory>
 #include <string>
 
+#include "apps/command_support.h"
 #include "apps/commands.h"
 #include "apps/monte_carlo_command.h"
 #include "experiments/tags/tags_monte_carlo_bench.h"
@@ -23,7 +24,8 @@ namespace {
 
 struct BenchTagsOptions {
   std::string out_dir;
-  long long seed = 1;
+  bool overwrite = false;
+  std::uint64_t seed = 1;
   bool quick = false;
   MonteCarloCommandOptions monte_carlo;
 };
@@ -35,19 +37,19 @@ void AddBenchTagsCommand(CLI::App& bench, int* exit_code) {
   CLI::App* command = bench.add_subcommand(
       "tags", "AprilTag detection per detector and family, flips and the tag map (paper D)");
   command->add_option("--out", options->out_dir, "Output folder (created if missing)")->required();
-  command->add_option("--seed", options->seed, "Seed of the views, noise and the tag field")
-      ->check(CLI::NonNegativeNumber);
+  AddOverwriteFlag(command, &options->overwrite);
+  AddSeedOption(command, &options->seed, "Seed of the views, noise and the tag field");
   command->add_flag("--quick", options->quick, "Fewer frames per section (same code paths)");
   AddMonteCarloOptions(command, &options->monte_carlo);
   command->callback([options, exit_code] {
-    output::OutputFolder out(options->out_dir);
+    output::OutputFolder out = OpenOutputFolder(options->out_dir, options->overwrite);
     output::RunAndWriteSummary(out, [&] {
       experiments::TagBenchOptions bench;
-      bench.seed = static_cast<std::uint64_t>(options->seed);
+      bench.seed = options->seed;
       bench.quick = options->quick;
       bench.detectors.Register(servo::kVispTagDetectorName, &servo::CreateVispTagDetector);
-      RunMonteCarloCommand(experiments::kTagsBenchName,
-                           experiments::TagsBenchConfiguration(bench), options->monte_carlo, out);
+      RunMonteCarloCommand(experiments::kTagsBenchName, experiments::TagsBenchConfiguration(bench),
+                           options->monte_carlo, out);
     });
     *exit_code = 0;
   });
