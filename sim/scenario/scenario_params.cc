@@ -27,9 +27,10 @@ void ReadChoice(config::ParamReader& reader, const std::string& key, std::string
 // control::RequirePositive with the key's location ("file:line:col: 'gap.opening_m'") as its name.
 void RequirePositiveAt(const config::ParamReader& reader, const std::string& key, double value) {
   try {
-    control::RequirePositive(value, "the value");
+    control::RequirePositive(value, reader.FullKey(key));
   } catch (const std::invalid_argument& e) {
-    reader.Fail(key, e.what());
+    const std::string message = e.what();  // "<key> = <value> must be finite and > 0"
+    reader.Fail(key, message.substr(message.find("= ")));
   }
 }
 

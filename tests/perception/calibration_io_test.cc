@@ -270,7 +270,8 @@ TEST(CalibrationIoTest, MissingFileNamesThePath) {
 }
 
 TEST(CalibrationIoTest, ImageSizeCheckNamesFileAndBothSizes) {
-  const CameraCalibration calib = LoadCameraCalibration(kDataDir + "euroc_cam0_kalibr.yaml");
+  const CameraCalibration calib =
+      LoadCameraCalibration(kDataDir + "euroc_cam0_kalibr.yaml", "cam0");
   EXPECT_NO_THROW(CheckCalibrationImageSize(calib, 752, 480));
   try {
     CheckCalibrationImageSize(calib, 640, 480);
