@@ -20,9 +20,9 @@ namespace {
 namespace fs = std::filesystem;
 
 // Tiny frames: the runs below only check how values are taken.
-const std::string kTinyFront = " --set cameras.front.width=32 --set cameras.front.height=24 ";
+const std::string kValuesTinyFront = " --set cameras.front.width=32 --set cameras.front.height=24 ";
 
-bool Contains(const std::string& text, const std::string& part) {
+bool OutputHas(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
 }
 
@@ -31,13 +31,13 @@ TEST(ValuesCli, SetCannotInventACameraAndNamesTheKnownOnes) {
   const CommandResult typo =
       RunAperture("sim gap --set cameras.frnt.rate_hz=30 --out " + temp.path() + "/a");
   EXPECT_EQ(typo.exit_code, 2) << typo.output;
-  EXPECT_TRUE(Contains(typo.output, "unknown camera 'frnt'")) << typo.output;
-  EXPECT_TRUE(Contains(typo.output, "known: front")) << typo.output;
+  EXPECT_TRUE(OutputHas(typo.output, "unknown camera 'frnt'")) << typo.output;
+  EXPECT_TRUE(OutputHas(typo.output, "known: front")) << typo.output;
   // The led scenario's camera is `ground`: a front camera is no more known there.
   const CommandResult led =
       RunAperture("sim led --set cameras.front.rate_hz=30 --out " + temp.path() + "/b");
   EXPECT_EQ(led.exit_code, 2) << led.output;
-  EXPECT_TRUE(Contains(led.output, "known: ground")) << led.output;
+  EXPECT_TRUE(OutputHas(led.output, "known: ground")) << led.output;
 }
 
 TEST(ValuesCli, NonFiniteAndHugeNumbersAreUsageErrorsWithReadableMessages) {
@@ -46,17 +46,17 @@ TEST(ValuesCli, NonFiniteAndHugeNumbersAreUsageErrorsWithReadableMessages) {
     const CommandResult result = RunAperture("sim gap --set gap.roll_deg=" + value + " --out " +
                                              temp.path() + "/set" + std::to_string(value.size()));
     EXPECT_EQ(result.exit_code, 2) << result.output;
-    EXPECT_TRUE(Contains(result.output, "--set gap.roll_deg=" + value)) << result.output;
-    EXPECT_TRUE(Contains(result.output, "[-360, 360] degrees")) << result.output;
-    EXPECT_FALSE(Contains(result.output, "0000000000")) << result.output;  // no 309 digits
+    EXPECT_TRUE(OutputHas(result.output, "--set gap.roll_deg=" + value)) << result.output;
+    EXPECT_TRUE(OutputHas(result.output, "[-360, 360] degrees")) << result.output;
+    EXPECT_FALSE(OutputHas(result.output, "0000000000")) << result.output;  // no 309 digits
   }
   for (const std::string value : {"nan", "inf", "1e308", "0", "-1"}) {
     const CommandResult result =
         RunAperture("sim gap --duration " + value + " --out " + temp.path() + "/duration");
     EXPECT_EQ(result.exit_code, 2) << value << ": " << result.output;
-    EXPECT_TRUE(Contains(result.output, "--duration")) << result.output;
-    EXPECT_TRUE(Contains(result.output, "(0, 864000]")) << result.output;
-    EXPECT_FALSE(Contains(result.output, "SitlRunnerParams")) << result.output;
+    EXPECT_TRUE(OutputHas(result.output, "--duration")) << result.output;
+    EXPECT_TRUE(OutputHas(result.output, "(0, 864000]")) << result.output;
+    EXPECT_FALSE(OutputHas(result.output, "SitlRunnerParams")) << result.output;
   }
 }
 
@@ -67,8 +67,8 @@ TEST(ValuesCli, FpsHasOneRuleForEveryBadValue) {
         RunAperture("run --source " + temp.path() + " --fps " + value +
                     " --frontends image_quality --out " + temp.path() + "/out");
     EXPECT_EQ(result.exit_code, 2) << value << ": " << result.output;
-    EXPECT_TRUE(Contains(result.output, "--fps")) << result.output;
-    EXPECT_TRUE(Contains(result.output, "[0.001, 10000]")) << result.output;
+    EXPECT_TRUE(OutputHas(result.output, "--fps")) << result.output;
+    EXPECT_TRUE(OutputHas(result.output, "[0.001, 10000]")) << result.output;
   }
 }
 
@@ -84,13 +84,13 @@ TEST(ValuesCli, OneSeedRuleForEveryCommand) {
     const CommandResult result =
         RunAperture(command + " --seed " + seed + " --out " + temp.path() + "/seed");
     EXPECT_EQ(result.exit_code, 2) << command << " --seed " << seed << ": " << result.output;
-    EXPECT_TRUE(Contains(result.output, "18446744073709551615")) << result.output;
+    EXPECT_TRUE(OutputHas(result.output, "18446744073709551615")) << result.output;
     EXPECT_FALSE(fs::exists(temp.path() + "/seed")) << "nothing runs on a bad seed";
   }
   // The largest seed is taken as it is and recorded exactly (a JSON integer, not a double).
   const fs::path out = fs::path(temp.path()) / "max";
   const CommandResult result = RunAperture("render gap --frames 1 --seed 18446744073709551615" +
-                                           kTinyFront + "--out " + out.string());
+                                           kValuesTinyFront + "--out " + out.string());
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const nlohmann::json summary = ReadJson(out / "summary.json");
   EXPECT_EQ(summary["inputs"]["seed"].get<std::uint64_t>(), 18446744073709551615ull);
@@ -100,19 +100,20 @@ TEST(ValuesCli, OneSeedRuleForEveryCommand) {
 TEST(ValuesCli, ReusedOutFolderIsRefusedUnlessOverwriteWhichClearsTheEarlierRun) {
   TempFolder temp("values_out");
   const fs::path out = fs::path(temp.path()) / "out";
-  ASSERT_EQ(RunAperture("render gap --frames 3" + kTinyFront + "--out " + out.string()).exit_code,
-            0);
+  ASSERT_EQ(
+      RunAperture("render gap --frames 3" + kValuesTinyFront + "--out " + out.string()).exit_code,
+      0);
   ASSERT_TRUE(fs::exists(out / "images" / "000002.png"));
   std::ofstream(out / "notes.txt") << "the user's own file";
 
   const CommandResult refused =
-      RunAperture("render gap --frames 1" + kTinyFront + "--out " + out.string());
+      RunAperture("render gap --frames 1" + kValuesTinyFront + "--out " + out.string());
   EXPECT_EQ(refused.exit_code, 2) << refused.output;
-  EXPECT_TRUE(Contains(refused.output, "--overwrite")) << refused.output;
+  EXPECT_TRUE(OutputHas(refused.output, "--overwrite")) << refused.output;
   EXPECT_TRUE(fs::exists(out / "images" / "000002.png"));  // nothing touched
 
   const CommandResult replaced =
-      RunAperture("render gap --frames 1 --overwrite" + kTinyFront + "--out " + out.string());
+      RunAperture("render gap --frames 1 --overwrite" + kValuesTinyFront + "--out " + out.string());
   ASSERT_EQ(replaced.exit_code, 0) << replaced.output;
   EXPECT_TRUE(fs::exists(out / "images" / "000000.png"));
   EXPECT_FALSE(fs::exists(out / "images" / "000001.png"));  // the earlier run's frames are gone
@@ -147,7 +148,7 @@ TEST(ValuesCli, RenderChecksItsLedFileAndRecordsTheLedsItRendered) {
       RunAperture("render led --frames 1 --set led.config=" + coplanar.string() + tiny_ground +
                   "--out " + temp.path() + "/bad");
   EXPECT_EQ(bad.exit_code, 1) << bad.output;  // the file's content is bad data
-  EXPECT_TRUE(Contains(bad.output, "coplanar")) << bad.output;
+  EXPECT_TRUE(OutputHas(bad.output, "coplanar")) << bad.output;
 }
 
 TEST(ValuesCli, RenderRefusesADatasetLargerThanTheDisk) {
@@ -155,8 +156,8 @@ TEST(ValuesCli, RenderRefusesADatasetLargerThanTheDisk) {
   const CommandResult result =
       RunAperture("render gap --frames 1000000000 --out " + temp.path() + "/out");
   EXPECT_EQ(result.exit_code, 2) << result.output;
-  EXPECT_TRUE(Contains(result.output, "1000000000 frames of 752x480 need up to")) << result.output;
-  EXPECT_TRUE(Contains(result.output, "GB")) << result.output;
+  EXPECT_TRUE(OutputHas(result.output, "1000000000 frames of 752x480 need up to")) << result.output;
+  EXPECT_TRUE(OutputHas(result.output, "GB")) << result.output;
   EXPECT_FALSE(fs::exists(fs::path(temp.path()) / "out" / "images" / "000000.png"));
 }
 
@@ -167,13 +168,13 @@ TEST(ValuesCli, DeviceOrFifoIsNamedAsSuchInsteadOfMissingOrHanging) {
   const CommandResult config = RunAperture("sim gap --config " + fifo + " --out " + temp.path() +
                                            "/a");  // would wait forever for a writer
   EXPECT_EQ(config.exit_code, 1) << config.output;
-  EXPECT_TRUE(Contains(config.output, "config file '" + fifo + "' is not a regular file"))
+  EXPECT_TRUE(OutputHas(config.output, "config file '" + fifo + "' is not a regular file"))
       << config.output;
   const CommandResult source =
       RunAperture("run --source /dev/null --fps 30 --out " + temp.path() + "/b");
   EXPECT_EQ(source.exit_code, 1) << source.output;
-  EXPECT_TRUE(Contains(source.output, "'/dev/null' is not a regular file")) << source.output;
-  EXPECT_FALSE(Contains(source.output, "does not exist")) << source.output;
+  EXPECT_TRUE(OutputHas(source.output, "'/dev/null' is not a regular file")) << source.output;
+  EXPECT_FALSE(OutputHas(source.output, "does not exist")) << source.output;
 }
 
 TEST(ValuesCli, BenchAloneListsTheBenchesAndSimHelpSaysOutIsRequired) {
@@ -181,11 +182,11 @@ TEST(ValuesCli, BenchAloneListsTheBenchesAndSimHelpSaysOutIsRequired) {
   EXPECT_EQ(bench.exit_code, 2);
   for (const std::string name :
        {"control", "gap", "gapflyt", "led", "merge", "mononav", "ts2p", "tags"}) {
-    EXPECT_TRUE(Contains(bench.output, "aperture bench " + name + ":")) << bench.output;
+    EXPECT_TRUE(OutputHas(bench.output, "aperture bench " + name + ":")) << bench.output;
   }
   const CommandResult help = RunAperture("sim --help");
   EXPECT_EQ(help.exit_code, 0);
-  EXPECT_TRUE(Contains(help.output, "REQUIRED with a scenario NAME")) << help.output;
+  EXPECT_TRUE(OutputHas(help.output, "REQUIRED with a scenario NAME")) << help.output;
 }
 
 }  // namespace
