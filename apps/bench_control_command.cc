@@ -43,14 +43,14 @@ void AddBenchControlCommand(CLI::App& bench, int* exit_code) {
       "Control-stack comparisons: rotor drag, drag identification, body-rate law, "
       "mixer, saturation, throw recovery");
   AddCommonOptions(command, &options->common);
-  command->add_option("--seed", options->bench.seed, "Seed of every random stream");
+  AddSeedOption(command, &options->bench.seed, "Seed of every random stream");
   command->add_flag("--quick", options->bench.quick,
                     "Shorter flights and fewer trials (same code paths)");
   command->add_option("--only", options->only, "Run only these sections (comma-separated keys)")
       ->delimiter(',');
   AddMonteCarloOptions(command, &options->monte_carlo);
   command->callback([options, exit_code] {
-    output::OutputFolder out(options->common.out_dir);
+    output::OutputFolder out = OpenOutputFolder(options->common);
     output::RunAndWriteSummary(out, [&] {
       // Read here first so that a mistake is named by its file line or --set item.
       config::ConfigTree tree = LoadConfig(options->common, "");

@@ -38,25 +38,30 @@ void AddBenchGapCommand(CLI::App& bench, int* exit_code) {
       "gap", "Monte-Carlo flights through the inclined patterned gap (seed 000 Table I, Fig. 6)");
   command->add_option("--trials", options->bench.trials, "Number of trials")
       ->check(CLI::PositiveNumber);
-  command->add_option("--seed", options->bench.seed, "Seed of every trial's random choices");
-  command->add_option("--first-trial", options->bench.first_trial,
-                      "Index of the first trial (a part of a longer run of the same seed)")
+  AddSeedOption(command, &options->bench.seed, "Seed of every trial's random choices");
+  command
+      ->add_option("--first-trial", options->bench.first_trial,
+                   "Index of the first trial (a part of a longer run of the same seed)")
       ->check(CLI::NonNegativeNumber);
-  command->add_option("--max-roll-deg", options->bench.ranges.max_roll_deg,
-                      "Gap roll drawn uniformly from [0, max] deg")
-      ->check(CLI::Range(0.0, 89.0));
-  command->add_option("--max-pitch-deg", options->bench.ranges.max_pitch_deg,
-                      "Gap pitch drawn uniformly from [0, max] deg")
-      ->check(CLI::Range(0.0, 89.0));
-  command->add_option("--max-drop-probability", options->bench.ranges.max_drop_probability,
-                      "Camera frame-drop probability drawn uniformly from [0, max]")
-      ->check(CLI::Range(0.0, 0.99));
-  command->add_option("--motion-blur-subframes", options->bench.ranges.motion_blur_subframes,
-                      "Renders averaged per frame over the random exposure (1 = no blur; each "
-                      "one costs a full render)")
+  command
+      ->add_option("--max-roll-deg", options->bench.ranges.max_roll_deg,
+                   "Gap roll drawn uniformly from [0, max] deg")
+      ->check(FiniteNumberIn(0.0, 89.0));
+  command
+      ->add_option("--max-pitch-deg", options->bench.ranges.max_pitch_deg,
+                   "Gap pitch drawn uniformly from [0, max] deg")
+      ->check(FiniteNumberIn(0.0, 89.0));
+  command
+      ->add_option("--max-drop-probability", options->bench.ranges.max_drop_probability,
+                   "Camera frame-drop probability drawn uniformly from [0, max]")
+      ->check(FiniteNumberIn(0.0, 0.99));
+  command
+      ->add_option("--motion-blur-subframes", options->bench.ranges.motion_blur_subframes,
+                   "Renders averaged per frame over the random exposure (1 = no blur; each "
+                   "one costs a full render)")
       ->check(CLI::PositiveNumber);
   command->add_option("--duration", options->bench.duration_s, "Simulated time per trial [s]")
-      ->check(CLI::PositiveNumber);
+      ->check(FiniteNumberIn(0.0, kMaxDurationS, /*min_inclusive=*/false));
   command
       ->add_option("--autopilot", options->autopilot,
                    "mission: the vision gap mission (camera + IMU); ground_truth: the same "
@@ -65,7 +70,7 @@ void AddBenchGapCommand(CLI::App& bench, int* exit_code) {
   AddCommonOptions(command, &options->common);
   AddMonteCarloOptions(command, &options->monte_carlo);
   command->callback([options, exit_code] {
-    output::OutputFolder out(options->common.out_dir);
+    output::OutputFolder out = OpenOutputFolder(options->common);
     output::RunAndWriteSummary(out, [&] {
       experiments::GapBenchOptions bench = options->bench;
       bench.config_files = options->common.config_files;

@@ -53,7 +53,7 @@ void AddBenchGapflytCommand(CLI::App& bench, int* exit_code) {
       "GapFlyt flights through randomized unknown openings per servo law (seed 002 Sec. IV)");
   command->add_option("--trials", options->bench.trials, "Trials per law (shapes cycle)")
       ->check(CLI::PositiveNumber);
-  command->add_option("--seed", options->bench.seed, "Seed of every trial's random choices");
+  AddSeedOption(command, &options->bench.seed, "Seed of every trial's random choices");
   command->add_option("--laws", options->laws, "Comma-separated servo laws (moments,pid)");
   command->add_option("--width", options->bench.width, "Forward camera image width [px]");
   command->add_option("--height", options->bench.height, "Forward camera image height [px]");
@@ -65,7 +65,7 @@ void AddBenchGapflytCommand(CLI::App& bench, int* exit_code) {
   AddCommonOptions(command, &options->common);
   AddMonteCarloOptions(command, &options->monte_carlo);
   command->callback([options, exit_code] {
-    output::OutputFolder out(options->common.out_dir);
+    output::OutputFolder out = OpenOutputFolder(options->common);
     output::RunAndWriteSummary(out, [&] { RunBenchGapflyt(*options, out); });
     *exit_code = 0;
   });

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/command_support.h"
 #include "apps/commands.h"
 #include "apps/monte_carlo_command.h"
 #include "experiments/led/led_monte_carlo_bench.h"
@@ -22,7 +23,8 @@ namespace {
 
 struct BenchLedOptions {
   std::string out_dir;
-  long long seed = 1;
+  bool overwrite = false;
+  std::uint64_t seed = 1;
   bool quick = false;
   std::vector<std::string> only;
   MonteCarloCommandOptions monte_carlo;
@@ -35,22 +37,22 @@ void AddBenchLedCommand(CLI::App& bench, int* exit_code) {
   CLI::App* command = bench.add_subcommand(
       "led", "Infrared-LED pose tracking against rendered ground truth (thesis C.4 analogs)");
   command->add_option("--out", options->out_dir, "Output folder (created if missing)")->required();
-  command->add_option("--seed", options->seed, "Seed of the random poses and sensor noise")
-      ->check(CLI::NonNegativeNumber);
+  AddOverwriteFlag(command, &options->overwrite);
+  AddSeedOption(command, &options->seed, "Seed of the random poses and sensor noise");
   command->add_flag("--quick", options->quick, "Fewer frames per section (same code paths)");
   command->add_option("--only", options->only, "Run only these sections (comma-separated keys)")
       ->delimiter(',')
       ->check(CLI::IsMember(experiments::LedBenchSectionKeys()));
   AddMonteCarloOptions(command, &options->monte_carlo);
   command->callback([options, exit_code] {
-    output::OutputFolder out(options->out_dir);
+    output::OutputFolder out = OpenOutputFolder(options->out_dir, options->overwrite);
     output::RunAndWriteSummary(out, [&] {
       experiments::LedBenchOptions bench;
-      bench.seed = static_cast<std::uint64_t>(options->seed);
+      bench.seed = options->seed;
       bench.quick = options->quick;
       bench.only = options->only;
-      RunMonteCarloCommand(experiments::kLedBenchName,
-                           experiments::LedBenchConfiguration(bench), options->monte_carlo, out);
+      RunMonteCarloCommand(experiments::kLedBenchName, experiments::LedBenchConfiguration(bench),
+                           options->monte_carlo, out);
     });
     *exit_code = 0;
   });

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "apps/code_version.h"
+#include "apps/command_support.h"
 #include "apps/commands.h"
 #include "apps/monte_carlo_command.h"
 #include "experiments/bench/monte_carlo_run.h"
@@ -26,6 +27,7 @@ namespace {
 
 struct BenchMergeOptions {
   std::string out_dir;
+  bool overwrite = false;
   std::vector<std::string> shard_dirs;
 };
 
@@ -49,16 +51,16 @@ void AddBenchMergeCommand(CLI::App& bench, int* exit_code) {
   CLI::App* command = bench.add_subcommand(
       "merge", "Merge the shard folders of a Monte-Carlo bench (--shard K/N runs) into one run");
   command->add_option("--out", options->out_dir, "Output folder (created if missing)")->required();
+  AddOverwriteFlag(command, &options->overwrite);
   command->add_option("shards", options->shard_dirs, "The --out folders of the shards (any order)")
       ->required()
       ->check(CLI::ExistingDirectory);
   command->callback([options, exit_code] {
     CheckOutIsNoShard(*options);
-    output::OutputFolder out(options->out_dir);
+    output::OutputFolder out = OpenOutputFolder(options->out_dir, options->overwrite);
     output::RunAndWriteSummary(out, [&] {
-      std::cout << experiments::MergeMonteCarloShards(
-                       BenchRegistry(), options->shard_dirs,
-                       CodeVersion(), out)
+      std::cout << experiments::MergeMonteCarloShards(BenchRegistry(), options->shard_dirs,
+                                                      CodeVersion(), out)
                 << "\n";
     });
     *exit_code = 0;

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/command_support.h"
 #include "apps/commands.h"
 #include "apps/monte_carlo_command.h"
 #include "experiments/mononav/mononav_monte_carlo_bench.h"
@@ -22,6 +23,7 @@ namespace {
 
 struct BenchMononavOptions {
   std::string out_dir;
+  bool overwrite = false;
   MonteCarloCommandOptions monte_carlo;
   experiments::MononavBenchOptions bench;
 };
@@ -33,11 +35,12 @@ void AddBenchMononavCommand(CLI::App& bench, int* exit_code) {
   CLI::App* command = bench.add_subcommand(
       "mononav", "Forest flights of the monocular-depth mission (seed 003 Tables II, IV, timing)");
   command->add_option("--out", options->out_dir, "Output folder (created if missing)")->required();
+  AddOverwriteFlag(command, &options->overwrite);
   command->add_option("--trials", options->bench.trials, "Forest layouts (seeds --seed ..)")
       ->check(CLI::PositiveNumber);
-  command->add_option("--seed", options->bench.first_seed, "Seed of the first layout");
+  AddSeedOption(command, &options->bench.first_seed, "Seed of the first layout");
   command->add_option("--duration", options->bench.duration_s, "Simulated time per flight [s]")
-      ->check(CLI::PositiveNumber);
+      ->check(FiniteNumberIn(0.0, kMaxDurationS, /*min_inclusive=*/false));
   command->add_flag("--quick", options->bench.quick,
                     "One short flight (4 m, one trunk on the line), EDT only (same code paths)");
   command
@@ -50,7 +53,7 @@ void AddBenchMononavCommand(CLI::App& bench, int* exit_code) {
       "Scenario or mission override, e.g. forest.trees=30, mission.max_speed_mps=1");
   AddMonteCarloOptions(command, &options->monte_carlo);
   command->callback([options, exit_code] {
-    output::OutputFolder out(options->out_dir);
+    output::OutputFolder out = OpenOutputFolder(options->out_dir, options->overwrite);
     output::RunAndWriteSummary(out, [&] {
       RunMonteCarloCommand(experiments::kMononavBenchName,
                            experiments::MononavBenchConfiguration(options->bench),

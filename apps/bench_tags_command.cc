@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/command_support.h"
 #include "apps/commands.h"
 #include "apps/monte_carlo_command.h"
 #include "experiments/tags/tag_bench.h"
@@ -26,7 +27,8 @@ namespace {
 
 struct BenchTagsOptions {
   std::string out_dir;
-  long long seed = 1;
+  bool overwrite = false;
+  std::uint64_t seed = 1;
   bool quick = false;
   std::vector<std::string> sections;
   MonteCarloCommandOptions monte_carlo;
@@ -39,8 +41,8 @@ void AddBenchTagsCommand(CLI::App& bench, int* exit_code) {
   CLI::App* command = bench.add_subcommand(
       "tags", "AprilTag detection per detector and family, flips and the tag map (paper D)");
   command->add_option("--out", options->out_dir, "Output folder (created if missing)")->required();
-  command->add_option("--seed", options->seed, "Seed of the views, noise and the tag field")
-      ->check(CLI::NonNegativeNumber);
+  AddOverwriteFlag(command, &options->overwrite);
+  AddSeedOption(command, &options->seed, "Seed of the views, noise and the tag field");
   command->add_flag("--quick", options->quick, "Fewer frames per section (same code paths)");
   command
       ->add_option("--section", options->sections,
@@ -48,10 +50,10 @@ void AddBenchTagsCommand(CLI::App& bench, int* exit_code) {
       ->check(CLI::IsMember(experiments::TagBenchSectionKeys()));
   AddMonteCarloOptions(command, &options->monte_carlo);
   command->callback([options, exit_code] {
-    output::OutputFolder out(options->out_dir);
+    output::OutputFolder out = OpenOutputFolder(options->out_dir, options->overwrite);
     output::RunAndWriteSummary(out, [&] {
       experiments::TagBenchOptions bench;
-      bench.seed = static_cast<std::uint64_t>(options->seed);
+      bench.seed = options->seed;
       bench.quick = options->quick;
       bench.sections = options->sections;
       bench.detectors.Register(servo::kVispTagDetectorName, &servo::CreateVispTagDetector);

@@ -60,7 +60,7 @@ void AddBenchTs2pCommand(CLI::App& bench, int* exit_code) {
       "002 Tables II, III, Figs. 9, 12, 13)");
   command->add_option("--trials", options->bench.trials, "Trials (shapes cycle through the five)")
       ->check(CLI::PositiveNumber);
-  command->add_option("--seed", options->bench.seed, "Seed of every trial's random choices");
+  AddSeedOption(command, &options->bench.seed, "Seed of every trial's random choices");
   command->add_option("--methods", options->methods,
                       "Comma-separated flow methods for Table II (default: all)");
   command
@@ -80,7 +80,7 @@ void AddBenchTs2pCommand(CLI::App& bench, int* exit_code) {
   AddCommonOptions(command, &options->common);
   AddMonteCarloOptions(command, &options->monte_carlo);
   command->callback([options, exit_code] {
-    output::OutputFolder out(options->common.out_dir);
+    output::OutputFolder out = OpenOutputFolder(options->common);
     output::RunAndWriteSummary(out, [&] { RunBenchTs2p(*options, out); });
     *exit_code = 0;
   });

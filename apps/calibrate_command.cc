@@ -23,6 +23,7 @@ namespace {
 
 struct CalibrateOptions {
   std::string out_dir;
+  bool overwrite = false;
   std::string images_dir;
   std::string pattern;
   std::string model = "radtan";
@@ -85,11 +86,12 @@ void Calibrate(const CalibrateOptions& options, output::OutputFolder& out) {
   perception::CameraCalibration calibration;
   calibration.camera = result.camera;
   const std::string calib_path = out.Path("calib.yaml");
-  perception::SaveCameraCalibration(calibration, calib_path, perception::CalibrationFormat::kOpenCv);
+  perception::SaveCameraCalibration(calibration, calib_path,
+                                    perception::CalibrationFormat::kOpenCv);
   // Prove the file is usable before reporting success.
   perception::LoadCameraCalibration(calib_path);
-  summary["outputs"] = {{"calibration", "calib.yaml"}, {"csv", "per_image.csv"},
-                        {"report", "report.html"}};
+  summary["outputs"] = {
+      {"calibration", "calib.yaml"}, {"csv", "per_image.csv"}, {"report", "report.html"}};
   std::cout << result << "\ncalibration written to " << calib_path << "\n";
 
   output::HtmlReport report("aperture calibrate: " + options.images_dir);
@@ -110,14 +112,16 @@ void AddCalibrateCommand(CLI::App& app, int* exit_code) {
   auto options = std::make_shared<CalibrateOptions>();
   CLI::App* command = app.add_subcommand("calibrate", "Calibrate a camera from target images");
   command->add_option("--images", options->images_dir, "Folder of target images")->required();
-  command->add_option("--pattern", options->pattern,
-                      "chessboard:COLSxROWS:SQUARE_M or circles:COLSxROWS:SPACING_M")
+  command
+      ->add_option("--pattern", options->pattern,
+                   "chessboard:COLSxROWS:SQUARE_M or circles:COLSxROWS:SPACING_M")
       ->required();
   command->add_option("--model", options->model, "radtan or fisheye")
       ->check(CLI::IsMember({"radtan", "fisheye"}));
   command->add_option("--out", options->out_dir, "Output folder (created if missing)")->required();
+  AddOverwriteFlag(command, &options->overwrite);
   command->callback([options, exit_code] {
-    output::OutputFolder out(options->out_dir);
+    output::OutputFolder out = OpenOutputFolder(options->out_dir, options->overwrite);
     output::RunAndWriteSummary(out, [&] { Calibrate(*options, out); });
     *exit_code = 0;
   });

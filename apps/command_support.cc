@@ -1,16 +1,108 @@
 #include "apps/command_support.h"
 
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include "config/usage_error.h"
+#include "config/yaml_write_archive.h"
+#include "sim/scenario/scenario.h"
+#include "sim/scenario/scenario_params.h"
+
 namespace aperture::apps {
+namespace {
+
+// The seed check: decimal digits only (CLI11 would turn "-1" into 2^64 - 1), at most 2^64 - 1.
+std::string SeedError(const std::string& text) {
+  const std::string rule =
+      "a seed is an integer from 0 to 18446744073709551615 written in decimal digits";
+  if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos) {
+    return "'" + text + "' is not a seed: " + rule;
+  }
+  errno = 0;
+  std::strtoull(text.c_str(), nullptr, 10);
+  if (errno == ERANGE) return "'" + text + "' is too large: " + rule;
+  return "";
+}
+
+std::string Readable(double value) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%g", value);
+  return text;
+}
+
+}  // namespace
 
 void AddCommonOptions(CLI::App* command, CommonOptions* options) {
-  command->add_option("--out", options->out_dir, "Output folder (created if missing)")
-      ->required();
-  command->add_option("--config", options->config_files,
-                      "YAML parameter file (repeatable; later files win)")
+  command->add_option("--out", options->out_dir, "Output folder (created if missing)")->required();
+  AddOverwriteFlag(command, &options->overwrite);
+  command
+      ->add_option("--config", options->config_files,
+                   "YAML parameter file (repeatable; later files win)")
       ->check(CLI::ExistingFile);
   command->add_option("--set", options->set_items,
                       "Parameter override key=value, e.g. image_quality.histogram_bins=32 "
                       "(repeatable; wins over --config)");
+}
+
+void AddOverwriteFlag(CLI::App* command, bool* overwrite) {
+  command->add_flag("--overwrite", *overwrite,
+                    "Reuse an --out folder that holds an earlier run's outputs: remove the files "
+                    "that run created first (without it such a folder is refused)");
+}
+
+output::OutputFolder OpenOutputFolder(const std::string& out_dir, bool overwrite) {
+  try {
+    return output::OutputFolder(out_dir, overwrite);
+  } catch (const output::FolderInUseError& e) {
+    throw config::UsageError(e.what());
+  }
+}
+
+CLI::Option* AddSeedOption(CLI::App* command, std::uint64_t* seed, const std::string& description) {
+  return command->add_option("--seed", *seed, description)
+      ->check(CLI::Validator(SeedError, "UINT64", "seed"));
+}
+
+CLI::Option* AddSeedOption(CLI::App* command, std::optional<std::uint64_t>* seed,
+                           const std::string& description) {
+  return command->add_option("--seed", *seed, description)
+      ->check(CLI::Validator(SeedError, "UINT64", "seed"));
+}
+
+CLI::Validator FiniteNumberIn(double min, double max, bool min_inclusive) {
+  const std::string range =
+      (min_inclusive ? "[" : "(") + Readable(min) + ", " + Readable(max) + "]";
+  return CLI::Validator(
+      [=](const std::string& text) -> std::string {
+        char* end = nullptr;
+        const double value = std::strtod(text.c_str(), &end);
+        if (text.empty() || end != text.c_str() + text.size()) {
+          return "'" + text + "' is not a number";
+        }
+        const bool above_min = min_inclusive ? value >= min : value > min;
+        if (!std::isfinite(value) || !above_min || !(value <= max)) {
+          return "'" + text + "' is not a finite number in " + range;
+        }
+        return "";
+      },
+      "NUMBER in " + range, "finite number");
+}
+
+void RequireBuiltinScenario(const std::string& name) {
+  try {
+    sim::BuiltinScenarioYaml(name);
+  } catch (const std::invalid_argument& e) {
+    throw config::UsageError(e.what());
+  }
+}
+
+void PutEffectiveLeds(const sim::ScenarioParams& params, config::ConfigTree* tree) {
+  if (params.scenario != "led") return;
+  YAML::Node led = YAML::Clone(tree->root()["led"]);
+  if (!led.IsMap()) led = YAML::Node(YAML::NodeType::Map);
+  led["leds"] = config::YamlWriteArchive::Encode(params.led.leds_B);
+  tree->Put("led", led, "effective configuration");
 }
 
 config::ConfigTree LoadConfig(const CommonOptions& options, const std::string& defaults_yaml) {

@@ -16,15 +16,19 @@
 // so that `aperture run --source OUT --calib OUT/calib.yaml` replays the dataset.
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <iostream>
 #include <memory>
 #include <opencv2/imgcodecs.hpp>
+#include <optional>
 #include <sstream>
 
 #include "apps/command_support.h"
 #include "apps/commands.h"
+#include "config/usage_error.h"
 #include "output/csv_writer.h"
 #include "output/html_report.h"
 #include "output/progress_bar.h"
@@ -41,13 +45,44 @@ namespace {
 struct RenderCommandOptions {
   CommonOptions common;
   std::string scenario;
-  std::string trajectory;  // empty: the scenario's default
-  int frames = 0;          // 0: the scenario's default
-  long long seed = -1;     // < 0: the scenario's seed
+  std::string trajectory;             // empty: the scenario's default
+  int frames = 0;                     // 0: the scenario's default
+  std::optional<std::uint64_t> seed;  // unset: the scenario's seed
 };
 
 void WritePng(const std::string& path, const cv::Mat& image) {
   if (!cv::imwrite(path, image)) throw std::runtime_error("cannot write image '" + path + "'");
+}
+
+// The bytes `frames` frames take at most, uncompressed: the image (up to 3 channels), the 16-bit
+// depth and the 16-bit object ids per pixel (PNG compresses them, noise textures hardly).
+double EstimatedBytes(int frames, int width, int height) {
+  return static_cast<double>(frames) * width * height * (3 + 2 + 2);
+}
+
+std::string Gigabytes(double bytes) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.2f GB", bytes / 1e9);
+  return text;
+}
+
+// Refuses a dataset larger than the free space of the disk holding `out` (a --frames typo would
+// otherwise fill it for hours), and says how large it may get.
+void CheckDatasetFits(int frames, int width, int height, const output::OutputFolder& out) {
+  const double needed = EstimatedBytes(frames, width, height);
+  std::error_code error;
+  const std::filesystem::space_info space = std::filesystem::space(out.directory(), error);
+  if (!error && needed > static_cast<double>(space.available)) {
+    throw config::UsageError(
+        std::to_string(frames) + " frames of " + std::to_string(width) + "x" +
+        std::to_string(height) + " need up to " + Gigabytes(needed) +
+        " (image, 16-bit depth and object ids per frame, before PNG compression) but the disk "
+        "holding '" +
+        out.directory() + "' has " + Gigabytes(static_cast<double>(space.available)) +
+        " free; render fewer --frames (trajectory.frames) or free space");
+  }
+  std::cout << "render: " << frames << " frames of " << width << "x" << height << ", up to "
+            << Gigabytes(needed) << " uncompressed\n";
 }
 
 std::string FrameName(int index) {
@@ -63,15 +98,17 @@ void RenderDataset(const RenderCommandOptions& options, output::OutputFolder& ou
     common.set_items.push_back("trajectory.kind=" + options.trajectory);
   if (options.frames > 0)
     common.set_items.push_back("trajectory.frames=" + std::to_string(options.frames));
-  if (options.seed >= 0) common.set_items.push_back("seed=" + std::to_string(options.seed));
-  const config::ConfigTree tree = config::ConfigTree::FromCommandLine(
+  if (options.seed) common.set_items.push_back("seed=" + std::to_string(*options.seed));
+  config::ConfigTree tree = config::ConfigTree::FromCommandLine(
       sim::BuiltinScenarioYaml(options.scenario), common.config_files, common.set_items);
   sim::Scenario scenario = sim::BuildScenario(sim::LoadScenarioParams(tree));
   const sim::ScenarioParams& params = scenario.params();
+  PutEffectiveLeds(params, &tree);  // summary.json and scenario.yaml show the LEDs rendered
   const sim::ScenarioCamera& camera = scenario.render_camera();
   const sim::KinematicTrajectory trajectory(params.trajectory, scenario.T_WB_start(), params.seed);
   const int frame_count = params.trajectory.frames;
   const double duration_s = (frame_count - 1) / camera.rate_hz;
+  CheckDatasetFits(frame_count, camera.model->width(), camera.model->height(), out);
 
   nlohmann::json& summary = out.summary();
   summary["command"] = "render";
@@ -159,6 +196,8 @@ void RenderDataset(const RenderCommandOptions& options, output::OutputFolder& ou
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   summary["frames"] = frame_count;
+  summary["estimated_bytes_uncompressed"] =
+      EstimatedBytes(frame_count, camera.model->width(), camera.model->height());
   summary["image_size"] = {camera.model->width(), camera.model->height()};
   summary["timing"] = {{"render_s", render_time_s},
                        {"render_ms_per_frame", 1000.0 * render_time_s / frame_count},
@@ -219,13 +258,12 @@ void AddRenderCommand(CLI::App& app, int* exit_code) {
       ->check(CLI::IsMember({"hover", "line", "circle", "scan", "random"}));
   command->add_option("--frames", options->frames, "Frame count (default: the scenario's)")
       ->check(CLI::PositiveNumber);
-  command
-      ->add_option("--seed", options->seed,
-                   "Randomization seed: textures, placements, noise (default: the scenario's)")
-      ->check(CLI::NonNegativeNumber);
+  AddSeedOption(command, &options->seed,
+                "Randomization seed: textures, placements, noise (default: the scenario's)");
   AddCommonOptions(command, &options->common);
   command->callback([options, exit_code] {
-    output::OutputFolder out(options->common.out_dir);
+    RequireBuiltinScenario(options->scenario);
+    output::OutputFolder out = OpenOutputFolder(options->common);
     output::RunAndWriteSummary(out, [&] { RenderDataset(*options, out); });
     *exit_code = 0;
   });

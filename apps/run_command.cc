@@ -46,6 +46,7 @@ struct RunOptions {
   bool skip_bad_frames = false;
   std::string front_ends = "image_quality";
   std::string calibration_path;
+  std::string kalibr_camera;  // --camera: the camera of a Kalibr camchain (empty: its only one)
   std::string image_topic, imu_topic, camera_info_topic;
   bool parallel = false;
   bool video = false;
@@ -64,7 +65,8 @@ void RunFrontEnds(const RunOptions& options, output::OutputFolder& out) {
         "--camera-info-topic TOPIC of the bag, not both");
   }
   if (!options.calibration_path.empty()) {
-    resources.calibration = perception::LoadCameraCalibration(options.calibration_path);
+    resources.calibration =
+        perception::LoadCameraCalibration(options.calibration_path, options.kalibr_camera);
   } else if (!options.camera_info_topic.empty()) {
     resources.calibration =
         perception::LoadCameraInfoFromBag(options.source, options.camera_info_topic);
@@ -210,7 +212,7 @@ void AddRunCommand(CLI::App& app, int* exit_code) {
   command->add_option("--frontends", options->front_ends,
                       "Comma-separated front ends to run (known: " + known + ")");
   command->add_option("--fps", options->fps, "Frame rate [Hz] for sources without timestamps")
-      ->check(CLI::PositiveNumber);
+      ->check(FiniteNumberIn(kMinFps, kMaxFps));
   command->add_flag("--color", options->color, "Read colour (BGR) frames instead of gray");
   command->add_flag("--skip-bad-frames", options->skip_bad_frames,
                     "Skip corrupt, truncated or wrong-size frames with a warning (counted in "
@@ -219,6 +221,9 @@ void AddRunCommand(CLI::App& app, int* exit_code) {
       ->add_option("--calib", options->calibration_path,
                    "Camera calibration (OpenCV, ROS camera_info or Kalibr YAML)")
       ->check(CLI::ExistingFile);
+  command->add_option("--camera", options->kalibr_camera,
+                      "Camera of a Kalibr camchain given to --calib (cam0, cam1, ...; default: "
+                      "its only camera, an error when it holds several)");
   command->add_flag("--parallel", options->parallel,
                     "Run independent front ends concurrently (oneTBB)");
   command->add_flag("--video", options->video, "Write the overlay video");
@@ -226,7 +231,7 @@ void AddRunCommand(CLI::App& app, int* exit_code) {
       ->check(CLI::NonNegativeNumber);
   AddCommonOptions(command, &options->common);
   command->callback([options, exit_code] {
-    output::OutputFolder out(options->common.out_dir);
+    output::OutputFolder out = OpenOutputFolder(options->common);
     output::RunAndWriteSummary(out, [&] { RunFrontEnds(*options, out); });
     *exit_code = 0;
   });

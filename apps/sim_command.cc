@@ -251,6 +251,7 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
                        {"autopilot", result.autopilot_name}};
   // The full effective configuration: `--config OUT/summary.json` flies this run again.
   sim::PutEffectiveSitlBlocks(scenario_params, &tree);
+  PutEffectiveLeds(scenario_params, &tree);
   tree.PutParams("imu", params.imu);  // with the noise seeds SetSeed derived from `seed`
   tree.PutParams("range", params.range);
   YAML::Node mission_config = flight->EffectiveParams();
@@ -318,11 +319,11 @@ void AddSimCommand(CLI::App& app, int* exit_code) {
   command->add_option("--mission", options->mission,
                       "Mission to fly (gap, gapflyt, led_hover, forest, map, hover); default: the "
                       "scenario's own");
-  command->add_option("--seed", options->seed, "Seed of the scenario and every sensor stream");
+  AddSeedOption(command, &options->seed, "Seed of the scenario and every sensor stream");
   command
       ->add_option("--duration", options->duration_s,
                    "Simulated time [s] (default 10, or the mission's flight time if longer)")
-      ->check(CLI::PositiveNumber);
+      ->check(FiniteNumberIn(0.0, kMaxDurationS, /*min_inclusive=*/false));
   command
       ->add_option("--video-every", options->video_every,
                    "Put every N-th camera frame into the video (default 2; the video's frame "
@@ -336,14 +337,16 @@ void AddSimCommand(CLI::App& app, int* exit_code) {
                       "(default 240 px)");
   AddCommonOptions(command, &options->common);
   // Flows with their own options (apps/sim_<flow>_command.cc); a scenario run needs NAME and --out.
-  command->get_option("--out")->required(false);
+  command->get_option("--out")->required(false)->description(
+      "Output folder (created if missing); REQUIRED with a scenario NAME");
   AddSimTrackingCommand(*command, exit_code);
   AddSimRecoveryCommand(*command, exit_code);
   command->callback([command, options, exit_code] {
     if (!command->get_subcommands().empty()) return;
     if (options->scenario.empty()) throw CLI::RequiredError("scenario");
     if (options->common.out_dir.empty()) throw CLI::RequiredError("--out");
-    output::OutputFolder out(options->common.out_dir);
+    RequireBuiltinScenario(options->scenario);
+    output::OutputFolder out = OpenOutputFolder(options->common);
     output::RunAndWriteSummary(out, [&] { RunSim(*options, out); });
     *exit_code = 0;
   });

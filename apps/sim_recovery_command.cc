@@ -136,11 +136,12 @@ void AddSimRecoveryCommand(CLI::App& sim, int* exit_code) {
   auto options = std::make_shared<RecoveryOptions>();
   CLI::App* command = sim.add_subcommand(
       "recovery", "Recover a seeded hand throw with the on-board pipeline of thesis paper B");
-  command->add_option("--seed", options->seed, "Seed of the throw and every sensor stream");
-  command->add_option("--duration", options->duration_s, "Timeout [s]")->check(CLI::PositiveNumber);
+  AddSeedOption(command, &options->seed, "Seed of the throw and every sensor stream");
+  command->add_option("--duration", options->duration_s, "Timeout [s]")
+      ->check(FiniteNumberIn(0.0, kMaxDurationS, /*min_inclusive=*/false));
   AddCommonOptions(command, &options->common);
   command->callback([options, exit_code] {
-    output::OutputFolder out(options->common.out_dir);
+    output::OutputFolder out = OpenOutputFolder(options->common);
     output::RunAndWriteSummary(out, [&] { RunRecovery(*options, out); });
     *exit_code = 0;
   });

@@ -56,10 +56,10 @@ struct TrackingOptions {
 };
 
 void WriteTrackingCsv(const sim::TrackingFlightResult& flight, output::OutputFolder& out) {
-  output::CsvWriter csv(out.Path("tracking.csv"),
-                        {"t_s", "p_x_m", "p_y_m", "p_z_m", "p_ref_x_m", "p_ref_y_m", "p_ref_z_m",
-                         "v_x_mps", "v_y_mps", "v_z_mps", "v_ref_x_mps", "v_ref_y_mps",
-                         "v_ref_z_mps", "error_m"});
+  output::CsvWriter csv(
+      out.Path("tracking.csv"),
+      {"t_s", "p_x_m", "p_y_m", "p_z_m", "p_ref_x_m", "p_ref_y_m", "p_ref_z_m", "v_x_mps",
+       "v_y_mps", "v_z_mps", "v_ref_x_mps", "v_ref_y_mps", "v_ref_z_mps", "error_m"});
   for (size_t k = 0; k < flight.sitl.trajectory.size(); ++k) {
     const control::QuadState& s = flight.sitl.trajectory[k];
     const control::TrajectoryPoint& r = flight.reference[k];
@@ -131,11 +131,10 @@ void RunTracking(const TrackingOptions& options, output::OutputFolder& out) {
   tree.PutParams("dynamics", params.dynamics);
   tree.PutParams("imu", params.imu);
   summary["config"] = nlohmann::json::parse(tree.ToJson());
-  summary["control"] = {
-      {"drag_compensation", params.control.position.compensate_rotor_drag},
-      {"body_rate", sim::BodyRateName(params.control.low_level)},
-      {"mixer", sim::ToString(params.control.low_level.mixer.mixing)},
-      {"saturation", sim::ToString(params.control.low_level.mixer.saturation)}};
+  summary["control"] = {{"drag_compensation", params.control.position.compensate_rotor_drag},
+                        {"body_rate", sim::BodyRateName(params.control.low_level)},
+                        {"mixer", sim::ToString(params.control.low_level.mixer.mixing)},
+                        {"saturation", sim::ToString(params.control.low_level.mixer.saturation)}};
   AddSitlRunSummary(flight.sitl, &summary);
   summary["tracking"] = {{"E_a_m", flight.error.E_a_m},
                          {"max_error_m", flight.error.max_m},
@@ -148,8 +147,8 @@ void RunTracking(const TrackingOptions& options, output::OutputFolder& out) {
                         {"imu", "imu.csv"},           {"report", "report.html"}};
   WriteTrackingReport(flight, "aperture sim tracking: " + options.trajectory, out);
   std::cout << "aperture sim tracking " << options.trajectory << ": E_a = " << flight.error.E_a_m
-            << " m, max " << flight.error.max_m << " m over " << flight.sitl.sim_time_s
-            << " s (" << sim::ToString(flight.sitl.outcome) << ")\n";
+            << " m, max " << flight.error.max_m << " m over " << flight.sitl.sim_time_s << " s ("
+            << sim::ToString(flight.sitl.outcome) << ")\n";
 }
 
 }  // namespace
@@ -162,13 +161,14 @@ void AddSimTrackingCommand(CLI::App& sim, int* exit_code) {
   for (const auto& [name, unused] : kTrajectories) names.push_back(name);
   command->add_option("--trajectory", options->trajectory, "Reference trajectory")
       ->check(CLI::IsMember(names));
-  command->add_option("--seed", options->seed, "Seed of every sensor stream");
-  command->add_option("--duration", options->duration_s,
-                      "Simulated time [s] (default: the reference's end + 1 s; ramp: 32 s)")
-      ->check(CLI::PositiveNumber);
+  AddSeedOption(command, &options->seed, "Seed of every sensor stream");
+  command
+      ->add_option("--duration", options->duration_s,
+                   "Simulated time [s] (default: the reference's end + 1 s; ramp: 32 s)")
+      ->check(FiniteNumberIn(0.0, kMaxDurationS, /*min_inclusive=*/false));
   AddCommonOptions(command, &options->common);
   command->callback([options, exit_code] {
-    output::OutputFolder out(options->common.out_dir);
+    output::OutputFolder out = OpenOutputFolder(options->common);
     output::RunAndWriteSummary(out, [&] { RunTracking(*options, out); });
     *exit_code = 0;
   });

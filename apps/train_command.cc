@@ -146,7 +146,7 @@ void AddTrainCommand(CLI::App& app, int* exit_code) {
                       "Held-out folder(s) for the Table I errors (other seeds than --data)");
   AddCommonOptions(command, &options->common);
   command->callback([options, exit_code] {
-    output::OutputFolder out(options->common.out_dir);
+    output::OutputFolder out = OpenOutputFolder(options->common);
     output::RunAndWriteSummary(out, [&] { TrainMonoDepth(*options, out); });
     *exit_code = 0;
   });

@@ -7,6 +7,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "config/regular_file.h"
+
 namespace aperture::config {
 namespace {
 
@@ -155,6 +157,7 @@ void ConfigTree::MergeDocument(const YAML::Node& document, const std::string& so
 }
 
 void ConfigTree::MergeFile(const std::string& path) {
+  RequireRegularFileIfPresent(path, "config file");
   std::ifstream file(path);
   if (!file) {
     throw std::runtime_error("cannot read config file '" + path +
@@ -186,14 +189,14 @@ void ConfigTree::Put(const std::string& key, const YAML::Node& value, const std:
 void ConfigTree::ApplySet(const std::string& item) {
   const std::size_t equals = item.find('=');
   if (equals == std::string::npos) {
-    throw std::invalid_argument("--set '" + item + "': expected key=value (e.g. gap.roll_deg=30)");
+    throw UsageError("--set '" + item + "': expected key=value (e.g. gap.roll_deg=30)");
   }
   const std::string key = Trim(item.substr(0, equals));
   const std::vector<std::string> segments = SplitKey(key);
   for (const std::string& segment : segments) {
     if (segment.empty()) {
-      throw std::invalid_argument("--set '" + item + "': empty key or key segment in '" + key +
-                                  "'; expected dotted.key=value (e.g. gap.roll_deg=30)");
+      throw UsageError("--set '" + item + "': empty key or key segment in '" + key +
+                       "'; expected dotted.key=value (e.g. gap.roll_deg=30)");
     }
   }
   const std::string value_text = Trim(item.substr(equals + 1));
@@ -202,9 +205,9 @@ void ConfigTree::ApplySet(const std::string& item) {
     // An empty value means the empty string, not null: "--set name=" clears a string.
     value = value_text.empty() ? YAML::Node(std::string()) : YAML::Load(value_text);
   } catch (const YAML::Exception& e) {
-    throw std::invalid_argument("--set '" + item + "': value is not valid YAML (" + e.msg + ")");
+    throw UsageError("--set '" + item + "': value is not valid YAML (" + e.msg + ")");
   }
-  const ValueOrigin origin{"--set " + item, false};
+  const ValueOrigin origin{"--set " + item, false, true};
   // Walk/create the parent maps. reset() rebinds the handle; assigning a Node would overwrite the
   // node it refers to (yaml-cpp reference semantics).
   YAML::Node parent;

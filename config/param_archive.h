@@ -17,10 +17,12 @@
 //
 // Archives (YamlReadArchive in yaml_read_archive.h, YamlWriteArchive in yaml_write_archive.h)
 // offer: Visit(name, &field), Visit(name, &enum_field, names), VisitSection(name, function) for a
-// sub-map whose fields a function describes, and kLoading for the rare field that only exists in
-// the file (a preset name standing for several fields). Leaf types are those of ConvertNode
-// (param_reader.h) and EncodeNode (yaml_write_archive.h); a struct's own leaf format (e.g. a gust
-// as [t, duration, wx, wy, wz]) is a ConvertNode/EncodeNode overload pair in its namespace.
+// sub-map whose fields a function describes, VisitLimit(name, &double_field) for a number that may
+// be .inf/-.inf meaning "no limit" (ParamReader::ReadLimit; elsewhere infinity is an error), and
+// kLoading for the rare field that only exists in the file (a preset name standing for several
+// fields). Leaf types are those of ConvertNode (param_reader.h) and EncodeNode
+// (yaml_write_archive.h); a struct's own leaf format (e.g. a gust as [t, duration, wx, wy, wz]) is
+// a ConvertNode/EncodeNode overload pair in its namespace.
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -45,6 +47,7 @@ struct ProbeArchive {
   void Visit(const char*, T*, const EnumNames<Enum>&) {}
   template <typename Function>
   void VisitSection(const char*, const Function&) {}
+  void VisitLimit(const char*, double*) {}
 };
 
 template <typename T, typename = void>

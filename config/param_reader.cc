@@ -42,19 +42,57 @@ bool ParseSpecialDouble(const std::string& text, double* value) {
 
 void ThrowTypeError(const ValueContext& context, const YAML::Node& node,
                     const std::string& expected) {
-  throw std::invalid_argument(context.where + ": key '" + context.key + "' expects " + expected +
-                              ", got " + Describe(node) + "; fix the value in " + context.where);
+  const std::string message = context.where + ": key '" + context.key + "' expects " + expected +
+                              ", got " + Describe(node) + "; fix the value in " + context.where;
+  if (context.command_line) throw UsageError(message);
+  throw std::invalid_argument(message);
 }
 
+namespace {
+
+// The largest magnitude a number may have, from the unit its key ends in (units are part of the
+// names, STYLE.md): an angle in degrees is within one turn either way; any other quantity of this
+// project stays below 1e12 in SI units (Unix times in seconds are 1.7e9), so 1e308 is a typo.
+struct UnitRange {
+  double max_magnitude;
+  const char* description;
+};
+
+UnitRange RangeOfKey(const std::string& key) {
+  std::string name = key.substr(0, key.find('['));  // "rpy_deg[2]": the unit of rpy_deg
+  const std::string degrees = "_deg";
+  if (name.size() >= degrees.size() &&
+      name.compare(name.size() - degrees.size(), degrees.size(), degrees) == 0) {
+    return {360.0, "a finite angle in [-360, 360] degrees"};
+  }
+  return {1e12, "a finite number in [-1e12, 1e12]"};
+}
+
+}  // namespace
+
 void ConvertNode(const YAML::Node& node, const ValueContext& context, double* value) {
+  const UnitRange range = RangeOfKey(context.key);
   if (!node.IsScalar()) ThrowTypeError(context, node, "a number");
   const std::string& text = node.Scalar();
-  if (ParseSpecialDouble(text, value)) return;
-  // strtod instead of yaml-cpp's stream parsing: the whole scalar must be a number ("3m" fails).
-  char* end = nullptr;
-  const double parsed = std::strtod(text.c_str(), &end);
-  if (text.empty() || end != text.c_str() + text.size()) {
-    ThrowTypeError(context, node, "a number");
+  double parsed = 0.0;
+  if (!ParseSpecialDouble(text, &parsed)) {
+    // strtod instead of yaml-cpp's stream parsing: the whole scalar must be a number ("3m" fails).
+    char* end = nullptr;
+    parsed = std::strtod(text.c_str(), &end);
+    if (text.empty() || end != text.c_str() + text.size()) {
+      ThrowTypeError(context, node, "a number");
+    }
+  }
+  // Infinity is a value only where it means "no limit": ReadLimit, or a key whose default is
+  // infinite (a dumped configuration reads back). NaN never is.
+  const bool infinity_allowed = context.allow_infinite || std::isinf(*value);
+  if (std::isinf(parsed) && infinity_allowed) {
+    *value = parsed;
+    return;
+  }
+  if (!(std::abs(parsed) <= range.max_magnitude)) {
+    ThrowTypeError(context, node,
+                   std::string(range.description) + (infinity_allowed ? " or .inf/-.inf" : ""));
   }
   *value = parsed;
 }
@@ -73,7 +111,7 @@ void ConvertNode(const YAML::Node& node, const ValueContext& context, int* value
 }
 
 void ConvertNode(const YAML::Node& node, const ValueContext& context, float* value) {
-  double wide = 0.0;
+  double wide = *value;  // the default: infinite allows infinity
   ConvertNode(node, context, &wide);
   if (std::isfinite(wide) && std::abs(wide) > std::numeric_limits<float>::max()) {
     ThrowTypeError(context, node, "a number within single-precision range");
@@ -181,22 +219,78 @@ ParamReader ParamReader::Section(const std::string& key) {
   return ParamReader(Lookup(key), FullKey(key), origins_);
 }
 
-std::string ParamReader::Locate(const std::string& full_key, const YAML::Mark& mark) const {
+const ValueOrigin* ParamReader::OriginOf(const std::string& full_key) const {
   // The longest recorded prefix of the dotted key names the source.
   std::string prefix = full_key;
   while (true) {
     const auto it = origins_->find(prefix);
-    if (it != origins_->end()) {
-      const ValueOrigin& origin = it->second;
-      if (origin.has_lines && !mark.is_null()) {
-        return origin.source + ":" + std::to_string(mark.line + 1) + ":" +
-               std::to_string(mark.column + 1);
-      }
-      return origin.source;
-    }
-    if (prefix.empty()) return "<unknown source>";
+    if (it != origins_->end()) return &it->second;
+    if (prefix.empty()) return nullptr;
     const std::size_t dot = prefix.rfind('.');
     prefix = dot == std::string::npos ? "" : prefix.substr(0, dot);
+  }
+}
+
+std::string ParamReader::Locate(const std::string& full_key, const YAML::Mark& mark) const {
+  const ValueOrigin* origin = OriginOf(full_key);
+  if (origin == nullptr) return "<unknown source>";
+  if (origin->has_lines && !mark.is_null()) {
+    return origin->source + ":" + std::to_string(mark.line + 1) + ":" +
+           std::to_string(mark.column + 1);
+  }
+  return origin->source;
+}
+
+ValueContext ParamReader::ContextOf(const std::string& key, const YAML::Node& child) const {
+  const ValueOrigin* origin = OriginOf(FullKey(key));
+  return ValueContext{Locate(FullKey(key), child.Mark()), FullKey(key),
+                      origin != nullptr && origin->command_line};
+}
+
+void ParamReader::ReadLimit(const std::string& key, double* value) {
+  const YAML::Node child = Lookup(key);
+  if (!child) return;
+  ValueContext context = ContextOf(key, child);
+  context.allow_infinite = true;
+  ConvertNode(child, context, value);
+}
+
+void ParamReader::Fail(const std::string& key, const std::string& what) const {
+  const std::string message = Where(key) + ": '" + FullKey(key) + "' " + what;
+  const ValueOrigin* origin = OriginOf(FullKey(key));
+  if (origin != nullptr && origin->command_line) throw UsageError(message);
+  throw std::invalid_argument(message);
+}
+
+std::string ParamReader::CommandLineItemsInside() const {
+  std::string items;
+  const std::string prefix = path_.empty() ? "" : path_ + ".";
+  for (auto it = origins_->lower_bound(prefix);
+       it != origins_->end() && it->first.compare(0, prefix.size(), prefix) == 0; ++it) {
+    if (it->second.command_line && items.find(it->second.source) == std::string::npos) {
+      items += (items.empty() ? "" : ", ") + it->second.source;
+    }
+  }
+  return items;
+}
+
+void ParamReader::RejectEntriesCreatedBySet(const std::string& entry_kind) const {
+  if (!node_.IsMap()) return;
+  std::string known;
+  for (auto it = node_.begin(); it != node_.end(); ++it) {
+    const auto origin = origins_->find(FullKey(it->first.Scalar()));
+    if (origin == origins_->end() || !origin->second.command_line) {
+      known += (known.empty() ? "" : ", ") + it->first.Scalar();
+    }
+  }
+  for (auto it = node_.begin(); it != node_.end(); ++it) {
+    const std::string name = it->first.Scalar();
+    const auto origin = origins_->find(FullKey(name));
+    if (origin == origins_->end() || !origin->second.command_line) continue;
+    throw UsageError(origin->second.source + ": unknown " + entry_kind + " '" + name + "' in '" +
+                     path_ + "'; known: " + (known.empty() ? std::string("(none)") : known) +
+                     ". Fix the spelling, or add a new " + entry_kind +
+                     " in a --config file (--set only changes existing ones).");
   }
 }
 
@@ -215,11 +309,14 @@ void ParamReader::RejectUnknownKeys() const {
     for (const std::string& name : known_keys_) {
       known << (known.tellp() > 0 ? ", " : "") << name;
     }
-    throw std::invalid_argument(
+    const std::string message =
         Locate(FullKey(key), it->first.Mark()) + ": unknown key '" + FullKey(key) + "'" +
         (path_.empty() ? "" : " in section '" + path_ + "'") +
         "; known keys: " + (known_keys_.empty() ? std::string("(none)") : known.str()) +
-        ". Fix the spelling or remove it.");
+        ". Fix the spelling or remove it.";
+    const ValueOrigin* origin = OriginOf(FullKey(key));
+    if (origin != nullptr && origin->command_line) throw UsageError(message);
+    throw std::invalid_argument(message);
   }
 }
 

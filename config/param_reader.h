@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "config/param_archive.h"
+#include "config/usage_error.h"
 
 namespace aperture::config {
 
@@ -39,8 +40,26 @@ namespace aperture::config {
 struct ValueOrigin {
   std::string source;      // file path, "--set key=value", or a label such as "built-in defaults"
   bool has_lines = false;  // true when marks in the node refer to lines of `source`
+  bool command_line = false;  // a --set item: its errors are usage errors (config::UsageError)
 };
 using OriginMap = std::map<std::string, ValueOrigin>;
+
+// ---- Conversion of one YAML node into a typed value --------------------------------------------
+// `where` and `key` only feed error messages. Each throws std::invalid_argument on mismatch, a
+// config::UsageError when `command_line` (the value came from a --set item).
+struct ValueContext {
+  std::string where;  // "file.yaml:12:3" or "--set a.b=1"
+  std::string key;    // full dotted key
+  bool command_line = false;
+  bool allow_infinite = false;  // ReadLimit: .inf/-.inf mean "no limit"
+
+  // The context of an element: key + `suffix` ("[2]").
+  ValueContext Element(const std::string& suffix) const {
+    ValueContext element = *this;
+    element.key += suffix;
+    return element;
+  }
+};
 
 class ParamReader {
  public:
@@ -51,9 +70,15 @@ class ParamReader {
   ParamReader(YAML::Node node, const std::string& source);
 
   // Overwrites *value when `key` is present; otherwise leaves the default. Throws
-  // std::invalid_argument naming location, key and expected type on a type mismatch.
+  // std::invalid_argument naming location, key and expected type on a type mismatch (a
+  // config::UsageError when the value came from a --set item). Numbers must be finite and within
+  // the range of their unit (ConvertNode(double)); an infinite value only where the default is
+  // infinite ("no limit", e.g. min_height_m: -.inf), see ReadLimit.
   template <typename T>
   void Read(const std::string& key, T* value);
+  // A number that may also be .inf or -.inf, meaning "no limit" (e.g. mahalanobis_gate: .inf
+  // disables gating); NaN is still rejected.
+  void ReadLimit(const std::string& key, double* value);
 
   // Reads a string and maps it through `allowed` (name → enum value). An unknown name throws,
   // listing the allowed names.
@@ -85,6 +110,14 @@ class ParamReader {
   // Throws std::invalid_argument for the first key present in the map that no Read*/Section call
   // asked for, naming its location and listing the known keys.
   void RejectUnknownKeys() const;
+  // For a map keyed by names (scenario cameras, objects): a `--set` item adds to an existing entry
+  // but cannot create one, so `--set cameras.frnt.rate_hz=30` is a typo rather than a second
+  // camera. Throws config::UsageError naming the item and listing the names `entry_kind` has
+  // (a new entry belongs in a --config file).
+  void RejectEntriesCreatedBySet(const std::string& entry_kind) const;
+  // Throws the error about the value at `key`: "<where>: '<full key>' <what>", a
+  // config::UsageError when the value came from a --set item, else std::invalid_argument.
+  [[noreturn]] void Fail(const std::string& key, const std::string& what) const;
 
   // "file.yaml:12:3", "--set a.b=1" or the source label: where the value at `key` came from.
   std::string Where(const std::string& key) const;
@@ -94,18 +127,16 @@ class ParamReader {
  private:
   YAML::Node Lookup(const std::string& key);  // marks key as known
   std::string Locate(const std::string& full_key, const YAML::Mark& mark) const;
+  // The origin recorded for the longest prefix of `full_key` (nullptr when none is).
+  const ValueOrigin* OriginOf(const std::string& full_key) const;
+  ValueContext ContextOf(const std::string& key, const YAML::Node& child) const;
+  // The --set items that set values inside this section ("" when none did).
+  std::string CommandLineItemsInside() const;
 
   YAML::Node node_;
   std::string path_;
   std::shared_ptr<const OriginMap> origins_;
   std::set<std::string> known_keys_;
-};
-
-// ---- Conversion of one YAML node into a typed value --------------------------------------------
-// `where` and `key` only feed error messages. Each throws std::invalid_argument on mismatch.
-struct ValueContext {
-  std::string where;  // "file.yaml:12:3" or "--set a.b=1"
-  std::string key;    // full dotted key
 };
 
 [[noreturn]] void ThrowTypeError(const ValueContext& context, const YAML::Node& node,
@@ -125,8 +156,7 @@ void ConvertNode(const YAML::Node& node, const ValueContext& context, std::vecto
   if (!node.IsSequence()) ThrowTypeError(context, node, "a sequence [..]");
   std::vector<T> result(node.size());
   for (std::size_t i = 0; i < node.size(); ++i) {
-    ValueContext element{context.where, context.key + "[" + std::to_string(i) + "]"};
-    ConvertNode(node[i], element, &result[i]);
+    ConvertNode(node[i], context.Element("[" + std::to_string(i) + "]"), &result[i]);
   }
   *value = std::move(result);
 }
@@ -143,11 +173,11 @@ void ConvertNode(const YAML::Node& node, const ValueContext& context,
                                             std::to_string(Cols) + " numbers or " +
                                             std::to_string(Rows * Cols) + " numbers row-major";
   if (!node.IsSequence()) ThrowTypeError(context, node, shape);
-  Eigen::Matrix<Scalar, Rows, Cols, Options, Rows, Cols> result;
+  Eigen::Matrix<Scalar, Rows, Cols, Options, Rows, Cols> result = *value;  // defaults per element
   if (node.size() == static_cast<std::size_t>(Rows * Cols) &&
       (Cols == 1 || !node[0].IsSequence())) {
     for (int i = 0; i < Rows * Cols; ++i) {
-      ConvertNode(node[i], {context.where, context.key + "[" + std::to_string(i) + "]"},
+      ConvertNode(node[i], context.Element("[" + std::to_string(i) + "]"),
                   &result(i / Cols, i % Cols));
     }
   } else if (Cols > 1 && node.size() == static_cast<std::size_t>(Rows)) {
@@ -157,10 +187,9 @@ void ConvertNode(const YAML::Node& node, const ValueContext& context,
         ThrowTypeError(context, node, shape);
       }
       for (int c = 0; c < Cols; ++c) {
-        ConvertNode(
-            row[c],
-            {context.where, context.key + "[" + std::to_string(r) + "][" + std::to_string(c) + "]"},
-            &result(r, c));
+        ConvertNode(row[c],
+                    context.Element("[" + std::to_string(r) + "][" + std::to_string(c) + "]"),
+                    &result(r, c));
       }
     }
   } else {
@@ -175,7 +204,7 @@ template <typename T>
 void ParamReader::Read(const std::string& key, T* value) {
   const YAML::Node child = Lookup(key);
   if (!child) return;
-  ConvertNode(child, ValueContext{Locate(FullKey(key), child.Mark()), FullKey(key)}, value);
+  ConvertNode(child, ContextOf(key, child), value);
 }
 
 template <typename Enum>
@@ -187,7 +216,7 @@ void ParamReader::ReadEnum(const std::string& key, Enum* value,
   for (const auto& [name, unused] : allowed) {
     allowed_list += (allowed_list.empty() ? "" : ", ") + name;
   }
-  const ValueContext context{Locate(FullKey(key), child.Mark()), FullKey(key)};
+  const ValueContext context = ContextOf(key, child);
   std::string name;
   if (!child.IsScalar()) ThrowTypeError(context, child, "one of: " + allowed_list);
   ConvertNode(child, context, &name);
@@ -207,7 +236,13 @@ void ParamReader::Validate(const Params& params) const {
   } catch (const std::invalid_argument& e) {
     std::string section = FullKey("");
     if (!section.empty()) section.pop_back();  // FullKey("") ends in the separating '.'
-    throw std::invalid_argument(Where("") + " (section '" + section + "'): " + e.what());
+    // A --set item inside the section makes it a usage error, named beside the section's source.
+    const std::string items = CommandLineItemsInside();
+    const std::string message = Where("") + " (section '" + section + "'" +
+                                (items.empty() ? "" : "; set on the command line: " + items) +
+                                "): " + e.what();
+    if (!items.empty()) throw UsageError(message);
+    throw std::invalid_argument(message);
   }
 }
 

@@ -30,6 +30,8 @@ class YamlReadArchive {
   void Visit(const char* name, Enum* value, const EnumNames<Enum>& names) {
     reader_->ReadEnum(name, value, names);
   }
+  // A number for which .inf/-.inf mean "no limit" (ParamReader::ReadLimit).
+  void VisitLimit(const char* name, double* value) { reader_->ReadLimit(name, value); }
   // The sub-map `name`, whose fields `describe(archive)` visits (e.g. a subset of a struct's
   // fields); unknown keys inside are rejected.
   template <typename Function>

@@ -68,6 +68,7 @@ class YamlWriteArchive {
     }
     node_[name] = EncodeNode(std::string("<unnamed value>"));  // names lists every enumerator
   }
+  void VisitLimit(const char* name, double* value) { Visit(name, value); }
   template <typename Function>
   void VisitSection(const char* name, const Function& describe) {
     YamlWriteArchive archive;

@@ -7,22 +7,39 @@
 //   out.WriteSummary(RunStatus::kOk);             // or kFailed with the error message
 //
 // summary.json is written atomically and always carries "status": "ok" | "failed" (plus "error"
-// when failed) and "wall_time_s". A stale summary.json from an earlier run in the same folder is
-// removed at construction, so a run that crashes before WriteSummary leaves no summary at all
-// rather than an old one that looks complete.
+// when failed), "wall_time_s" and "files": the entries of the folder this run created (files and
+// subfolders, sorted). A stale summary.json from an earlier run in the same folder is removed at
+// construction, so a run that crashes before WriteSummary leaves no summary at all rather than an
+// old one that looks complete.
+//
+// A folder is used only when it is new, empty, or holds nothing but the summary.json of a run
+// that wrote no other file (a run that failed at its first check): an earlier run's outputs would
+// otherwise sit beside the new ones. With `overwrite`, the files an earlier run created (its
+// summary.json "files", or "outputs" for a summary without "files") are removed first; other files
+// in the folder are left alone.
 #include <chrono>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <set>
+#include <stdexcept>
 #include <string>
 
 namespace aperture::output {
 
 enum class RunStatus { kOk, kFailed };
 
+// The folder holds an earlier run's outputs (or files of no aperture run) and `overwrite` is off.
+class FolderInUseError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 class OutputFolder {
  public:
-  // std::runtime_error naming `directory` when it cannot be created or written to.
-  explicit OutputFolder(const std::string& directory);
+  // std::runtime_error naming `directory` when it cannot be created or written to;
+  // FolderInUseError when it holds other files and `overwrite` is false, or (with `overwrite`)
+  // files no aperture run recorded.
+  explicit OutputFolder(const std::string& directory, bool overwrite = false);
 
   // `directory`/`name`; `name` may contain subfolders, which the caller creates.
   std::string Path(const std::string& name) const;
@@ -43,6 +60,7 @@ class OutputFolder {
   std::string directory_;
   nlohmann::json summary_ = nlohmann::json::object();
   std::chrono::steady_clock::time_point start_;
+  std::set<std::string> entries_before_;  // left by --overwrite: not this run's
 };
 
 // Runs `body` and always leaves a summary: "ok" when it returns, "failed" with the exception's

@@ -88,9 +88,9 @@ void BindCameras(py::module_& m) {
       .def_readonly("source_path", &CameraCalibration::source_path);
 
   m.def("load_calibration", &perception::LoadCameraCalibration, py::arg("path"),
-        py::arg("kalibr_camera") = "cam0",
+        py::arg("kalibr_camera") = "",
         "Loads an OpenCV FileStorage, ROS camera_info or Kalibr camchain YAML (format detected "
-        "from the content; kalibr_camera picks the camchain's camera).");
+        "from the content; kalibr_camera picks the camchain's camera, empty: its only one).");
   m.def(
       "save_calibration",
       [](const CameraModel& camera, const std::string& path, const std::string& format,

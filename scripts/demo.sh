@@ -10,7 +10,7 @@ aperture=${1:?usage: demo.sh APERTURE_BINARY OUT_DIR}
 out=${2:?usage: demo.sh APERTURE_BINARY OUT_DIR}
 
 "$aperture" sim gap --duration 14 --set gap.roll_deg=30 --set cameras.front.rate_hz=30 \
-  --set cameras.front.supersampling=1 --out "$out"
+  --set cameras.front.supersampling=1 --overwrite --out "$out"
 # The video writer falls back from .mp4 to .avi where no MP4 encoder is available: name the file
 # summary.json lists (its "outputs" holds the only string-valued "video" key).
 video=$(sed -n 's/^ *"video": *"\([^"]*\)".*/\1/p' "$out/summary.json" | head -n 1)
@@ -19,5 +19,5 @@ echo "demo: open $out/report.html (video: ${video:+$out/}${video:-none written})
 # The visual-servo demo (seed 002, GapFlyt): the unknown polygonal opening of the gapflyt scene,
 # found by an active diagonal scan (TS2P), tracked (label sets with FOE constraints) and flown
 # through on the moment servo; camera + IMU + downward range sensor only. Into $out/gapflyt.
-"$aperture" sim gapflyt --duration 12 --out "$out/gapflyt"
+"$aperture" sim gapflyt --duration 12 --overwrite --out "$out/gapflyt"
 echo "demo: open $out/gapflyt/report.html (GapFlyt; --set mission.servo.law=pid for the PID)"

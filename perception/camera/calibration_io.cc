@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "config/regular_file.h"
 #include "perception/camera/camera_factory.h"
 
 namespace aperture::perception {
@@ -230,6 +231,7 @@ void SaveOpenCv(const CameraCalibration& calib, const std::string& path) {
 // ---------------------------------------------------------------- yaml-cpp helpers -----------
 
 YAML::Node LoadYaml(const std::string& path) {
+  config::RequireRegularFileIfPresent(path, "calibration file");
   try {
     return YAML::LoadFile(path);
   } catch (const YAML::BadFile&) {
@@ -354,8 +356,29 @@ void SaveRos(const CameraCalibration& calib, const std::string& path) {
 
 // ---------------------------------------------------------------- Kalibr camchain ------------
 
-CameraCalibration LoadKalibr(const std::string& path, const std::string& camera_key) {
+// The camera of a camchain: `requested`, else the only camN key of the file.
+std::string KalibrCameraKey(const YAML::Node& root, const std::string& path,
+                            const std::string& requested) {
+  std::vector<std::string> cameras;
+  for (auto it = root.begin(); it != root.end(); ++it) {
+    const std::string key = it->first.Scalar();
+    if (key.size() > 3 && key.compare(0, 3, "cam") == 0 &&
+        key.find_first_not_of("0123456789", 3) == std::string::npos) {
+      cameras.push_back(key);
+    }
+  }
+  if (!requested.empty() || cameras.size() <= 1) return requested.empty() ? "cam0" : requested;
+  std::string names;
+  for (const std::string& name : cameras) names += (names.empty() ? "" : ", ") + name;
+  Fail(path, "(camera)",
+       "a camchain of " + std::to_string(cameras.size()) + " cameras (" + names +
+           "); choose the one the frames come from with --camera (e.g. --camera " + cameras[1] +
+           ")");
+}
+
+CameraCalibration LoadKalibr(const std::string& path, const std::string& requested_camera) {
   const YAML::Node root = LoadYaml(path);
+  const std::string camera_key = KalibrCameraKey(root, path, requested_camera);
   const YAML::Node cam = Require(root, camera_key, path, camera_key);
   auto field = [&camera_key](const std::string& key) { return camera_key + "." + key; };
   ParsedCalibration parsed;
@@ -465,6 +488,7 @@ std::string CalibrationFormatName(CalibrationFormat format) {
 }
 
 CalibrationFormat DetectCalibrationFormat(const std::string& path) {
+  config::RequireRegularFileIfPresent(path, "calibration file");
   std::ifstream file(path);
   if (!file) Fail(path, "(file)", "cannot be opened; check the path");
   std::string first_line;

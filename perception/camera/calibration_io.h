@@ -44,9 +44,11 @@ std::string CalibrationFormatName(CalibrationFormat format);
 // FileStorage, a top-level cam0 key is Kalibr, a camera_matrix map with data is ROS.
 CalibrationFormat DetectCalibrationFormat(const std::string& path);
 
-// Loads any of the three formats (detected). For Kalibr, kalibr_camera selects the camera key.
+// Loads any of the three formats (detected). For Kalibr, kalibr_camera selects the camera key
+// (cam0, cam1, ...); empty: the file's only camera, and std::invalid_argument listing the cameras
+// when it holds several (`aperture run --camera camN` chooses).
 CameraCalibration LoadCameraCalibration(const std::string& path,
-                                        const std::string& kalibr_camera = "cam0");
+                                        const std::string& kalibr_camera = "");
 
 // Writes calib in the given format (doubles with 17 significant digits: exact round trip).
 // Throws std::invalid_argument when calib has no camera and std::runtime_error when the file

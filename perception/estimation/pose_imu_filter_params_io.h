@@ -36,7 +36,7 @@ void Serialize(Archive* a, PoseImuFilterParams* p) {
   a->Visit(APERTURE_NVP(p, initial_accel_bias_sigma_mps2));
   a->Visit(APERTURE_NVP(p, initial_gyro_bias_sigma_radps));
   a->Visit(APERTURE_NVP(p, history_duration_s));
-  a->Visit(APERTURE_NVP(p, mahalanobis_gate));
+  a->VisitLimit(APERTURE_NVP(p, mahalanobis_gate));
 }
 
 }  // namespace aperture::perception

@@ -38,8 +38,8 @@ std::optional<std::string> FindPngTruncation(const Bytes& bytes) {
     const uint64_t chunk_end = offset + kChunkOverhead + length;
     if (chunk_end > bytes.size()) {
       return "PNG chunk '" + type + "' at byte " + std::to_string(offset) + " needs " +
-             std::to_string(chunk_end) + " bytes but the file has " +
-             std::to_string(bytes.size()) + " (truncated PNG)";
+             std::to_string(chunk_end) + " bytes but the file has " + std::to_string(bytes.size()) +
+             " (truncated PNG)";
     }
     if (type == "IEND") return std::nullopt;
     offset = chunk_end;
@@ -113,6 +113,12 @@ std::optional<std::string> FindTruncation(const Bytes& bytes) {
 }
 
 cv::Mat ReadImageFile(const std::filesystem::path& path, ColorMode mode) {
+  std::error_code error;
+  if (std::filesystem::is_symlink(path, error) && !std::filesystem::exists(path, error)) {
+    throw std::runtime_error("image file '" + path.string() + "' is a symbolic link to '" +
+                             std::filesystem::read_symlink(path, error).string() +
+                             "', which does not exist; restore the target or remove the link");
+  }
   std::ifstream file(path, std::ios::binary | std::ios::ate);
   if (!file) {
     throw std::runtime_error("cannot open image file '" + path.string() +
@@ -120,7 +126,8 @@ cv::Mat ReadImageFile(const std::filesystem::path& path, ColorMode mode) {
   }
   Bytes bytes(static_cast<size_t>(file.tellg()));
   file.seekg(0);
-  if (!file.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()))) {
+  if (!file.read(reinterpret_cast<char*>(bytes.data()),
+                 static_cast<std::streamsize>(bytes.size()))) {
     throw std::runtime_error("cannot read image file '" + path.string() +
                              "'; check that it is a readable regular file");
   }
@@ -132,7 +139,9 @@ cv::Mat ReadImageFile(const std::filesystem::path& path, ColorMode mode) {
     throw std::runtime_error("image file '" + path.string() + "' is incomplete: " + *truncation +
                              "; re-copy or re-export it");
   }
-  const int flags = mode == ColorMode::kGray ? cv::IMREAD_GRAYSCALE : cv::IMREAD_COLOR;
+  // IMREAD_ANYDEPTH: a 16-bit image comes back as such instead of silently losing its low byte.
+  const int flags =
+      (mode == ColorMode::kGray ? cv::IMREAD_GRAYSCALE : cv::IMREAD_COLOR) | cv::IMREAD_ANYDEPTH;
   cv::Mat image;
   try {
     image = cv::imdecode(bytes, flags);
@@ -144,6 +153,12 @@ cv::Mat ReadImageFile(const std::filesystem::path& path, ColorMode mode) {
     throw std::runtime_error("image file '" + path.string() +
                              "' cannot be decoded (corrupt or not an image); re-export it");
   }
+  if (image.depth() != CV_8U) {
+    throw std::runtime_error(
+        "image file '" + path.string() + "' has " + std::to_string(8 * image.elemSize1()) +
+        "-bit samples; frame sources take 8-bit images, and cutting to the high byte would hide "
+        "e.g. 12-bit data: convert the sequence to 8 bits over its actual range");
+  }
   return ConvertToColorMode(image, mode);
 }
 
@@ -151,8 +166,8 @@ bool HasImageExtension(const std::filesystem::path& path) {
   std::string extension = path.extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  static const std::array<const char*, 9> kExtensions = {
-      ".png", ".jpg", ".jpeg", ".pgm", ".ppm", ".pnm", ".bmp", ".tif", ".tiff"};
+  static const std::array<const char*, 9> kExtensions = {".png", ".jpg", ".jpeg", ".pgm", ".ppm",
+                                                         ".pnm", ".bmp", ".tif",  ".tiff"};
   return std::find(kExtensions.begin(), kExtensions.end(), extension) != kExtensions.end();
 }
 

@@ -26,7 +26,8 @@ namespace aperture::perception {
 std::optional<std::string> FindTruncation(const std::vector<unsigned char>& bytes);
 
 // Reads, checks and decodes `path` into an 8-bit image of the given colour mode. Throws
-// std::runtime_error naming the file when it cannot be read, is truncated, or cannot be decoded.
+// std::runtime_error naming the file when it cannot be read (a dangling symbolic link names its
+// target), is truncated, cannot be decoded, or has 16-bit (or float) samples.
 cv::Mat ReadImageFile(const std::filesystem::path& path, ColorMode mode);
 
 // True when the extension (case-insensitive) is one the image folder source reads:

@@ -14,12 +14,15 @@ namespace {
 constexpr const char* kSkipHint = " (or skip such frames with --skip-bad-frames)";
 constexpr const char* kImageExtensions = ".png .jpg .jpeg .pgm .ppm .pnm .bmp .tif .tiff";
 
-// Image files directly in `folder` (no hidden files, no subfolders), in natural order.
+// Image files directly in `folder` (no hidden files, no subfolders), in natural order. A symbolic
+// link is listed even when its target is missing: reading it then fails naming the file (or skips
+// it with --skip-bad-frames), rather than the frame vanishing and shifting every later --fps time.
 std::vector<fs::path> ListImages(const fs::path& folder) {
   std::vector<std::string> names;
   for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
     const std::string name = entry.path().filename().string();
-    if (entry.is_regular_file() && name[0] != '.' && HasImageExtension(entry.path())) {
+    if ((entry.is_regular_file() || entry.is_symlink()) && name[0] != '.' &&
+        HasImageExtension(entry.path())) {
       names.push_back(name);
     }
   }
@@ -126,8 +129,9 @@ void ImageFolderSource::AssignTimes(const fs::path& image_folder) {
   std::vector<std::string> labels;
   labels.reserve(files_.size());
   for (const fs::path& file : files_) labels.push_back("'" + file.filename().string() + "'");
-  CheckStrictlyIncreasing(times_s_, labels, "image folder '" + folder_.string() +
-                                                "' (times from " + time_source_ + ")");
+  CheckStrictlyIncreasing(
+      times_s_, labels,
+      "image folder '" + folder_.string() + "' (times from " + time_source_ + ")");
 }
 
 void ImageFolderSource::AssignTimesFromTable(const TimestampTable& table, const fs::path& file,

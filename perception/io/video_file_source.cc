@@ -10,9 +10,14 @@ VideoFileSource::VideoFileSource(const std::filesystem::path& path,
                                  const FrameSourceOptions& options)
     : path_(path), options_(options) {
   CheckFrameSourceOptions(options);
-  if (!std::filesystem::is_regular_file(path)) {
+  if (!std::filesystem::exists(path)) {
     throw std::runtime_error("video file '" + path.string() +
                              "' does not exist; check the path given as the frame source");
+  }
+  if (!std::filesystem::is_regular_file(path)) {
+    throw std::invalid_argument("'" + path.string() +
+                                "' is not a regular file (a device, FIFO or socket); give an "
+                                "image folder, a video file, a ROS bag or camera:<N>");
   }
   if (!capture_.open(path.string(), cv::CAP_ANY) || !capture_.isOpened()) {
     throw std::runtime_error("cannot open video file '" + path.string() +
@@ -47,8 +52,8 @@ std::optional<Frame> VideoFileSource::Next() {
   Frame frame;
   frame.index = next_index_++;
   frame.camera_id = options_.camera_id;
-  frame.t_s = options_.fps > 0.0 ? frame.index / options_.fps
-                                 : capture_.get(cv::CAP_PROP_POS_MSEC) * 1e-3;
+  frame.t_s =
+      options_.fps > 0.0 ? frame.index / options_.fps : capture_.get(cv::CAP_PROP_POS_MSEC) * 1e-3;
   if (frame.index > 0 && !(frame.t_s > last_t_s_)) {
     std::ostringstream message;
     message.precision(17);

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "config/param_reader.h"
+#include "config/regular_file.h"
 
 namespace aperture::perception {
 namespace {
@@ -53,8 +54,8 @@ LedConfiguration::LedConfiguration(std::vector<Eigen::Vector3d> p_T, std::string
     : p_T_(std::move(p_T)), source_(std::move(source)) {
   const int n = size();
   if (n < kMinLeds || n > kMaxLeds) {
-    Reject(source_, "has " + std::to_string(n) + " LEDs; give between " +
-                        std::to_string(kMinLeds) + " and " + std::to_string(kMaxLeds));
+    Reject(source_, "has " + std::to_string(n) + " LEDs; give between " + std::to_string(kMinLeds) +
+                        " and " + std::to_string(kMaxLeds));
   }
   for (int i = 0; i < n; ++i) {
     if (!p_T_[i].allFinite()) Reject(source_, "LED " + std::to_string(i) + " is not finite");
@@ -98,6 +99,7 @@ LedConfiguration::LedConfiguration(std::vector<Eigen::Vector3d> p_T, std::string
 }
 
 LedConfiguration LedConfiguration::Load(const std::string& path) {
+  config::RequireRegularFileIfPresent(path, "LED configuration file");
   std::ifstream stream(path);
   if (!stream) throw std::runtime_error("cannot read LED configuration file " + path);
   YAML::Node root;

@@ -21,12 +21,17 @@ void ReadChoice(config::ParamReader& reader, const std::string& key, std::string
 
 [[noreturn]] void ThrowAt(const config::ParamReader& reader, const std::string& key,
                           const std::string& what) {
-  throw std::invalid_argument(reader.Where(key) + ": '" + reader.FullKey(key) + "' " + what);
+  reader.Fail(key, what);
 }
 
 // control::RequirePositive with the key's location ("file:line:col: 'gap.opening_m'") as its name.
 void RequirePositiveAt(const config::ParamReader& reader, const std::string& key, double value) {
-  control::RequirePositive(value, reader.Where(key) + ": '" + reader.FullKey(key) + "'");
+  try {
+    control::RequirePositive(value, reader.FullKey(key));
+  } catch (const std::invalid_argument& e) {
+    const std::string message = e.what();  // "<key> = <value> must be finite and > 0"
+    reader.Fail(key, message.substr(message.find("= ")));
+  }
 }
 
 void RequirePositiveAt(const config::ParamReader& reader, const std::string& key,
@@ -153,7 +158,8 @@ void LoadParams(config::ParamReader& reader, CameraParams* params) {
   RequirePositiveAt(reader, "rate_hz", params->rate_hz);
   RequirePositiveAt(reader, "supersampling", params->supersampling);
   if (!(params->latency_s >= 0.0) || !std::isfinite(params->latency_s)) {
-    ThrowAt(reader, "latency_s", "must be finite and >= 0, got " + std::to_string(params->latency_s));
+    ThrowAt(reader, "latency_s",
+            "must be finite and >= 0, got " + std::to_string(params->latency_s));
   }
   if (!(params->drop_probability >= 0.0 && params->drop_probability < 1.0)) {
     ThrowAt(reader, "drop_probability",
@@ -310,7 +316,9 @@ void LoadParams(config::ParamReader& reader, ScenarioParams* params) {
     vehicle.RejectUnknownKeys();
   }
   {
+    // --set cameras.frnt.rate_hz=30 is a typo, not a second camera (that takes a --config file).
     config::ParamReader cameras = reader.Section("cameras");
+    cameras.RejectEntriesCreatedBySet("camera");
     params->cameras.clear();
     for (const std::string& name : cameras.Keys()) {
       CameraParams camera;
@@ -327,6 +335,8 @@ void LoadParams(config::ParamReader& reader, ScenarioParams* params) {
   if (params->scenario == "tags") reader.ReadSection("tags", &params->tags);
   if (params->scenario == "forest") reader.ReadSection("forest", &params->forest);
   {
+    // Extra objects are the user's to add, also by --set (objects.crate.shape=box); cameras are
+    // not.
     config::ParamReader objects = reader.Section("objects");
     params->objects.clear();
     for (const std::string& name : objects.Keys()) {

@@ -86,13 +86,15 @@ void SitlRunnerParams::SetSeed(std::uint64_t seed) {
 }
 
 void SitlRunnerParams::Validate() const {
-  control::RequirePositive(duration_s, "SitlRunnerParams.duration_s");
-  control::RequirePositive(dynamics_rate_hz, "SitlRunnerParams.dynamics_rate_hz");
-  control::RequirePositive(control_rate_hz, "SitlRunnerParams.control_rate_hz");
-  control::RequireNonNegative(command_latency_s, "SitlRunnerParams.command_latency_s");
-  control::RequireNonNegative(range_latency_s, "SitlRunnerParams.range_latency_s");
-  control::RequireNonNegative(estimate_latency_s, "SitlRunnerParams.estimate_latency_s");
-  control::RequireNonNegative(esc_delay_s, "SitlRunnerParams.esc_delay_s");
+  // Names as the user writes them: the `sitl` block of a scenario, cameras.<name>.<key>,
+  // --duration.
+  control::RequirePositive(duration_s, "the simulated duration (--duration) [s]");
+  control::RequirePositive(dynamics_rate_hz, "sitl.dynamics_rate_hz");
+  control::RequirePositive(control_rate_hz, "sitl.control_rate_hz");
+  control::RequireNonNegative(command_latency_s, "sitl.command_latency_s");
+  control::RequireNonNegative(range_latency_s, "sitl.range_latency_s");
+  control::RequireNonNegative(estimate_latency_s, "sitl.estimate_latency_s");
+  control::RequireNonNegative(esc_delay_s, "sitl.esc_delay_s");
   dynamics.Validate();
   if (flight_controller_model) flight_controller_model->Validate();
   disturbances.Validate();
@@ -103,31 +105,24 @@ void SitlRunnerParams::Validate() const {
   // Sensors and controllers sample once per dynamics step at most (sample_schedule.h).
   const double fastest =
       std::max({flight_controller.rate_hz, imu.rate_hz, control_rate_hz, range.rate_hz});
-  if (dynamics_rate_hz < fastest * (1.0 - 1e-9)) {
-    throw std::invalid_argument(
-        "SitlRunnerParams.dynamics_rate_hz = " + std::to_string(dynamics_rate_hz) +
-        " is below the fastest flight-controller / IMU / control / range rate " +
-        std::to_string(fastest) + "; raise it");
-  }
+  control::Require(dynamics_rate_hz >= fastest * (1.0 - 1e-9), "sitl.dynamics_rate_hz",
+                   dynamics_rate_hz,
+                   "is below the fastest flight-controller / IMU / control / range rate; raise it");
   if (trajectory_decimation < 1) {
     throw std::invalid_argument("SitlRunnerParams.trajectory_decimation must be >= 1");
   }
   for (size_t i = 0; i < cameras.size(); ++i) {
     const SitlCamera& c = cameras[i];
-    const std::string field = "cameras[" + std::to_string(i) + "] ('" + c.name + "').";
-    if (!c.model) throw std::invalid_argument("SitlRunnerParams." + field + "model is missing");
-    control::RequirePositive(c.rate_hz, std::string("SitlRunnerParams.") + field + "rate_hz");
-    control::RequireNonNegative(c.latency_s,
-                                std::string("SitlRunnerParams.") + field + "latency_s");
-    if (!(c.drop_probability >= 0.0 && c.drop_probability < 1.0)) {
-      throw std::invalid_argument("SitlRunnerParams." + field + "drop_probability = " +
-                                  std::to_string(c.drop_probability) + " must be in [0, 1)");
-    }
-    if (c.rate_hz > dynamics_rate_hz) {
-      throw std::invalid_argument("SitlRunnerParams." + field + "rate_hz exceeds dynamics_rate_hz");
-    }
+    const std::string field = "cameras." + c.name + ".";
+    if (!c.model) throw std::invalid_argument(field + "model is missing");
+    control::RequirePositive(c.rate_hz, field + "rate_hz");
+    control::RequireNonNegative(c.latency_s, field + "latency_s");
+    control::Require(c.drop_probability >= 0.0 && c.drop_probability < 1.0,
+                     field + "drop_probability", c.drop_probability, "must be in [0, 1)");
+    control::Require(c.rate_hz <= dynamics_rate_hz, field + "rate_hz", c.rate_hz,
+                     "exceeds sitl.dynamics_rate_hz");
     if (!c.T_BC.matrix().allFinite() || (c.T_WC_fixed && !c.T_WC_fixed->matrix().allFinite())) {
-      throw std::invalid_argument("SitlRunnerParams." + field + "T_BC / T_WC_fixed is not finite");
+      throw std::invalid_argument(field + "pose (T_BC / T_WC_fixed) is not finite");
     }
   }
 }

@@ -40,7 +40,7 @@ TEST(Cli, BenchWithoutABenchmarkNameExitsWithTwo) {
 TEST(Cli, RenderNamesTheBuiltinScenariosForAnUnknownOne) {
   TempFolder temp("render-unknown");
   const CommandResult result = RunAperture("render nope --out " + temp.path() + "/out");
-  EXPECT_NE(result.exit_code, 0);
+  EXPECT_EQ(result.exit_code, 2);  // a usage mistake
   EXPECT_NE(result.output.find("unknown scenario 'nope'"), std::string::npos) << result.output;
   EXPECT_NE(result.output.find("gapflyt"), std::string::npos) << result.output;
 }

@@ -180,7 +180,7 @@ TEST_F(ConfigFileTest, ScalarTypesAreStrict) {
   EXPECT_TRUE(params.enabled);
   EXPECT_EQ(params.mass_kg, 0.1);
   EXPECT_EQ(params.rotors, -2);
-  EXPECT_TRUE(std::isnan(load("vehicle: {mass_kg: .nan}").mass_kg));
+  EXPECT_THAT(MessageOf([&] { load("vehicle: {mass_kg: .nan}"); }), HasSubstr("a finite number"));
 }
 
 TEST_F(ConfigFileTest, MalformedSetItemsNameTheItem) {

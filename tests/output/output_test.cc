@@ -145,6 +145,58 @@ TEST_F(OutputTest, StaleSummaryIsRemovedWhenFolderIsReused) {
   EXPECT_FALSE(fs::exists(directory_ / "summary.json"));
 }
 
+// A reused --out folder (issue 18): an earlier run's outputs are refused unless --overwrite, which
+// removes exactly what that run created (its summary.json "files") and leaves other files alone.
+TEST_F(OutputTest, FolderWithAnEarlierRunsOutputsIsRefusedUnlessOverwrite) {
+  {
+    OutputFolder first(directory_.string());
+    std::ofstream(first.Path("gap.csv")) << "t\n";
+    fs::create_directories(first.Path("images"));
+    std::ofstream(first.Path("images/000000.png")) << "x";
+    first.WriteSummary(RunStatus::kOk);
+  }
+  EXPECT_EQ(nlohmann::json::parse(ReadFile(directory_ / "summary.json"))["files"],
+            nlohmann::json::parse(R"(["gap.csv", "images"])"));
+  std::ofstream(directory_ / "notes.txt") << "mine";  // written by the user after that run
+  try {
+    OutputFolder refused(directory_.string());
+    FAIL() << "a folder with an earlier run's outputs must be refused";
+  } catch (const FolderInUseError& e) {
+    EXPECT_THAT(e.what(), HasSubstr(directory_.string()));
+    EXPECT_THAT(e.what(), HasSubstr("--overwrite"));
+  }
+  EXPECT_TRUE(fs::exists(directory_ / "gap.csv"));  // refusing touches nothing
+
+  OutputFolder second(directory_.string(), /*overwrite=*/true);
+  EXPECT_EQ(ListFiles(directory_), std::vector<std::string>{"notes.txt"});
+  std::ofstream(second.Path("poses.csv")) << "t\n";
+  second.WriteSummary(RunStatus::kOk);
+  EXPECT_EQ(nlohmann::json::parse(ReadFile(directory_ / "summary.json"))["files"],
+            nlohmann::json::parse(R"(["poses.csv"])"));  // not the user's notes.txt
+}
+
+TEST_F(OutputTest, FolderOfForeignFilesIsRefusedEvenWithOverwrite) {
+  fs::create_directories(directory_);
+  std::ofstream(directory_ / "thesis.tex") << "x";
+  EXPECT_THROW(OutputFolder(directory_.string()), FolderInUseError);
+  try {
+    OutputFolder out(directory_.string(), /*overwrite=*/true);
+    FAIL() << "--overwrite must not guess what to delete";
+  } catch (const FolderInUseError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("no summary.json"));
+  }
+  EXPECT_TRUE(fs::exists(directory_ / "thesis.tex"));
+}
+
+TEST_F(OutputTest, FolderOfARunThatWroteNothingButItsSummaryIsReused) {
+  {
+    OutputFolder failed(directory_.string());
+    failed.WriteSummary(RunStatus::kFailed, "--set gap.rol_deg=3: unknown key");
+  }
+  OutputFolder again(directory_.string());  // the typo fixed, same --out: no --overwrite needed
+  EXPECT_TRUE(ListFiles(directory_).empty());
+}
+
 TEST_F(OutputTest, UnwritableFolderErrorNamesThePath) {
   fs::create_directories(directory_);
   std::ofstream(directory_ / "regular_file") << "x";

@@ -49,7 +49,15 @@ TEST(CalibrationIoTest, LoadsRosCameraInfo) {
 TEST(CalibrationIoTest, LoadsKalibrCamchainWithInverseExtrinsics) {
   const std::string path = kDataDir + "euroc_cam0_kalibr.yaml";
   EXPECT_EQ(DetectCalibrationFormat(path), CalibrationFormat::kKalibr);
-  const CameraCalibration cam0 = LoadCameraCalibration(path);
+  // Two cameras: which one the frames come from is the user's choice, never silently cam0.
+  try {
+    LoadCameraCalibration(path);
+    FAIL() << "a two-camera camchain needs a camera choice";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("2 cameras (cam0, cam1)"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("--camera cam1"), std::string::npos) << e.what();
+  }
+  const CameraCalibration cam0 = LoadCameraCalibration(path, "cam0");
   EXPECT_EQ(cam0.camera->model_name(), "radtan");
   EXPECT_EQ(cam0.camera->width(), 752);
   EXPECT_EQ(cam0.camera->intrinsics(), Eigen::Vector4d(458.654, 457.296, 367.215, 248.375));
@@ -262,7 +270,8 @@ TEST(CalibrationIoTest, MissingFileNamesThePath) {
 }
 
 TEST(CalibrationIoTest, ImageSizeCheckNamesFileAndBothSizes) {
-  const CameraCalibration calib = LoadCameraCalibration(kDataDir + "euroc_cam0_kalibr.yaml");
+  const CameraCalibration calib =
+      LoadCameraCalibration(kDataDir + "euroc_cam0_kalibr.yaml", "cam0");
   EXPECT_NO_THROW(CheckCalibrationImageSize(calib, 752, 480));
   try {
     CheckCalibrationImageSize(calib, 640, 480);

@@ -486,6 +486,43 @@ TEST(VideoFileSource, MissingAndUndecodableFilesNameTheFile) {
   EXPECT_THAT(message, HasSubstr("cannot open video"));
 }
 
+// Values checked like files (issue 18): a dangling link keeps its place in the sequence (so --fps
+// times do not shift) and fails naming itself; a device or FIFO is not "missing"; 16-bit frames
+// are not cut to their high byte.
+TEST(ImageFolderSource, DanglingSymlinkKeepsItsPlaceAndNamesItsTarget) {
+  test_support::TempDirectory dir;
+  WriteSequence(dir.path(), 3);
+  fs::remove(dir.path() / "frame2.png");
+  fs::create_symlink(dir.path() / "gone.png", dir.path() / "frame2.png");
+  ImageFolderSource strict(dir.path(), SourceOptions(10.0));
+  EXPECT_EQ(strict.SizeHint(), std::optional<size_t>(3));
+  ASSERT_TRUE(strict.Next().has_value());
+  EXPECT_THAT(
+      MessageOf<std::runtime_error>([&] { strict.Next(); }),
+      ::testing::AllOf(HasSubstr("frame2.png"), HasSubstr("gone.png"), HasSubstr("symbolic link")));
+  ::testing::internal::CaptureStderr();
+  ImageFolderSource skipping(dir.path(), SourceOptions(10.0, /*skip=*/true));
+  const std::vector<Frame> frames = ReadAll(skipping);
+  ::testing::internal::GetCapturedStderr();
+  ASSERT_EQ(frames.size(), 2u);
+  EXPECT_DOUBLE_EQ(frames[1].t_s, 2 / 10.0);  // frame3 keeps its time: nothing shifted
+  EXPECT_EQ(LevelOf(frames[1]), 35);
+}
+
+TEST(ImageFolderSource, SixteenBitFramesAreRejectedNotCut) {
+  test_support::TempDirectory dir;
+  WriteImage(dir.path() / "frame1.png", cv::Mat(kSize, CV_16UC1, cv::Scalar(4095)));
+  ImageFolderSource source(dir.path(), SourceOptions(10.0));
+  EXPECT_THAT(MessageOf<std::runtime_error>([&] { source.Next(); }),
+              ::testing::AllOf(HasSubstr("frame1.png"), HasSubstr("16-bit")));
+}
+
+TEST(OpenFrameSource, DeviceOrFifoIsNotAFrameSourceAndSaysSo) {
+  EXPECT_THAT(
+      MessageOf<std::invalid_argument>([&] { OpenFrameSource("/dev/null", SourceOptions(0.0)); }),
+      ::testing::AllOf(HasSubstr("'/dev/null'"), HasSubstr("not a regular file")));
+}
+
 // ---------------------------------------------------------------- factory and camera
 
 TEST(OpenFrameSource, DispatchesFolderVideoAndCameraSpecs) {

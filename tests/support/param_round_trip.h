@@ -38,6 +38,7 @@ class PerturbArchive {
       }
     }
   }
+  void VisitLimit(const char*, double* value) { Perturb(value); }
   template <typename Function>
   void VisitSection(const char*, const Function& describe) {
     describe(this);
