@@ -11,11 +11,10 @@
 //   BMP         the file is at least as long as the size in its header.
 // Other formats (TIFF, ASCII PNM) rely on the decoder's own checks.
 #include <filesystem>
+#include <opencv2/core/mat.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <opencv2/core/mat.hpp>
 
 #include "perception/io/frame_source.h"
 

@@ -33,9 +33,7 @@ TEST(Cli, MissingSubcommandExitsWithTwo) {
   EXPECT_EQ(RunAperture("fly").exit_code, 2);
 }
 
-TEST(Cli, BenchWithoutABenchmarkNameExitsWithTwo) {
-  EXPECT_EQ(RunAperture("bench").exit_code, 2);
-}
+TEST(Cli, BenchWithoutABenchmarkNameExitsWithTwo) { EXPECT_EQ(RunAperture("bench").exit_code, 2); }
 
 TEST(Cli, RenderNamesTheBuiltinScenariosForAnUnknownOne) {
   TempFolder temp("render-unknown");
