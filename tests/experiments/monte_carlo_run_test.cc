@@ -177,7 +177,7 @@ TEST_F(MonteCarloRunTest, RefusesAFailedShardAWholeRunAndTruncatedRecords) {
   const std::string s1 = Run("s1", "1/2");
   const std::string s2 = Run("s2", "2/2");
   {
-    output::OutputFolder failed(s2);  // a rerun that failed leaves status "failed"
+    output::OutputFolder failed(s2, /*overwrite=*/true);  // a rerun that failed: status "failed"
     failed.WriteSummary(output::RunStatus::kFailed, "killed");
   }
   std::string error = MergeError({s1, s2});
