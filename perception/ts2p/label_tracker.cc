@@ -177,8 +177,8 @@ void LabelTracker::Initialize(const cv::Mat& gray, const cv::Mat& opening,
   cv::erode(opening, background, DiskKernel(Radius(params_.background_erosion_px)));
   sets_[0].initial_mask = outer & ~inner;
   sets_[1].initial_mask = background;
-  std::vector<Eigen::Vector2d> polygon;
-  for (const cv::Point& p : contour) polygon.emplace_back(p.x, p.y);
+  contour_px_.clear();
+  for (const cv::Point& p : contour) contour_px_.emplace_back(p.x, p.y);
   for (LabelSet& set : sets_) {
     cv::resize(set.initial_mask, set.initial_mask_small,
                cv::Size(std::max(1, image_size_.width / kSmallFactor),
@@ -187,7 +187,6 @@ void LabelTracker::Initialize(const cv::Mat& gray, const cv::Mat& opening,
     set.scale = 1.0;
     set.offset_px.setZero();
     set.x_s_px = x_s_px;
-    set.contour_px = polygon;
     set.last_fit = ExpansionFit{};
     DetectCorners(gray, &set);
   }
@@ -251,7 +250,6 @@ OpeningTrack LabelTracker::Track(const cv::Mat& gray, double t_s, int index) {
       set.scale *= 1.0 + fit.alpha;
       set.offset_px = fit.Apply(set.offset_px);
       set.x_s_px = fit.Apply(set.x_s_px);
-      for (Eigen::Vector2d& p : set.contour_px) p = fit.Apply(p);
     }
     track.propagation_ms += MillisecondsSince(stage);
     const int k = s == 0 ? params_.foreground_min_corners : params_.background_min_corners;
@@ -267,14 +265,21 @@ OpeningTrack LabelTracker::Track(const cv::Mat& gray, double t_s, int index) {
   }
   previous_pyramid_ = std::move(pyramid);
 
-  // Sec. III-A: x_s from F when |F| >= |B|, else from B (sets as seen in the image).
+  // C is the rim of the opening in the near wall: it moves with F. B's fit stands in only on a
+  // frame where F's fails (both failing leave C where it was).
   auto stage = Clock::now();
+  const ExpansionFit& rim_fit = sets_[0].last_fit.ok ? sets_[0].last_fit : sets_[1].last_fit;
+  if (rim_fit.ok) {
+    for (Eigen::Vector2d& p : contour_px_) p = rim_fit.Apply(p);
+  }
+
+  // Sec. III-A: x_s from F when |F| >= |B|, else from B (sets as seen in the image).
   const bool use_foreground = sets_[0].AreaInImage() >= sets_[1].AreaInImage();
   const LabelSet& chosen = sets_[use_foreground ? 0 : 1];
   track.safe_point_source = use_foreground ? 'F' : 'B';
   track.safe_point_measured_px = chosen.x_s_px;
   track.safe_point_px = filter_.Update(chosen.x_s_px, t_s);
-  track.contour_px = chosen.contour_px;
+  track.contour_px = contour_px_;
   track.foe_px = chosen.last_fit.foe_px;
   track.divergence = chosen.last_fit.alpha;
   track.valid = sets_[0].last_fit.ok || sets_[1].last_fit.ok;

@@ -17,9 +17,13 @@
 //   6.   propagate the set: x -> (1 + alpha) x + c (composed since the detection, so the masks
 //        are warped only to re-detect corners).
 // Sets reset their corners (inside the propagated set) when at most k_F / k_B survive. Each set
-// carries x_s and C with it (the FOE scaling preserves the cross-ratios, Sec. III-A); the output
-// x_s is the foreground set's when |F| >= |B| in the image, else the background set's, smoothed
-// by SafePointFilter.
+// carries x_s with it (the FOE scaling preserves the cross-ratios, Sec. III-A); the output x_s is
+// the foreground set's when |F| >= |B| in the image, else the background set's, smoothed by
+// SafePointFilter. The contour C is not switched with x_s (beyond the paper): it is the rim of
+// the opening, an edge of the near wall, so it follows F's fit on every frame where that fit
+// holds and B's only where it does not. Taken from B once |B| > |F| (the opening fills the view
+// on the approach), C grew with the far background, slower than the opening, and shrank onto
+// a part of it (triangles in `aperture bench gapflyt`, docs/results/gapflyt.md).
 //
 // Inputs: 8-bit gray frames of one size, times increasing. Initialize throws
 // std::invalid_argument for an empty opening or a size mismatch.
@@ -96,7 +100,6 @@ class LabelTracker {
     double scale = 1.0;          // composed propagation since the detection: x -> s x + o
     Eigen::Vector2d offset_px = Eigen::Vector2d::Zero();
     Eigen::Vector2d x_s_px = Eigen::Vector2d::Zero();
-    std::vector<Eigen::Vector2d> contour_px;
     std::vector<cv::Point2f> corners;
     ExpansionFit last_fit;
     cv::Mat Mask(const cv::Size& size) const;
@@ -110,7 +113,8 @@ class LabelTracker {
   bool initialized_ = false;
   cv::Size image_size_;
   std::vector<cv::Mat> previous_pyramid_;
-  LabelSet sets_[2];  // F, B
+  LabelSet sets_[2];                         // F, B
+  std::vector<Eigen::Vector2d> contour_px_;  // C, propagated with F's fit (B's if F's fails)
 };
 
 }  // namespace aperture::perception

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 #include <random>
@@ -156,6 +157,55 @@ TEST(LabelTrackerTest, PropagationMatchesASyntheticZoom) {
   EXPECT_GT(overlap / union_area, 0.95);
   // F stays outside the opening.
   EXPECT_EQ(cv::countNonZero(tracker.ForegroundMask() & opening_true), 0);
+}
+
+// Two depths: the wall expands faster than the background seen through a large opening, whose
+// B set outgrows the F ring in the image (so x_s comes from B). The contour is the wall's rim: it
+// must follow the wall's zoom, not the background's.
+TEST(LabelTrackerTest, ContourFollowsTheWallWhenTheBackgroundSetIsLarger) {
+  cv::RNG rng(11);
+  cv::Mat noise(384, 576, CV_32F);
+  rng.fill(noise, cv::RNG::UNIFORM, 0.0, 255.0);
+  cv::GaussianBlur(noise, noise, cv::Size(0, 0), 1.5);
+  cv::normalize(noise, noise, 0, 255, cv::NORM_MINMAX);
+  cv::Mat wall, background;
+  noise.convertTo(wall, CV_8U);
+  cv::flip(wall, background, -1);  // a different texture
+  cv::Mat opening = cv::Mat::zeros(wall.size(), CV_8U);
+  cv::ellipse(opening, cv::Point(288, 192), cv::Size(150, 110), 0, 0, 360, 255, -1);
+  std::vector<std::vector<cv::Point>> contours;
+  cv::findContours(opening.clone(), contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
+  const Eigen::Vector2d foe(300, 180);
+  auto frame = [&](double wall_scale, double background_scale) {
+    cv::Mat out = Zoomed(background, background_scale, foe);
+    cv::Mat opening_now;
+    const cv::Matx23d warp(wall_scale, 0, (1 - wall_scale) * foe.x(), 0, wall_scale,
+                           (1 - wall_scale) * foe.y());
+    cv::warpAffine(opening, opening_now, warp, opening.size(), cv::INTER_NEAREST);
+    Zoomed(wall, wall_scale, foe).copyTo(out, ~opening_now);
+    return out;
+  };
+
+  LabelTracker tracker(LabelTrackerParams{});
+  tracker.Initialize(frame(1.0, 1.0), opening, Eigen::Vector2d(288, 192), contours[0], 0.0, 0);
+  const double wall_step = 1.01, background_step = 1.003;  // per frame
+  double wall_scale = 1.0, background_scale = 1.0;
+  OpeningTrack track;
+  for (int k = 1; k <= 15; ++k) {
+    wall_scale *= wall_step;
+    background_scale *= background_step;
+    track = tracker.Track(frame(wall_scale, background_scale), k / 30.0, k);
+    ASSERT_TRUE(track.valid) << "frame " << k;
+  }
+  EXPECT_EQ(track.safe_point_source, 'B');
+  // The background's zoom would leave the rim ~17 px inside the true one.
+  ASSERT_EQ(track.contour_px.size(), contours[0].size());
+  double worst_px = 0.0;
+  for (std::size_t i = 0; i < contours[0].size(); ++i) {
+    const Eigen::Vector2d c(contours[0][i].x, contours[0][i].y);
+    worst_px = std::max(worst_px, (track.contour_px[i] - (foe + wall_scale * (c - foe))).norm());
+  }
+  EXPECT_LT(worst_px, 2.0);
 }
 
 TEST(SafePointFilterTest, SmoothsNoisyConstantVelocityMotion) {
