@@ -22,8 +22,7 @@
 // SafePointFilter. The contour C is not switched with x_s (beyond the paper): it is the rim of
 // the opening, an edge of the near wall, so it follows F's fit on every frame where that fit
 // holds and B's only where it does not. Taken from B once |B| > |F| (the opening fills the view
-// on the approach), C grew with the far background, slower than the opening, and shrank onto
-// a part of it (triangles in `aperture bench gapflyt`, docs/results/gapflyt.md).
+// on the approach), C would grow with the far background, slower than the opening itself.
 //
 // Inputs: 8-bit gray frames of one size, times increasing. Initialize throws
 // std::invalid_argument for an empty opening or a size mismatch.

@@ -122,6 +122,13 @@ void Ts2pParams::Validate() const {
         "threshold_fraction in (0, 1) and "
         "min_area_fraction in [0, 1)");
   }
+  if (!(core_threshold_fraction >= 0.0 && core_threshold_fraction < threshold_fraction) ||
+      !(min_core_fraction > 0.0 && min_core_fraction <= 1.0)) {
+    throw std::invalid_argument(
+        "ts2p.core_threshold_fraction must be in [0, threshold_fraction) (0 = off) and "
+        "min_core_fraction in (0, 1], got " +
+        std::to_string(core_threshold_fraction) + " and " + std::to_string(min_core_fraction));
+  }
   if (!(edge_aware_lambda >= 0.0 && std::isfinite(edge_aware_lambda)) ||
       !(edge_aware_sigma_color > 0.0)) {
     throw std::invalid_argument(
@@ -142,6 +149,8 @@ void LoadParams(config::ParamReader& reader, Ts2pParams* params) {
   reader.Read("min_mode_separation_px", &params->min_mode_separation_px);
   reader.Read("morphology_radius_px", &params->morphology_radius_px);
   reader.Read("threshold_fraction", &params->threshold_fraction);
+  reader.Read("core_threshold_fraction", &params->core_threshold_fraction);
+  reader.Read("min_core_fraction", &params->min_core_fraction);
   reader.Read("min_area_fraction", &params->min_area_fraction);
   reader.Read("edge_aware_lambda", &params->edge_aware_lambda);
   reader.Read("edge_aware_sigma_color", &params->edge_aware_sigma_color);
@@ -483,6 +492,17 @@ Ts2pDetection Ts2pDetector::Detect(const cv::Mat& reference, const std::vector<c
                                            1.0 / std::max(detection.background_flow_px, 1e-3));
     if (BorderFraction(detection.opening) <= kMaxBorderFraction) {
       detection.status = "ok";
+      if (params_.segmentation == "region" && params_.core_threshold_fraction > 0.0) {
+        const double core_threshold =
+            std::min(detection.background_flow_px + params_.core_threshold_fraction * separation,
+                     max_threshold);
+        const cv::Mat core = SegmentRegion(mean_flow, core_threshold) & detection.opening;
+        if (cv::countNonZero(core) >=
+            params_.min_core_fraction * cv::countNonZero(detection.opening)) {
+          detection.opening = core;
+          detection.core = true;
+        }
+      }
       break;
     }
     detection.status = "no enclosed opening: the low-flow region covers the image border";

@@ -81,6 +81,14 @@ struct Ts2pParams {
   // 0.8: on the bench's first 20 trials (seed 1) DR 0.85 / AFN 0.11 against 0.80 / 0.14 at
   // 0.7 and lower at 0.5 (docs/results/ts2p.md); AFP stays ~0.002.
   double threshold_fraction = 0.8;
+  // Hysteresis (beyond the paper): when > 0, O as found at threshold_fraction decides that there
+  // is an opening, and O is then narrowed to its part below this lower fraction (the component
+  // at / nearest the centre) if that keeps at least min_core_fraction of O's area. The inclusive
+  // threshold finds small openings; the lower one drops humps of wall whose parallax the flow
+  // smoothed towards B, which a vehicle aiming at O's centroid flies into. 0 = off (bench ts2p
+  // scores the paper's O); the GapFlyt mission flies the core (planning/gapflyt).
+  double core_threshold_fraction = 0.0;
+  double min_core_fraction = 0.5;
   // O must cover this fraction of the image, else no detection (a speckle, not a gap).
   double min_area_fraction = 0.005;
   // Fast global smoother of step 3b: smoothness weight lambda (0 = off) and the range of the
@@ -115,6 +123,7 @@ struct Ts2pDetection {
   bool valid = false;
   std::string status;              // "ok" or why there is no opening
   cv::Mat opening;                 // CV_8UC1, 255 = O (reference pixels); zeros when !valid
+  bool core = false;               // O was narrowed to its core (core_threshold_fraction)
   cv::Mat mean_flow_px;            // CV_32FC1 stacked mean flow magnitude [px] (after 3b)
   cv::Mat xi;                      // CV_32FC1 |grad of the inverse mean flow| [1/px per px]
   std::vector<cv::Point> contour;  // C: outer boundary of O [px]

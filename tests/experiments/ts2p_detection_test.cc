@@ -85,6 +85,44 @@ INSTANTIATE_TEST_SUITE_P(StarAndTight, Ts2pSmallOpeningTest,
                          ::testing::Values("star", "triangle", "tight"),
                          [](const auto& info) { return info.param; });
 
+// The hysteresis core (ts2p_detector.h, what the GapFlyt mission flies) on the mission's scans
+// (320 x 240, 6 cm steps) of bench-drawn trials: narrowing O to its core must drop wall pixels
+// called opening (the humps a vehicle aiming at O's centroid flies into) and keep the opening.
+TEST(Ts2pCoreTest, TheCoreDropsWallAndKeepsTheOpening) {
+  perception::Ts2pParams inclusive;
+  perception::Ts2pParams core = inclusive;
+  core.core_threshold_fraction = 0.6;
+  perception::Ts2pDetector inclusive_detector(inclusive), core_detector(core);
+  sim::RayCaster caster;
+  double wall_inclusive = 0.0, wall_core = 0.0;
+  int cores = 0;
+  constexpr int kTrials = 15;  // three of each shape
+  for (int trial = 0; trial < kTrials; ++trial) {
+    Ts2pScanConfig config = DrawTs2pTrial(Ts2pTrialRanges{}, 3, trial);
+    config.width = 320;
+    config.height = 240;
+    config.scan_step_m = 0.06;
+    const Ts2pScan scan = RenderTs2pScan(config, caster);
+    const perception::Ts2pDetection o = inclusive_detector.Detect(scan.reference, scan.frames);
+    const perception::Ts2pDetection c = core_detector.Detect(scan.reference, scan.frames);
+    ASSERT_EQ(o.valid, c.valid) << "trial " << trial;  // the decision is the inclusive one's
+    if (!o.valid) continue;
+    ASSERT_FALSE(o.core);
+    cores += c.core;
+    // The core lies inside O and keeps at least min_core_fraction of it.
+    EXPECT_EQ(cv::countNonZero(c.opening & ~o.opening), 0) << "trial " << trial;
+    EXPECT_GE(cv::countNonZero(c.opening), core.min_core_fraction * cv::countNonZero(o.opening));
+    const perception::OpeningScore so = perception::ScoreOpening(o.opening, scan.truth);
+    const perception::OpeningScore sc = perception::ScoreOpening(c.opening, scan.truth);
+    EXPECT_GE(sc.overlap, 0.8) << "trial " << trial << " (" << config.shape << ")";
+    wall_inclusive += so.false_positive;
+    wall_core += sc.false_positive;
+  }
+  EXPECT_GE(cores, kTrials / 2);
+  // Measured (seed 3): the core keeps 38 % of O's wall pixels, overlap >= 0.85 (O: >= 0.87).
+  EXPECT_LT(wall_core, 0.5 * wall_inclusive) << wall_core << " vs " << wall_inclusive;
+}
+
 // The star's spikes show the smooth background wall through a few pixels: patch-based flow
 // fills them from the wall's edge (F). The edge-aware refinement (step 3b) fills them from the
 // similar-looking opening instead; without it the overlap drops towards seed 002's 0.75 limit.

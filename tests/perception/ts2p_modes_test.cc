@@ -1,5 +1,6 @@
 // The flow-mode statistics of TS²P's segmentation (perception/ts2p/ts2p_detector.h) on values
-// drawn from known distributions.
+// drawn from known distributions, and the checks of the segmentation's parameters.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,6 +8,7 @@
 #include <random>
 
 #include "perception/ts2p/ts2p_detector.h"
+#include "tests/support/message_of.h"
 
 namespace aperture::perception {
 namespace {
@@ -51,6 +53,20 @@ TEST(Ts2pModesTest, NoTailWithoutASecondMode) {
   // All NaN: nothing to find.
   cv::Mat nan(8, 8, CV_32FC1, cv::Scalar(std::numeric_limits<float>::quiet_NaN()));
   EXPECT_FALSE(FindLowTailMode(nan, 0.005).has_value());
+}
+
+// The hysteresis core's fraction must lie below the detection's own (else the core is O).
+TEST(Ts2pParamsTest, CoreThresholdBelowTheDetectionThreshold) {
+  Ts2pParams params;
+  params.core_threshold_fraction = 0.6;
+  EXPECT_NO_THROW(params.Validate());
+  params.core_threshold_fraction = params.threshold_fraction;
+  EXPECT_THAT(test_support::MessageOf([&] { params.Validate(); }),
+              ::testing::HasSubstr("ts2p.core_threshold_fraction"));
+  params.core_threshold_fraction = 0.6;
+  params.min_core_fraction = 0.0;
+  EXPECT_THAT(test_support::MessageOf([&] { params.Validate(); }),
+              ::testing::HasSubstr("min_core_fraction"));
 }
 
 }  // namespace
