@@ -110,14 +110,20 @@ cv::Mat Zoomed(const cv::Mat& texture, double scale, const Eigen::Vector2d& foe)
   return out;
 }
 
-TEST(LabelTrackerTest, PropagationMatchesASyntheticZoom) {
-  cv::RNG rng(9);
+// A 576 x 384 blurred-noise texture: corners everywhere, KLT's ~0.1 px.
+cv::Mat NoiseTexture(std::uint64_t seed) {
+  cv::RNG rng(seed);
   cv::Mat noise(384, 576, CV_32F);
   rng.fill(noise, cv::RNG::UNIFORM, 0.0, 255.0);
   cv::GaussianBlur(noise, noise, cv::Size(0, 0), 1.5);
   cv::normalize(noise, noise, 0, 255, cv::NORM_MINMAX);
   cv::Mat texture;
   noise.convertTo(texture, CV_8U);
+  return texture;
+}
+
+TEST(LabelTrackerTest, PropagationMatchesASyntheticZoom) {
+  const cv::Mat texture = NoiseTexture(9);
   // An opening: ellipse around (270, 200); the zoom's FOE off its centre.
   cv::Mat opening = cv::Mat::zeros(texture.size(), CV_8U);
   cv::ellipse(opening, cv::Point(270, 200), cv::Size(90, 60), 0, 0, 360, 255, -1);
@@ -163,14 +169,7 @@ TEST(LabelTrackerTest, PropagationMatchesASyntheticZoom) {
 // B set outgrows the F ring in the image (so x_s comes from B). The contour is the wall's rim: it
 // must follow the wall's zoom, not the background's.
 TEST(LabelTrackerTest, ContourFollowsTheWallWhenTheBackgroundSetIsLarger) {
-  cv::RNG rng(11);
-  cv::Mat noise(384, 576, CV_32F);
-  rng.fill(noise, cv::RNG::UNIFORM, 0.0, 255.0);
-  cv::GaussianBlur(noise, noise, cv::Size(0, 0), 1.5);
-  cv::normalize(noise, noise, 0, 255, cv::NORM_MINMAX);
-  cv::Mat wall, background;
-  noise.convertTo(wall, CV_8U);
-  cv::flip(wall, background, -1);  // a different texture
+  const cv::Mat wall = NoiseTexture(11), background = NoiseTexture(12);
   cv::Mat opening = cv::Mat::zeros(wall.size(), CV_8U);
   cv::ellipse(opening, cv::Point(288, 192), cv::Size(150, 110), 0, 0, 360, 255, -1);
   std::vector<std::vector<cv::Point>> contours;
