@@ -144,8 +144,17 @@ void GapflytMission::OnFrame(const perception::Frame& frame) {
         front_ends_->Latest<perception::Ts2pOutput>(perception::Ts2pNode::kOutputSlot);
     if (!ts2p || !ts2p->fresh) return;
     detection_tried_ = true;
-    scan_statuses_.push_back(ts2p->detection->status);
-    if (ts2p->detection->valid) StartServo(*ts2p);
+    const perception::Ts2pDetection& detection = *ts2p->detection;
+    std::vector<Eigen::Vector2d> contour_px;
+    for (const cv::Point& p : detection.contour) contour_px.emplace_back(p.x, p.y);
+    if (detection.valid && ReachesBorder(contour_px)) {
+      // Sec. II's reference frame shows the whole gap: from the scan's distance an opening that
+      // runs into the border is wall the segmentation took for opening (it would commit at once).
+      scan_statuses_.push_back("opening reaches the image border: not wholly in view");
+      return;
+    }
+    scan_statuses_.push_back(detection.status);
+    if (detection.valid) StartServo(*ts2p);
     return;
   }
   if (phase_ != GapflytPhase::kServo) return;
@@ -211,6 +220,10 @@ bool GapflytMission::TouchesBorder(const std::vector<Eigen::Vector2d>& contour_p
   for (const Eigen::Vector2d& p : contour_px) points.emplace_back(p.x(), p.y());
   const double image_area_px = static_cast<double>(camera_->width()) * camera_->height();
   if (cv::contourArea(points) < 0.5 * params_.commit_area_fraction * image_area_px) return false;
+  return ReachesBorder(contour_px);
+}
+
+bool GapflytMission::ReachesBorder(const std::vector<Eigen::Vector2d>& contour_px) const {
   const double margin = params_.commit_border_px;
   // Pixel centres run from 0 to size - 1 (camera_model.h).
   const double max_u = camera_->width() - 1.0 - margin, max_v = camera_->height() - 1.0 - margin;

@@ -14,8 +14,9 @@
 //              (the ts2p window of stack * stride + 1 frames centred on the cruise): at constant
 //              velocity the attitude is constant (drag balance), so the stack holds the rotation-
 //              free parallax TS²P assumes (Sec. II: Omega ~ 0) without derotation; one TS²P
-//              detection (Sec. II). No detection (or an invalid one): the scan runs back the other
-//              way, up to max_scans times, then the mission aborts.
+//              detection (Sec. II). No detection (or an invalid one, or one whose opening runs
+//              into the image border: the reference frame must show the whole gap, Sec. II): the
+//              scan runs back the other way, up to max_scans times, then the mission aborts.
 //   servo      label tracking (Sec. III, Alg. 1: gap_tracker) from the detection on, every frame;
 //              the tracked contour C and safe point x_s (normalized, re-projected into the level
 //              camera with the attitude estimate, servo/level_view.h) drive servo::GapServo
@@ -221,7 +222,9 @@ class GapflytMission : public perception::Autopilot {
   void Commit(const std::string& reason, double t_s);
   // A frame of the servo phase: one servo step on the track.
   void ServoOnFrame(const perception::OpeningTrack& track);
+  // The contour within commit_border_px of the image border while it covers half the goal view.
   bool TouchesBorder(const std::vector<Eigen::Vector2d>& contour_px) const;
+  bool ReachesBorder(const std::vector<Eigen::Vector2d>& contour_px) const;  // border alone
   // Pixels -> normalized coordinates of the level camera (servo/level_view.h).
   std::optional<std::vector<Eigen::Vector2d>> LevelNormalized(
       const std::vector<Eigen::Vector2d>& px) const;
