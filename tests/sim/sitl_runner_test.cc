@@ -12,21 +12,10 @@
 #include "perception/camera/pinhole_camera.h"
 #include "sim/scene/textures.h"
 #include "sim/sitl/ground_truth_autopilot.h"
+#include "tests/support/quiet_sitl_params.h"
 
 namespace aperture::sim {
 namespace {
-
-// Noise-free sensors: the IMU exact, no biases.
-SitlRunnerParams QuietParams(double duration_s) {
-  SitlRunnerParams params;
-  params.duration_s = duration_s;
-  params.initial_state.p_WB = Eigen::Vector3d(0.0, 0.0, 1.5);
-  params.imu.accel_noise_density = 0.0;
-  params.imu.gyro_noise_density = 0.0;
-  params.imu.accel_bias_random_walk = 0.0;
-  params.imu.gyro_bias_random_walk = 0.0;
-  return params;
-}
 
 GroundTruthAutopilotParams HoverAt(const Eigen::Vector3d& p_W) {
   GroundTruthAutopilotParams params;
@@ -79,7 +68,7 @@ std::uint64_t HashImage(const cv::Mat& image) {
 }
 
 TEST(SitlRunner, HoverWithoutNoiseStaysWithinAMillimetre) {
-  const SitlRunnerParams params = QuietParams(10.0);
+  const SitlRunnerParams params = test_support::QuietSitlParams(10.0);
   SitlRunner runner(params, nullptr);
   GroundTruthAutopilot autopilot(params.dynamics.vehicle, HoverAt(params.initial_state.p_WB));
   const SitlResult result = runner.Run(autopilot);
@@ -116,7 +105,7 @@ TEST(SitlRunner, HoverWithImuNoiseAndBiasesStaysWithinFewCentimetres) {
 }
 
 TEST(SitlRunner, WaypointStepConvergesAndReportsDone) {
-  SitlRunnerParams params = QuietParams(8.0);
+  SitlRunnerParams params = test_support::QuietSitlParams(8.0);
   GroundTruthAutopilotParams autopilot_params;
   const Eigen::Vector3d goal(1.0, -0.5, 2.0);
   autopilot_params.waypoints.push_back(Waypoint{goal, 0.3, 1.0});
@@ -223,7 +212,7 @@ class RecordingAutopilot : public GroundTruthAutopilot {
 
 TEST(SitlRunner, FramesAreDroppedAtTheConfiguredRate) {
   const Scene scene = TexturedBoxScene();
-  SitlRunnerParams params = QuietParams(10.0);
+  SitlRunnerParams params = test_support::QuietSitlParams(10.0);
   SitlCamera camera = ForwardCamera(30.0);
   camera.model = std::make_shared<perception::PinholeCamera>(
       40, 30, perception::PinholeIntrinsics{20.0, 20.0, 19.5, 14.5});  // drops, not pixels
@@ -256,7 +245,7 @@ TEST(SitlRunner, FramesAreDroppedAtTheConfiguredRate) {
 TEST(SitlRunner, TwoCamerasDeliverAtTheirOwnRatesTheirOwnViews) {
   // A forward camera at 30 Hz sees the box ahead; a downward one at 20 Hz sees only the ground.
   const Scene scene = TexturedBoxScene();
-  SitlRunnerParams params = QuietParams(1.0);
+  SitlRunnerParams params = test_support::QuietSitlParams(1.0);
   params.initial_state.p_WB = Eigen::Vector3d(0.0, 0.0, 1.0);
   SitlCamera front = ForwardCamera(30.0);
   front.model = std::make_shared<perception::PinholeCamera>(
@@ -299,7 +288,7 @@ TEST(SitlRunner, TwoCamerasDeliverAtTheirOwnRatesTheirOwnViews) {
 }
 
 TEST(SitlRunner, RangeSensorSeesABoxBelowAndLooksThroughIgnoredParts) {
-  SitlRunnerParams params = QuietParams(0.5);
+  SitlRunnerParams params = test_support::QuietSitlParams(0.5);
   params.range.noise_sigma_m = 0.0;
   Scene scene;
   Eigen::Isometry3d T_WBox = Eigen::Isometry3d::Identity();
@@ -321,7 +310,7 @@ TEST(SitlRunner, RangeSensorSeesABoxBelowAndLooksThroughIgnoredParts) {
 
 TEST(SitlRunner, LatencyDelaysDeliveryByTheConfiguredAmount) {
   const Scene scene = TexturedBoxScene();
-  SitlRunnerParams params = QuietParams(1.0);
+  SitlRunnerParams params = test_support::QuietSitlParams(1.0);
   params.control_rate_hz = 1000.0;  // Step every dynamics step: arrival known to 1 ms
   params.range_latency_s = 0.02;
   params.imu.latency_s = 0.004;
@@ -352,7 +341,7 @@ TEST(SitlRunner, FlyingIntoAWallEndsWithContactOnTheWall) {
   Eigen::Isometry3d T_WO = Eigen::Isometry3d::Identity();
   T_WO.translation() = Eigen::Vector3d(2.0, 0.0, 1.5);
   scene.AddObject({"wall", Box{Eigen::Vector3d(0.1, 4.0, 3.0)}, Material{}, T_WO});
-  SitlRunnerParams params = QuietParams(10.0);
+  SitlRunnerParams params = test_support::QuietSitlParams(10.0);
   SitlRunner runner(params, &scene);
   // Waypoint behind the wall: the autopilot flies straight into its face at x = 1.95.
   RecordingAutopilot autopilot(params.dynamics.vehicle, HoverAt(Eigen::Vector3d(4.0, 0.0, 1.5)));
@@ -372,7 +361,7 @@ TEST(SitlRunner, FlyingIntoAWallEndsWithContactOnTheWall) {
 }
 
 TEST(SitlRunner, FlyingIntoTheGroundEndsTheRun) {
-  SitlRunnerParams params = QuietParams(10.0);
+  SitlRunnerParams params = test_support::QuietSitlParams(10.0);
   params.initial_state.p_WB = Eigen::Vector3d(0.5, 0.0, 1.0);
   SitlRunner runner(params, nullptr);
   RecordingAutopilot autopilot(params.dynamics.vehicle, HoverAt(Eigen::Vector3d(0.5, 0.0, -1.0)));
@@ -402,7 +391,7 @@ class ThrustStepAutopilot : public perception::Autopilot {
 
 TEST(SitlRunner, CommandLatencyDelaysTheFlightControllerOutput) {
   for (const double latency_s : {0.0, 0.05}) {
-    SitlRunnerParams params = QuietParams(1.0);
+    SitlRunnerParams params = test_support::QuietSitlParams(1.0);
     params.command_latency_s = latency_s;
     SitlRunner runner(params, nullptr);
     ThrustStepAutopilot autopilot;
@@ -439,7 +428,7 @@ class ConstantThrustAutopilot : public perception::Autopilot {
 
 // Ground contact on, landing gear 0.1 m (body sphere 0.08 m), ground at z = 0.
 SitlRunnerParams GroundContactParams(double duration_s) {
-  SitlRunnerParams params = QuietParams(duration_s);
+  SitlRunnerParams params = test_support::QuietSitlParams(duration_s);
   params.dynamics.ground_contact_enabled = true;
   params.dynamics.landing_gear_height_m = 0.1;
   return params;
@@ -517,7 +506,7 @@ TEST(SitlRunner, RejectsLandingGearInsideTheBodySphere) {
 
 // A push is applied through the disturbances: the hover autopilot is knocked away, then returns.
 TEST(SitlRunner, PushDisturbsTheHoverWhichRecovers) {
-  SitlRunnerParams params = QuietParams(5.0);
+  SitlRunnerParams params = test_support::QuietSitlParams(5.0);
   params.disturbances.pushes.push_back(Push{1.0, Eigen::Vector3d(0.45, 0.0, 0.0)});  // 1 m/s
   SitlRunner runner(params, nullptr);
   GroundTruthAutopilot autopilot(params.dynamics.vehicle, HoverAt(params.initial_state.p_WB));
@@ -542,7 +531,7 @@ TEST(SitlRunner, PushDisturbsTheHoverWhichRecovers) {
 TEST(SitlRunner, WorldFixedCameraIgnoresTheVehiclePose) {
   const Scene scene = TexturedBoxScene();
   const auto hashes = [&scene](const Eigen::Vector3d& goal, bool fixed) {
-    SitlRunnerParams params = QuietParams(0.3);
+    SitlRunnerParams params = test_support::QuietSitlParams(0.3);
     SitlCamera camera = ForwardCamera(30.0);
     camera.effects = CameraEffectsParams();  // no noise
     if (fixed)

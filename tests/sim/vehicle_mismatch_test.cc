@@ -15,6 +15,7 @@
 #include "sim/sitl/tracking_flight.h"
 #include "sim/vehicle/quadrotor_dynamics.h"
 #include "tests/support/message_of.h"
+#include "tests/support/quiet_sitl_params.h"
 
 namespace aperture::sim {
 namespace {
@@ -216,17 +217,6 @@ TEST(VehicleMismatch, TorqueEstimateErrorIsWhatTheMismatchImplies) {
 // ---------------------------------------------------------------------------------------------
 // Closed loop.
 
-SitlRunnerParams MismatchQuietParams(double duration_s) {
-  SitlRunnerParams params;
-  params.duration_s = duration_s;
-  params.initial_state.p_WB = Eigen::Vector3d(0.0, 0.0, 1.5);
-  params.imu.accel_noise_density = 0.0;
-  params.imu.gyro_noise_density = 0.0;
-  params.imu.accel_bias_random_walk = 0.0;
-  params.imu.gyro_bias_random_walk = 0.0;
-  return params;
-}
-
 // A hovering vehicle whose rotor i gives s_i = s_f gamma_i (1 - sag t) / lambda times the thrust
 // the flight controller believes (lambda = 1 uncalibrated, else CalibrateHoverThrust's): in
 // steady hover each true rotor thrust is m g / 4, so the commanded mass-normalized total is
@@ -236,7 +226,7 @@ TEST(VehicleMismatch, MismatchedVehiclesHoverWithThePredictedHeightOffset) {
   const control::PositionControllerParams gains;
   for (const bool calibrated : {false, true}) {
     for (const std::uint64_t seed : {1u, 2u, 3u}) {
-      SitlRunnerParams params = MismatchQuietParams(6.0);
+      SitlRunnerParams params = test_support::QuietSitlParams(6.0);
       params.trajectory_decimation = 10;
       params.SetSeed(seed);
       GroundTruthAutopilotParams autopilot_params;
@@ -305,7 +295,7 @@ double FirstClimbTime(const SitlResult& result) {
 }
 
 TEST(VehicleMismatch, LatenciesDelayTheResponseByTheSetAmount) {
-  SitlRunnerParams params = MismatchQuietParams(1.0);
+  SitlRunnerParams params = test_support::QuietSitlParams(1.0);
   const double hover_N = params.dynamics.vehicle.mass_kg * params.dynamics.vehicle.gravity_mps2 / 4;
   MismatchLatencyProbe prompt(hover_N);
   const SitlResult reference = SitlRunner(params, nullptr).Run(prompt);
