@@ -459,6 +459,7 @@ Ts2pDetection Ts2pDetector::Detect(const cv::Mat& reference, const std::vector<c
   // image border: split that low side again (at most kMaxSplits times).
   constexpr int kMaxSplits = 3;
   cv::Mat values = mean_flow.clone();
+  double core_threshold = std::numeric_limits<double>::quiet_NaN();
   for (int split = 0; split < kMaxSplits; ++split) {
     TwoMeansThreshold(values, &detection.background_flow_px, &detection.foreground_flow_px);
     double separation = detection.foreground_flow_px - detection.background_flow_px;
@@ -492,17 +493,9 @@ Ts2pDetection Ts2pDetector::Detect(const cv::Mat& reference, const std::vector<c
                                            1.0 / std::max(detection.background_flow_px, 1e-3));
     if (BorderFraction(detection.opening) <= kMaxBorderFraction) {
       detection.status = "ok";
-      if (params_.segmentation == "region" && params_.core_threshold_fraction > 0.0) {
-        const double core_threshold =
-            std::min(detection.background_flow_px + params_.core_threshold_fraction * separation,
-                     max_threshold);
-        const cv::Mat core = SegmentRegion(mean_flow, core_threshold) & detection.opening;
-        if (cv::countNonZero(core) >=
-            params_.min_core_fraction * cv::countNonZero(detection.opening)) {
-          detection.opening = core;
-          detection.core = true;
-        }
-      }
+      core_threshold =
+          std::min(detection.background_flow_px + params_.core_threshold_fraction * separation,
+                   max_threshold);
       break;
     }
     detection.status = "no enclosed opening: the low-flow region covers the image border";
@@ -516,6 +509,17 @@ Ts2pDetection Ts2pDetector::Detect(const cv::Mat& reference, const std::vector<c
                        " px is below min_area_fraction";
     detection.opening.setTo(0);
     detection.area_px = 0.0;
+  }
+  // The decision above is the inclusive O's; the core only narrows what is handed on.
+  if (detection.status == "ok" && detection.area_px > 0.0 && params_.segmentation == "region" &&
+      params_.core_threshold_fraction > 0.0) {
+    const cv::Mat core = SegmentRegion(mean_flow, core_threshold) & detection.opening;
+    const int core_area_px = cv::countNonZero(core);
+    if (core_area_px >= params_.min_core_fraction * detection.area_px) {
+      detection.opening = core;
+      detection.area_px = core_area_px;
+      detection.core = true;
+    }
   }
   detection.timing.segmentation_ms = MillisecondsSince(stage);
   if (detection.status == "ok" && detection.area_px > 0.0) {
