@@ -1,11 +1,11 @@
 #include "perception/tags/tag_pose_estimator.h"
 
 #include <cmath>
-#include <opencv2/calib3d.hpp>
 #include <stdexcept>
 #include <vector>
 
 #include "control/so3.h"
+#include "perception/tags/ippe_square.h"
 
 namespace aperture::perception {
 
@@ -21,32 +21,20 @@ std::optional<TagPose> EstimateTagPose(const CameraModel& camera,
     throw std::invalid_argument("EstimateTagPose: tag_size_m = " + std::to_string(tag_size_m) +
                                 " must be > 0 (set apriltag.size_m / apriltag.sizes)");
   }
-  std::vector<cv::Point3d> object(4);
-  std::vector<cv::Point2d> normalized(4);
   std::vector<Eigen::Vector3d> p_T(4);
   std::vector<Eigen::Vector2d> px(corners_px.begin(), corners_px.end());
+  std::array<Eigen::Vector2d, 4> normalized;
   for (int k = 0; k < 4; ++k) {
     p_T[k] = TagCorner(k, tag_size_m);
-    object[k] = cv::Point3d(p_T[k].x(), p_T[k].y(), 0.0);
     const Eigen::Vector3d bearing = camera.Unproject(corners_px[k]);
     if (!(bearing.z() > 1e-9)) return std::nullopt;
-    normalized[k] = cv::Point2d(bearing.x() / bearing.z(), bearing.y() / bearing.z());
+    normalized[k] = bearing.hnormalized();
   }
-  // IPPE on the undistorted corners (identity camera matrix: normalized coordinates).
-  std::vector<cv::Mat> rvecs, tvecs;
-  const cv::Matx33d identity = cv::Matx33d::eye();
-  const int solutions = cv::solvePnPGeneric(object, normalized, identity, cv::noArray(), rvecs,
-                                            tvecs, false, cv::SOLVEPNP_IPPE_SQUARE);
-  std::vector<Eigen::Isometry3d> starts;
+  const std::optional<std::array<Eigen::Isometry3d, 2>> starts = IppeSquare(normalized, tag_size_m);
+  if (!starts) return std::nullopt;
   std::vector<TagPoseCandidate> candidates;
-  for (int s = 0; s < solutions; ++s) {
-    Eigen::Isometry3d T_CT = Eigen::Isometry3d::Identity();
-    T_CT.linear() = control::ExpSo3(
-        Eigen::Vector3d(rvecs[s].at<double>(0), rvecs[s].at<double>(1), rvecs[s].at<double>(2)));
-    T_CT.translation() =
-        Eigen::Vector3d(tvecs[s].at<double>(0), tvecs[s].at<double>(1), tvecs[s].at<double>(2));
-    starts.push_back(T_CT);
-    const LedPoseRefinement refined = RefineLedPose(camera, p_T, px, T_CT, params.refiner);
+  for (const Eigen::Isometry3d& start : *starts) {
+    const LedPoseRefinement refined = RefineLedPose(camera, p_T, px, start, params.refiner);
     if (!refined.valid) continue;
     candidates.push_back({refined.T_CT, refined.covariance, refined.rms_px});
   }
@@ -62,14 +50,15 @@ std::optional<TagPose> EstimateTagPose(const CameraModel& camera,
   if (candidates.size() == 2 &&
       angle_deg(candidates[0].T_CT, candidates[1].T_CT) >= params.same_solution_deg) {
     pose.alternative = candidates[1];
-  } else if (starts.size() == 2 && angle_deg(starts[0], starts[1]) >= params.same_solution_deg) {
+  } else if (angle_deg((*starts)[0], (*starts)[1]) >= params.same_solution_deg) {
     // Near head-on the mirrored tilt is often no local minimum of the reprojection error:
     // Gauss-Newton slides from it into the best solution. IPPE's mirrored start stays the
     // alternative hypothesis (unrefined; its error and covariance at that pose) for the flip
     // resolver, which decides over time and across tags.
     const Eigen::Isometry3d& mirrored =
-        angle_deg(starts[0], pose.best.T_CT) > angle_deg(starts[1], pose.best.T_CT) ? starts[0]
-                                                                                    : starts[1];
+        angle_deg((*starts)[0], pose.best.T_CT) > angle_deg((*starts)[1], pose.best.T_CT)
+            ? (*starts)[0]
+            : (*starts)[1];
     LedPoseRefinerParams evaluate_only = params.refiner;
     evaluate_only.max_iterations = 0;
     const LedPoseRefinement at_start = RefineLedPose(camera, p_T, px, mirrored, evaluate_only);

@@ -4,9 +4,9 @@
 //
 // 1. The distorted corners are undistorted through the calibration's camera model
 //    (CameraModel::Unproject, any model incl. fisheye) to normalized image coordinates.
-// 2. Infinitesimal plane-based pose estimation from the corner homography (IPPE-square, Collins
-//    & Bartoli, IJCV 2014, Sec. 4; OpenCV's SOLVEPNP_IPPE_SQUARE) gives BOTH solutions of the
-//    planar ambiguity: a plane seen under weak perspective fits two mirror-image tilts.
+// 2. Infinitesimal plane-based pose estimation from the corner homography (IppeSquare,
+//    ippe_square.h; Collins & Bartoli, IJCV 2014, Sec. 4) gives BOTH solutions of the planar
+//    ambiguity: a plane seen under weak perspective fits two mirror-image tilts.
 // 3. Each is refined by Gauss-Newton on the reprojection error in the distorted image (Faessler
 //    thesis (C.8); RefineLedPose, which takes any camera model), giving the 6x6 covariance
 //    Sigma = sigma^2 (J^T J)^-1 of [p_CT [m]; rotation [rad], perturbation of R_CT on the left

@@ -12,7 +12,9 @@
 //                                       flip resolution
 //   PoseStage/<stage>                   the pose of the 12 detections (per tag: time / 12) by
 //                                       stage: 0 corner undistortion (CameraModel::Unproject),
-//                                       1 IPPE (cv::solvePnPGeneric), 2 EstimateTagPose (all)
+//                                       1 IPPE (IppeSquare), 2 EstimateTagPose (all), and for
+//                                       comparison 3 OpenCV's IPPE (solvePnPGeneric with
+//                                       SOLVEPNP_IPPE_SQUARE, what the front end used before)
 // Run on an idle core (`uptime`; optionally `taskset -c 1`) and report the load.
 #include <benchmark/benchmark.h>
 
@@ -27,6 +29,7 @@
 
 #include "perception/camera/pinhole_camera.h"
 #include "perception/tags/apriltag_library_detector.h"
+#include "perception/tags/ippe_square.h"
 #include "perception/tags/tag_front_end.h"
 #include "perception/tags/tag_pose_estimator.h"
 #include "servo/visp_tag_detector.h"
@@ -150,7 +153,7 @@ BENCHMARK_CAPTURE(BM_Detect, visp, true)->ArgsProduct({{10, 20}, {5}})->Apply(Co
 BENCHMARK_CAPTURE(BM_FrontEnd, apriltag, false)->Arg(10)->Arg(20)->Apply(Configure);
 BENCHMARK_CAPTURE(BM_FrontEnd, visp, true)->Arg(10)->Arg(20)->Apply(Configure);
 
-enum PoseStage { kUndistort = 0, kIppe = 1, kEstimateTagPose = 2 };
+enum PoseStage { kUndistort = 0, kIppe = 1, kEstimateTagPose = 2, kOpenCvIppe = 3 };
 
 void BM_PoseStage(benchmark::State& state) {
   const Frame12& frame = Fixture();
@@ -162,12 +165,14 @@ void BM_PoseStage(benchmark::State& state) {
     const Eigen::Vector3d p_T = perception::TagCorner(k, kTagSize_m);
     object.emplace_back(p_T.x(), p_T.y(), 0.0);
   }
-  std::vector<std::vector<cv::Point2d>> normalized;
+  std::vector<std::array<Eigen::Vector2d, 4>> normalized;
+  std::vector<std::vector<cv::Point2d>> normalized_cv;
   for (const perception::TagDetection& detection : detections) {
     normalized.emplace_back();
-    for (const Eigen::Vector2d& corner_px : detection.corners_px) {
-      const Eigen::Vector3d bearing = frame.camera->Unproject(corner_px);
-      normalized.back().emplace_back(bearing.x() / bearing.z(), bearing.y() / bearing.z());
+    normalized_cv.emplace_back();
+    for (int k = 0; k < 4; ++k) {
+      normalized.back()[k] = frame.camera->Unproject(detection.corners_px[k]).hnormalized();
+      normalized_cv.back().emplace_back(normalized.back()[k].x(), normalized.back()[k].y());
     }
   }
   const auto stage = static_cast<PoseStage>(state.range(0));
@@ -178,20 +183,22 @@ void BM_PoseStage(benchmark::State& state) {
           benchmark::DoNotOptimize(frame.camera->Unproject(corner_px));
         }
       } else if (stage == kIppe) {
-        std::vector<cv::Mat> rvecs, tvecs;
-        benchmark::DoNotOptimize(cv::solvePnPGeneric(object, normalized[i], cv::Matx33d::eye(),
-                                                     cv::noArray(), rvecs, tvecs, false,
-                                                     cv::SOLVEPNP_IPPE_SQUARE));
-      } else {
+        benchmark::DoNotOptimize(perception::IppeSquare(normalized[i], kTagSize_m));
+      } else if (stage == kEstimateTagPose) {
         benchmark::DoNotOptimize(
             perception::EstimateTagPose(*frame.camera, detections[i].corners_px, kTagSize_m));
+      } else {
+        std::vector<cv::Mat> rvecs, tvecs;
+        benchmark::DoNotOptimize(cv::solvePnPGeneric(object, normalized_cv[i], cv::Matx33d::eye(),
+                                                     cv::noArray(), rvecs, tvecs, false,
+                                                     cv::SOLVEPNP_IPPE_SQUARE));
       }
     }
   }
   CheckTwelve(state, detections.size());
 }
 BENCHMARK(BM_PoseStage)
-    ->DenseRange(kUndistort, kEstimateTagPose)
+    ->DenseRange(kUndistort, kOpenCvIppe)
     ->Unit(benchmark::kMicrosecond)
     ->Iterations(kPoseIterations)
     ->Repetitions(kRepetitions)
