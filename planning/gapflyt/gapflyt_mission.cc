@@ -8,6 +8,7 @@
 
 #include "control/require.h"
 #include "perception/ts2p/gap_tracker_node.h"
+#include "planning/body_velocity_tracking.h"
 #include "planning/gapflyt/footprint_placement.h"
 #include "servo/level_view.h"
 #include "servo/polygon_moments.h"
@@ -359,13 +360,7 @@ perception::AutopilotCommand GapflytMission::Track(
 
 perception::AutopilotCommand GapflytMission::TrackBodyVelocity(double t_s,
                                                                const Eigen::Vector3d& v_B) const {
-  // Velocity tracking: the position reference follows the estimate (no position feedback).
-  control::TrajectoryPoint reference;
-  reference.t_s = t_s;
-  reference.p_W = estimate().p_WB;
-  reference.v_W = Eigen::AngleAxisd(heading_rad_, Eigen::Vector3d::UnitZ()) * v_B;
-  reference.heading_rad = heading_rad_;
-  return Track(reference);
+  return Track(BodyVelocityTrajectoryPoint(t_s, estimate().p_WB, heading_rad_, v_B));
 }
 
 control::TrajectoryPoint GapflytMission::HoldReference(double t_s) const {

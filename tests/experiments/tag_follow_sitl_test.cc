@@ -1,0 +1,114 @@
+// The tag servo of issue 16 (item 3) closed loop in the SITL: the quadrotor searches the `tags`
+// field from above, finds the ground robot's tag with its downward camera and keeps it centred
+// while the robot drives at 0.3 m/s and turns (a scripted drive here; the planned mission's
+// timeline in `aperture sim tags --set mission=follow`). Scored on ground truth: the true tag
+// centre projected through the true camera pose stays within 10 % of the image width of the image
+// centre (the issue's acceptance) at every 5 ms sample while the robot drives. A 320 x 240 camera
+// without supersampling keeps the flight to seconds of wall time.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "experiments/missions/odometry_adapter.h"
+#include "experiments/tags/tagged_object_mover.h"
+#include "experiments/tags/tags_scenario_field.h"
+#include "planning/tag_follow/tag_follow_autopilot.h"
+#include "sim/scenario/scenario.h"
+#include "sim/scenario/scenario_sitl.h"
+#include "sim/sitl/sitl_runner.h"
+
+namespace aperture::experiments {
+namespace {
+
+constexpr double kDriveStartS = 12.0;  // the robot starts driving [s]
+constexpr double kDriveSpeedMps = 0.3;
+constexpr double kDriveTurnRadps = 0.15;  // it turns while driving (~9 deg/s)
+constexpr double kDurationS = 24.0;
+constexpr double kSteadyAfterS = 2.0;  // of driving: the start transient is over
+
+TEST(TagFollowSitl, KeepsTheDrivingRobotsTagNearTheImageCentre) {
+  const std::vector<std::string> set_items = {
+      "tags.fixed_obstacles=0",  "tags.movable_obstacles=0",     "cameras.down.width=320",
+      "cameras.down.height=240", "cameras.down.supersampling=1", "seed=3"};
+  const sim::ScenarioParams scenario_params =
+      sim::LoadScenarioParams(sim::ScenarioConfig("tags", {}, set_items));
+  sim::Scenario scenario = sim::BuildScenario(scenario_params);
+  sim::SitlRunnerParams params;
+  params.duration_s = kDurationS;
+  sim::ConfigureSitlFromScenario(scenario, &params);
+  for (sim::SitlCamera& camera : params.cameras) camera.render.ground_truth = false;
+  params.SetSeed(scenario_params.seed);
+  const sim::ScenarioCamera& down = scenario.camera("down");
+
+  planning::TagFollowParams follow;
+  static_cast<perception::ImuNoiseParams&>(follow.fusion.filter) = params.imu;
+  const sim::TagsSceneParams& field = scenario_params.tags;
+  planning::TagFollowAutopilot autopilot(follow, field.tag_size_m, field.area_m / 2, down.model,
+                                         *down.T_BC, params.dynamics.vehicle,
+                                         TagsFieldFrontEndParams(field));
+  sim::OdometrySensorParams odometry;
+  odometry.seed = 17;
+  const std::unique_ptr<OdometryAdapter> adapter = MakeOdometryAdapter(&autopilot, odometry);
+
+  // The robot drives from its seeded pose towards the field's centre and on, turning slowly.
+  const TaggedObjectMover robot(scenario.scene(), "robot", "tag2");
+  const Eigen::Vector2d start_W = robot.T_WO_start().translation().head<2>();
+  const double start_yaw = std::atan2(robot.T_WO_start()(1, 0), robot.T_WO_start()(0, 0));
+  const Eigen::Vector2d direction_W = (field.area_m / 2 - start_W).normalized();
+  const auto robot_pose = [&](double t_s) {
+    const double driven_s = std::clamp(t_s - kDriveStartS, 0.0, kDurationS - kDriveStartS);
+    return std::make_pair(Eigen::Vector2d(start_W + kDriveSpeedMps * driven_s * direction_W),
+                          start_yaw + kDriveTurnRadps * driven_s);
+  };
+  sim::SitlHooks hooks = sim::MakeScenarioHooks(&scenario);
+  const auto attach = hooks.before_render;
+  hooks.before_render = [&](double t_s, const control::QuadState& state) {
+    const auto [p_W, yaw] = robot_pose(t_s);
+    robot.MoveTo(p_W, yaw, &scenario.scene());
+    attach(t_s, state);
+  };
+  sim::SitlRunner runner(params, &scenario.scene());
+  const sim::SitlResult result = runner.Run(*adapter, hooks);
+  ASSERT_FALSE(result.collision) << result.reason;
+  ASSERT_TRUE(autopilot.first_seen_t_s());
+  EXPECT_LT(*autopilot.first_seen_t_s(), kDriveStartS - 3.0) << "found the robot late";
+  EXPECT_EQ(autopilot.phase(), planning::TagFollowPhase::kFollow) << result.autopilot_status;
+
+  // Ground truth: the tag centre through the true camera at every sample while the robot drives.
+  const double tag_height_m = scenario.scene().object("tag2").T_WO.translation().z();
+  double max_offset = 0.0, max_steady_offset = 0.0;
+  int samples = 0;
+  for (const control::QuadState& x : result.trajectory) {
+    if (x.t_s < kDriveStartS) continue;
+    const auto [p_W, yaw] = robot_pose(x.t_s);
+    Eigen::Isometry3d T_WB = Eigen::Isometry3d::Identity();
+    T_WB.linear() = x.q_WB.toRotationMatrix();
+    T_WB.translation() = x.p_WB;
+    const Eigen::Vector3d p_C =
+        (T_WB * *down.T_BC).inverse() * Eigen::Vector3d(p_W.x(), p_W.y(), tag_height_m);
+    Eigen::Vector2d px;
+    ASSERT_TRUE(down.model->Project(p_C, &px)) << "t " << x.t_s;
+    const Eigen::Vector2d centre(0.5 * (down.model->width() - 1), 0.5 * (down.model->height() - 1));
+    const double offset = (px - centre).norm() / down.model->width();
+    if (x.t_s >= kDriveStartS + kSteadyAfterS)
+      max_steady_offset = std::max(max_steady_offset, offset);
+    max_offset = std::max(max_offset, offset);
+    ++samples;
+  }
+  std::printf(
+      "  found at %.2f s; while driving (%d samples): max offset %.3f of the width, %.3f after "
+      "the first %.0f s\n",
+      *autopilot.first_seen_t_s(), samples, max_offset, max_steady_offset, kSteadyAfterS);
+  EXPECT_GT(samples, 1000);
+  // The robot starts at full speed (no acceleration limit): the vehicle tilts ~8 deg to catch up,
+  // which moves the tag in the image by f tan(8 deg); the issue's bound holds through it.
+  EXPECT_LT(max_offset, 0.10);
+  // Driving steadily, the target-motion feed-forward leaves little lag.
+  EXPECT_LT(max_steady_offset, 0.05);
+}
+
+}  // namespace
+}  // namespace aperture::experiments
