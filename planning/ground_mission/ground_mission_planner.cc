@@ -12,7 +12,6 @@
 
 #include "control/constants.h"
 #include "control/require.h"
-#include "planning/ground_mission/ground_polyline.h"
 #include "planning/ground_mission/place_search.h"
 
 namespace aperture::planning {
@@ -118,6 +117,15 @@ std::ostream& operator<<(std::ostream& out, const GroundMission& mission) {
              << " s";
 }
 
+GroundMissionPath BuildMissionPath(const std::vector<GroundMissionLeg>& legs) {
+  GroundMissionPath path;
+  for (const GroundMissionLeg& leg : legs) {
+    for (const GroundWaypoint& waypoint : leg.waypoints) path.polyline.Append(waypoint.p_W);
+    path.leg_end_s_m.push_back(path.polyline.length_m());
+  }
+  return path;
+}
+
 GroundMissionPlanner::GroundMissionPlanner(const GroundMissionScene& scene,
                                            const GroundMissionParams& params)
     : scene_(scene), params_(params), fixed_grid_(BuildFixedGrid(scene, params)) {
@@ -219,11 +227,10 @@ GroundMission GroundMissionPlanner::Complete(const Partial& partial,
   GroundMission mission;
   mission.legs = partial.legs;
   mission.legs.push_back(to_goal);
-  GroundPolyline path;
-  std::vector<double> stop_s_m;  // arc length at the end of each leg
+  const GroundMissionPath mission_path = BuildMissionPath(mission.legs);
+  const GroundPolyline& path = mission_path.polyline;
+  const std::vector<double>& stop_s_m = mission_path.leg_end_s_m;
   for (const GroundMissionLeg& leg : mission.legs) {
-    for (const GroundWaypoint& waypoint : leg.waypoints) path.Append(waypoint.p_W);
-    stop_s_m.push_back(path.length_m());
     mission.drive_s += leg.length_m / params_.driving_speed_mps;
     mission.turn_s += leg.turn_rad / (params_.turn_rate_deg_s * kDegToRad);
   }

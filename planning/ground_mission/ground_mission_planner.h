@@ -49,6 +49,7 @@
 
 #include "planning/ground_mission/grid_dijkstra.h"
 #include "planning/ground_mission/ground_mission_scene.h"
+#include "planning/ground_mission/ground_polyline.h"
 #include "planning/ground_mission/occupancy_grid.h"
 #include "planning/ground_mission/path_refinement.h"
 
@@ -108,6 +109,15 @@ struct GroundMission {
 };
 
 std::ostream& operator<<(std::ostream& out, const GroundMission& mission);
+
+// The mission path of D.5.1: the legs' waypoints in order as one polyline from the start to the
+// goal (the place search and the execution timeline measure arc lengths along it), and the arc
+// length at the end of each leg (a removal's grasp_s_m).
+struct GroundMissionPath {
+  GroundPolyline polyline;
+  std::vector<double> leg_end_s_m;
+};
+GroundMissionPath BuildMissionPath(const std::vector<GroundMissionLeg>& legs);
 
 class GroundMissionPlanner {
  public:
