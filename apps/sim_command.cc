@@ -214,7 +214,7 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
       std::max(1, (video_frames_expected + kMaxKeyFrames - 1) / kMaxKeyFrames);
   output::ProgressBar progress("frames", static_cast<std::size_t>(frames_expected));
   int frames_seen = 0, video_frames = 0;
-  sim::SitlHooks hooks = sim::MakeScenarioHooks(&scenario);
+  sim::SitlHooks hooks = experiments::MakeMissionHooks(flight.get(), &scenario);
   hooks.on_frame = [&](int camera_index, const sim::CapturedFrame& captured,
                        const control::QuadState& state) {
     if (camera_index != primary) return;

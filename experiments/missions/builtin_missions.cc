@@ -12,6 +12,7 @@
 #include "experiments/missions/forest_flight.h"
 #include "experiments/missions/gap_mission_flight.h"
 #include "experiments/missions/gapflyt_flight.h"
+#include "experiments/missions/tag_follow_flight.h"
 #include "experiments/missions/tag_mapping_flight.h"
 #include "sim/sitl/ground_truth_autopilot.h"
 
@@ -143,6 +144,10 @@ void RegisterBuiltinMissions(MissionRegistry& registry) {
                     "tag mapping flight (seed 001, paper D): lawn-mower coverage of the tag field, "
                     "apriltag front end, incremental tag map, scored on the ground truth",
                     {"tags"}, MakeTagMappingFlight);
+  registry.Register("follow",
+                    "ground robot executing its planned mission (seed 001, paper D Alg. 2/3) "
+                    "while the quadrotor follows it by visual servoing on its tag (ViSP points)",
+                    {}, MakeTagFollowFlight);
   registry.Register("hover", "hover at the start pose on ground truth (reference flight)", {},
                     [](const MissionContext& context) -> std::unique_ptr<MissionFlight> {
                       return std::make_unique<HoverFlight>(context);

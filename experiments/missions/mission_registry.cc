@@ -65,4 +65,14 @@ std::unique_ptr<MissionFlight> MissionRegistry::Create(const std::string& name,
   return flight;
 }
 
+sim::SitlHooks MakeMissionHooks(MissionFlight* flight, sim::Scenario* scenario) {
+  sim::SitlHooks hooks = sim::MakeScenarioHooks(scenario);
+  hooks.before_render = [flight, scenario, attach_to_body = hooks.before_render](
+                            double t_s, const control::QuadState& state) {
+    flight->MoveObjects(t_s, &scenario->scene());
+    attach_to_body(t_s, state);
+  };
+  return hooks;
+}
+
 }  // namespace aperture::experiments

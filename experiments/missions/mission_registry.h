@@ -26,6 +26,7 @@
 #include "output/html_report.h"
 #include "perception/autopilot.h"
 #include "sim/scenario/scenario.h"
+#include "sim/scenario/scenario_sitl.h"
 #include "sim/sitl/sitl_runner.h"
 
 namespace aperture::experiments {
@@ -60,6 +61,9 @@ class MissionFlight {
   // The simulated time the mission needs to finish [s] (0: none); `aperture sim` flies at least
   // this long unless --duration says otherwise.
   virtual double MinimumDurationS() const { return 0.0; }
+  // Moves the scene objects the mission scripts (the ground robot executing its mission) to their
+  // poses at t_s; called before every camera frame is rendered (MakeMissionHooks).
+  virtual void MoveObjects(double /*t_s*/, sim::Scene* /*scene*/) {}
   // Draws the mission's perception on the onboard camera image of the latest frame (the video).
   virtual void DrawOverlay(cv::Mat& /*onboard_bgr*/) const {}
   // Scores the finished run on ground truth (once, after the run).
@@ -74,6 +78,10 @@ class MissionFlight {
                                  const sim::SitlResult& /*result*/,
                                  output::HtmlReport* /*report*/) const {}
 };
+
+// The SITL hooks of a mission flight: the scenario's (body-attached objects follow the vehicle)
+// after the flight's MoveObjects. `flight` and `scenario` must outlive the run.
+sim::SitlHooks MakeMissionHooks(MissionFlight* flight, sim::Scenario* scenario);
 
 using MissionFactory = std::function<std::unique_ptr<MissionFlight>(const MissionContext& context)>;
 

@@ -26,29 +26,13 @@ constexpr double kMapRmsTargetM = 0.02;
 // Simulated time beyond the planned flight that `aperture sim` gives the mission [s].
 constexpr double kDurationMarginS = 5.0;
 
-int DownCameraIndex(const sim::Scenario& scenario) {
-  if (scenario.kind() != "tags") {
-    throw std::invalid_argument(
-        "mission 'map' maps the tags field: fly it in scenario 'tags' (it "
-        "was given '" +
-        scenario.kind() + "')");
-  }
-  const std::vector<sim::ScenarioCamera>& cameras = scenario.cameras();
-  for (int i = 0; i < static_cast<int>(cameras.size()); ++i) {
-    if (cameras[i].name == "down" && cameras[i].T_BC) return i;
-  }
-  throw std::invalid_argument(
-      "scenario 'tags' has no body-mounted camera 'down' for the mapping "
-      "flight: add one (cameras.down)");
-}
-
 class TagMappingFlight final : public MissionFlight {
  public:
   explicit TagMappingFlight(const MissionContext& context)
       : scene_(context.scenario.scene()),
         field_(context.scenario.params().tags),
         p_WB_start_(context.sitl.initial_state.p_WB) {
-    params_.camera_id = DownCameraIndex(context.scenario);
+    params_.camera_id = TagsDownCameraIndex(context.scenario, "map");
     static_cast<perception::ImuNoiseParams&>(params_.fusion.filter) = context.sitl.imu;
     odometry_ = LoadOdometryParams(context, 29);
     LoadParams(context.params, &params_);  // config::LoadParams: reads, rejects, validates

@@ -22,12 +22,11 @@ void TaggedObjectMover::MoveTo(const Eigen::Isometry3d& T_WO, sim::Scene* scene)
   scene->SetPose(tag_name_, T_WO * T_OT_);
 }
 
-void TaggedObjectMover::MoveTo(const Eigen::Vector2d& p_W, double yaw_rad,
-                               sim::Scene* scene) const {
+Eigen::Isometry3d TaggedObjectMover::PoseAt(const Eigen::Vector2d& p_W, double yaw_rad) const {
   Eigen::Isometry3d T_WO = Eigen::Isometry3d::Identity();
   T_WO.linear() = Eigen::AngleAxisd(yaw_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   T_WO.translation() = Eigen::Vector3d(p_W.x(), p_W.y(), T_WO_start_.translation().z());
-  MoveTo(T_WO, scene);
+  return T_WO;
 }
 
 }  // namespace aperture::experiments

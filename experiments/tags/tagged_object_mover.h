@@ -17,8 +17,8 @@ class TaggedObjectMover {
 
   // Places the object at T_WO (and the tag on it).
   void MoveTo(const Eigen::Isometry3d& T_WO, sim::Scene* scene) const;
-  // The ground pose (centre x, y and yaw about z_W) -> T_WO at the object's resting height.
-  void MoveTo(const Eigen::Vector2d& p_W, double yaw_rad, sim::Scene* scene) const;
+  // The object's pose for a ground pose (centre x, y and yaw about z_W) at its resting height.
+  Eigen::Isometry3d PoseAt(const Eigen::Vector2d& p_W, double yaw_rad) const;
 
   const Eigen::Isometry3d& T_WO_start() const { return T_WO_start_; }
 

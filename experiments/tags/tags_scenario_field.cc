@@ -1,6 +1,8 @@
 #include "experiments/tags/tags_scenario_field.h"
 
 #include <algorithm>
+#include <stdexcept>
+#include <vector>
 
 #include "sim/scene/apriltag_object.h"
 
@@ -41,6 +43,21 @@ planning::TagField TagsFieldForMapping(const sim::TagsSceneParams& field) {
   }
   out.max_pattern_m = sim::AprilTagPatternSize(field.family, largest_m);
   return out;
+}
+
+int TagsDownCameraIndex(const sim::Scenario& scenario, const std::string& mission) {
+  if (scenario.kind() != "tags") {
+    throw std::invalid_argument("mission '" + mission +
+                                "' flies over the tags field: fly it in scenario 'tags' (it was "
+                                "given '" +
+                                scenario.kind() + "')");
+  }
+  const std::vector<sim::ScenarioCamera>& cameras = scenario.cameras();
+  for (int i = 0; i < static_cast<int>(cameras.size()); ++i) {
+    if (cameras[i].name == "down" && cameras[i].T_BC) return i;
+  }
+  throw std::invalid_argument("scenario 'tags' has no body-mounted camera 'down' for mission '" +
+                              mission + "': add one (cameras.down)");
 }
 
 }  // namespace aperture::experiments

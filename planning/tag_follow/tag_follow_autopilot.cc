@@ -46,6 +46,8 @@ void TagFollowParams::Validate() const {
           "search_speed_mps must be > 0");
   require(settle_s >= 0.0 && std::isfinite(settle_s), "settle_s must be >= 0");
   require(lost_timeout_s > 0.0 && std::isfinite(lost_timeout_s), "lost_timeout_s must be > 0");
+  require(lock_error > 0.0 && std::isfinite(lock_error), "lock_error must be > 0");
+  require(lock_hold_s >= 0.0 && std::isfinite(lock_hold_s), "lock_hold_s must be >= 0");
   require(camera_id >= 0, "camera_id must be >= 0");
   servo.Validate();
   fusion.Validate();
@@ -59,6 +61,8 @@ void LoadParams(config::ParamReader& reader, TagFollowParams* params) {
   reader.Read("search_speed_mps", &params->search_speed_mps);
   reader.Read("settle_s", &params->settle_s);
   reader.Read("lost_timeout_s", &params->lost_timeout_s);
+  reader.Read("lock_error", &params->lock_error);
+  reader.Read("lock_hold_s", &params->lock_hold_s);
   reader.Read("camera_id", &params->camera_id);
   reader.ReadSection("servo", &params->servo);
   reader.ReadSection("controller", &params->controller);
@@ -185,6 +189,15 @@ void TagFollowAutopilot::ServoOn(const perception::TagResult& tag, double t_s,
   if (speed > params_.max_speed_mps) reference_.v_B *= params_.max_speed_mps / speed;
   servo_error_ = step.error_norm;
   if (!first_seen_t_s_) first_seen_t_s_ = t_s;
+  if (servo_error_ >= params_.lock_error) {
+    below_lock_since_t_s_.reset();
+  } else if (!below_lock_since_t_s_) {
+    below_lock_since_t_s_ = t_s;
+  }
+  if (!locked_t_s_ && below_lock_since_t_s_ &&
+      t_s - *below_lock_since_t_s_ >= params_.lock_hold_s) {
+    locked_t_s_ = t_s;
+  }
   last_seen_t_s_ = t_s;
 }
 

@@ -51,7 +51,11 @@ struct TagFollowParams {
   double search_speed_mps = 1.0;  // peak speed of the search segment [m/s]
   double settle_s = 1.0;
   double lost_timeout_s = 1.0;  // without the tag this long: stop [s]
-  int camera_id = 0;            // Frame::camera_id of the downward camera
+  // Locked on: the servo error |s - s*| (8 normalized coordinates) stays below lock_error for
+  // lock_hold_s (0.05: ~1 px per coordinate at f = 160 px) — the robot may start driving.
+  double lock_error = 0.05;
+  double lock_hold_s = 1.0;
+  int camera_id = 0;  // Frame::camera_id of the downward camera
   servo::PointServoParams servo;
   control::PositionControllerParams controller;
   perception::PoseFusionParams fusion;  // set the IMU noise of the vehicle's IMU
@@ -98,6 +102,8 @@ class TagFollowAutopilot : public perception::Autopilot {
   const std::vector<TagFollowSample>& trace() const { return trace_; }
   // Sensor time the tag was first found [s]; nullopt before.
   std::optional<double> first_seen_t_s() const { return first_seen_t_s_; }
+  // Sensor time the follower first locked on (see lock_error) [s]; nullopt before.
+  std::optional<double> locked_t_s() const { return locked_t_s_; }
 
  private:
   std::optional<control::QuadState> Estimate() const;
@@ -126,6 +132,8 @@ class TagFollowAutopilot : public perception::Autopilot {
   std::optional<MotionPrimitive> search_;
   std::optional<double> first_seen_t_s_;
   double last_seen_t_s_ = -1e9;
+  std::optional<double> below_lock_since_t_s_;
+  std::optional<double> locked_t_s_;
   servo::BodyVelocityReference reference_;  // the latest servo step's, capped
   double servo_error_ = 0.0;                // its |s - s*|
   std::vector<TagFollowSample> trace_;
