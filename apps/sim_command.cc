@@ -317,7 +317,7 @@ void AddSimCommand(CLI::App& app, int* exit_code) {
   command->add_option("scenario", options->scenario,
                       "Built-in scenario name (see aperture render); or a flow below");
   command->add_option("--mission", options->mission,
-                      "Mission to fly (gap, gapflyt, led_hover, forest, map, hover); default: the "
+                      "Mission to fly (gap, gapflyt, led_hover, forest, map, follow, hover); default: the "
                       "scenario's own");
   AddSeedOption(command, &options->seed, "Seed of the scenario and every sensor stream");
   command

@@ -82,7 +82,8 @@ void PointServo::SetDesired(const Corners& corners_n, double depth_m) {
   target_motion_.setZero();
 }
 
-ServoStepResult PointServo::Step(double t_s, const Corners& corners_n, double depth_m) {
+ServoStepResult PointServo::Step(double t_s, const Corners& corners_n, double depth_m,
+                                 const std::optional<BodyVelocityReference>& own_motion) {
   if (!has_desired()) {
     throw std::invalid_argument("PointServo::Step: no desired view; call SetDesired first");
   }
@@ -93,6 +94,9 @@ ServoStepResult PointServo::Step(double t_s, const Corners& corners_n, double de
                                 " must be finite and after the previous step's " +
                                 std::to_string(previous_t_s_) + " [s]");
   }
+  if (own_motion && (!own_motion->v_B.allFinite() || !std::isfinite(own_motion->yaw_rate_radps))) {
+    throw std::invalid_argument("PointServo::Step: own_motion must be finite");
+  }
   for (int i = 0; i < 4; ++i) {
     impl_->current[i].buildFrom(corners_n[i].x(), corners_n[i].y(), depth_m);
   }
@@ -102,8 +106,12 @@ ServoStepResult PointServo::Step(double t_s, const Corners& corners_n, double de
     const Eigen::MatrixXd J = internal::ToEigen(impl_->task.getTaskJacobian());
     if (has_previous_) {
       const double dt_s = t_s - previous_t_s_;
+      Eigen::VectorXd own = previous_u_;
+      if (own_motion) {
+        own << own_motion->v_B, own_motion->yaw_rate_radps;
+      }
       const Eigen::VectorXd unexplained =
-          (error - previous_error_) / dt_s - J * previous_u_;  // de/dt - J u: target's share
+          (error - previous_error_) / dt_s - J * own;  // de/dt - J u: target's share
       const double blend = dt_s / (params_.target_motion_time_constant_s + dt_s);
       target_motion_ += blend * (unexplained - target_motion_);
     }

@@ -27,6 +27,7 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <memory>
+#include <optional>
 
 #include "servo/servo_gain.h"
 #include "servo/servo_step_result.h"
@@ -63,7 +64,12 @@ class PointServo {
   // [m]. error = s - s* (8 entries, corner by corner x then y). Throws std::invalid_argument
   // before SetDesired, for non-finite corners or time, a depth <= 0 or a time not after the
   // previous step's.
-  ServoStepResult Step(double t_s, const Corners& corners_n, double depth_m);
+  // own_motion: the vehicle's measured body velocity and yaw rate since the previous step (its
+  // state estimate); the target-motion estimate then subtracts what the vehicle really did rather
+  // than what the previous step commanded (a vehicle whose velocity loop lags or rate-limits the
+  // reference).
+  ServoStepResult Step(double t_s, const Corners& corners_n, double depth_m,
+                       const std::optional<BodyVelocityReference>& own_motion = std::nullopt);
   // The current target-motion estimate (de/dt)^ (8 entries; zero without compensation).
   const Eigen::VectorXd& target_motion() const { return target_motion_; }
 

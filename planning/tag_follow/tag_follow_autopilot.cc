@@ -42,6 +42,7 @@ void TagFollowParams::Validate() const {
   require(follow_height_m > 0.0 && std::isfinite(follow_height_m), "follow_height_m must be > 0");
   require(search_height_m > 0.0 && std::isfinite(search_height_m), "search_height_m must be > 0");
   require(max_speed_mps > 0.0 && std::isfinite(max_speed_mps), "max_speed_mps must be > 0");
+  require(max_accel_mps2 > 0.0 && std::isfinite(max_accel_mps2), "max_accel_mps2 must be > 0");
   require(search_speed_mps > 0.0 && std::isfinite(search_speed_mps),
           "search_speed_mps must be > 0");
   require(settle_s >= 0.0 && std::isfinite(settle_s), "settle_s must be >= 0");
@@ -58,6 +59,7 @@ void LoadParams(config::ParamReader& reader, TagFollowParams* params) {
   reader.Read("follow_height_m", &params->follow_height_m);
   reader.Read("search_height_m", &params->search_height_m);
   reader.Read("max_speed_mps", &params->max_speed_mps);
+  reader.Read("max_accel_mps2", &params->max_accel_mps2);
   reader.Read("search_speed_mps", &params->search_speed_mps);
   reader.Read("settle_s", &params->settle_s);
   reader.Read("lost_timeout_s", &params->lost_timeout_s);
@@ -182,7 +184,12 @@ void TagFollowAutopilot::ServoOn(const perception::TagResult& tag, double t_s,
   if (!(depth_m > 0.0)) return;
   servo::PointServo::Corners corners;
   std::copy(level->begin(), level->end(), corners.begin());
-  const servo::ServoStepResult step = servo_.Step(t_s, corners, depth_m);
+  // What the vehicle did: its estimated velocity in the level body frame and heading rate.
+  const double heading_rad = HeadingOfRotation(R_WB);
+  servo::BodyVelocityReference own_motion;
+  own_motion.v_B = Eigen::AngleAxisd(-heading_rad, Eigen::Vector3d::UnitZ()) * x.v_W;
+  own_motion.yaw_rate_radps = (R_WB * x.omega_B).z();
+  const servo::ServoStepResult step = servo_.Step(t_s, corners, depth_m, own_motion);
   if (step.status != servo::ServoStatus::kOk) return;
   reference_ = step.reference;
   const double speed = reference_.v_B.norm();
@@ -229,6 +236,7 @@ perception::AutopilotCommand TagFollowAutopilot::Step(double t_s) {
   if (seen && phase_ != TagFollowPhase::kFollow) {
     phase_ = TagFollowPhase::kFollow;
     phase_start_t_s_ = t_s;
+    v_ref_W_ = x->v_W;  // the rate limit starts from the motion the vehicle has
   } else if (!seen && phase_ == TagFollowPhase::kFollow) {
     phase_ = TagFollowPhase::kLost;
     phase_start_t_s_ = t_s;
@@ -258,8 +266,12 @@ perception::AutopilotCommand TagFollowAutopilot::Step(double t_s) {
     reference.heading_rad = heading_rad_;
   } else if (phase_ == TagFollowPhase::kFollow) {
     heading_rad_ += reference_.yaw_rate_radps * dt_s;
-    reference = BodyVelocityTrajectoryPoint(t_s, x->p_WB, heading_rad_, reference_.v_B,
-                                            reference_.yaw_rate_radps);
+    const Eigen::AngleAxisd R_W_level(heading_rad_, Eigen::Vector3d::UnitZ());
+    const Eigen::Vector3d change_W = R_W_level * reference_.v_B - v_ref_W_;
+    const double max_change = params_.max_accel_mps2 * dt_s;
+    v_ref_W_ += change_W.norm() > max_change ? change_W * (max_change / change_W.norm()) : change_W;
+    reference = BodyVelocityTrajectoryPoint(
+        t_s, x->p_WB, heading_rad_, R_W_level.inverse() * v_ref_W_, reference_.yaw_rate_radps);
   }
   return Command(*x, reference);
 }

@@ -44,10 +44,15 @@
 namespace aperture::planning {
 
 struct TagFollowParams {
-  int target_id = 2;              // the robot's tag (scenario `tags`: 2), family of the front end
-  double follow_height_m = 1.8;   // camera above the tag while following [m]
-  double search_height_m = 4.0;   // camera height while searching [m]
-  double max_speed_mps = 1.0;     // cap of the servo's velocity reference [m/s]
+  int target_id = 2;             // the robot's tag (scenario `tags`: 2), family of the front end
+  double follow_height_m = 1.8;  // camera above the tag while following [m]
+  double search_height_m = 4.0;  // camera height while searching [m]
+  double max_speed_mps = 1.0;    // cap of the servo's velocity reference [m/s]
+  // Rate limit of the velocity reference [m/s^2]: a robot that starts at full speed would
+  // otherwise make the vehicle tilt ~8 deg to catch up, which alone moves the tag 7 % of the
+  // image width (tan(tilt) / 2 for a 90 deg camera). The servo's target-motion estimate takes the
+  // vehicle's measured motion (PointServo::Step own_motion), so the limit does not corrupt it.
+  double max_accel_mps2 = 1.0;
   double search_speed_mps = 1.0;  // peak speed of the search segment [m/s]
   double settle_s = 1.0;
   double lost_timeout_s = 1.0;  // without the tag this long: stop [s]
@@ -134,8 +139,9 @@ class TagFollowAutopilot : public perception::Autopilot {
   double last_seen_t_s_ = -1e9;
   std::optional<double> below_lock_since_t_s_;
   std::optional<double> locked_t_s_;
-  servo::BodyVelocityReference reference_;  // the latest servo step's, capped
-  double servo_error_ = 0.0;                // its |s - s*|
+  servo::BodyVelocityReference reference_;             // the latest servo step's, capped
+  Eigen::Vector3d v_ref_W_ = Eigen::Vector3d::Zero();  // rate-limited towards reference_ [m/s]
+  double servo_error_ = 0.0;                           // its |s - s*|
   std::vector<TagFollowSample> trace_;
   std::optional<std::array<Eigen::Vector2d, 4>> last_corners_px_;
 };
