@@ -73,14 +73,21 @@ WaypointSelectorParams WithCameraFieldOfView(WaypointSelectorParams params,
 std::optional<double> ForestHeadingTarget(const Eigen::Vector3d& p_W, const Eigen::Vector3d& goal_W,
                                           const Eigen::Vector3d& v_reference_W,
                                           double travel_min_speed_mps,
+                                          double max_travel_off_heading_rad,
                                           std::optional<double> look_aside_rad, bool backing_off,
                                           double hold_within_m) {
   const Eigen::Vector2d to_goal = (goal_W - p_W).head<2>();
   if (backing_off || to_goal.norm() <= hold_within_m) return std::nullopt;
+  const double goal_rad = std::atan2(to_goal.y(), to_goal.x());
   const Eigen::Vector2d v = v_reference_W.head<2>();
-  if (v.norm() > travel_min_speed_mps) return std::atan2(v.y(), v.x());
+  if (v.norm() > travel_min_speed_mps) {
+    const double travel_rad = std::atan2(v.y(), v.x());
+    const double off_rad = std::clamp(std::remainder(goal_rad - travel_rad, 2.0 * M_PI),
+                                      -max_travel_off_heading_rad, max_travel_off_heading_rad);
+    return std::remainder(travel_rad + off_rad, 2.0 * M_PI);
+  }
   if (look_aside_rad) return look_aside_rad;
-  return std::atan2(to_goal.y(), to_goal.x());
+  return goal_rad;
 }
 
 void ForestMissionParams::Validate() const {
@@ -95,6 +102,8 @@ void ForestMissionParams::Validate() const {
   require(extension_standoff_m >= 0.0, "extension_standoff_m must be >= 0");
   require(max_yaw_rate_radps >= 0.0, "max_yaw_rate_radps must be >= 0 (0: fixed heading)");
   require(travel_heading_min_speed_mps > 0.0, "travel_heading_min_speed_mps must be > 0");
+  require(max_travel_off_heading_rad >= 0.0 && max_travel_off_heading_rad <= M_PI,
+          "max_travel_off_heading_rad must be in [0, pi] (pi: the goal's bearing in flight too)");
   require(recovery_after_s > 0.0, "recovery_after_s must be > 0 (inf: no recovery)");
   require(rest_speed_mps > 0.0, "rest_speed_mps must be > 0");
   // FollowPath plans no spline shorter than 0.05 m per spline interval.
@@ -379,10 +388,10 @@ perception::AutopilotCommand ForestMission::Step(double t_s) {
   if (!goal_reached_) {
     const control::TrajectoryPoint before = Reference(t_s);
     if (before.v_W.head<2>().norm() > params_.travel_heading_min_speed_mps) look_aside_rad_.reset();
-    TurnHeading(
-        ForestHeadingTarget(x->p_WB, params_.goal_W, before.v_W,
-                            params_.travel_heading_min_speed_mps, look_aside_rad_, backing_off_),
-        t_s - last_step_t_s_);
+    TurnHeading(ForestHeadingTarget(
+                    x->p_WB, params_.goal_W, before.v_W, params_.travel_heading_min_speed_mps,
+                    params_.max_travel_off_heading_rad, look_aside_rad_, backing_off_),
+                t_s - last_step_t_s_);
     if (backing_off_ && t_s - spline_start_t_s_ >= spline_->EndParameter()) backing_off_ = false;
     if (!backing_off_) trail_.Add(x->p_WB);
     if (!AtRest(t_s, *x)) still_since_t_s_ = t_s;

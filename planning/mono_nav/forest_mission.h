@@ -122,15 +122,17 @@ struct ForestMissionParams {
   // Done (AutopilotCommand::done) within this distance of the goal and below goal_speed_mps.
   double goal_reached_m = 0.3;
   double goal_speed_mps = 0.3;
-  // The heading reference turns at up to this rate [rad/s] towards the direction of travel (the
-  // reference velocity) when the reference is faster than travel_heading_min_speed_mps, towards
-  // the goal's bearing below it (at rest, while planning from a standstill). Beyond the paper
-  // (psi = 0): with paths only in seen space a goal beside the field of view could not be
+  // The heading reference turns at up to this rate [rad/s] towards the goal's bearing, but, when
+  // the reference is faster than travel_heading_min_speed_mps, no farther than
+  // max_travel_off_heading_rad from the direction of travel (ForestHeadingTarget). Beyond the
+  // paper (psi = 0): with paths only in seen space a goal beside the field of view could not be
   // approached; and a heading that turned towards the goal whatever the spline in flight turned
   // the camera away from where the vehicle went (layout 21 flew 75 deg off its camera axis into a
-  // trunk). 0: fixed heading.
+  // trunk). A heading that only followed the travel lost the goal (a single-trunk course flew
+  // off sideways). 0: fixed heading.
   double max_yaw_rate_radps = 0.5;
   double travel_heading_min_speed_mps = 0.3;
+  double max_travel_off_heading_rad = 0.5;  // inside the camera's +-45 deg, with a margin
   // Recovery (beyond the paper, which has none): when no new spline was adopted for
   // recovery_after_s while the vehicle is at rest (the spline flown out, the estimated speed
   // below rest_speed_mps, the heading settled), the vehicle backs off along the path it has flown
@@ -143,19 +145,23 @@ struct ForestMissionParams {
   double rest_speed_mps = 0.1;
   double recovery_backoff_m = 1.0;
   double recovery_min_backoff_m = 0.3;
-  double recovery_look_aside_rad = 0.6;
+  // 69 deg: beyond the +-45 deg field of view, so a phantom trunk ahead leaves the windows of
+  // paths straight out (0.6 rad did not get the vehicle past a trunk 2 m ahead of the start).
+  double recovery_look_aside_rad = 1.2;
 
   void Validate() const;  // std::invalid_argument naming the field
 };
 
 // The bearing in W [rad] ForestMission's heading reference turns towards (at up to
 // ForestMissionParams::max_yaw_rate_radps): nullopt (hold it) while backing off or within
-// hold_within_m of the goal horizontally (its bearing swings there); else the direction of travel
-// v_reference_W when faster than travel_min_speed_mps horizontally; else look_aside_rad when a
-// look-aside recovery set it; else the goal's bearing from p_W.
+// hold_within_m of the goal horizontally (its bearing swings there). Faster than
+// travel_min_speed_mps horizontally (v_reference_W): the goal's bearing from p_W, but at most
+// max_travel_off_heading_rad from the direction of travel, so the camera sees where the vehicle
+// goes. Slower: look_aside_rad when a look-aside recovery set it, else the goal's bearing.
 std::optional<double> ForestHeadingTarget(const Eigen::Vector3d& p_W, const Eigen::Vector3d& goal_W,
                                           const Eigen::Vector3d& v_reference_W,
                                           double travel_min_speed_mps,
+                                          double max_travel_off_heading_rad,
                                           std::optional<double> look_aside_rad, bool backing_off,
                                           double hold_within_m = 1.0);
 

@@ -74,27 +74,42 @@ TEST(ForestMission, HeadingTurnsTowardsTheGoalAtTheYawRateLimit) {
       std::invalid_argument);
 }
 
-TEST(ForestHeadingTarget, TravelInFlightGoalAtRestHoldWhileBackingOff) {
+TEST(ForestHeadingTarget, TowardsTheGoalButInFlightNoFartherThanTheLimitFromTheTravel) {
   const Eigen::Vector3d goal_W(22.0, 0.0, 1.5);
-  // Layout 21 before the fix: 3.3 m from the goal, the goal 41 deg to the left, a spline planned
-  // earlier flying 1.5 m/s at -34 deg. The heading follows the spline, not the goal.
+  const double limit_rad = 0.5;
+  // Layout 21 before the fix: 3.5 m from the goal, the goal 44 deg to the left, a spline planned
+  // earlier flying 1.5 m/s at -34 deg. The heading turns towards the goal only until the travel
+  // is limit_rad off it (the camera's half field of view is 45 deg).
   const Eigen::Vector3d p_W(19.5, -2.43, 1.5);
+  const double goal_rad = std::atan2(2.43, 2.5);
   const double travel_rad = -34.0 * M_PI / 180.0;
   const Eigen::Vector3d v_W = 1.5 * Eigen::Vector3d(std::cos(travel_rad), std::sin(travel_rad), 0);
-  EXPECT_NEAR(*ForestHeadingTarget(p_W, goal_W, v_W, 0.3, std::nullopt, false), travel_rad, 1e-12);
+  const auto target = [&](const Eigen::Vector3d& v, std::optional<double> look_aside,
+                          bool backing_off) {
+    return ForestHeadingTarget(p_W, goal_W, v, 0.3, limit_rad, look_aside, backing_off);
+  };
+  EXPECT_NEAR(*target(v_W, std::nullopt, false), travel_rad + limit_rad, 1e-12);
+  // Travel within the limit of the goal: the goal's bearing.
+  const double near_rad = goal_rad - 0.3;
+  EXPECT_NEAR(
+      *target(Eigen::Vector3d(std::cos(near_rad), std::sin(near_rad), 0), std::nullopt, false),
+      goal_rad, 1e-12);
+  // Across +-pi: the travel at 170 deg, the goal behind at -135 deg (75 deg away, the short way).
+  const Eigen::Vector3d behind_W = goal_W + Eigen::Vector3d(5.0, 5.0, 0.0);
+  EXPECT_NEAR(
+      *ForestHeadingTarget(behind_W, goal_W, Eigen::Vector3d(std::cos(3.0), std::sin(3.0), 0.0),
+                           0.3, limit_rad, std::nullopt, false),
+      std::remainder(3.0 + limit_rad, 2.0 * M_PI), 1e-12);
   // At rest (or slower than the threshold horizontally; a climb does not count): the goal.
-  const double goal_rad = std::atan2(2.43, 2.5);
-  EXPECT_NEAR(*ForestHeadingTarget(p_W, goal_W, 0.15 * v_W, 0.3, std::nullopt, false), goal_rad,
-              1e-12);
-  EXPECT_NEAR(*ForestHeadingTarget(p_W, goal_W, Eigen::Vector3d(0, 0, 1), 0.3, std::nullopt, false),
-              goal_rad, 1e-12);
+  EXPECT_NEAR(*target(0.15 * v_W, std::nullopt, false), goal_rad, 1e-12);
+  EXPECT_NEAR(*target(Eigen::Vector3d(0, 0, 1), std::nullopt, false), goal_rad, 1e-12);
   // A look-aside wins at rest, not in flight.
-  EXPECT_EQ(*ForestHeadingTarget(p_W, goal_W, Eigen::Vector3d::Zero(), 0.3, 0.7, false), 0.7);
-  EXPECT_NEAR(*ForestHeadingTarget(p_W, goal_W, v_W, 0.3, 0.7, false), travel_rad, 1e-12);
+  EXPECT_EQ(*target(Eigen::Vector3d::Zero(), 0.7, false), 0.7);
+  EXPECT_NEAR(*target(v_W, 0.7, false), travel_rad + limit_rad, 1e-12);
   // Backing off (flying backwards) and near the goal: hold.
-  EXPECT_FALSE(ForestHeadingTarget(p_W, goal_W, -v_W, 0.3, std::nullopt, true));
-  EXPECT_FALSE(
-      ForestHeadingTarget(Eigen::Vector3d(21.3, 0.5, 1.5), goal_W, v_W, 0.3, std::nullopt, false));
+  EXPECT_FALSE(target(-v_W, std::nullopt, true));
+  EXPECT_FALSE(ForestHeadingTarget(Eigen::Vector3d(21.3, 0.5, 1.5), goal_W, v_W, 0.3, limit_rad,
+                                   std::nullopt, false));
 }
 
 // Feeds a mission IMU samples (200 Hz), odometry poses (50 Hz), Step (100 Hz) and black frames
@@ -110,6 +125,7 @@ class StalledMission : public ::testing::Test {
     // frames alone would give), and the clustering of the dense map stays cheap.
     params_.waypoints.cluster_tolerance_m = 0.01;
     params_.waypoints.min_cluster_points = 1;
+    params_.recovery_look_aside_rad = 0.6;  // short turns keep the test short
   }
   // x(t) = the start + length_m (3 s^2 - 2 s^3), s = t / move_s (then at rest), along x_W.
   void Fly(ForestMission* mission, double t_begin_s, double t_end_s, double length_m = 0.0,
