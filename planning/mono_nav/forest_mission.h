@@ -140,7 +140,7 @@ struct ForestMissionParams {
   // obstacle the depth model puts too close is seen from farther. Without recovery_min_backoff_m
   // of flown path behind it (at the start) it looks aside instead: the heading turns
   // recovery_look_aside_rad to one side of the goal's bearing, the other side at the next stall,
-  // which moves seen space without moving the vehicle. recovery_after_s = inf: no recovery.
+  // which moves seen space without moving the vehicle. recovery_after_s = 1e9: no recovery.
   double recovery_after_s = 1.0;
   double rest_speed_mps = 0.1;
   double recovery_backoff_m = 1.0;

@@ -96,7 +96,7 @@ TEST(ForestFlightSitl, FliesAroundATrunkOnTheLineToTheGoal) {
 TEST(ForestFlightSitl, RecoversFromAStallInFrontOfATrunkAtTheStart) {
   // The trunk 2 m ahead: the vehicle starts 1.7 m from the bark, which the depth model puts at
   // ~0.7 m, so no path from the start passes its windows; without a recovery the vehicle
-  // hovers there (recovery_after_s = .inf). It looks aside and goes round.
+  // hovers there (--set mission.recovery_after_s=1e9). It looks aside and goes round.
   const TrunkCourseFlight flight = FlyTrunkCourse(2.0, 25.0);
   const MissionEvaluation& evaluation = flight.evaluation;
   EXPECT_TRUE(evaluation.passed) << evaluation.figures.dump(2);

@@ -174,8 +174,8 @@ TEST_F(StalledMission, AtTheStartItLooksToOneSideOfTheGoalThenToTheOther) {
   EXPECT_NEAR(mission.heading_rad(), -0.6, 1e-9);
   EXPECT_EQ(mission.frames_without_path(), int(mission.frames().size()));
 
-  // recovery_after_s = inf: the heading stays on the goal.
-  params_.recovery_after_s = std::numeric_limits<double>::infinity();
+  // No recovery (recovery_after_s = 1e9): the heading stays on the goal.
+  params_.recovery_after_s = 1e9;
   ForestMission none(params_, camera_, ForwardMount(), vehicle_,
                      perception::DefaultMonoDepthModel());
   Fly(&none, 0.0, 3.0);
