@@ -100,6 +100,7 @@ class ForestFlight final : public MissionFlight {
     f["replans"] = m.replans();
     f["frames"] = static_cast<int>(m.frames().size());
     f["frames_without_path"] = m.frames_without_path();
+    f["recoveries"] = m.recoveries();
     f["perception_ms"] = ForestFrameTiming(m, false);
     f["planning_ms"] = ForestFrameTiming(m, true);
     f["odometry_fused"] = m.fusion_counts().applied;

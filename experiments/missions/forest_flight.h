@@ -17,7 +17,8 @@
 //
 // Figures (summary.json "mission"): success, reached_goal, collision, failure_reason,
 // time_to_goal_s, path_length_m, min_clearance_m (+ nearest_obstacle), final_distance_m,
-// replans (Table II), frames, frames_without_path, perception_ms / planning_ms (thread CPU per
+// replans (Table II), frames, frames_without_path, recoveries (back-offs and look-asides),
+// perception_ms / planning_ms (thread CPU per
 // frame: mean, median, max), fusion counts, goal_m, ego_dynamic, waypoint_order.
 #include <memory>
 

@@ -70,6 +70,26 @@ WaypointSelectorParams WithCameraFieldOfView(WaypointSelectorParams params,
 
 }  // namespace
 
+std::optional<double> ForestHeadingTarget(const Eigen::Vector3d& p_W, const Eigen::Vector3d& goal_W,
+                                          const Eigen::Vector3d& v_reference_W,
+                                          double travel_min_speed_mps,
+                                          double max_travel_off_heading_rad,
+                                          std::optional<double> look_aside_rad, bool backing_off,
+                                          double hold_within_m) {
+  const Eigen::Vector2d to_goal = (goal_W - p_W).head<2>();
+  if (backing_off || to_goal.norm() <= hold_within_m) return std::nullopt;
+  const double goal_rad = std::atan2(to_goal.y(), to_goal.x());
+  const Eigen::Vector2d v = v_reference_W.head<2>();
+  if (v.norm() > travel_min_speed_mps) {
+    const double travel_rad = std::atan2(v.y(), v.x());
+    const double off_rad = std::clamp(std::remainder(goal_rad - travel_rad, 2.0 * M_PI),
+                                      -max_travel_off_heading_rad, max_travel_off_heading_rad);
+    return std::remainder(travel_rad + off_rad, 2.0 * M_PI);
+  }
+  if (look_aside_rad) return look_aside_rad;
+  return goal_rad;
+}
+
 void ForestMissionParams::Validate() const {
   const auto require = [](bool ok, const std::string& what) {
     if (!ok) throw std::invalid_argument("ForestMissionParams: " + what);
@@ -81,6 +101,19 @@ void ForestMissionParams::Validate() const {
   require(extension_m >= 0.0, "extension_m must be >= 0");
   require(extension_standoff_m >= 0.0, "extension_standoff_m must be >= 0");
   require(max_yaw_rate_radps >= 0.0, "max_yaw_rate_radps must be >= 0 (0: fixed heading)");
+  require(travel_heading_min_speed_mps > 0.0, "travel_heading_min_speed_mps must be > 0");
+  require(max_travel_off_heading_rad >= 0.0 && max_travel_off_heading_rad <= M_PI,
+          "max_travel_off_heading_rad must be in [0, pi] (pi: the goal's bearing in flight too)");
+  require(recovery_after_s > 0.0, "recovery_after_s must be > 0 (inf: no recovery)");
+  require(rest_speed_mps > 0.0, "rest_speed_mps must be > 0");
+  // FollowPath plans no spline shorter than 0.05 m per spline interval.
+  require(recovery_min_backoff_m > 0.05 * (spline_path_points - 1),
+          "recovery_min_backoff_m must be > 0.05 m x (spline_path_points - 1), the shortest "
+          "spline planned");
+  require(recovery_backoff_m >= recovery_min_backoff_m,
+          "recovery_backoff_m must be >= recovery_min_backoff_m");
+  require(recovery_look_aside_rad > 0.0 && recovery_look_aside_rad < M_PI,
+          "recovery_look_aside_rad must be in (0, pi)");
   require(direct_goal_distance_m >= 0.0, "direct_goal_distance_m must be >= 0");
   require(goal_reached_m > 0.0, "goal_reached_m must be > 0");
   require(goal_speed_mps > 0.0, "goal_speed_mps must be > 0");
@@ -129,6 +162,12 @@ int ForestMission::replans() const {
   return sum;
 }
 
+int ForestMission::recoveries() const {
+  int count = 0;
+  for (const ForestFrameRecord& record : frames_) count += record.backed_off || record.looked_aside;
+  return count;
+}
+
 int ForestMission::frames_without_path() const {
   int count = 0;
   for (const ForestFrameRecord& record : frames_) count += !record.planned;
@@ -154,16 +193,44 @@ control::TrajectoryPoint ForestMission::Reference(double t_s) const {
   return reference;
 }
 
-void ForestMission::TurnTowardsGoal(const Eigen::Vector3d& p_W, double dt_s) {
+void ForestMission::TurnHeading(std::optional<double> target_rad, double dt_s) {
   heading_rate_radps_ = 0.0;
-  const Eigen::Vector2d to_goal = (params_.goal_W - p_W).head<2>();
-  if (to_goal.norm() <= kHoldHeadingWithinM || !(dt_s > 0.0)) return;
-  const double error = std::remainder(std::atan2(to_goal.y(), to_goal.x()) - heading_rad_,
-                                      2.0 * M_PI);
+  heading_error_rad_ = 0.0;
+  if (!target_rad || !(dt_s > 0.0)) return;
+  const double error = std::remainder(*target_rad - heading_rad_, 2.0 * M_PI);
   const double max_step = params_.max_yaw_rate_radps * dt_s;
   const double step = std::clamp(error, -max_step, max_step);
   heading_rad_ = std::remainder(heading_rad_ + step, 2.0 * M_PI);
   heading_rate_radps_ = step / dt_s;
+  heading_error_rad_ = error - step;
+}
+
+bool ForestMission::AtRest(double t_s, const control::QuadState& x) const {
+  const bool flown_out = !spline_ || t_s - spline_start_t_s_ >= spline_->EndParameter();
+  return flown_out && x.v_W.norm() <= params_.rest_speed_mps &&
+         std::abs(heading_error_rad_) <= kHeadingSettledRad;
+}
+
+void ForestMission::Recover(double t_s, const control::QuadState& x, ForestFrameRecord* record) {
+  if (!(t_s - still_since_t_s_ >= params_.recovery_after_s) || !AtRest(t_s, x)) return;
+  still_since_t_s_ = t_s;
+  // Back off along the flown path, latest point first.
+  const std::vector<Eigen::Vector3d> path_W =
+      trail_.BackOffPath(x.p_WB, params_.recovery_backoff_m);
+  if (PolylineLength(path_W) >= params_.recovery_min_backoff_m && FollowPath(t_s, x, path_W)) {
+    trail_.Retrace(path_W);
+    backing_off_ = true;
+    look_aside_rad_.reset();
+    record->backed_off = true;
+    return;
+  }
+  // No flown path behind: turn the camera to one side of the goal, the other side next time.
+  const Eigen::Vector2d to_goal = (params_.goal_W - x.p_WB).head<2>();
+  look_aside_side_ = -look_aside_side_;
+  look_aside_rad_ = std::remainder(
+      std::atan2(to_goal.y(), to_goal.x()) + look_aside_side_ * params_.recovery_look_aside_rad,
+      2.0 * M_PI);
+  record->looked_aside = true;
 }
 
 void ForestMission::OnFrame(const perception::Frame& frame) {
@@ -177,7 +244,14 @@ void ForestMission::OnFrame(const perception::Frame& frame) {
       front_ends_.Latest<perception::MonoDepthEstimate>(perception::MonoDepthNode::kOutputSlot);
   if (depth == nullptr) return;
   const double t1 = ThreadCpuSeconds();
-  Plan(estimate()->t_s, *depth, &record);
+  const double t_s = estimate()->t_s;
+  Plan(t_s, *depth, &record);
+  if (record.planned) {
+    still_since_t_s_ = t_s;
+    backing_off_ = false;
+  } else {
+    Recover(t_s, *estimate(), &record);
+  }
   record.planning_s = ThreadCpuSeconds() - t1;
   frames_.push_back(record);
 }
@@ -309,8 +383,19 @@ perception::AutopilotCommand ForestMission::Step(double t_s) {
     hold.p_W = x->p_WB;
     hold_ = hold;
     last_step_t_s_ = t_s;
+    still_since_t_s_ = t_s;
   }
-  if (!goal_reached_) TurnTowardsGoal(x->p_WB, t_s - last_step_t_s_);
+  if (!goal_reached_) {
+    const control::TrajectoryPoint before = Reference(t_s);
+    if (before.v_W.head<2>().norm() > params_.travel_heading_min_speed_mps) look_aside_rad_.reset();
+    TurnHeading(ForestHeadingTarget(
+                    x->p_WB, params_.goal_W, before.v_W, params_.travel_heading_min_speed_mps,
+                    params_.max_travel_off_heading_rad, look_aside_rad_, backing_off_),
+                t_s - last_step_t_s_);
+    if (backing_off_ && t_s - spline_start_t_s_ >= spline_->EndParameter()) backing_off_ = false;
+    if (!backing_off_) trail_.Add(x->p_WB);
+    if (!AtRest(t_s, *x)) still_since_t_s_ = t_s;
+  }
   last_step_t_s_ = t_s;
   if ((params_.goal_W - x->p_WB).norm() <= params_.goal_reached_m &&
       x->v_W.norm() <= params_.goal_speed_mps) {

@@ -24,11 +24,16 @@
 //   * paths run only through seen space (WaypointSelectorParams::max_bearing_rad, set from the
 //     camera's horizontal field of view): a window beside the field of view holds no point only
 //     because nothing there was seen (layout 4 flew into a trunk 59 deg off its heading);
-//   * the heading turns towards the goal at up to max_yaw_rate_radps (the paper keeps psi = 0):
-//     with seen-space paths, a goal beside the field of view could not be approached otherwise;
+//   * the heading turns at up to max_yaw_rate_radps (the paper keeps psi = 0) towards the
+//     direction of travel, and towards the goal at rest: with seen-space paths, a goal beside the
+//     field of view could not be approached otherwise, and a heading turned towards the goal
+//     while a spline planned earlier flew elsewhere took the camera off the way (layout 21);
 //   * a look-ahead cut by an obstacle ends extension_standoff_m before it, so the vehicle does
 //     not come to rest facing a trunk at ~1 m, too near for any path around it to pass its
-//     windows (layouts 1 and 4 stalled there for 20-40 s).
+//     windows (layouts 1 and 4 stalled there for 20-40 s);
+//   * a recovery when the vehicle stalls (recovery_after_s at rest without a new spline): back
+//     off along the flown path (FlownTrail), or at the start look aside (layouts 13, 20, 25, 35
+//     stalled in front of trunks the depth model put too close).
 //
 // State: the odometry source's body poses (OnOdometry: a VIO or the paper's optical-flow EKF on
 // hardware; in SITL a simulated one, experiments/missions/forest_flight.h) fused with the IMU by
@@ -57,6 +62,7 @@
 #include "perception/mono_depth/mono_depth_model.h"
 #include "planning/mono_nav/bspline.h"
 #include "planning/mono_nav/ego_dynamic_space.h"
+#include "planning/mono_nav/flown_trail.h"
 #include "planning/mono_nav/min_time_bspline.h"
 #include "planning/mono_nav/waypoint_selector.h"
 
@@ -116,11 +122,48 @@ struct ForestMissionParams {
   // Done (AutopilotCommand::done) within this distance of the goal and below goal_speed_mps.
   double goal_reached_m = 0.3;
   double goal_speed_mps = 0.3;
-  // The heading reference turns towards the goal's bearing at up to this rate [rad/s].
+  // The heading reference turns at up to this rate [rad/s] towards the goal's bearing, but, when
+  // the reference is faster than travel_heading_min_speed_mps, no farther than
+  // max_travel_off_heading_rad from the direction of travel (ForestHeadingTarget). Beyond the
+  // paper (psi = 0): with paths only in seen space a goal beside the field of view could not be
+  // approached; and a heading that turned towards the goal whatever the spline in flight turned
+  // the camera away from where the vehicle went (layout 21 flew 75 deg off its camera axis into a
+  // trunk). A heading that only followed the travel lost the goal (a single-trunk course flew
+  // off sideways). 0: fixed heading.
   double max_yaw_rate_radps = 0.5;
+  double travel_heading_min_speed_mps = 0.3;
+  double max_travel_off_heading_rad = 0.5;  // inside the camera's +-45 deg, with a margin
+  // Recovery (beyond the paper, which has none): when no new spline was adopted for
+  // recovery_after_s while the vehicle is at rest (the spline flown out, the estimated speed
+  // below rest_speed_mps, the heading settled), the vehicle backs off along the path it has flown
+  // (free: it was just there) for up to recovery_backoff_m with its heading held, so that an
+  // obstacle the depth model puts too close is seen from farther. Without recovery_min_backoff_m
+  // of flown path behind it (at the start) it looks aside instead: the heading turns
+  // recovery_look_aside_rad to one side of the goal's bearing, the other side at the next stall,
+  // which moves seen space without moving the vehicle. recovery_after_s = 1e9: no recovery.
+  double recovery_after_s = 1.0;
+  double rest_speed_mps = 0.1;
+  double recovery_backoff_m = 1.0;
+  double recovery_min_backoff_m = 0.3;
+  // 69 deg: beyond the +-45 deg field of view, so a phantom trunk ahead leaves the windows of
+  // paths straight out (0.6 rad did not get the vehicle past a trunk 2 m ahead of the start).
+  double recovery_look_aside_rad = 1.2;
 
   void Validate() const;  // std::invalid_argument naming the field
 };
+
+// The bearing in W [rad] ForestMission's heading reference turns towards (at up to
+// ForestMissionParams::max_yaw_rate_radps): nullopt (hold it) while backing off or within
+// hold_within_m of the goal horizontally (its bearing swings there). Faster than
+// travel_min_speed_mps horizontally (v_reference_W): the goal's bearing from p_W, but at most
+// max_travel_off_heading_rad from the direction of travel, so the camera sees where the vehicle
+// goes. Slower: look_aside_rad when a look-aside recovery set it, else the goal's bearing.
+std::optional<double> ForestHeadingTarget(const Eigen::Vector3d& p_W, const Eigen::Vector3d& goal_W,
+                                          const Eigen::Vector3d& v_reference_W,
+                                          double travel_min_speed_mps,
+                                          double max_travel_off_heading_rad,
+                                          std::optional<double> look_aside_rad, bool backing_off,
+                                          double hold_within_m = 1.0);
 
 // What one frame did (the per-frame figures of `aperture bench mononav`).
 struct ForestFrameRecord {
@@ -128,9 +171,11 @@ struct ForestFrameRecord {
   double perception_s = 0.0;  // thread CPU time of the front end (depth estimate)
   double planning_s = 0.0;    // thread CPU time of EDT, selection and the spline
   int segments = 0;
-  int replans = 0;       // segments rejected by their spatial windows (Table II)
-  bool planned = false;  // a new spline was adopted
-  bool direct = false;   // straight to the goal
+  int replans = 0;            // segments rejected by their spatial windows (Table II)
+  bool planned = false;       // a new spline was adopted
+  bool direct = false;        // straight to the goal
+  bool backed_off = false;    // a recovery: backing off along the flown path started
+  bool looked_aside = false;  // a recovery: the heading started turning aside
 };
 
 class ForestMission : public perception::Autopilot {
@@ -161,6 +206,10 @@ class ForestMission : public perception::Autopilot {
   const std::vector<ForestFrameRecord>& frames() const { return frames_; }
   int replans() const;              // sum of ForestFrameRecord::replans
   int frames_without_path() const;  // frames that found no traversable segment
+  int recoveries() const;           // frames that started a back-off or a look-aside
+  // The flown path kept for backing off (estimated positions kTrailSpacingM apart; a back-off
+  // consumes what it flies back over).
+  const FlownTrail& trail() const { return trail_; }
   bool goal_reached() const { return goal_reached_; }
   const perception::PoseFusionCounts& fusion_counts() const { return fusion_.counts(); }
 
@@ -168,10 +217,16 @@ class ForestMission : public perception::Autopilot {
   // The reference of the current spline at t_s (the hold point before the first one).
   control::TrajectoryPoint Reference(double t_s) const;
   void Plan(double t_s, const perception::MonoDepthEstimate& depth, ForestFrameRecord* record);
-  // Turns heading_rad_ towards the goal's bearing from p_W, at most max_yaw_rate_radps * dt_s.
-  void TurnTowardsGoal(const Eigen::Vector3d& p_W, double dt_s);
-  // Nearer the goal than this (horizontally) the heading holds: its bearing swings there [m].
-  static constexpr double kHoldHeadingWithinM = 1.0;
+  // Turns heading_rad_ towards target_rad, at most max_yaw_rate_radps * dt_s.
+  void TurnHeading(std::optional<double> target_rad, double dt_s);
+  static constexpr double kTrailSpacingM = 0.1;
+  // At rest: the current spline flown out, the estimated speed below rest_speed_mps, the heading
+  // within kHeadingSettledRad of its target (the goal's bearing jitters with the estimate).
+  bool AtRest(double t_s, const control::QuadState& x) const;
+  static constexpr double kHeadingSettledRad = 0.05;
+  // After a frame without a new spline: starts a recovery when the vehicle has stalled (see
+  // ForestMissionParams::recovery_after_s).
+  void Recover(double t_s, const control::QuadState& x, ForestFrameRecord* record);
   // Spline from the current reference (or estimate) along path_W; false when the solver fails.
   bool FollowPath(double t_s, const control::QuadState& x,
                   const std::vector<Eigen::Vector3d>& path_W);
@@ -190,7 +245,13 @@ class ForestMission : public perception::Autopilot {
   double spline_start_t_s_ = 0.0;
   double heading_rad_ = 0.0;
   double heading_rate_radps_ = 0.0;
+  double heading_error_rad_ = 0.0;  // to the heading target after the latest turn
   double last_step_t_s_ = 0.0;
+  double still_since_t_s_ = 0.0;          // the vehicle has been at rest with no new spline since
+  bool backing_off_ = false;              // the current spline backs off along the trail
+  std::optional<double> look_aside_rad_;  // the heading of a look-aside recovery
+  int look_aside_side_ = -1;              // +1 left, -1 right of the goal's bearing
+  FlownTrail trail_{kTrailSpacingM};
   bool goal_reached_ = false;
   std::vector<Eigen::Vector3d> last_path_W_;                     // drawn by DrawOverlay
   Eigen::Isometry3d last_T_WB_ = Eigen::Isometry3d::Identity();  // estimate at the latest plan

@@ -28,6 +28,13 @@
 //     goal_reached_m: 0.3
 //     goal_speed_mps: 0.3
 //     max_yaw_rate_radps: 0.5
+//     travel_heading_min_speed_mps: 0.3  # above: the heading stays within
+//     max_travel_off_heading_rad: 0.5     #   this of the travel; below: towards the goal
+//     recovery_after_s: 1.0               # at rest this long without a spline: recover
+//     rest_speed_mps: 0.1
+//     recovery_backoff_m: 1.0             # back off this far along the flown path
+//     recovery_min_backoff_m: 0.3         # less flown path behind: look aside instead
+//     recovery_look_aside_rad: 1.2
 #include "config/yaml_read_archive.h"
 #include "control/control_params_io.h"
 #include "perception/estimation/pose_fusion_params_io.h"
@@ -98,6 +105,13 @@ void Serialize(Archive* a, ForestMissionParams* p) {
   a->Visit(APERTURE_NVP(p, goal_reached_m));
   a->Visit(APERTURE_NVP(p, goal_speed_mps));
   a->Visit(APERTURE_NVP(p, max_yaw_rate_radps));
+  a->Visit(APERTURE_NVP(p, travel_heading_min_speed_mps));
+  a->Visit(APERTURE_NVP(p, max_travel_off_heading_rad));
+  a->Visit(APERTURE_NVP(p, recovery_after_s));
+  a->Visit(APERTURE_NVP(p, rest_speed_mps));
+  a->Visit(APERTURE_NVP(p, recovery_backoff_m));
+  a->Visit(APERTURE_NVP(p, recovery_min_backoff_m));
+  a->Visit(APERTURE_NVP(p, recovery_look_aside_rad));
 }
 
 }  // namespace aperture::planning

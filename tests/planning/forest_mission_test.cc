@@ -1,12 +1,15 @@
-// ForestMission's heading and seen space (beyond seed 003's fixed psi = 0): the heading reference
-// turns towards the goal at the configured yaw rate and then holds it, and the selector's field of
-// view is the camera's. Closed-loop flights are tests/experiments/forest_flight_sitl_test.cc.
+// ForestMission beyond seed 003: the heading reference (the paper keeps psi = 0) turns towards the
+// goal at rest and towards the direction of travel in flight, at the configured yaw rate; the
+// selector's field of view is the camera's; a vehicle stalled without a path backs off along the
+// path it flew, or looks aside where it has flown none. Closed-loop flights are
+// tests/experiments/forest_flight_sitl_test.cc.
 #include "planning/mono_nav/forest_mission.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <memory>
+#include <opencv2/core.hpp>
 
 #include "perception/camera/pinhole_camera.h"
 
@@ -27,7 +30,8 @@ TEST(ForestMission, HeadingTurnsTowardsTheGoalAtTheYawRateLimit) {
   ForestMissionParams params;
   params.goal_W = Eigen::Vector3d(0.0, 10.0, 1.5);  // 90 deg to the left of the start heading
   params.max_yaw_rate_radps = 0.5;
-  ForestMission mission(params, camera, ForwardMount(), vehicle, perception::DefaultMonoDepthModel());
+  ForestMission mission(params, camera, ForwardMount(), vehicle,
+                        perception::DefaultMonoDepthModel());
   // The selector's field of view is the camera's: +-45 deg.
   EXPECT_NEAR(mission.selector_params().max_bearing_rad, M_PI / 4.0, 1e-3);
 
@@ -58,16 +62,146 @@ TEST(ForestMission, HeadingTurnsTowardsTheGoalAtTheYawRateLimit) {
   fixed.OnImu({0.0, Eigen::Vector3d(0.0, 0.0, vehicle.gravity_mps2), Eigen::Vector3d::Zero()});
   fixed.OnOdometry(pose);
   for (int k = 0; k < 100; ++k) {
-    fixed.OnImu({0.01 * (k + 1), Eigen::Vector3d(0.0, 0.0, vehicle.gravity_mps2),
-                 Eigen::Vector3d::Zero()});
+    fixed.OnImu(
+        {0.01 * (k + 1), Eigen::Vector3d(0.0, 0.0, vehicle.gravity_mps2), Eigen::Vector3d::Zero()});
     fixed.Step(0.01 * (k + 1));
   }
   EXPECT_EQ(fixed.heading_rad(), 0.0);
 
   params.max_yaw_rate_radps = -1.0;
-  EXPECT_THROW(ForestMission(params, camera, ForwardMount(), vehicle,
-                             perception::DefaultMonoDepthModel()),
-               std::invalid_argument);
+  EXPECT_THROW(
+      ForestMission(params, camera, ForwardMount(), vehicle, perception::DefaultMonoDepthModel()),
+      std::invalid_argument);
+}
+
+TEST(ForestHeadingTarget, TowardsTheGoalButInFlightNoFartherThanTheLimitFromTheTravel) {
+  const Eigen::Vector3d goal_W(22.0, 0.0, 1.5);
+  const double limit_rad = 0.5;
+  // Layout 21 before the fix: 3.5 m from the goal, the goal 44 deg to the left, a spline planned
+  // earlier flying 1.5 m/s at -34 deg. The heading turns towards the goal only until the travel
+  // is limit_rad off it (the camera's half field of view is 45 deg).
+  const Eigen::Vector3d p_W(19.5, -2.43, 1.5);
+  const double goal_rad = std::atan2(2.43, 2.5);
+  const double travel_rad = -34.0 * M_PI / 180.0;
+  const Eigen::Vector3d v_W = 1.5 * Eigen::Vector3d(std::cos(travel_rad), std::sin(travel_rad), 0);
+  const auto target = [&](const Eigen::Vector3d& v, std::optional<double> look_aside,
+                          bool backing_off) {
+    return ForestHeadingTarget(p_W, goal_W, v, 0.3, limit_rad, look_aside, backing_off);
+  };
+  EXPECT_NEAR(*target(v_W, std::nullopt, false), travel_rad + limit_rad, 1e-12);
+  // Travel within the limit of the goal: the goal's bearing.
+  const double near_rad = goal_rad - 0.3;
+  EXPECT_NEAR(
+      *target(Eigen::Vector3d(std::cos(near_rad), std::sin(near_rad), 0), std::nullopt, false),
+      goal_rad, 1e-12);
+  // Across +-pi: the travel at 170 deg, the goal behind at -135 deg (75 deg away, the short way).
+  const Eigen::Vector3d behind_W = goal_W + Eigen::Vector3d(5.0, 5.0, 0.0);
+  EXPECT_NEAR(
+      *ForestHeadingTarget(behind_W, goal_W, Eigen::Vector3d(std::cos(3.0), std::sin(3.0), 0.0),
+                           0.3, limit_rad, std::nullopt, false),
+      std::remainder(3.0 + limit_rad, 2.0 * M_PI), 1e-12);
+  // At rest (or slower than the threshold horizontally; a climb does not count): the goal.
+  EXPECT_NEAR(*target(0.15 * v_W, std::nullopt, false), goal_rad, 1e-12);
+  EXPECT_NEAR(*target(Eigen::Vector3d(0, 0, 1), std::nullopt, false), goal_rad, 1e-12);
+  // A look-aside wins at rest, not in flight.
+  EXPECT_EQ(*target(Eigen::Vector3d::Zero(), 0.7, false), 0.7);
+  EXPECT_NEAR(*target(v_W, 0.7, false), travel_rad + limit_rad, 1e-12);
+  // Backing off (flying backwards) and near the goal: hold.
+  EXPECT_FALSE(target(-v_W, std::nullopt, true));
+  EXPECT_FALSE(ForestHeadingTarget(Eigen::Vector3d(21.3, 0.5, 1.5), goal_W, v_W, 0.3, limit_rad,
+                                   std::nullopt, false));
+}
+
+// Feeds a mission IMU samples (200 Hz), odometry poses (50 Hz), Step (100 Hz) and black frames
+// (10 Hz: no depth the planner can pass) for a vehicle at p_W(t), level, heading 0, until t_end_s.
+class StalledMission : public ::testing::Test {
+ protected:
+  StalledMission()
+      : camera_(std::make_shared<perception::PinholeCamera>(
+            640, 480, perception::PinholeIntrinsics{320.0, 320.0, 319.5, 239.5})) {
+    params_.goal_W = Eigen::Vector3d(10.0, 0.0, 1.5);
+    params_.max_yaw_rate_radps = 0.5;
+    // Segments of single patches: none passes the expanse constraint (no path, as the black
+    // frames alone would give), and the clustering of the dense map stays cheap.
+    params_.waypoints.cluster_tolerance_m = 0.01;
+    params_.waypoints.min_cluster_points = 1;
+    params_.recovery_look_aside_rad = 0.6;  // short turns keep the test short
+  }
+  // x(t) = the start + length_m (3 s^2 - 2 s^3), s = t / move_s (then at rest), along x_W.
+  void Fly(ForestMission* mission, double t_begin_s, double t_end_s, double length_m = 0.0,
+           double move_s = 1.0) {
+    perception::PoseMeasurement pose;
+    pose.covariance = 1e-4 * perception::Matrix6d::Identity();
+    const cv::Mat black = cv::Mat::zeros(480, 640, CV_8UC3);
+    for (int k = int(std::lround(t_begin_s / 0.005)); k * 0.005 <= t_end_s + 1e-9; ++k) {
+      const double t = 0.005 * k;
+      const double s = std::min(t / move_s, 1.0);
+      const double a = s < 1.0 ? length_m * (6.0 - 12.0 * s) / (move_s * move_s) : 0.0;
+      mission->OnImu({t, Eigen::Vector3d(a, 0.0, vehicle_.gravity_mps2), Eigen::Vector3d::Zero()});
+      if (k % 4 == 0) {
+        pose.t_s = t;
+        pose.p_WX = Eigen::Vector3d(length_m * s * s * (3.0 - 2.0 * s), 0.0, 1.5);
+        mission->OnOdometry(pose);
+      }
+      if (k % 2 == 0) mission->Step(t);
+      if (k % 20 == 10) mission->OnFrame({t, 0, k / 20, black, {}});
+    }
+  }
+  int Count(const ForestMission& mission, bool ForestFrameRecord::*flag) const {
+    int count = 0;
+    for (const ForestFrameRecord& r : mission.frames()) count += r.*flag;
+    return count;
+  }
+  const control::VehicleParameters vehicle_;
+  std::shared_ptr<perception::PinholeCamera> camera_;
+  ForestMissionParams params_;
+};
+
+TEST_F(StalledMission, AtTheStartItLooksToOneSideOfTheGoalThenToTheOther) {
+  ForestMission mission(params_, camera_, ForwardMount(), vehicle_,
+                        perception::DefaultMonoDepthModel());
+  Fly(&mission, 0.0, 0.95);
+  EXPECT_EQ(mission.frames_without_path(), int(mission.frames().size()));
+  EXPECT_EQ(mission.recoveries(), 0);  // < recovery_after_s = 1 s at rest
+  // At 1.05 s: nothing flown to back off along, so the heading turns 0.6 rad left at 0.5 rad/s
+  // (1.2 s), rests 1 s, then turns 1.2 rad right (2.4 s).
+  Fly(&mission, 1.0, 2.5);
+  EXPECT_EQ(Count(mission, &ForestFrameRecord::looked_aside), 1);
+  EXPECT_EQ(Count(mission, &ForestFrameRecord::backed_off), 0);
+  EXPECT_NEAR(mission.heading_rad(), 0.6, 1e-9);
+  Fly(&mission, 2.505, 6.0);
+  EXPECT_EQ(Count(mission, &ForestFrameRecord::looked_aside), 2);
+  EXPECT_NEAR(mission.heading_rad(), -0.6, 1e-9);
+  EXPECT_EQ(mission.frames_without_path(), int(mission.frames().size()));
+
+  // No recovery (recovery_after_s = 1e9): the heading stays on the goal.
+  params_.recovery_after_s = 1e9;
+  ForestMission none(params_, camera_, ForwardMount(), vehicle_,
+                     perception::DefaultMonoDepthModel());
+  Fly(&none, 0.0, 3.0);
+  EXPECT_EQ(none.recoveries(), 0);
+  EXPECT_NEAR(none.heading_rad(), 0.0, 1e-9);
+}
+
+TEST_F(StalledMission, AfterFlyingItBacksOffAlongTheFlownPath) {
+  ForestMission mission(params_, camera_, ForwardMount(), vehicle_,
+                        perception::DefaultMonoDepthModel());
+  // 1.5 m forward in 1.5 s, then at rest without a path.
+  Fly(&mission, 0.0, 2.45, 1.5, 1.5);
+  EXPECT_EQ(mission.recoveries(), 0);
+  ASSERT_GE(mission.trail().points_W().size(), 14u);  // ~0.1 m apart
+  EXPECT_NEAR(mission.trail().points_W().back().x(), 1.5, 0.1);
+  Fly(&mission, 2.5, 2.7, 1.5, 1.5);
+  // 1 s at rest: a spline back along the trail (recovery_backoff_m = 1 m), heading held.
+  ASSERT_EQ(Count(mission, &ForestFrameRecord::backed_off), 1);
+  EXPECT_EQ(Count(mission, &ForestFrameRecord::looked_aside), 0);
+  EXPECT_NEAR(mission.trail().points_W().back().x(), 0.5, 0.1);
+  EXPECT_EQ(mission.heading_rad(), 0.0);
+  // The mission commands the back-off: the reference accelerates towards -x. (The vehicle here
+  // does not move, so the spline flies on; the hold is not a map: no further recovery meanwhile.)
+  Fly(&mission, 2.705, 4.0, 1.5, 1.5);
+  EXPECT_EQ(mission.recoveries(), 1);
+  EXPECT_EQ(mission.heading_rad(), 0.0);
 }
 
 }  // namespace
