@@ -4,6 +4,19 @@
 
 #include "apps/commands.h"
 #include "config/usage_error.h"
+#include "output/interruption.h"
+
+namespace {
+
+// A run stopped by SIGINT/SIGTERM (output/interruption.h) after writing its outputs: 128 + the
+// signal, as a shell reports a process the signal ended (130 for Ctrl-C, 143 for SIGTERM).
+int ExitInterrupted() {
+  std::cerr << "aperture: interrupted; the outputs hold what was done until then (summary.json "
+               "\"status\": \"interrupted\")\n";
+  return aperture::output::InterruptedExitCode();
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -47,7 +60,7 @@ int main(int argc, char** argv) {
     return 2;
   } catch (const std::exception& e) {
     std::cerr << "aperture: error: " << e.what() << "\n";
-    return 1;
+    return aperture::output::InterruptionRequested() ? ExitInterrupted() : 1;
   }
-  return exit_code;
+  return aperture::output::InterruptionRequested() ? ExitInterrupted() : exit_code;
 }

@@ -5,6 +5,7 @@
 
 #include "apps/code_version.h"
 #include "experiments/bench/monte_carlo_run.h"
+#include "output/interruption.h"
 #include "output/progress_bar.h"
 #include "servo/visp_tag_detector.h"
 
@@ -35,6 +36,8 @@ void AddMonteCarloOptions(CLI::App* command, MonteCarloCommandOptions* options) 
 
 void RunMonteCarloCommand(const std::string& name, const nlohmann::json& configuration,
                           const MonteCarloCommandOptions& options, output::OutputFolder& out) {
+  // Ctrl-C / SIGTERM: no further trial starts; the finished ones are written (monte_carlo_run.h).
+  const output::InterruptionHandlers interruption;
   experiments::MonteCarloRunOptions run;
   if (!options.shard.empty()) run.shard = experiments::ParseShardSpec(options.shard);
   run.threads = options.threads;

@@ -26,7 +26,8 @@ experiments::MonteCarloBenchRegistry BenchRegistry();
 void AddMonteCarloOptions(CLI::App* command, MonteCarloCommandOptions* options);
 
 // Runs the registered bench `name` built from `configuration` into `out` (whole, or the shard)
-// with a progress bar, and prints its outcome line.
+// with a progress bar, and prints its outcome line. SIGINT/SIGTERM stop it between trials: the
+// finished trials' records are written (experiments/bench/monte_carlo_run.h).
 void RunMonteCarloCommand(const std::string& name, const nlohmann::json& configuration,
                           const MonteCarloCommandOptions& options, output::OutputFolder& out);
 

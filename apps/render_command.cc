@@ -14,6 +14,9 @@
 //   OUT/scenario.yaml          effective scenario configuration (reproduces the run)
 //   OUT/summary.json, OUT/report.html
 // so that `aperture run --source OUT --calib OUT/calib.yaml` replays the dataset.
+// SIGINT/SIGTERM stop it after the current frame: every file then covers the frames written
+// (times.txt one line per image), summary.json says "status": "interrupted", "frames": the count
+// (exit 130/143).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -31,6 +34,7 @@
 #include "config/usage_error.h"
 #include "output/csv_writer.h"
 #include "output/html_report.h"
+#include "output/interruption.h"
 #include "output/progress_bar.h"
 #include "output/svg_plot.h"
 #include "output/tum_trajectory_writer.h"
@@ -92,6 +96,8 @@ std::string FrameName(int index) {
 }
 
 void RenderDataset(const RenderCommandOptions& options, output::OutputFolder& out) {
+  // Ctrl-C / SIGTERM end the frame loop; the dataset is then closed with the frames so far.
+  const output::InterruptionHandlers interruption;
   // Explicit flags win over --config files and --set items.
   CommonOptions common = options.common;
   if (!options.trajectory.empty())
@@ -152,7 +158,8 @@ void RenderDataset(const RenderCommandOptions& options, output::OutputFolder& ou
   std::vector<std::pair<int, sim::CapturedFrame>> kept;
 
   sim::RayCaster caster;
-  for (int i = 0; i < frame_count; ++i) {
+  int frames_written = 0;
+  for (int i = 0; i < frame_count && !output::InterruptionRequested(); ++i) {
     const double t_s = i / camera.rate_hz;
     const auto T_WB_at = [&](double t) {
       return trajectory.T_WB(duration_s > 0.0 ? t / duration_s : 0.0);
@@ -186,24 +193,27 @@ void RenderDataset(const RenderCommandOptions& options, output::OutputFolder& ou
     if (std::find(key_frames.begin(), key_frames.end(), i) != key_frames.end()) {
       kept.emplace_back(i, std::move(frame));
     }
-    progress.Update(static_cast<std::size_t>(i + 1));
+    frames_written = i + 1;
+    progress.Update(static_cast<std::size_t>(frames_written));
   }
   progress.Finish();
   times.Commit();
   groundtruth.Close();
   objects_csv.Close();
+  if (frames_written == 0) throw std::runtime_error("interrupted before the first frame");
   const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  summary["frames"] = frame_count;
+  summary["frames"] = frames_written;
+  summary["frames_planned"] = frame_count;
   summary["estimated_bytes_uncompressed"] =
-      EstimatedBytes(frame_count, camera.model->width(), camera.model->height());
+      EstimatedBytes(frames_written, camera.model->width(), camera.model->height());
   summary["image_size"] = {camera.model->width(), camera.model->height()};
   summary["timing"] = {{"render_s", render_time_s},
-                       {"render_ms_per_frame", 1000.0 * render_time_s / frame_count},
+                       {"render_ms_per_frame", 1000.0 * render_time_s / frames_written},
                        {"total_s", wall_s},
-                       {"frames_per_s", frame_count / wall_s},
-                       {"render_frames_per_s", frame_count / render_time_s}};
+                       {"frames_per_s", frames_written / wall_s},
+                       {"render_frames_per_s", frames_written / render_time_s}};
   summary["outputs"] = {{"images", "images"},
                         {"times", "images/times.txt"},
                         {"depth", "depth"},
@@ -221,9 +231,9 @@ void RenderDataset(const RenderCommandOptions& options, output::OutputFolder& ou
                                   std::to_string(camera.model->width()) + "x" +
                                   std::to_string(camera.model->height()) + ")"},
                    {"seed", params.seed},
-                   {"frames", frame_count},
-                   {"render [ms/frame]", 1000.0 * render_time_s / frame_count},
-                   {"frames/s (with writing)", frame_count / wall_s}});
+                   {"frames", frames_written},
+                   {"render [ms/frame]", 1000.0 * render_time_s / frames_written},
+                   {"frames/s (with writing)", frames_written / wall_s}});
   report.AddSvg(output::SvgPlot({"Camera position p_WC", "t [s]", "[m]"})
                     .AddLine("x", t_values, x_values)
                     .AddLine("y", t_values, y_values)

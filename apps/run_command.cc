@@ -10,6 +10,9 @@
 // and hands each frame its IMU samples (ts2p derotates with them).
 // Front ends may add their own files (FrontEndResources::output_directory), e.g. ts2p:
 // OUT/openings/<index>.png and OUT/ts2p.csv; gap_tracker: OUT/gap_tracker.csv.
+// SIGINT/SIGTERM stop it after the current frame, and a source that fails after frames (a camera
+// that disconnects) ends the frame loop: every output is then closed with the frames so far and
+// summary.json says "interrupted" (exit 130/143) or "failed" with the source's error (exit 1).
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
@@ -22,7 +25,9 @@
 #include "apps/imu_csv.h"
 #include "apps/pose_streams.h"
 #include "apps/run_report.h"
+#include "apps/stoppable_frame_source.h"
 #include "output/csv_writer.h"
+#include "output/interruption.h"
 #include "output/progress_bar.h"
 #include "output/video_writer.h"
 #include "perception/camera/calibration_io.h"
@@ -54,6 +59,8 @@ struct RunOptions {
 };
 
 void RunFrontEnds(const RunOptions& options, output::OutputFolder& out) {
+  // Ctrl-C / SIGTERM end the frame loop; the outputs are then closed as at the end of the source.
+  const output::InterruptionHandlers interruption;
   const config::ConfigTree tree = LoadConfig(options.common, "");
   const std::vector<std::string> front_end_names =
       perception::SplitFrontEndList(options.front_ends);
@@ -87,8 +94,8 @@ void RunFrontEnds(const RunOptions& options, output::OutputFolder& out) {
   source_options.skip_bad_frames = options.skip_bad_frames;
   source_options.image_topic = options.image_topic;
   source_options.imu_topic = options.imu_topic;
-  std::unique_ptr<perception::FrameSource> source =
-      perception::OpenFrameSource(options.source, source_options);
+  const std::unique_ptr<StoppableFrameSource> source = std::make_unique<StoppableFrameSource>(
+      perception::OpenFrameSource(options.source, source_options));
 
   nlohmann::json& summary = out.summary();
   summary["command"] = "run";
@@ -162,10 +169,10 @@ void RunFrontEnds(const RunOptions& options, output::OutputFolder& out) {
   const std::map<std::string, std::string> front_end_files = graph.Finish();
 
   summary["frames"] = record.frame_count();
-  summary["skipped_frames"] = source->SkippedFrames().size();
+  summary["skipped_frames"] = source->source().SkippedFrames().size();
   summary["imu_samples"] = imu_samples;
   nlohmann::json skipped = nlohmann::json::array();
-  for (const auto& skip : source->SkippedFrames()) {
+  for (const auto& skip : source->source().SkippedFrames()) {
     skipped.push_back({{"item", skip.item}, {"reason", skip.reason}});
   }
   summary["skipped"] = skipped;
@@ -185,6 +192,8 @@ void RunFrontEnds(const RunOptions& options, output::OutputFolder& out) {
   }
   summary["outputs"] = outputs;
   WriteRunReport(out, record, metric_names);
+  // A source that failed after frames: every output is complete up to there; the run failed.
+  if (source->failure()) throw std::runtime_error(*source->failure());
 }
 
 }  // namespace

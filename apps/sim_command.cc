@@ -17,6 +17,9 @@
 // onboard camera with overlays beside a third-person view from behind the vehicle) and
 // OUT/report.html (position and command plots, key frames), and the mission's own files
 // (MissionFlight::WriteFiles, e.g. the tag map's).
+// SIGINT/SIGTERM end the flight at the next simulation step (outcome "stopped"): every output is
+// then written for the flight so far (the video finalised with its frames) and summary.json says
+// "status": "interrupted" (exit 130/143).
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -36,6 +39,7 @@
 #include "experiments/missions/builtin_missions.h"
 #include "output/background_video_writer.h"
 #include "output/html_report.h"
+#include "output/interruption.h"
 #include "output/progress_bar.h"
 #include "output/svg_plot.h"
 #include "sim/scenario/scenario.h"
@@ -151,6 +155,8 @@ void WriteReport(const sim::SitlResult& result, const std::vector<cv::Mat>& key_
 }
 
 void RunSim(const SimOptions& options, output::OutputFolder& out) {
+  // Ctrl-C / SIGTERM end the flight at the next step; its outputs are then written as usual.
+  const output::InterruptionHandlers interruption;
   std::vector<std::string> set_items = options.common.set_items;
   if (options.seed) set_items.push_back("seed=" + std::to_string(*options.seed));
   // `--set mission=NAME` (issue 15's spelling) names the mission: `--set mission.name=NAME`.
@@ -215,6 +221,7 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
   output::ProgressBar progress("frames", static_cast<std::size_t>(frames_expected));
   int frames_seen = 0, video_frames = 0;
   sim::SitlHooks hooks = experiments::MakeMissionHooks(flight.get(), &scenario);
+  hooks.stop_requested = [] { return output::InterruptionRequested(); };
   hooks.on_frame = [&](int camera_index, const sim::CapturedFrame& captured,
                        const control::QuadState& state) {
     if (camera_index != primary) return;

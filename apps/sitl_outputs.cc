@@ -75,6 +75,10 @@ void AddSitlRunSummary(const sim::SitlResult& result, nlohmann::json* summary) {
   (*summary)["reason"] = result.reason;
   (*summary)["sim_time_s"] = result.sim_time_s;
   (*summary)["real_time_factor"] = result.real_time_factor;
+  // The data rows of WriteSitlTimeSeries' files (the flight so far when it was stopped).
+  (*summary)["rows"] = {{"trajectory", result.trajectory.size()},
+                        {"commands", result.commands.size()},
+                        {"imu", result.imu.size()}};
   (*summary)["timing"] = {
       {"wall_time_s", result.timing.wall_time_s}, {"dynamics_s", result.timing.dynamics_s},
       {"render_s", result.timing.render_s},       {"autopilot_s", result.timing.autopilot_s},

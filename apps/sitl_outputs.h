@@ -14,7 +14,8 @@ void WriteSitlTimeSeries(const sim::SitlResult& result, output::OutputFolder& ou
 void AddSitlCommandPlots(const sim::SitlResult& result, output::HtmlReport* report);
 
 // summary["sim_time_s"], ["real_time_factor"], ["timing"] (SitlTiming: wall_time_s, dynamics_s,
-// render_s, autopilot_s, collision_s, hooks_s), ["outcome"], ["reason"].
+// render_s, autopilot_s, collision_s, hooks_s), ["outcome"], ["reason"], ["rows"] (data rows
+// of trajectory.csv, commands.csv, imu.csv).
 void AddSitlRunSummary(const sim::SitlResult& result, nlohmann::json* summary);
 
 }  // namespace aperture::apps

@@ -1,5 +1,6 @@
 #include "output/output_folder.h"
 
+#include <csignal>
 #include <exception>
 #include <filesystem>
 #include <fstream>
@@ -8,12 +9,31 @@
 #include <system_error>
 
 #include "output/atomic_file.h"
+#include "output/interruption.h"
 
 namespace aperture::output {
 
 namespace {
 
 namespace fs = std::filesystem;
+
+const char* RunStatusName(RunStatus status) {
+  switch (status) {
+    case RunStatus::kOk:
+      return "ok";
+    case RunStatus::kFailed:
+      return "failed";
+    case RunStatus::kInterrupted:
+      return "interrupted";
+  }
+  return "unknown";
+}
+
+std::string SignalName(int signal_number) {
+  if (signal_number == SIGINT) return "SIGINT";
+  if (signal_number == SIGTERM) return "SIGTERM";
+  return "signal " + std::to_string(signal_number);
+}
 
 std::set<std::string> EntriesOf(const fs::path& directory) {
   std::set<std::string> entries;
@@ -131,11 +151,16 @@ std::string OutputFolder::WriteSummary(RunStatus status, const std::string& erro
   if (status == RunStatus::kFailed && error.empty()) {
     throw std::invalid_argument("WriteSummary(kFailed) needs an error message for summary.json");
   }
-  summary_["status"] = status == RunStatus::kOk ? "ok" : "failed";
-  if (status == RunStatus::kFailed) {
+  summary_["status"] = RunStatusName(status);
+  if (status != RunStatus::kOk && !error.empty()) {
     summary_["error"] = error;
   } else {
     summary_.erase("error");
+  }
+  if (status == RunStatus::kInterrupted) {
+    summary_["signal"] = SignalName(InterruptionSignal());
+  } else {
+    summary_.erase("signal");
   }
   summary_["wall_time_s"] = ElapsedSeconds();
   nlohmann::json files = nlohmann::json::array();
@@ -150,16 +175,19 @@ std::string OutputFolder::WriteSummary(RunStatus status, const std::string& erro
 }
 
 void RunAndWriteSummary(OutputFolder& out, const std::function<void()>& body) {
+  const auto failed = [] {
+    return InterruptionRequested() ? RunStatus::kInterrupted : RunStatus::kFailed;
+  };
   try {
     body();
   } catch (const std::exception& e) {
-    out.WriteSummary(RunStatus::kFailed, e.what());
+    out.WriteSummary(failed(), e.what());
     throw;
   } catch (...) {
-    out.WriteSummary(RunStatus::kFailed, "unknown exception");
+    out.WriteSummary(failed(), "unknown exception");
     throw;
   }
-  out.WriteSummary(RunStatus::kOk);
+  out.WriteSummary(InterruptionRequested() ? RunStatus::kInterrupted : RunStatus::kOk);
 }
 
 }  // namespace aperture::output

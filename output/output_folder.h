@@ -6,11 +6,12 @@
 //   ... write CSVs, report.html to out.Path("...") ...
 //   out.WriteSummary(RunStatus::kOk);             // or kFailed with the error message
 //
-// summary.json is written atomically and always carries "status": "ok" | "failed" (plus "error"
-// when failed), "wall_time_s" and "files": the entries of the folder this run created (files and
-// subfolders, sorted). A stale summary.json from an earlier run in the same folder is removed at
-// construction, so a run that crashes before WriteSummary leaves no summary at all rather than an
-// old one that looks complete.
+// summary.json is written atomically and always carries "status": "ok" | "failed" | "interrupted"
+// (plus "error" when failed, and "signal": "SIGINT" | "SIGTERM" when interrupted, see
+// output/interruption.h), "wall_time_s" and "files": the entries of the folder this run created
+// (files and subfolders, sorted). A stale summary.json from an earlier run in the same folder is
+// removed at construction, so a run that crashes before WriteSummary leaves no summary at all
+// rather than an old one that looks complete.
 //
 // A folder is used only when it is new, empty, or holds nothing but the summary.json of a run
 // that wrote no other file (a run that failed at its first check): an earlier run's outputs would
@@ -26,7 +27,9 @@
 
 namespace aperture::output {
 
-enum class RunStatus { kOk, kFailed };
+// kInterrupted: stopped early by SIGINT/SIGTERM (output/interruption.h); the outputs hold what was
+// done until then.
+enum class RunStatus { kOk, kFailed, kInterrupted };
 
 // The folder holds an earlier run's outputs (or files of no aperture run) and `overwrite` is off.
 class FolderInUseError : public std::runtime_error {
@@ -50,7 +53,8 @@ class OutputFolder {
   // Seconds since the folder was opened (the run's wall time so far).
   double ElapsedSeconds() const;
 
-  // Writes summary.json (atomically). `error` is required for kFailed and ignored for kOk.
+  // Writes summary.json (atomically). `error` is required for kFailed, ignored for kOk, and
+  // recorded for kInterrupted when given (what the interruption cut short).
   // Returns the path written.
   std::string WriteSummary(RunStatus status, const std::string& error = "");
 
@@ -65,7 +69,8 @@ class OutputFolder {
 
 // Runs `body` and always leaves a summary: "ok" when it returns, "failed" with the exception's
 // message when it throws (the exception is then rethrown for main() to report and turn into an
-// exit code).
+// exit code); "interrupted" in either case once SIGINT/SIGTERM asked to stop
+// (InterruptionRequested(), output/interruption.h), with the error when it threw.
 //   OutputFolder out(out_dir);
 //   RunAndWriteSummary(out, [&] { ...the command... });
 void RunAndWriteSummary(OutputFolder& out, const std::function<void()>& body);

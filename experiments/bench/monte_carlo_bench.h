@@ -32,6 +32,8 @@ class MonteCarloBench {
   // Flies trials `trials` (a part of run()), up to `threads` at a time (0 = all cores), and
   // returns one record per trial in index order. `on_trial_done(done)` is called (serialized)
   // after each trial. Failed trials are records too (their failure reason), never exceptions.
+  // Once SIGINT/SIGTERM asked to stop (output::InterruptionRequested()) it starts no further
+  // trial and returns the records of the trials it finished (fewer than `trials`).
   virtual std::vector<nlohmann::json> RunTrials(
       const TrialRange& trials, int threads,
       const std::function<void(int)>& on_trial_done) const = 0;
@@ -47,7 +49,8 @@ class MonteCarloBench {
 
 // RunTrials for a bench whose trials run one after another (each trial may render or fly in
 // parallel inside): `record_of(k)` (a JSON object) for every k of `trials` inside a task arena of
-// `threads` (0 = all cores), each record with "trial": k added; `on_trial_done` after each.
+// `threads` (0 = all cores), each record with "trial": k added; `on_trial_done` after each. It
+// stops before the next trial once output::InterruptionRequested().
 std::vector<nlohmann::json> RunTrialsInOrder(const TrialRange& trials, int threads,
                                              const std::function<void(int)>& on_trial_done,
                                              const std::function<nlohmann::json(int)>& record_of);

@@ -12,6 +12,9 @@
 #include <iterator>
 #include <utility>
 
+#include "output/atomic_file.h"
+#include "output/interruption.h"
+
 namespace aperture::experiments {
 
 std::vector<nlohmann::json> RunTrialsInOrder(const TrialRange& trials, int threads,
@@ -20,7 +23,7 @@ std::vector<nlohmann::json> RunTrialsInOrder(const TrialRange& trials, int threa
   std::vector<nlohmann::json> records;
   tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
   arena.execute([&] {
-    for (int k = trials.first; k < trials.end(); ++k) {
+    for (int k = trials.first; k < trials.end() && !output::InterruptionRequested(); ++k) {
       nlohmann::json record = record_of(k);
       record["trial"] = k;
       records.push_back(std::move(record));
@@ -83,14 +86,28 @@ TrialLoop RunTrialLoop(const MonteCarloBench& bench, const TrialRange& trials, i
       if (progress) progress(done, trials.count);
     });
   });
-  if (static_cast<int>(loop.records.size()) != trials.count) {
+  // Fewer records only when SIGINT/SIGTERM stopped the loop.
+  if (static_cast<int>(loop.records.size()) > trials.count ||
+      (static_cast<int>(loop.records.size()) < trials.count && !output::InterruptionRequested())) {
     throw std::logic_error("Monte-Carlo bench returned " + std::to_string(loop.records.size()) +
                            " records for " + std::to_string(trials.count) + " trials");
+  }
+  const int completed = static_cast<int>(loop.records.size());
+  if (completed < trials.count) {  // the cost of the trials that were flown
+    loop.cost["trials"] = completed;
+    loop.cost["cpu_s_per_trial"] =
+        completed > 0 ? loop.cost["cpu_time_s"].get<double>() / completed : 0.0;
   }
   return loop;
 }
 
 std::string CommandName(const std::string& bench) { return "bench " + bench; }
+
+// The records of a shard (or of an interrupted run) as CBOR, in kShardRecordsFile.
+void WriteTrialRecords(const std::vector<nlohmann::json>& records, output::OutputFolder& out) {
+  const std::vector<std::uint8_t> bytes = nlohmann::json::to_cbor(nlohmann::json(records));
+  output::WriteFileAtomically(out.Path(kShardRecordsFile), std::string(bytes.begin(), bytes.end()));
+}
 
 // One shard folder as recorded by RunMonteCarloBench.
 struct ShardFolder {
@@ -242,31 +259,34 @@ std::string RunMonteCarloBench(const MonteCarloBenchRegistry& benches, const std
   summary["command"] = CommandName(name);
   summary["code_version"] = options.code_version;
   const TrialRange run = bench->run();
-  if (!options.shard) {
-    TrialLoop loop = RunTrialLoop(*bench, run, options.threads, progress);
+  const TrialRange part = options.shard ? ShardTrials(*options.shard, run) : run;
+  TrialLoop loop = RunTrialLoop(*bench, part, options.threads, progress);
+  const int completed = static_cast<int>(loop.records.size());
+  if (!options.shard && completed == run.count) {
     summary["cost"] = loop.cost;  // before the writer: its report shows the summary
     bench->WriteOutputs(loop.records, out);
     return bench->DescribeOutcome(summary);
   }
-  const TrialRange part = ShardTrials(*options.shard, run);
-  TrialLoop loop = RunTrialLoop(*bench, part, options.threads, progress);
-  {
-    const std::vector<std::uint8_t> bytes = nlohmann::json::to_cbor(nlohmann::json(loop.records));
-    std::ofstream file(out.Path(kShardRecordsFile), std::ios::binary);
-    file.write(reinterpret_cast<const char*>(bytes.data()),
-               static_cast<std::streamsize>(bytes.size()));
-    if (!file) throw std::runtime_error(out.Path(kShardRecordsFile) + ": cannot be written");
-  }
+  // A shard, or a run that SIGINT/SIGTERM cut short: the trial records and the manifest, no
+  // figures (the trials of a part of a run are no result).
+  WriteTrialRecords(loop.records, out);
   loop.cost["host"] = HostName();
   summary["bench"] = name;
   summary["configuration"] = bench->configuration();
   summary["run"] = RangeJson(run);
-  summary["shard"] = {{"index", options.shard->index},
-                      {"count", options.shard->count},
-                      {"first_trial", part.first},
-                      {"trials", part.count}};
+  if (options.shard) {
+    summary["shard"] = {{"index", options.shard->index},
+                        {"count", options.shard->count},
+                        {"first_trial", part.first},
+                        {"trials", part.count}};
+  }
   summary["records"] = kShardRecordsFile;
+  summary["trials_completed"] = completed;
   summary["cost"] = loop.cost;
+  if (completed < part.count) {
+    return "interrupted after " + std::to_string(completed) + " of " + std::to_string(part.count) +
+           " trials; their records are in " + out.Path(kShardRecordsFile);
+  }
   return "shard " + ToString(*options.shard) + ": trials " + std::to_string(part.first) + ".." +
          std::to_string(part.end() - 1) + " of " + std::to_string(run.first) + ".." +
          std::to_string(run.end() - 1) + " written to " + out.directory() +

@@ -11,6 +11,9 @@
 // "code_version". A shard writes summary.json as its manifest (bench, code_version,
 // configuration, run, shard with its trial block, cost, host) and its trial records to
 // trials.cbor (kShardRecordsFile); no figures, since a part of a run is not a result.
+// A run that SIGINT/SIGTERM cut short (output/interruption.h: no further trial starts) writes what
+// a shard writes, the records of the trials it finished in trials.cbor and the manifest, with
+// "trials_completed"; no figures (summary.json "status": "interrupted").
 // A merge checks the shards (each finished; one bench, one code version equal to the merging
 // build's, one configuration, blocks that tile the run without gap or overlap), then writes the
 // outputs with the bench's own writer from the records in index order: the same summary.json
@@ -49,9 +52,9 @@ class ShardMergeError : public std::runtime_error {
 // unknown bench, a bad configuration or a shard count above the trial count. Returns one line
 // for the terminal: the bench's outcome (MonteCarloBench::DescribeOutcome) or the shard's block.
 std::string RunMonteCarloBench(const MonteCarloBenchRegistry& benches, const std::string& name,
-                        const nlohmann::json& configuration, const MonteCarloRunOptions& options,
-                        output::OutputFolder& out,
-                        const std::function<void(int, int)>& progress = {});
+                               const nlohmann::json& configuration,
+                               const MonteCarloRunOptions& options, output::OutputFolder& out,
+                               const std::function<void(int, int)>& progress = {});
 
 // What running `trials` trials in `body(used_threads)` costs, for summary.json "cost" of every
 // bench: {threads: used_threads (`threads`, or 0 = what oneTBB may use in this process, i.e.

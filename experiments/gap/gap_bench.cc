@@ -14,6 +14,7 @@
 #include "control/constants.h"
 #include "experiments/gap/gap_mission_factory.h"
 #include "experiments/gap/gap_trial_record_json.h"
+#include "output/interruption.h"
 #include "output/json_eigen.h"
 #include "planning/gap_mission/gap_mission_params_io.h"
 #include "sim/scenario/scenario.h"
@@ -252,17 +253,27 @@ GapBenchResult RunGapBench(const GapBenchOptions& options, const GapBenchSetup& 
                                    base.vehicle_start.p_m));
   }
   result.trials.resize(configs.size());
+  std::vector<char> flown(configs.size(), 0);
   std::mutex mutex;
   int done = 0;
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
   arena.execute([&] {
     tbb::parallel_for(0, options.trials, [&](int i) {
+      if (output::InterruptionRequested()) return;  // Ctrl-C: start no further trial
       result.trials[i] = RunGapTrial(options, base, result.mission, configs[i], factory);
+      flown[i] = 1;
       const std::lock_guard<std::mutex> lock(mutex);
       ++done;
       if (on_trial_done) on_trial_done(done);
     });
   });
+  if (done < options.trials) {  // interrupted: keep the trials that were flown, in index order
+    std::vector<GapTrialRecord> flown_trials;
+    for (std::size_t i = 0; i < flown.size(); ++i) {
+      if (flown[i]) flown_trials.push_back(std::move(result.trials[i]));
+    }
+    result.trials = std::move(flown_trials);
+  }
   for (const GapTrialRecord& record : result.trials) {
     if (result.autopilot_name.empty()) result.autopilot_name = record.autopilot_name;
   }

@@ -102,7 +102,9 @@ struct GapBenchSetup {
 // Throws std::invalid_argument for invalid options or scenario overrides.
 GapBenchSetup PrepareGapBench(const GapBenchOptions& options);
 
-// All trials; `on_trial_done(done_count)` is called (serialized) after each trial finishes.
+// All trials; `on_trial_done(done_count)` is called (serialized) after each trial finishes. Once
+// SIGINT/SIGTERM asked to stop (output::InterruptionRequested()) no further trial starts and
+// `trials` holds the ones flown, in index order.
 // Throws std::invalid_argument for invalid options or scenario overrides.
 GapBenchResult RunGapBench(const GapBenchOptions& options, const GapTrialAutopilotFactory& factory,
                            const std::function<void(int)>& on_trial_done = {});

@@ -70,6 +70,8 @@ const char* ToString(SitlResult::Outcome outcome) {
       return "autopilot_done";
     case SitlResult::Outcome::kCollision:
       return "collision";
+    case SitlResult::Outcome::kStopped:
+      return "stopped";
   }
   return "unknown";
 }
@@ -191,6 +193,11 @@ class SitlFlight {
     if (p_.estimate_latency_s > 0.0) estimate_history_.push_back(vehicle_.state());
     for (long k = 0;; ++k) {
       const double t_s = k * dt_s_;
+      if (hooks_.stop_requested && hooks_.stop_requested()) {
+        result_->outcome = SitlResult::Outcome::kStopped;
+        result_->reason = "stopped at t = " + std::to_string(t_s) + " s";
+        break;
+      }
       SampleSensors(t_s);
       CaptureFrames(t_s);
       const Clock::time_point section = Clock::now();

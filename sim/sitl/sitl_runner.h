@@ -20,7 +20,8 @@
 //   5. the vehicle advances by one step under the disturbances (sim/vehicle/disturbances.h);
 //   6. collision check (sim/sitl/collision_checker.h), and with ground contact on
 //      (dynamics.ground_contact_enabled) the touchdown check of a step that landed.
-// The run ends at duration_s, when a command has done == true, or on the first collision.
+// The run ends at duration_s, when a command has done == true, on the first collision, or when
+// SitlHooks::stop_requested says so (checked once per dynamics step, before step 1).
 //
 // Ground: the plane z_W = dynamics.ground_height_m, for the dynamics and the collision checker.
 // By default it is a wall like any other (the run ends when the body sphere or a propeller
@@ -149,7 +150,7 @@ struct SitlTiming {
 };
 
 struct SitlResult {
-  enum class Outcome { kDurationReached, kAutopilotDone, kCollision };
+  enum class Outcome { kDurationReached, kAutopilotDone, kCollision, kStopped };
   Outcome outcome = Outcome::kDurationReached;
   std::string reason;  // human-readable, e.g. "collision: body with 'wall'"
   std::optional<Collision> collision;
@@ -164,8 +165,8 @@ struct SitlResult {
   std::vector<perception::RangeReading> range;  // as delivered
   std::vector<SitlCameraStats> cameras;
 };
-const char* ToString(
-    SitlResult::Outcome outcome);  // "duration_reached", "autopilot_done", "collision"
+// "duration_reached", "autopilot_done", "collision", "stopped"
+const char* ToString(SitlResult::Outcome outcome);
 
 // Optional callbacks into a run.
 struct SitlHooks {
@@ -177,6 +178,9 @@ struct SitlHooks {
   // ground truth, the vehicle state at the end of exposure. For videos and reports.
   std::function<void(int camera_index, const CapturedFrame& frame, const control::QuadState&)>
       on_frame;
+  // Asked before every dynamics step: true ends the run there (outcome kStopped), with the
+  // result of the steps so far (e.g. Ctrl-C, output/interruption.h).
+  std::function<bool()> stop_requested;
 };
 
 class SitlRunner {

@@ -5,11 +5,13 @@
 
 #include <gtest/gtest.h>
 
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <random>
 
+#include "output/interruption.h"
 #include "tests/support/temp_directory_test.h"
 
 namespace aperture::experiments {
@@ -120,7 +122,8 @@ TEST_F(MonteCarloRunTest, MergedShardsEqualTheWholeRunBitForBit) {
   const nlohmann::json back = nlohmann::json::from_cbor(records);
   EXPECT_TRUE(std::isnan(back[6]["nan"].get<double>()));
 
-  const nlohmann::json summary = nlohmann::json::parse(ReadBytes(fs::path(merged) / "summary.json"));
+  const nlohmann::json summary =
+      nlohmann::json::parse(ReadBytes(fs::path(merged) / "summary.json"));
   EXPECT_EQ(summary["trials"], 7);
   EXPECT_EQ(summary["code_version"], kVersion);
   ASSERT_EQ(summary["cost"]["shards"].size(), 3u);
@@ -191,6 +194,52 @@ TEST_F(MonteCarloRunTest, RefusesAFailedShardAWholeRunAndTruncatedRecords) {
       .write("\x81\x01", 2);  // CBOR [1]: one record for two trials
   error = MergeError({s1, s3});
   EXPECT_NE(error.find("holds 1 records"), std::string::npos) << error;
+}
+
+// Ctrl-C during the trials (output/interruption.h): RunTrialsInOrder starts no further trial (the
+// one in flight finishes), and the run writes the finished trials' records as a shard does, with
+// the count, and no figures.
+class StoppingBench : public ToyBench {
+ public:
+  using ToyBench::ToyBench;
+  std::vector<nlohmann::json> RunTrials(const TrialRange& trials, int threads,
+                                        const std::function<void(int)>& done) const override {
+    return RunTrialsInOrder(trials, threads, done, [](int k) {
+      if (k == 2) output::RequestInterruption(SIGINT);  // as Ctrl-C during trial 2
+      return nlohmann::json{{"x", k}};
+    });
+  }
+};
+
+TEST_F(MonteCarloRunTest, InterruptedRunKeepsTheFinishedTrialsRecords) {
+  MonteCarloBenchRegistry registry;
+  registry.Register("stopping",
+                    [](const nlohmann::json& c) { return std::make_unique<StoppingBench>(c); });
+  output::ClearInterruption();
+  output::OutputFolder out((directory_ / "interrupted").string());
+  MonteCarloRunOptions options;
+  options.threads = 1;
+  options.code_version = kVersion;
+  const std::string outcome =
+      RunMonteCarloBench(registry, "stopping", {{"seed", 1}, {"trials", 7}}, options, out);
+  const bool interrupted = output::InterruptionRequested();
+  output::ClearInterruption();
+  EXPECT_TRUE(interrupted);
+  EXPECT_NE(outcome.find("interrupted after 3 of 7 trials"), std::string::npos) << outcome;
+  const nlohmann::json& summary = out.summary();
+  EXPECT_EQ(summary["trials_completed"], 3);
+  EXPECT_EQ(summary["run"]["trials"], 7);
+  EXPECT_EQ(summary["cost"]["trials"], 3);
+  EXPECT_FALSE(summary.contains("shard"));
+  EXPECT_FALSE(summary.contains("sum"));  // the bench's writer did not run
+  EXPECT_FALSE(fs::exists(out.Path("records.cbor")));
+  std::ifstream in(out.Path(kShardRecordsFile), std::ios::binary);
+  const nlohmann::json records = nlohmann::json::from_cbor(in);
+  ASSERT_EQ(records.size(), 3u);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(records[k]["trial"], k);
+    EXPECT_EQ(records[k]["x"], k);
+  }
 }
 
 }  // namespace
