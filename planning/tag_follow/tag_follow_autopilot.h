@@ -123,7 +123,6 @@ class TagFollowAutopilot : public perception::Autopilot {
   Eigen::Isometry3d T_BC_;
   control::VehicleParameters vehicle_;
   perception::TagFrontEnd front_end_;
-  std::string target_family_;
   servo::PointServo servo_;
   control::PositionController controller_;
   perception::PoseFusion fusion_;
