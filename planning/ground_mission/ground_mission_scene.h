@@ -19,6 +19,9 @@ struct GroundBox {
 
 // Euclidean distance from q_W to the rectangle (0 inside it).
 double DistanceToBox(const GroundBox& box, const Eigen::Vector2d& q_W);
+// Whether the two rectangles share interior points (separating-axis test on their 4 edge
+// directions; touching edges do not overlap).
+bool BoxesOverlap(const GroundBox& a, const GroundBox& b);
 // Radius of the circle around p_W that holds the rectangle (half its diagonal): a movable
 // obstacle's footprint whatever yaw it is placed with.
 double CircumscribedRadius(const GroundBox& box);

@@ -217,4 +217,14 @@ GroundRobotSample GroundMissionTimeline::Sample(double t_s) const {
   return sample;
 }
 
+std::vector<GroundDriveSegment> GroundMissionTimeline::DriveSegments() const {
+  std::vector<GroundDriveSegment> segments;
+  for (const Phase& phase : phases_) {
+    if (phase.from_s_m != phase.to_s_m) {
+      segments.push_back({phase.start_s, phase.start_s + phase.duration_s});
+    }
+  }
+  return segments;
+}
+
 }  // namespace aperture::planning

@@ -59,6 +59,13 @@ struct GroundRemovalTimes {
   double place_end_s = 0.0;  // from here it lies at place_p_W
 };
 
+// One straight drive of the robot (forward or backward), a segment the robot executes open loop
+// on its wheel odometry (D.6); times from the start of execution.
+struct GroundDriveSegment {
+  double start_s = 0.0;
+  double end_s = 0.0;
+};
+
 class GroundMissionTimeline {
  public:
   // `mission` planned by GroundMissionPlanner(scene, params). std::invalid_argument when the
@@ -73,6 +80,8 @@ class GroundMissionTimeline {
 
   const std::vector<GroundRemovalTimes>& removal_times() const { return removal_times_; }
   const Eigen::Vector2d& start_offset_W() const { return start_offset_W_; }
+  // Every "drive" and "back" phase in order (a straight piece split at a place stop is two).
+  std::vector<GroundDriveSegment> DriveSegments() const;
 
  private:
   // One motion of the robot: a turn on the spot, a straight drive along the mission path

@@ -6,11 +6,15 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <set>
 #include <string>
 #include <tuple>
+#include <utility>
+#include <vector>
 
 #include "control/constants.h"
 #include "planning/ground_mission/random_mission_scene.h"
@@ -294,6 +298,84 @@ TEST(GroundMissionTimelineTest, RejectsWhatItCannotExecute) {
   EXPECT_THROW(GroundMissionTimeline(mission, scene, stopped), std::invalid_argument);
   EXPECT_THROW(GroundMissionTimeline(mission, scene, params).Sample(std::nan("")),
                std::invalid_argument);
+}
+
+TEST(GroundMissionTimelineTest, DriveSegmentsAreTheOnlyTimesTheRobotMoves) {
+  const GroundMissionScene scene = testing::Figure9aScene();
+  GroundMissionParams params;
+  params.driving_speed_mps = 0.3;
+  const GroundMission mission = GroundMissionPlanner(scene, params).Plan();
+  ASSERT_TRUE(mission.solved()) << mission;
+  const GroundMissionTimeline timeline(mission, scene, params);
+  const std::vector<GroundDriveSegment> segments = timeline.DriveSegments();
+  ASSERT_FALSE(segments.empty());
+  double driven_m = 0.0, previous_end_s = 0.0;
+  for (const GroundDriveSegment& segment : segments) {
+    ASSERT_GT(segment.end_s, segment.start_s);
+    ASSERT_GE(segment.start_s, previous_end_s);
+    // Straight at the driving speed: the chord is the distance driven.
+    const Eigen::Vector2d a = timeline.Sample(segment.start_s).robot_p_W;
+    const Eigen::Vector2d b = timeline.Sample(segment.end_s).robot_p_W;
+    EXPECT_NEAR((b - a).norm(), (segment.end_s - segment.start_s) * params.driving_speed_mps, 1e-9);
+    const Eigen::Vector2d middle = timeline.Sample((segment.start_s + segment.end_s) / 2).robot_p_W;
+    EXPECT_LT((middle - (a + b) / 2).norm(), 1e-9);
+    // Between two segments the robot stands (it turns, grasps or places).
+    if (segment.start_s > previous_end_s) {
+      const Eigen::Vector2d before = timeline.Sample(previous_end_s).robot_p_W;
+      EXPECT_LT((timeline.Sample((previous_end_s + segment.start_s) / 2).robot_p_W - before).norm(),
+                1e-9);
+      EXPECT_LT((a - before).norm(), 1e-9);
+    }
+    driven_m += (b - a).norm();
+    previous_end_s = segment.end_s;
+  }
+  double backward_m = 0.0;
+  for (const GroundObstacleRemoval& removal : mission.removals) backward_m += removal.backward_m;
+  EXPECT_NEAR(driven_m, mission.path_length_m() + 2 * backward_m, 1e-6);
+}
+
+TEST(GroundBoxTest, OverlapByTheSeparatingAxesAgreesWithPointsInside) {
+  const GroundBox unit{Eigen::Vector2d::Zero(), Eigen::Vector2d(1.0, 1.0), 0.0};
+  EXPECT_TRUE(BoxesOverlap(unit, {Eigen::Vector2d(0.9, 0.0), Eigen::Vector2d(1.0, 1.0), 0.0}));
+  EXPECT_FALSE(BoxesOverlap(unit, {Eigen::Vector2d(1.1, 0.0), Eigen::Vector2d(1.0, 1.0), 0.0}));
+  EXPECT_FALSE(BoxesOverlap(unit, {Eigen::Vector2d(1.0, 0.0), Eigen::Vector2d(1.0, 1.0), 0.0}));
+  // A diamond beside the square's side: its corner at x = 1.1 - 0.707 reaches inside.
+  EXPECT_TRUE(BoxesOverlap(unit, {Eigen::Vector2d(1.1, 0.0), Eigen::Vector2d(1.0, 1.0), kPi / 4}));
+  // On the square's diagonal the diamond shows an edge: half-extents 0.707 (square) + 0.5.
+  const Eigen::Vector2d diagonal = Eigen::Vector2d(1.0, 1.0).normalized();
+  EXPECT_TRUE(BoxesOverlap(unit, {1.15 * diagonal, Eigen::Vector2d(1.0, 1.0), kPi / 4}));
+  EXPECT_FALSE(BoxesOverlap(unit, {1.25 * diagonal, Eigen::Vector2d(1.0, 1.0), kPi / 4}));
+  // Random pairs: a point of one inside the other means overlap, whatever the sizes and yaws.
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> position(-1.0, 1.0), size(0.05, 1.0), yaw(-kPi, kPi);
+  int overlapping = 0;
+  for (int pair = 0; pair < 300; ++pair) {
+    const GroundBox a{Eigen::Vector2d(position(rng), position(rng)),
+                      Eigen::Vector2d(size(rng), size(rng)), yaw(rng)};
+    const GroundBox b{Eigen::Vector2d(position(rng), position(rng)),
+                      Eigen::Vector2d(size(rng), size(rng)), yaw(rng)};
+    bool point_inside = false;
+    for (const auto& [box, other] : {std::pair{a, b}, std::pair{b, a}}) {
+      const Eigen::Rotation2Dd R(box.yaw_rad);
+      for (int i = 1; i < 30; ++i) {
+        for (int j = 1; j < 30; ++j) {
+          const Eigen::Vector2d q = box.p_W + R * box.size_m.cwiseProduct(Eigen::Vector2d(
+                                                      i / 30.0 - 0.5, j / 30.0 - 0.5));
+          point_inside |= DistanceToBox(other, q) == 0.0;
+        }
+      }
+    }
+    overlapping += point_inside;
+    if (point_inside) {
+      EXPECT_TRUE(BoxesOverlap(a, b)) << pair;
+    }
+    // Far apart (centres beyond the sum of the circumscribed radii): never.
+    if ((a.p_W - b.p_W).norm() > CircumscribedRadius(a) + CircumscribedRadius(b)) {
+      EXPECT_FALSE(BoxesOverlap(a, b)) << pair;
+    }
+    EXPECT_EQ(BoxesOverlap(a, b), BoxesOverlap(b, a)) << pair;
+  }
+  EXPECT_GT(overlapping, 30);
 }
 
 }  // namespace
