@@ -8,8 +8,7 @@ namespace aperture::experiments {
 namespace {
 
 planning::GroundBox Footprint(const Eigen::Isometry3d& T_WT, const Eigen::Vector3d& size_m) {
-  const Eigen::Matrix3d R_WT = T_WT.rotation();
-  return {T_WT.translation().head<2>(), size_m.head<2>(), std::atan2(R_WT(1, 0), R_WT(0, 0))};
+  return {T_WT.translation().head<2>(), size_m.head<2>(), TagGroundYaw(T_WT)};
 }
 
 const Eigen::Isometry3d& RequireTag(const std::map<int, Eigen::Isometry3d>& T_WT_by_id, int id,
@@ -24,6 +23,11 @@ const Eigen::Isometry3d& RequireTag(const std::map<int, Eigen::Isometry3d>& T_WT
 }
 
 }  // namespace
+
+double TagGroundYaw(const Eigen::Isometry3d& T_WT) {
+  const Eigen::Matrix3d R_WT = T_WT.rotation();
+  return std::atan2(R_WT(1, 0), R_WT(0, 0));
+}
 
 planning::GroundMissionScene TagsMissionScene(const sim::TagsSceneParams& field,
                                               const std::map<int, Eigen::Isometry3d>& T_WT_by_id) {

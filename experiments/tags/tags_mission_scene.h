@@ -14,6 +14,9 @@
 
 namespace aperture::experiments {
 
+// The yaw about z_W of the object a tag lies on (x_T along the object's x) [rad].
+double TagGroundYaw(const Eigen::Isometry3d& T_WT);
+
 // std::invalid_argument naming the id when the goal's or the robot's tag is missing (the map has
 // not seen it: fly the mapping pass again); an obstacle without a tag is not in the scene.
 planning::GroundMissionScene TagsMissionScene(const sim::TagsSceneParams& field,
