@@ -143,11 +143,16 @@ void RegisterBuiltinMissions(MissionRegistry& registry) {
   registry.Register("map",
                     "tag mapping flight (seed 001, paper D): lawn-mower coverage of the tag field, "
                     "apriltag front end, incremental tag map, scored on the ground truth",
-                    {"tags"}, MakeTagMappingFlight);
+                    {}, MakeTagMappingFlight);
   registry.Register("follow",
                     "ground robot executing its planned mission (seed 001, paper D Alg. 2/3) "
                     "while the quadrotor follows it by visual servoing on its tag (ViSP points)",
                     {}, MakeTagFollowFlight);
+  registry.Register("deliver",
+                    "paper D's whole mission (seed 001): mapping flight, tag map, the ground "
+                    "robot's mission planned on it and executed with relocalization while the "
+                    "quadrotor follows; the first-aid kit onto the goal",
+                    {"tags"}, MakeTagDeliveryFlight);
   registry.Register("hover", "hover at the start pose on ground truth (reference flight)", {},
                     [](const MissionContext& context) -> std::unique_ptr<MissionFlight> {
                       return std::make_unique<HoverFlight>(context);

@@ -30,5 +30,8 @@
 namespace aperture::experiments {
 
 std::unique_ptr<MissionFlight> MakeTagFollowFlight(const MissionContext& context);
+// Mission `deliver`, paper D's whole mission: the mapping flight (mission `map`), the map
+// optimized, the robot's mission planned on the map's tag poses, then `follow`'s execution.
+std::unique_ptr<MissionFlight> MakeTagDeliveryFlight(const MissionContext& context);
 
 }  // namespace aperture::experiments

@@ -32,14 +32,10 @@ class TagMappingFlight final : public MissionFlight {
       : scene_(context.scenario.scene()),
         field_(context.scenario.params().tags),
         p_WB_start_(context.sitl.initial_state.p_WB) {
-    params_.camera_id = TagsDownCameraIndex(context.scenario, "map");
-    static_cast<perception::ImuNoiseParams&>(params_.fusion.filter) = context.sitl.imu;
     odometry_ = LoadOdometryParams(context, 29);
+    params_ = TagsMappingParams(context, "map");
     LoadParams(context.params, &params_);  // config::LoadParams: reads, rejects, validates
-    const sim::ScenarioCamera& camera = context.scenario.cameras()[params_.camera_id];
-    autopilot_ = std::make_unique<planning::TagMappingAutopilot>(
-        params_, TagsFieldForMapping(field_), camera.model, *camera.T_BC,
-        context.sitl.dynamics.vehicle, TagsFieldFrontEndParams(field_), perception::TagMapParams{});
+    autopilot_ = MakeTagsMappingAutopilot(context, params_);
     adapter_ = MakeOdometryAdapter(autopilot_.get(), odometry_);
   }
 
@@ -154,6 +150,23 @@ class TagMappingFlight final : public MissionFlight {
 };
 
 }  // namespace
+
+planning::TagMappingParams TagsMappingParams(const MissionContext& context,
+                                             const std::string& mission) {
+  planning::TagMappingParams params;
+  params.camera_id = TagsDownCameraIndex(context.scenario, mission);
+  static_cast<perception::ImuNoiseParams&>(params.fusion.filter) = context.sitl.imu;
+  return params;
+}
+
+std::unique_ptr<planning::TagMappingAutopilot> MakeTagsMappingAutopilot(
+    const MissionContext& context, const planning::TagMappingParams& params) {
+  const sim::TagsSceneParams& field = context.scenario.params().tags;
+  const sim::ScenarioCamera& camera = context.scenario.cameras()[params.camera_id];
+  return std::make_unique<planning::TagMappingAutopilot>(
+      params, TagsFieldForMapping(field), camera.model, *camera.T_BC, context.sitl.dynamics.vehicle,
+      TagsFieldFrontEndParams(field), perception::TagMapParams{});
+}
 
 std::unique_ptr<MissionFlight> MakeTagMappingFlight(const MissionContext& context) {
   return std::make_unique<TagMappingFlight>(context);

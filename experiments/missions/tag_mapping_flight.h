@@ -26,10 +26,20 @@
 // position in the origin tag's frame, error after and before optimization, rotation error,
 // flipped, sigma, observations). The video shows the map growing (inset, lower right).
 #include <memory>
+#include <string>
 
 #include "experiments/missions/mission_registry.h"
+#include "planning/tag_mapping/tag_mapping_autopilot.h"
 
 namespace aperture::experiments {
+
+// The mapping parameters' defaults for the scenario: its downward camera (std::invalid_argument
+// naming `mission` without one) and the IMU noise of the vehicle.
+planning::TagMappingParams TagsMappingParams(const MissionContext& context,
+                                             const std::string& mission);
+// The mapping autopilot over the scenario's tag field with its downward camera.
+std::unique_ptr<planning::TagMappingAutopilot> MakeTagsMappingAutopilot(
+    const MissionContext& context, const planning::TagMappingParams& params);
 
 std::unique_ptr<MissionFlight> MakeTagMappingFlight(const MissionContext& context);
 

@@ -157,6 +157,10 @@ void TagFollowAutopilot::OnFrame(const perception::Frame& frame) {
       sample.target_center_px += corner / 4.0;
     }
     if (x) {
+      Eigen::Isometry3d T_WB = Eigen::Isometry3d::Identity();
+      T_WB.linear() = x->q_WB.toRotationMatrix();
+      T_WB.translation() = x->p_WB;
+      sample.T_WT = T_WB * T_BC_ * tag.chosen().T_CT;
       ServoOn(tag, frame.t_s, *x);
       sample.servo_error = servo_error_;
       sample.v_B = reference_.v_B;

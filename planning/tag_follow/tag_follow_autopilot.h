@@ -82,6 +82,10 @@ struct TagFollowSample {
   double servo_error = 0.0;                                    // |s - s*| (0 without a step)
   Eigen::Vector3d v_B = Eigen::Vector3d::Zero();               // the capped reference [m/s]
   double yaw_rate_radps = 0.0;
+  // The target tag's pose in W from this frame (the tag's pose in the camera through the state
+  // estimate): what relocalizes the ground robot (paper D Sec. D.6). nullopt without the tag
+  // or an estimate.
+  std::optional<Eigen::Isometry3d> T_WT;
 };
 
 class TagFollowAutopilot : public perception::Autopilot {

@@ -36,7 +36,7 @@ TEST(TagMappingFlightSitl, MapsASmallFieldWithinTwoCentimetres) {
 
   MissionRegistry missions;
   RegisterBuiltinMissions(missions);
-  ASSERT_EQ(missions.DefaultFor("tags"), "map");
+  ASSERT_EQ(missions.DefaultFor("tags"), "deliver");  // whose first stage is this flight
   // 30 px for the 0.25 m tags: 1.33 m high, two tracks over the small field.
   const config::ConfigTree overrides =
       config::ConfigTree::FromCommandLine("", {}, {"mission.min_tag_side_px=30"});

@@ -1,0 +1,72 @@
+#include "experiments/missions/fly_mission.h"
+
+#include <algorithm>
+#include <memory>
+#include <stdexcept>
+
+#include "config/config_tree.h"
+#include "experiments/missions/builtin_missions.h"
+#include "sim/scenario/scenario.h"
+#include "sim/scenario/scenario_params.h"
+#include "sim/scenario/scenario_sitl.h"
+#include "sim/sitl/sitl_runner.h"
+
+namespace aperture::experiments {
+
+MissionFlightRun FlyMission(const MissionFlightSpec& spec) {
+  std::vector<std::string> set_items = spec.set_items;
+  set_items.push_back("seed=" + std::to_string(spec.seed));
+  const config::ConfigTree tree = sim::ScenarioConfig(spec.scenario, {}, set_items);
+  config::ParamReader root = tree.Reader();
+  sim::ScenarioParams scenario_params;
+  LoadParams(root, &scenario_params);
+  config::ParamReader mission_params = root.Section("mission");
+  root.RejectUnknownKeys();
+  sim::Scenario scenario = sim::BuildScenario(scenario_params);
+  sim::SitlRunnerParams sitl;
+  sitl.duration_s = spec.duration_s;
+  sitl.trajectory_decimation = spec.trajectory_decimation;
+  sim::ConfigureSitlFromScenario(scenario, &sitl);
+  for (sim::SitlCamera& camera : sitl.cameras) camera.render.ground_truth = false;
+  sitl.SetSeed(spec.seed);
+
+  MissionRegistry missions;
+  RegisterBuiltinMissions(missions);
+  const std::string mission =
+      spec.mission.empty() ? missions.DefaultFor(scenario_params.scenario) : spec.mission;
+  const std::unique_ptr<MissionFlight> flight =
+      missions.Create(mission, {scenario, sitl, mission_params});
+  sitl.duration_s = std::max(sitl.duration_s, flight->MinimumDurationS());
+  sim::SitlRunner runner(sitl, &scenario.scene());
+  const sim::SitlResult result =
+      runner.Run(flight->autopilot(), MakeMissionHooks(flight.get(), &scenario));
+  MissionFlightRun run;
+  run.evaluation = flight->Evaluate(result);
+  run.sim_outcome = sim::ToString(result.outcome);
+  run.sim_time_s = result.sim_time_s;
+  run.wall_time_s = result.timing.wall_time_s;
+  return run;
+}
+
+nlohmann::json MissionFlightRunToJson(const MissionFlightRun& run) {
+  return {{"passed", run.evaluation.passed},   {"evaluation_outcome", run.evaluation.outcome},
+          {"figures", run.evaluation.figures}, {"sim_outcome", run.sim_outcome},
+          {"sim_time_s", run.sim_time_s},      {"wall_time_s", run.wall_time_s}};
+}
+
+MissionFlightRun MissionFlightRunFromJson(const nlohmann::json& json) {
+  try {
+    MissionFlightRun run;
+    run.evaluation.passed = json.at("passed").get<bool>();
+    run.evaluation.outcome = json.at("evaluation_outcome").get<std::string>();
+    run.evaluation.figures = json.at("figures");
+    run.sim_outcome = json.at("sim_outcome").get<std::string>();
+    run.sim_time_s = json.at("sim_time_s").get<double>();
+    run.wall_time_s = json.at("wall_time_s").get<double>();
+    return run;
+  } catch (const nlohmann::json::exception& e) {
+    throw std::invalid_argument(std::string("mission flight record: ") + e.what());
+  }
+}
+
+}  // namespace aperture::experiments

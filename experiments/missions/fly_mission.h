@@ -1,0 +1,42 @@
+#pragma once
+// One seeded closed-loop SITL flight of a registered mission in a built-in scenario, for benches
+// that count missions over many scenes: the scenario from its name and `--set`-style items
+// (scenario keys and mission.*), the mission from the builtin registry, the run through
+// MakeMissionHooks (objects the mission moves), scored by the mission's own Evaluate. No video,
+// no per-frame outputs.
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "experiments/missions/mission_registry.h"
+
+namespace aperture::experiments {
+
+struct MissionFlightRun {
+  MissionEvaluation evaluation;
+  std::string sim_outcome;  // sim::ToString(SitlResult::Outcome)
+  double sim_time_s = 0.0;
+  double wall_time_s = 0.0;
+};
+
+struct MissionFlightSpec {
+  std::string scenario;
+  std::string mission;  // empty = the scenario's default mission
+  std::vector<std::string> set_items;
+  std::uint64_t seed = 0;  // the scenario's (layout) and the sensors' noise
+  // Simulated time; the mission's MinimumDurationS when longer (it may end earlier) [s].
+  double duration_s = 0.0;
+  int trajectory_decimation = 5;  // ground truth kept every k-th 1 kHz state
+};
+
+// Throws std::invalid_argument (or config::UsageError) for an unknown scenario, mission or key,
+// or a mission that cannot be set up on the scene.
+MissionFlightRun FlyMission(const MissionFlightSpec& spec);
+
+// A run as JSON and back, exactly (trial records of Monte-Carlo benches); std::invalid_argument
+// naming a missing or malformed key.
+nlohmann::json MissionFlightRunToJson(const MissionFlightRun& run);
+MissionFlightRun MissionFlightRunFromJson(const nlohmann::json& json);
+
+}  // namespace aperture::experiments
