@@ -10,6 +10,7 @@ void AddBenchCommand(CLI::App& app, int* exit_code) {
       app.add_subcommand("bench", "Run perception and control benchmarks against ground truth");
   bench->require_subcommand(1);
   AddBenchControlCommand(*bench, exit_code);
+  AddBenchDeliveryCommand(*bench, exit_code);
   AddBenchGapCommand(*bench, exit_code);
   AddBenchGapflytCommand(*bench, exit_code);
   AddBenchLedCommand(*bench, exit_code);

@@ -7,6 +7,7 @@
 #include "experiments/gapflyt/gapflyt_monte_carlo_bench.h"
 #include "experiments/led/led_monte_carlo_bench.h"
 #include "experiments/mononav/mononav_monte_carlo_bench.h"
+#include "experiments/tags/delivery_monte_carlo_bench.h"
 #include "experiments/tags/tags_monte_carlo_bench.h"
 #include "experiments/ts2p/ts2p_monte_carlo_bench.h"
 
@@ -16,6 +17,7 @@ MonteCarloBenchRegistry MonteCarloBenchRegistry::WithBuiltins(
     const perception::TagDetectorRegistry& tag_detectors) {
   MonteCarloBenchRegistry registry;
   registry.Register(kControlBenchName, &MakeControlMonteCarloBench);
+  registry.Register(kDeliveryBenchName, &MakeDeliveryMonteCarloBench);
   registry.Register(kGapBenchName, &MakeGapMonteCarloBench);
   registry.Register(kGapflytBenchName, &MakeGapflytMonteCarloBench);
   registry.Register(kLedBenchName, &MakeLedMonteCarloBench);
