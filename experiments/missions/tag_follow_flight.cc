@@ -15,6 +15,7 @@
 #include "experiments/missions/odometry_adapter.h"
 #include "experiments/missions/tag_mapping_flight.h"
 #include "experiments/tags/drifting_ground_robot.h"
+#include "experiments/tags/ground_mission_inset.h"
 #include "experiments/tags/image_centre_offset.h"
 #include "experiments/tags/tag_map_evaluation.h"
 #include "experiments/tags/tagged_object_mover.h"
@@ -199,7 +200,15 @@ class TagFollowFlight final : public MissionFlight {
     if (mapping_) node["map"] = config::DumpParams(mapping_params_);
     return node;
   }
-  void DrawOverlay(cv::Mat& onboard_bgr) const override { stages_->DrawOverlay(onboard_bgr); }
+  void DrawOverlay(cv::Mat& onboard_bgr) const override {
+    stages_->DrawOverlay(onboard_bgr);
+    if (timeline_ && !track_.empty()) {
+      DrawGroundMissionInset(ground_scene_, *timeline_, track_.back().sample,
+                             {field_.goal_size_m.head<2>(), field_.robot_size_m.head<2>(),
+                              field_.movable_size_m.head<2>()},
+                             &onboard_bgr);
+    }
+  }
 
   void MoveObjects(double t_s, sim::Scene* scene) override {
     if (!ground_robot_) return;  // mapping: the robot stands at its start
