@@ -143,6 +143,7 @@ class TagFollowFlight final : public MissionFlight {
     context.params.Read("robot_relocalize", &relocalization_.enabled);
     context.params.Read("robot_fix_timeout_s", &relocalization_.fix_timeout_s);
     context.params.Read("robot_max_correction_m", &relocalization_.max_correction_m);
+    context.params.Read("robot_max_segment_m", &relocalization_.max_segment_m);
     params_.camera_id = camera_index;
     static_cast<perception::ImuNoiseParams&>(params_.fusion.filter) = context.sitl.imu;
     planning::LoadParams(context.params, &params_);
@@ -157,7 +158,7 @@ class TagFollowFlight final : public MissionFlight {
           std::to_string(seed_) + "): every order of removals is blocked; try another --seed");
     }
     truth_plan_s_ = timeline_->duration_s() +
-                    kFixAllowanceS * static_cast<double>(timeline_->DriveSegments().size());
+                    kFixAllowanceS * static_cast<double>(ground_robot_->commands().size());
 
     const sim::Scene& scene = context.scenario.scene();
     robot_.emplace(scene, "robot", "tag2");

@@ -36,7 +36,7 @@ DriftingGroundRobot::DriftingGroundRobot(const planning::GroundMissionTimeline& 
                                          const GroundRelocalizationParams& relocalization,
                                          std::uint64_t seed)
     : timeline_(timeline),
-      segments_(timeline.DriveSegments()),
+
       drift_(drift),
       relocalization_(relocalization),
       rng_(seed),
@@ -45,6 +45,21 @@ DriftingGroundRobot::DriftingGroundRobot(const planning::GroundMissionTimeline& 
   control::RequireNonNegative(drift.heading_sigma_rad, "drift.heading_sigma_rad");
   control::RequirePositive(relocalization.fix_timeout_s, "relocalization.fix_timeout_s");
   control::RequirePositive(relocalization.max_correction_m, "relocalization.max_correction_m");
+  control::RequirePositive(relocalization.max_segment_m, "relocalization.max_segment_m");
+  for (const planning::GroundDriveSegment& segment : timeline.DriveSegments()) {
+    const double length_m =
+        (timeline.Sample(segment.end_s).robot_p_W - timeline.Sample(segment.start_s).robot_p_W)
+            .norm();
+    const int pieces =
+        relocalization.enabled
+            ? std::max(1, static_cast<int>(std::ceil(length_m / relocalization.max_segment_m)))
+            : 1;
+    const double piece_s = (segment.end_s - segment.start_s) / pieces;
+    for (int i = 0; i < pieces; ++i) {
+      segments_.push_back({segment.start_s + i * piece_s,
+                           i + 1 == pieces ? segment.end_s : segment.start_s + (i + 1) * piece_s});
+    }
+  }
 }
 
 void DriftingGroundRobot::Start(double t_s) {
@@ -105,7 +120,8 @@ void DriftingGroundRobot::BeginSegment() {
   const Eigen::Vector2d command_W = command.planned_W - belief_offset_W_;
   std::normal_distribution<double> normal(0.0, 1.0);
   const double scale = 1.0 + drift_.scale_sigma * normal(rng_);
-  command.heading_drift_rad = drift_.heading_sigma_rad * normal(rng_);
+  command.heading_drift_rad =
+      drift_.heading_sigma_rad * std::sqrt(command.planned_W.norm()) * normal(rng_);
   command.true_W =
       scale *
       (Eigen::Rotation2Dd(true_yaw_offset_rad_ + command.heading_drift_rad / 2) * command_W);

@@ -4,12 +4,14 @@
 // relocalized by the aerial robot between segments, and a fail-safe stop on mapping or
 // communication errors (D.7.2: "the robots stopped to move and the error was reported").
 //
-// Model. planning::GroundMissionTimeline is the plan; each of its drive segments is one open-loop
-// command d_cmd from where the robot believes it stands to the segment's planned end. The wheels
-// execute it with a distance scale error s and a heading error psi drawn per segment
-// (GroundOdometryDriftParams): the true displacement is (1 + s) R(e + psi / 2) d_cmd, e the
-// heading error the robot carries into the segment, which grows by psi over it. Odometry believes
-// the command was executed exactly. Turns are commanded relative to the believed heading.
+// Model. planning::GroundMissionTimeline is the plan; each of its drive segments is driven as
+// open-loop commands (with relocalization: pieces of at most max_segment_m, as the follower
+// watches the robot anyway), each d_cmd from where the robot believes it stands to the piece's
+// planned end. The wheels execute it with a distance scale error s and a heading error psi drawn
+// per command (GroundOdometryDriftParams; psi's sigma grows with the square root of the length):
+// the true displacement is (1 + s) R(e + psi / 2) d_cmd, e the heading error the robot carries
+// into the command, which grows by psi over it. Odometry believes the command was executed
+// exactly. Turns are commanded relative to the believed heading.
 // - With relocalization the robot stops at the end of every segment until the aerial robot
 //   reports its tag's pose (a GroundRobotFix) taken after it stopped; the fix replaces its
 //   belief, so the next command corrects the position (and its turn the heading) error. A fix
@@ -34,13 +36,14 @@ namespace aperture::experiments {
 struct GroundOdometryDriftParams {
   // Mecanum-wheel odometry (the youBot's) slips: a few percent of the distance driven.
   double scale_sigma = 0.03;        // distance error per segment, 1 sigma [fraction]
-  double heading_sigma_rad = 0.02;  // heading change over a segment, 1 sigma [rad]
+  double heading_sigma_rad = 0.02;  // heading change over 1 m of a command, 1 sigma [rad]
 };
 
 struct GroundRelocalizationParams {
   bool enabled = true;
   double fix_timeout_s = 3.0;     // no fix this long after stopping: communication error [s]
   double max_correction_m = 0.3;  // a fix farther from the belief: mapping error [m]
+  double max_segment_m = 1.0;     // the longest drive between two fixes [m]
 };
 
 // The aerial robot's estimate of the ground robot's pose (its tag's) at sensor time t_s.
@@ -80,6 +83,8 @@ class DriftingGroundRobot {
   // Why the robot stopped in kFailSafe ("" otherwise).
   const std::string& fail_reason() const { return fail_reason_; }
   const std::vector<GroundRelocalization>& relocalizations() const { return relocalizations_; }
+  // The open-loop commands, in timeline time (the drive segments, split when relocalizing).
+  const std::vector<planning::GroundDriveSegment>& commands() const { return segments_; }
   // Seconds of the timeline executed so far.
   double execution_s() const { return tau_s_; }
 

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "config/yaml_read_archive.h"
+#include "control/constants.h"
 #include "control/control_params_io.h"
 #include "perception/estimation/pose_fusion_params_io.h"
 #include "perception/tags/tag_detector_registry.h"
@@ -22,6 +23,9 @@ namespace {
 constexpr double kMaxFollowCameraTiltDeg = 10.0;
 // Peak over mean speed of a rest-to-rest minimum-jerk segment.
 constexpr double kFollowMinimumJerkPeakToMean = 1.875;
+// The largest turn about the optical axis left to the servo before the corners are matched to
+// the goal view's next quarter turn (hysteresis above the 45 deg of the nearest one) [rad].
+constexpr double kMaxQuarterTurnErrorRad = 60.0 * control::kDegToRad;
 
 double HeadingOfRotation(const Eigen::Matrix3d& R_WB) { return std::atan2(R_WB(1, 0), R_WB(0, 0)); }
 
@@ -120,12 +124,12 @@ TagFollowAutopilot::TagFollowAutopilot(const TagFollowParams& params, double tar
   if (!search_xy_W_.allFinite()) {
     throw std::invalid_argument("TagFollowAutopilot: search_xy_W must be finite");
   }
-  // The goal view: the tag centred below the level camera, x_T along x_C, at follow_height_m.
-  servo::PointServo::Corners desired;
+  // The goal view: the tag centred below the level camera, x_T along x_C, at follow_height_m
+  // (matched to the seen corners up to a quarter turn: ServoOn).
   for (int k = 0; k < 4; ++k) {
-    desired[k] = perception::TagCorner(k, target_size_m_).head<2>() / params_.follow_height_m;
+    desired_[k] = perception::TagCorner(k, target_size_m_).head<2>() / params_.follow_height_m;
   }
-  servo_.SetDesired(desired, params_.follow_height_m);
+  servo_.SetDesired(desired_, params_.follow_height_m);
 }
 
 void TagFollowAutopilot::OnImu(const perception::ImuSample& sample) { fusion_.AddImu(sample); }
@@ -186,8 +190,22 @@ void TagFollowAutopilot::ServoOn(const perception::TagResult& tag, double t_s,
   const double depth_m =
       (LevelFromCamera(R_WB, T_BC_.linear()) * tag.chosen().T_CT.translation()).z();
   if (!(depth_m > 0.0)) return;
+  // Point-feature IBVS drives the camera away from a target turned by ~pi about the optical axis
+  // (Chaumette's "camera retreat"; a robot facing against the goal view did climb out of sight):
+  // the corners are matched to the goal view turned by the quarter turn nearest to the tag's,
+  // kept while within kMaxQuarterTurnErrorRad, so the servo itself turns at most that far.
+  const auto edge_angle_rad = [&](int shift) {
+    const Eigen::Vector2d edge = (*level)[(shift + 1) % 4] - (*level)[shift % 4];
+    const Eigen::Vector2d goal = desired_[1] - desired_[0];
+    return std::abs(std::atan2(goal.x() * edge.y() - goal.y() * edge.x(), goal.dot(edge)));
+  };
+  if (edge_angle_rad(corner_shift_) > kMaxQuarterTurnErrorRad) {
+    for (int shift = 0; shift < 4; ++shift) {
+      if (edge_angle_rad(shift) < edge_angle_rad(corner_shift_)) corner_shift_ = shift;
+    }
+  }
   servo::PointServo::Corners corners;
-  std::copy(level->begin(), level->end(), corners.begin());
+  for (int k = 0; k < 4; ++k) corners[k] = (*level)[(k + corner_shift_) % 4];
   // What the vehicle did: its estimated velocity in the level body frame and heading rate.
   const double heading_rad = HeadingOfRotation(R_WB);
   servo::BodyVelocityReference own_motion;

@@ -21,7 +21,8 @@
 //
 // Frames: W world (z up), B body, C camera (OpenCV, looking down), T tag (x right, y down, z into
 // the tag: tag_detector.h). The goal view: the tag centred, x_T along x_C (R_CT = I), at depth
-// follow_height_m. SI units; times on the sensor clock.
+// follow_height_m, up to the quarter turn nearest the tag's rotation (point IBVS retreats from a
+// target turned by ~pi). SI units; times on the sensor clock.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
@@ -147,6 +148,8 @@ class TagFollowAutopilot : public perception::Autopilot {
   double servo_error_ = 0.0;                           // its |s - s*|
   std::vector<TagFollowSample> trace_;
   std::optional<std::array<Eigen::Vector2d, 4>> last_corners_px_;
+  servo::PointServo::Corners desired_;  // the goal view's corners (normalized, level camera)
+  int corner_shift_ = 0;                // goal corner k is seen corner (k + shift) % 4
 };
 
 }  // namespace aperture::planning

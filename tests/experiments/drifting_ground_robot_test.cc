@@ -67,7 +67,12 @@ TEST(DriftingGroundRobot, WithoutDriftItIsThePlanAndStopsOncePerSegmentForAFix) 
   });
   EXPECT_EQ(robot.state(), GroundRobotState::kDone);
   EXPECT_DOUBLE_EQ(robot.execution_s(), m.timeline->duration_s());
-  EXPECT_EQ(robot.relocalizations().size(), m.timeline->DriveSegments().size());
+  // One fix per open-loop command: the drive segments, cut into pieces of at most 1 m.
+  ASSERT_GT(robot.commands().size(), m.timeline->DriveSegments().size());
+  for (const planning::GroundDriveSegment& command : robot.commands()) {
+    EXPECT_LE((command.end_s - command.start_s) * m.params.driving_speed_mps, 1.0 + 1e-9);
+  }
+  EXPECT_EQ(robot.relocalizations().size(), robot.commands().size());
   for (const GroundRelocalization& r : robot.relocalizations()) EXPECT_LT(r.correction_m, 1e-9);
 }
 
@@ -127,7 +132,7 @@ TEST(DriftingGroundRobot, WithoutAFixItStopsForGoodAtTheFirstSegmentsEnd) {
   Execute(&robot, m.timeline->duration_s(), false);
   EXPECT_EQ(robot.state(), GroundRobotState::kFailSafe);
   EXPECT_NE(robot.fail_reason().find("communication"), std::string::npos) << robot.fail_reason();
-  EXPECT_DOUBLE_EQ(robot.execution_s(), m.timeline->DriveSegments().front().end_s);
+  EXPECT_DOUBLE_EQ(robot.execution_s(), robot.commands().front().end_s);
   const Eigen::Vector2d stopped_W = robot.Now().robot_p_W;
   robot.Advance(1e3, GroundRobotFix{1e3, stopped_W, 0.0});
   EXPECT_EQ(robot.state(), GroundRobotState::kFailSafe);
