@@ -162,7 +162,7 @@ TEST_F(StalledMission, AtTheStartItLooksToOneSideOfTheGoalThenToTheOther) {
                         perception::DefaultMonoDepthModel());
   Fly(&mission, 0.0, 0.95);
   EXPECT_EQ(mission.frames_without_path(), int(mission.frames().size()));
-  EXPECT_EQ(mission.recoveries(), 0);  // < recovery_after_s = 1 s at rest
+  EXPECT_EQ(mission.back_offs() + mission.look_asides(), 0);  // < recovery_after_s = 1 s at rest
   // At 1.05 s: nothing flown to back off along, so the heading turns 0.6 rad left at 0.5 rad/s
   // (1.2 s), rests 1 s, then turns 1.2 rad right (2.4 s).
   Fly(&mission, 1.0, 2.5);
@@ -179,7 +179,7 @@ TEST_F(StalledMission, AtTheStartItLooksToOneSideOfTheGoalThenToTheOther) {
   ForestMission none(params_, camera_, ForwardMount(), vehicle_,
                      perception::DefaultMonoDepthModel());
   Fly(&none, 0.0, 3.0);
-  EXPECT_EQ(none.recoveries(), 0);
+  EXPECT_EQ(none.back_offs() + none.look_asides(), 0);
   EXPECT_NEAR(none.heading_rad(), 0.0, 1e-9);
 }
 
@@ -188,7 +188,7 @@ TEST_F(StalledMission, AfterFlyingItBacksOffAlongTheFlownPath) {
                         perception::DefaultMonoDepthModel());
   // 1.5 m forward in 1.5 s, then at rest without a path.
   Fly(&mission, 0.0, 2.45, 1.5, 1.5);
-  EXPECT_EQ(mission.recoveries(), 0);
+  EXPECT_EQ(mission.back_offs() + mission.look_asides(), 0);
   ASSERT_GE(mission.trail().points_W().size(), 14u);  // ~0.1 m apart
   EXPECT_NEAR(mission.trail().points_W().back().x(), 1.5, 0.1);
   Fly(&mission, 2.5, 2.7, 1.5, 1.5);
@@ -200,7 +200,7 @@ TEST_F(StalledMission, AfterFlyingItBacksOffAlongTheFlownPath) {
   // The mission commands the back-off: the reference accelerates towards -x. (The vehicle here
   // does not move, so the spline flies on; the hold is not a map: no further recovery meanwhile.)
   Fly(&mission, 2.705, 4.0, 1.5, 1.5);
-  EXPECT_EQ(mission.recoveries(), 1);
+  EXPECT_EQ(mission.back_offs() + mission.look_asides(), 1);
   EXPECT_EQ(mission.heading_rad(), 0.0);
 }
 
