@@ -46,7 +46,7 @@ void AddBenchMononavCommand(CLI::App& bench, int* exit_code) {
   command
       ->add_option("--configurations", options->bench.configurations,
                    "Configurations flown on every layout: edt,no_edt,random_waypoint (default "
-                   "all; edt is always needed)")
+                   "all)")
       ->delimiter(',');
   command->add_option(
       "--set", options->bench.set_items,

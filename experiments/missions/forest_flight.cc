@@ -98,9 +98,13 @@ class ForestFlight final : public MissionFlight {
     f["waypoint_order"] =
         params_.waypoint_order == planning::WaypointOrder::kOptimal ? "optimal" : "random";
     f["replans"] = m.replans();
+    f["selections"] = m.selections();
+    f["frames_replanned"] = m.frames_replanned();
     f["frames"] = static_cast<int>(m.frames().size());
     f["frames_without_path"] = m.frames_without_path();
-    f["recoveries"] = m.recoveries();
+    f["back_offs"] = m.back_offs();
+    f["look_asides"] = m.look_asides();
+    f["recoveries"] = m.back_offs() + m.look_asides();
     f["perception_ms"] = ForestFrameTiming(m, false);
     f["planning_ms"] = ForestFrameTiming(m, true);
     f["odometry_fused"] = m.fusion_counts().applied;

@@ -3,11 +3,15 @@
 // flights of the `forest` mission (experiments/missions/forest_flight.h) through random forest
 // layouts (one per seed, goal 22 m away), each scored by EvaluateForestFlight on ground truth:
 //   table_iv   success with and without the ego-dynamic transform (same layouts)
-//   table_ii   replans (segments rejected by their spatial windows) with the optimal and a random
-//              waypoint order (same layouts, with EDT)
+//   table_ii   replans (segments rejected by their spatial windows, the next best then tried)
+//              with the optimal and a random waypoint order (same layouts, with EDT): per flight,
+//              per waypoint selection (one per frame not flying straight to the goal) and the
+//              share of selections with any
+//   success    success / failure counts of every configuration flown, with the flights'
+//              recoveries (back-offs along the flown path, look-asides at rest)
 //   timing     per-frame thread CPU of perception (depth map) and planning (EDT, selection,
 //              spline) over every frame of the EDT flights: median and max [ms]
-//   acceptance the checks as booleans
+//   acceptance the checks as booleans (those whose configurations were flown)
 // Flights run one after another (deterministic; each flight is a function of its seed). The bench
 // runs as a Monte-Carlo bench (mononav_monte_carlo_bench.h: whole or sharded); a trial is one
 // layout flown in every configuration.
@@ -29,13 +33,14 @@ struct MononavBenchOptions {
   // ahead on the line): the same code paths for tests and quick looks.
   bool quick = false;
   // Which configurations to fly on every layout (edt | no_edt | random_waypoint); Table IV needs
-  // edt and no_edt, Table II edt and random_waypoint. Empty = all three.
+  // edt and no_edt, Table II edt and random_waypoint, the timing edt; a table row, the timing or an
+  // acceptance check whose configurations were not flown is left out. Empty = all three.
   std::vector<std::string> configurations;
   // Overrides of the `forest` scenario and of the mission (`mission.*`), applied to every flight.
   std::vector<std::string> set_items;
   std::string flights_csv_path;  // one row per flight; empty = none
 
-  void Validate() const;  // std::invalid_argument naming the option
+  void Validate() const;    // std::invalid_argument naming the option
   int LayoutCount() const;  // the layouts flown: 1 when quick, else trials
 };
 

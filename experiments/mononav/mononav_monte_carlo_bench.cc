@@ -67,9 +67,12 @@ class MononavMonteCarloBench : public MonteCarloBench {
   }
 
   std::string DescribeOutcome(const nlohmann::json& summary) const override {
-    const nlohmann::json& edt = summary["table_iv"]["with_edt"];
-    return "aperture bench mononav: " + std::to_string(edt["success"].get<int>()) + "/" +
-           std::to_string(edt["flights"].get<int>()) + " flights with EDT reached the goal";
+    std::string line = "aperture bench mononav: flights that reached the goal:";
+    for (const auto& [configuration, row] : summary["success"].items()) {
+      line += " " + configuration + " " + std::to_string(row["success"].get<int>()) + "/" +
+              std::to_string(row["flights"].get<int>());
+    }
+    return line;
   }
 
  private:

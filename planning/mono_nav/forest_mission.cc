@@ -68,6 +68,12 @@ WaypointSelectorParams WithCameraFieldOfView(WaypointSelectorParams params,
   return params;
 }
 
+// The frames for which `counted` holds.
+int CountForestFrames(const std::vector<ForestFrameRecord>& frames,
+                      bool (*counted)(const ForestFrameRecord&)) {
+  return static_cast<int>(std::count_if(frames.begin(), frames.end(), counted));
+}
+
 }  // namespace
 
 std::optional<double> ForestHeadingTarget(const Eigen::Vector3d& p_W, const Eigen::Vector3d& goal_W,
@@ -162,16 +168,24 @@ int ForestMission::replans() const {
   return sum;
 }
 
-int ForestMission::recoveries() const {
-  int count = 0;
-  for (const ForestFrameRecord& record : frames_) count += record.backed_off || record.looked_aside;
-  return count;
+int ForestMission::selections() const {
+  return CountForestFrames(frames_, [](const ForestFrameRecord& r) { return r.selected; });
+}
+
+int ForestMission::frames_replanned() const {
+  return CountForestFrames(frames_, [](const ForestFrameRecord& r) { return r.replans > 0; });
+}
+
+int ForestMission::back_offs() const {
+  return CountForestFrames(frames_, [](const ForestFrameRecord& r) { return r.backed_off; });
+}
+
+int ForestMission::look_asides() const {
+  return CountForestFrames(frames_, [](const ForestFrameRecord& r) { return r.looked_aside; });
 }
 
 int ForestMission::frames_without_path() const {
-  int count = 0;
-  for (const ForestFrameRecord& record : frames_) count += !record.planned;
-  return count;
+  return CountForestFrames(frames_, [](const ForestFrameRecord& r) { return !r.planned; });
 }
 
 control::TrajectoryPoint ForestMission::Reference(double t_s) const {
@@ -310,6 +324,7 @@ void ForestMission::Plan(double t_s, const perception::MonoDepthEstimate& depth,
   const WaypointSelection selection = selector_.Select(
       std::move(points_H), v_H, goal_H, params_.waypoint_order,
       params_.random_seed + static_cast<std::uint64_t>(frames_.size()), &obstacles_H);
+  record->selected = true;
   record->segments = static_cast<int>(selection.segments.size());
   record->replans = selection.Replans();
   if (!selection.chosen) return;

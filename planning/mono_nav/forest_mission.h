@@ -172,6 +172,7 @@ struct ForestFrameRecord {
   double planning_s = 0.0;    // thread CPU time of EDT, selection and the spline
   int segments = 0;
   int replans = 0;            // segments rejected by their spatial windows (Table II)
+  bool selected = false;      // the waypoint selector ran (not the direct path to the goal)
   bool planned = false;       // a new spline was adopted
   bool direct = false;        // straight to the goal
   bool backed_off = false;    // a recovery: backing off along the flown path started
@@ -205,8 +206,11 @@ class ForestMission : public perception::Autopilot {
   const WaypointSelectorParams& selector_params() const { return selector_.params(); }
   const std::vector<ForestFrameRecord>& frames() const { return frames_; }
   int replans() const;              // sum of ForestFrameRecord::replans
+  int selections() const;           // frames that ran the waypoint selector
+  int frames_replanned() const;     // frames whose first segment tried was rejected
   int frames_without_path() const;  // frames that found no traversable segment
-  int recoveries() const;           // frames that started a back-off or a look-aside
+  int back_offs() const;            // frames that started a back-off along the flown path
+  int look_asides() const;          // frames that started a look-aside
   // The flown path kept for backing off (estimated positions kTrailSpacingM apart; a back-off
   // consumes what it flies back over).
   const FlownTrail& trail() const { return trail_; }
