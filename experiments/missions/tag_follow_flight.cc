@@ -533,10 +533,7 @@ class TagFollowFlight final : public MissionFlight {
           {"carried obstacle",
            {T_WO.translation().head<2>(), field_.movable_size_m.head<2>(), s.robot_yaw_rad}});
     }
-    // The victim (GroundMissionScene::goal_radius_m) on the goal's mat; the mat is flat.
-    const double victim_m = 2 * ground_scene_.goal_radius_m;
-    std::vector<std::pair<std::string, planning::GroundBox>> obstacles = {
-        {"the victim on the goal", {ground_scene_.goal_p_W, {victim_m, victim_m}, 0.0}}};
+    std::vector<std::pair<std::string, planning::GroundBox>> obstacles;
     for (size_t k = 0; k < ground_scene_.fixed_obstacles.size(); ++k) {
       obstacles.push_back(
           {"fixed obstacle " + std::to_string(k), ground_scene_.fixed_obstacles[k]});
@@ -560,6 +557,10 @@ class TagFollowFlight final : public MissionFlight {
       }
     }
     for (const auto& [body, box] : bodies) {
+      // The victim: the planner's disc of goal_radius_m around the goal (the mat is flat).
+      if (planning::DistanceToBox(box, ground_scene_.goal_p_W) < ground_scene_.goal_radius_m) {
+        return Contact{t_s, body + " touches the victim on the goal"};
+      }
       for (const auto& [name, obstacle] : obstacles) {
         if (planning::BoxesOverlap(box, obstacle)) {
           return Contact{t_s, body + " touches " + name};
