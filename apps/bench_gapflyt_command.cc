@@ -54,7 +54,8 @@ void AddBenchGapflytCommand(CLI::App& bench, int* exit_code) {
   command->add_option("--trials", options->bench.trials, "Trials per law (shapes cycle)")
       ->check(IntegerIn(1));
   AddSeedOption(command, &options->bench.seed, "Seed of every trial's random choices");
-  command->add_option("--laws", options->laws, "Comma-separated servo laws (moments,pid)");
+  command->add_option("--laws", options->laws, "Comma-separated servo laws (moments,pid)")
+      ->check(CommaListOf({"moments", "pid"}));
   command->add_option("--width", options->bench.width, "Forward camera image width [px]")
       ->check(IntegerIn(32, 8192));
   command->add_option("--height", options->bench.height, "Forward camera image height [px]")

@@ -17,6 +17,7 @@
 #include "apps/commands.h"
 #include "apps/monte_carlo_command.h"
 #include "experiments/ts2p/ts2p_monte_carlo_bench.h"
+#include "perception/flow/dense_flow.h"
 #include "perception/graph/front_end_registry.h"
 
 namespace aperture::apps {
@@ -61,8 +62,10 @@ void AddBenchTs2pCommand(CLI::App& bench, int* exit_code) {
   command->add_option("--trials", options->bench.trials, "Trials (shapes cycle through the five)")
       ->check(IntegerIn(1));
   AddSeedOption(command, &options->bench.seed, "Seed of every trial's random choices");
-  command->add_option("--methods", options->methods,
-                      "Comma-separated flow methods for Table II (default: all)");
+  command
+      ->add_option("--methods", options->methods,
+                   "Comma-separated flow methods for Table II (default: all)")
+      ->check(CommaListOf(perception::DenseFlowMethodNames()));
   command
       ->add_option("--sweep-trials", options->bench.sweep_trials,
                    "Trials of the N and resolution sweeps (the first ones)")

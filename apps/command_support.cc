@@ -1,5 +1,6 @@
 #include "apps/command_support.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -7,6 +8,7 @@
 
 #include "config/usage_error.h"
 #include "config/yaml_write_archive.h"
+#include "perception/graph/front_end_registry.h"
 #include "sim/scenario/scenario.h"
 #include "sim/scenario/scenario_params.h"
 
@@ -107,6 +109,21 @@ CLI::Validator IntegerIn(long long min, long long max) {
         return "";
       },
       "INT " + range, "integer");
+}
+
+CLI::Validator CommaListOf(const std::vector<std::string>& allowed) {
+  std::string names;
+  for (const std::string& name : allowed) names += (names.empty() ? "" : ", ") + name;
+  return CLI::Validator(
+      [=](const std::string& text) -> std::string {
+        for (const std::string& item : perception::SplitFrontEndList(text)) {
+          if (std::find(allowed.begin(), allowed.end(), item) == allowed.end()) {
+            return "'" + item + "' is not one of: " + names;
+          }
+        }
+        return "";
+      },
+      "LIST of " + names, "comma list");
 }
 
 void RequireBuiltinScenario(const std::string& name) {

@@ -52,6 +52,9 @@ CLI::Validator FiniteNumberIn(double min, double max, bool min_inclusive = true)
 // beyond int through to a "Could not convert". The error and the help show "INT in [1, 64]" (or
 // "INT >= 1" when `max` is the largest int).
 CLI::Validator IntegerIn(long long min, long long max = std::numeric_limits<int>::max());
+// The check of a comma-separated list option (--laws moments,pid): every item one of `allowed`;
+// a typo is a usage error listing them.
+CLI::Validator CommaListOf(const std::vector<std::string>& allowed);
 // The longest simulated time of a --duration [s]: 10 days.
 inline constexpr double kMaxDurationS = 864000.0;
 // --fps of a frame source without timestamps [Hz]: one frame per 1000 s to 10 kHz.

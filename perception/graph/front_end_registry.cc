@@ -31,7 +31,7 @@ const FrontEndRegistry::Entry& FrontEndRegistry::Find(const std::string& name) c
     std::ostringstream message;
     message << "unknown front end '" << name << "'; known front ends:";
     for (const auto& [known, entry] : entries_) message << " " << known;
-    throw std::invalid_argument(message.str());
+    throw config::UsageError(message.str());  // the name came from --frontends
   }
   return it->second;
 }

@@ -178,6 +178,30 @@ TEST(ValuesCli, AMissingOptionTheInputNeedsIsAUsageError) {
   EXPECT_TRUE(OutputHas(sizes.output, "'apriltag.sizes.x' is not a tag id")) << sizes.output;
 }
 
+TEST(ValuesCli, AnUnknownNameInAnOptionIsAUsageErrorListingTheKnownOnes) {
+  TempFolder temp("values_names_in_options");
+  const fs::path data = fs::path(temp.path()) / "data";
+  ASSERT_EQ(
+      RunAperture("render gap --frames 1" + kValuesTinyFront + "--out " + data.string()).exit_code,
+      0);
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"bench gapflyt --laws moments,momnets", "'momnets' is not one of: moments, pid"},
+      {"bench ts2p --methods dis_fast,disfast", "'disfast' is not one of: "},
+      {"bench control --only drag,dragg", "unknown section 'dragg'"},
+      {"sim gap --mission gapp", "unknown mission 'gapp'"},
+      {"sim gap --set mission=gapp", "unknown mission 'gapp'"},
+      {"run --source " + data.string() + " --frontends image_quality,gapp",
+       "unknown front end 'gapp'"},
+      {"calibrate --images " + (data / "images").string() + " --pattern chess:9x6",
+       "--pattern 'chess:9x6'"}};
+  for (const auto& [command, expected] : cases) {
+    const CommandResult result = RunAperture(command + " --out " + temp.path() + "/out");
+    EXPECT_EQ(result.exit_code, 2) << command << ": " << result.output;
+    EXPECT_TRUE(OutputHas(result.output, expected)) << command << ": " << result.output;
+    fs::remove_all(fs::path(temp.path()) / "out");  // a failed run's summary.json
+  }
+}
+
 TEST(ValuesCli, NonFiniteAndHugeNumbersAreUsageErrorsWithReadableMessages) {
   TempFolder temp("values_numbers");
   for (const std::string value : {".nan", "1e308", "-.inf"}) {
