@@ -36,13 +36,12 @@ void AddBenchGapCommand(CLI::App& bench, int* exit_code) {
   auto options = std::make_shared<BenchGapOptions>();
   CLI::App* command = bench.add_subcommand(
       "gap", "Monte-Carlo flights through the inclined patterned gap (seed 000 Table I, Fig. 6)");
-  command->add_option("--trials", options->bench.trials, "Number of trials")
-      ->check(CLI::PositiveNumber);
+  command->add_option("--trials", options->bench.trials, "Number of trials")->check(IntegerIn(1));
   AddSeedOption(command, &options->bench.seed, "Seed of every trial's random choices");
   command
       ->add_option("--first-trial", options->bench.first_trial,
                    "Index of the first trial (a part of a longer run of the same seed)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(IntegerIn(0));
   command
       ->add_option("--max-roll-deg", options->bench.ranges.max_roll_deg,
                    "Gap roll drawn uniformly from [0, max] deg")
@@ -59,7 +58,7 @@ void AddBenchGapCommand(CLI::App& bench, int* exit_code) {
       ->add_option("--motion-blur-subframes", options->bench.ranges.motion_blur_subframes,
                    "Renders averaged per frame over the random exposure (1 = no blur; each "
                    "one costs a full render)")
-      ->check(CLI::PositiveNumber);
+      ->check(IntegerIn(1, 64));
   command->add_option("--duration", options->bench.duration_s, "Simulated time per trial [s]")
       ->check(FiniteNumberIn(0.0, kMaxDurationS, /*min_inclusive=*/false));
   command

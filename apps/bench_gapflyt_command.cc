@@ -52,15 +52,18 @@ void AddBenchGapflytCommand(CLI::App& bench, int* exit_code) {
       "gapflyt",
       "GapFlyt flights through randomized unknown openings per servo law (seed 002 Sec. IV)");
   command->add_option("--trials", options->bench.trials, "Trials per law (shapes cycle)")
-      ->check(CLI::PositiveNumber);
+      ->check(IntegerIn(1));
   AddSeedOption(command, &options->bench.seed, "Seed of every trial's random choices");
-  command->add_option("--laws", options->laws, "Comma-separated servo laws (moments,pid)");
-  command->add_option("--width", options->bench.width, "Forward camera image width [px]");
-  command->add_option("--height", options->bench.height, "Forward camera image height [px]");
+  command->add_option("--laws", options->laws, "Comma-separated servo laws (moments,pid)")
+      ->check(CommaListOf({"moments", "pid"}));
+  command->add_option("--width", options->bench.width, "Forward camera image width [px]")
+      ->check(IntegerIn(32, 8192));
+  command->add_option("--height", options->bench.height, "Forward camera image height [px]")
+      ->check(IntegerIn(24, 8192));
   command
       ->add_option("--tight-every", options->bench.tight_every,
                    "Every K-th round of the five shapes is tight (0: none)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(IntegerIn(0));
   command->add_flag("--quick", options->quick, "One trial (the ellipse) per law (smoke test)");
   AddCommonOptions(command, &options->common);
   AddMonteCarloOptions(command, &options->monte_carlo);

@@ -37,7 +37,7 @@ void AddBenchMononavCommand(CLI::App& bench, int* exit_code) {
   command->add_option("--out", options->out_dir, "Output folder (created if missing)")->required();
   AddOverwriteFlag(command, &options->overwrite);
   command->add_option("--trials", options->bench.trials, "Forest layouts (seeds --seed ..)")
-      ->check(CLI::PositiveNumber);
+      ->check(IntegerIn(1));
   AddSeedOption(command, &options->bench.first_seed, "Seed of the first layout");
   command->add_option("--duration", options->bench.duration_s, "Simulated time per flight [s]")
       ->check(FiniteNumberIn(0.0, kMaxDurationS, /*min_inclusive=*/false));

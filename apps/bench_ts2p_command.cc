@@ -17,6 +17,7 @@
 #include "apps/commands.h"
 #include "apps/monte_carlo_command.h"
 #include "experiments/ts2p/ts2p_monte_carlo_bench.h"
+#include "perception/flow/dense_flow.h"
 #include "perception/graph/front_end_registry.h"
 
 namespace aperture::apps {
@@ -59,22 +60,24 @@ void AddBenchTs2pCommand(CLI::App& bench, int* exit_code) {
       "TS2P gap detection per flow method and label tracking on rendered scans (seed "
       "002 Tables II, III, Figs. 9, 12, 13)");
   command->add_option("--trials", options->bench.trials, "Trials (shapes cycle through the five)")
-      ->check(CLI::PositiveNumber);
+      ->check(IntegerIn(1));
   AddSeedOption(command, &options->bench.seed, "Seed of every trial's random choices");
-  command->add_option("--methods", options->methods,
-                      "Comma-separated flow methods for Table II (default: all)");
+  command
+      ->add_option("--methods", options->methods,
+                   "Comma-separated flow methods for Table II (default: all)")
+      ->check(CommaListOf(perception::DenseFlowMethodNames()));
   command
       ->add_option("--sweep-trials", options->bench.sweep_trials,
                    "Trials of the N and resolution sweeps (the first ones)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(IntegerIn(0));
   command
       ->add_option("--depth-trials", options->bench.depth_trials,
                    "Trials per foreground depth of the Z_F sweep")
-      ->check(CLI::NonNegativeNumber);
+      ->check(IntegerIn(0));
   command
       ->add_option("--tracking-trials", options->bench.tracking_trials,
                    "Approaches of the tracking analysis")
-      ->check(CLI::NonNegativeNumber);
+      ->check(IntegerIn(0));
   command->add_flag("--quick", options->quick,
                     "One trial per shape with the configured method, no sweeps (smoke test)");
   AddCommonOptions(command, &options->common);

@@ -1,11 +1,14 @@
 #include "apps/command_support.h"
 
+#include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 
 #include "config/usage_error.h"
 #include "config/yaml_write_archive.h"
+#include "perception/graph/front_end_registry.h"
 #include "sim/scenario/scenario.h"
 #include "sim/scenario/scenario_params.h"
 
@@ -89,6 +92,40 @@ CLI::Validator FiniteNumberIn(double min, double max, bool min_inclusive) {
       "NUMBER in " + range, "finite number");
 }
 
+CLI::Validator IntegerIn(long long min, long long max) {
+  const std::string range = max == std::numeric_limits<int>::max()
+                                ? ">= " + std::to_string(min)
+                                : "in [" + std::to_string(min) + ", " + std::to_string(max) + "]";
+  return CLI::Validator(
+      [=](const std::string& text) -> std::string {
+        const std::size_t digits = !text.empty() && text[0] == '-' ? 1 : 0;
+        errno = 0;
+        const long long value = std::strtoll(text.c_str(), nullptr, 10);
+        if (text.size() == digits ||
+            text.find_first_not_of("0123456789", digits) != std::string::npos || errno == ERANGE ||
+            value < min || value > max) {
+          return "'" + text + "' is not an integer " + range;
+        }
+        return "";
+      },
+      "INT " + range, "integer");
+}
+
+CLI::Validator CommaListOf(const std::vector<std::string>& allowed) {
+  std::string names;
+  for (const std::string& name : allowed) names += (names.empty() ? "" : ", ") + name;
+  return CLI::Validator(
+      [=](const std::string& text) -> std::string {
+        for (const std::string& item : perception::SplitFrontEndList(text)) {
+          if (std::find(allowed.begin(), allowed.end(), item) == allowed.end()) {
+            return "'" + item + "' is not one of: " + names;
+          }
+        }
+        return "";
+      },
+      "LIST of " + names, "comma list");
+}
+
 void RequireBuiltinScenario(const std::string& name) {
   try {
     sim::BuiltinScenarioYaml(name);
@@ -103,6 +140,18 @@ void PutEffectiveLeds(const sim::ScenarioParams& params, config::ConfigTree* tre
   if (!led.IsMap()) led = YAML::Node(YAML::NodeType::Map);
   led["leds"] = config::YamlWriteArchive::Encode(params.led.leds_B);
   tree->Put("led", led, "effective configuration");
+}
+
+void CheckAssembled(const config::ConfigTree& tree, const std::function<void()>& check) {
+  try {
+    check();
+  } catch (const config::UsageError&) {
+    throw;
+  } catch (const std::invalid_argument& e) {
+    const std::string item = tree.SetItemNamedIn(e.what());
+    if (item.empty()) throw;
+    throw config::UsageError(item + ": " + e.what());
+  }
 }
 
 config::ConfigTree LoadConfig(const CommonOptions& options, const std::string& defaults_yaml) {

@@ -5,6 +5,8 @@
 // (which main() prints, exiting with 2 for a usage error, config::UsageError, else 1).
 #include <CLI/CLI.hpp>
 #include <cstdint>
+#include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -45,6 +47,14 @@ CLI::Option* AddSeedOption(CLI::App* command, std::optional<std::uint64_t>* seed
 // The check of a number option: finite and in [min, max] (CLI11's own number checks pass nan and
 // inf); the error prints the bounds readably ("in (0, 1e+06]").
 CLI::Validator FiniteNumberIn(double min, double max, bool min_inclusive = true);
+// The check of a count option (--frames, --trials, --threads, ...): an integer in decimal digits in
+// [min, max]; CLI11's PositiveNumber would print its bound as a 309-digit number and let a value
+// beyond int through to a "Could not convert". The error and the help show "INT in [1, 64]" (or
+// "INT >= 1" when `max` is the largest int).
+CLI::Validator IntegerIn(long long min, long long max = std::numeric_limits<int>::max());
+// The check of a comma-separated list option (--laws moments,pid): every item one of `allowed`;
+// a typo is a usage error listing them.
+CLI::Validator CommaListOf(const std::vector<std::string>& allowed);
 // The longest simulated time of a --duration [s]: 10 days.
 inline constexpr double kMaxDurationS = 864000.0;
 // --fps of a frame source without timestamps [Hz]: one frame per 1000 s to 10 kHz.
@@ -59,6 +69,12 @@ void RequireBuiltinScenario(const std::string& name);
 // given) as led.leds of `tree`, so summary.json "config" shows them rather than the built-in
 // ones; other scenarios are left alone.
 void PutEffectiveLeds(const sim::ScenarioParams& params, config::ConfigTree* tree);
+
+// Runs `check` (e.g. the Validate of parameters assembled from `tree` and the options): an
+// std::invalid_argument naming a key a --set item set ("cameras.front.rate_hz = 1e+12 exceeds
+// sitl.dynamics_rate_hz") becomes a config::UsageError (exit 2) starting with that item; other
+// errors pass unchanged.
+void CheckAssembled(const config::ConfigTree& tree, const std::function<void()>& check);
 
 // The effective configuration: built-in `defaults_yaml` < --config files < --set items.
 config::ConfigTree LoadConfig(const CommonOptions& options, const std::string& defaults_yaml);

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "apps/code_version.h"
+#include "apps/command_support.h"
 #include "experiments/bench/monte_carlo_run.h"
 #include "output/interruption.h"
 #include "output/progress_bar.h"
@@ -31,7 +32,7 @@ void AddMonteCarloOptions(CLI::App* command, MonteCarloCommandOptions* options) 
         }
       });
   command->add_option("--threads", options->threads, "Trials flown concurrently (0 = all cores)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(IntegerIn(0, 4096));
 }
 
 void RunMonteCarloCommand(const std::string& name, const nlohmann::json& configuration,
@@ -46,8 +47,7 @@ void RunMonteCarloCommand(const std::string& name, const nlohmann::json& configu
   std::string outcome;
   try {
     outcome = experiments::RunMonteCarloBench(
-        BenchRegistry(), name, configuration, run, out,
-        [&](int done, int total) {
+        BenchRegistry(), name, configuration, run, out, [&](int done, int total) {
           if (!progress) {
             progress = std::make_unique<output::ProgressBar>(name + " trials",
                                                              static_cast<std::size_t>(total));

@@ -267,7 +267,7 @@ void AddRenderCommand(CLI::App& app, int* exit_code) {
                    "hover | line | circle | scan | random (default: the scenario's)")
       ->check(CLI::IsMember({"hover", "line", "circle", "scan", "random"}));
   command->add_option("--frames", options->frames, "Frame count (default: the scenario's)")
-      ->check(CLI::PositiveNumber);
+      ->check(IntegerIn(1));
   AddSeedOption(command, &options->seed,
                 "Randomization seed: textures, placements, noise (default: the scenario's)");
   AddCommonOptions(command, &options->common);

@@ -237,7 +237,7 @@ void AddRunCommand(CLI::App& app, int* exit_code) {
                     "Run independent front ends concurrently (oneTBB)");
   command->add_flag("--video", options->video, "Write the overlay video");
   command->add_option("--max-frames", options->max_frames, "Stop after N frames (0 = all)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(IntegerIn(0));
   AddCommonOptions(command, &options->common);
   command->callback([options, exit_code] {
     output::OutputFolder out = OpenOutputFolder(options->common);

@@ -185,6 +185,7 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
   sim::ConfigureSitlFromScenario(scenario, &params);
   for (sim::SitlCamera& camera : params.cameras) camera.render.ground_truth = false;
   params.SetSeed(scenario_params.seed);
+  CheckAssembled(tree, [&] { params.Validate(); });  // e.g. a --set camera rate above the loop's
   // The video shows the first body-mounted camera (else the first camera) beside a third-person
   // view of the same height.
   int primary = 0;
@@ -323,9 +324,10 @@ void AddSimCommand(CLI::App& app, int* exit_code) {
       app.add_subcommand("sim", "Fly a scenario closed-loop in the rendered simulator (SITL)");
   command->add_option("scenario", options->scenario,
                       "Built-in scenario name (see aperture render); or a flow below");
-  command->add_option("--mission", options->mission,
-                      "Mission to fly (gap, gapflyt, led_hover, forest, map, follow, hover); default: the "
-                      "scenario's own");
+  command->add_option(
+      "--mission", options->mission,
+      "Mission to fly (gap, gapflyt, led_hover, forest, map, follow, hover); default: the "
+      "scenario's own");
   AddSeedOption(command, &options->seed, "Seed of the scenario and every sensor stream");
   command
       ->add_option("--duration", options->duration_s,
@@ -335,13 +337,17 @@ void AddSimCommand(CLI::App& app, int* exit_code) {
       ->add_option("--video-every", options->video_every,
                    "Put every N-th camera frame into the video (default 2; the video's frame "
                    "rate is the camera's / N)")
-      ->check(CLI::PositiveNumber);
-  command->add_option("--chase-every", options->chase.render_every,
-                      "Render the video's third-person view every N-th video frame, repeat it "
-                      "in between (default 2)");
-  command->add_option("--chase-height", options->chase.render_height,
-                      "Rows the third-person view is rendered at, scaled to the video "
-                      "(default 240 px)");
+      ->check(IntegerIn(1));
+  command
+      ->add_option("--chase-every", options->chase.render_every,
+                   "Render the video's third-person view every N-th video frame, repeat it "
+                   "in between (default 2)")
+      ->check(IntegerIn(1));
+  command
+      ->add_option("--chase-height", options->chase.render_height,
+                   "Rows the third-person view is rendered at, scaled to the video "
+                   "(default 240 px)")
+      ->check(IntegerIn(16, 2160));
   AddCommonOptions(command, &options->common);
   // Flows with their own options (apps/sim_<flow>_command.cc); a scenario run needs NAME and --out.
   command->get_option("--out")->required(false)->description(

@@ -1,5 +1,6 @@
 #include "config/config_tree.h"
 
+#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -253,6 +254,29 @@ void ConfigTree::RecordOrigin(const std::string& path, const ValueOrigin& origin
     it = origins_.erase(it);
   }
   origins_[path] = origin;
+}
+
+std::string ConfigTree::SetItemNamedIn(const std::string& message) const {
+  const auto is_key_char = [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_' || c == '.';
+  };
+  std::string item;
+  std::size_t longest = 0;
+  for (const auto& [key, origin] : origins_) {
+    if (!origin.command_line || key.size() <= longest) continue;
+    for (std::size_t at = message.find(key); at != std::string::npos;
+         at = message.find(key, at + 1)) {
+      const std::size_t end = at + key.size();
+      if ((at == 0 || !is_key_char(message[at - 1])) &&
+          (end == message.size() || !is_key_char(message[end]) ||
+           (message[end] == '.' && (end + 1 == message.size() || message[end + 1] == ' ')))) {
+        item = origin.source;
+        longest = key.size();
+        break;
+      }
+    }
+  }
+  return item;
 }
 
 ParamReader ConfigTree::Reader() const {

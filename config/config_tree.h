@@ -64,6 +64,10 @@ class ConfigTree {
   // (.nan, .inf), which JSON cannot hold, stay strings.
   std::string ToJson() const;
   const YAML::Node& root() const { return root_; }
+  // The --set item that set a key `message` names as a whole word (e.g. "cameras.front.rate_hz =
+  // 1e+12 exceeds sitl.dynamics_rate_hz" after --set cameras.front.rate_hz=1e12; the longest such
+  // key), "" when it names none: an error about that value is a usage error.
+  std::string SetItemNamedIn(const std::string& message) const;
 
  private:
   void MergeDocument(const YAML::Node& document, const std::string& source);

@@ -1,9 +1,13 @@
 #include "config/param_reader.h"
 
+#include <cxxabi.h>
+
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <optional>
+#include <regex>
 #include <sstream>
 
 namespace aperture::config {
@@ -179,7 +183,10 @@ void ConvertNode(const YAML::Node& node, const ValueContext& context, Eigen::Vec
 
 ParamReader::ParamReader(YAML::Node node, std::string path,
                          std::shared_ptr<const OriginMap> origins)
-    : node_(std::move(node)), path_(std::move(path)), origins_(std::move(origins)) {
+    : node_(std::move(node)),
+      path_(std::move(path)),
+      origins_(std::move(origins)),
+      section_types_(std::make_shared<std::map<std::string, std::set<std::string>>>()) {
   if (node_ && !node_.IsMap() && !node_.IsNull()) {
     const std::string where = Locate(path_, node_.Mark());
     throw std::invalid_argument(where + ": '" + (path_.empty() ? "<document root>" : path_) +
@@ -216,7 +223,9 @@ YAML::Node ParamReader::Lookup(const std::string& key) {
 }
 
 ParamReader ParamReader::Section(const std::string& key) {
-  return ParamReader(Lookup(key), FullKey(key), origins_);
+  ParamReader section(Lookup(key), FullKey(key), origins_);
+  section.section_types_ = section_types_;
+  return section;
 }
 
 const ValueOrigin* ParamReader::OriginOf(const std::string& full_key) const {
@@ -274,24 +283,136 @@ std::string ParamReader::CommandLineItemsInside() const {
   return items;
 }
 
-void ParamReader::RejectEntriesCreatedBySet(const std::string& entry_kind) const {
+void ParamReader::RejectEntriesCreatedBySet(const std::string& entry_kind,
+                                            const std::string& declaring_key) const {
   if (!node_.IsMap()) return;
+  // An entry --set created, and whether its items declare it through `declaring_key`.
+  const auto created_by_set = [&](const YAML::Node& name) {
+    const auto origin = origins_->find(FullKey(name.Scalar()));
+    return origin != origins_->end() && origin->second.command_line;
+  };
+  const auto declared = [&](const YAML::Node& entry) {
+    return !declaring_key.empty() && entry.IsMap() &&
+           static_cast<bool>(static_cast<const YAML::Node&>(entry)[declaring_key]);
+  };
   std::string known;
   for (auto it = node_.begin(); it != node_.end(); ++it) {
-    const auto origin = origins_->find(FullKey(it->first.Scalar()));
-    if (origin == origins_->end() || !origin->second.command_line) {
+    if (!created_by_set(it->first) || declared(it->second)) {
       known += (known.empty() ? "" : ", ") + it->first.Scalar();
     }
   }
   for (auto it = node_.begin(); it != node_.end(); ++it) {
+    if (!created_by_set(it->first) || declared(it->second)) continue;
     const std::string name = it->first.Scalar();
-    const auto origin = origins_->find(FullKey(name));
-    if (origin == origins_->end() || !origin->second.command_line) continue;
-    throw UsageError(origin->second.source + ": unknown " + entry_kind + " '" + name + "' in '" +
-                     path_ + "'; known: " + (known.empty() ? std::string("(none)") : known) +
-                     ". Fix the spelling, or add a new " + entry_kind +
-                     " in a --config file (--set only changes existing ones).");
+    const std::string how_to_add =
+        declaring_key.empty()
+            ? "add a new " + entry_kind + " in a --config file (--set only changes existing ones)"
+            : "declare a new " + entry_kind + " by its " + declaring_key + " (--set " +
+                  FullKey(name) + "." + declaring_key + "=...) or in a --config file";
+    throw UsageError(origins_->at(FullKey(name)).source + ": unknown " + entry_kind + " '" + name +
+                     "' in '" + path_ +
+                     "'; known: " + (known.empty() ? std::string("(none)") : known) +
+                     ". Fix the spelling, or " + how_to_add + ".");
   }
+}
+
+namespace {
+
+// "aperture::planning::GapMissionParams" -> "GapMissionParams": the name a message names it by.
+std::string ShortTypeName(const std::type_info& type) {
+  int status = 0;
+  char* demangled = abi::__cxa_demangle(type.name(), nullptr, nullptr, &status);
+  std::string name = status == 0 && demangled != nullptr ? demangled : type.name();
+  std::free(demangled);
+  const std::size_t colons = name.rfind("::");
+  return colons == std::string::npos ? name : name.substr(colons + 2);
+}
+
+}  // namespace
+
+void ParamReader::NoteSectionType(const std::type_info& type) const {
+  (*section_types_)[ShortTypeName(type)].insert(path_);
+}
+
+void ParamReader::FailValidation(const std::type_info& type, const std::string& what) const {
+  // The key path of the section a struct named in the message was loaded from: this section for
+  // its own struct, else the one section of that struct inside this one (or in the whole tree);
+  // this section too for a struct of its values checked together (a field this section reads).
+  const std::string own_type = ShortTypeName(type);
+  const auto section_of = [&](const std::string& type_name,
+                              const std::string& field) -> std::optional<std::string> {
+    if (type_name == own_type) return path_;
+    const auto found = section_types_->find(type_name);
+    if (found == section_types_->end()) {
+      if (known_keys_.count(field) > 0) return path_;
+      return std::nullopt;
+    }
+    std::vector<std::string> inside;
+    for (const std::string& section : found->second) {
+      if (path_.empty() || section.compare(0, path_.size() + 1, path_ + ".") == 0) {
+        inside.push_back(section);
+      }
+    }
+    if (inside.size() == 1) return inside.front();
+    if (inside.empty() && found->second.size() == 1) return *found->second.begin();
+    return std::nullopt;  // ambiguous: keep the struct's name
+  };
+  // "GapMissionParams.hover_s = -1 ..." and "TraverseParameters: max_evaluations = 0 ...".
+  static const std::regex kQualifiedField(
+      R"(\b([A-Z][A-Za-z0-9]*)(?:\.([A-Za-z_][A-Za-z0-9_]*)|: ([A-Za-z_][A-Za-z0-9_]*)(?= =)))");
+  std::string message;
+  std::string first_key;  // full key path of the first field named
+  auto rest = what.cbegin();
+  for (std::sregex_iterator it(what.begin(), what.end(), kQualifiedField), end; it != end; ++it) {
+    const std::smatch& match = *it;
+    const std::string field = match[2].matched ? match[2].str() : match[3].str();
+    const std::optional<std::string> section = section_of(match[1].str(), field);
+    if (!section) continue;
+    const std::string key = section->empty() ? field : *section + "." + field;
+    if (first_key.empty()) first_key = key;
+    message.append(rest, match[0].first);
+    message += key;
+    rest = match[0].second;
+  }
+  message.append(rest, what.cend());
+
+  // Where the named value came from (its file:line:column or --set item) when it is in the tree
+  // under this section; else where this section came from.
+  std::string where;
+  const std::string prefix = path_.empty() ? "" : path_ + ".";
+  if (!first_key.empty() && first_key.compare(0, prefix.size(), prefix) == 0) {
+    // reset() rebinds a handle; assigning one Node to another would overwrite the tree.
+    YAML::Node value;
+    value.reset(node_);
+    const std::string relative = first_key.substr(prefix.size());
+    for (std::size_t start = 0; value.IsMap();) {
+      const std::size_t dot = relative.find('.', start);
+      const YAML::Node child =
+          static_cast<const YAML::Node&>(value)[relative.substr(start, dot - start)];
+      if (!child) break;
+      if (dot == std::string::npos) {
+        where = Locate(first_key, child.Mark());
+        break;
+      }
+      value.reset(child);
+      start = dot + 1;
+    }
+  }
+  // A --set item inside the section makes it a usage error, named unless it is the location.
+  const std::string items = CommandLineItemsInside();
+  std::vector<std::string> notes;
+  if (where.empty()) {
+    where = Where("");
+    if (!path_.empty()) notes.push_back("section '" + path_ + "'");
+  }
+  if (!items.empty() && items.find(where) == std::string::npos) {
+    notes.push_back("set on the command line: " + items);
+  }
+  for (std::size_t i = 0; i < notes.size(); ++i) {
+    where += (i == 0 ? " (" : "; ") + notes[i] + (i + 1 == notes.size() ? ")" : "");
+  }
+  if (!items.empty()) throw UsageError(where + ": " + message);
+  throw std::invalid_argument(where + ": " + message);
 }
 
 std::string ParamReader::Where(const std::string& key) const {

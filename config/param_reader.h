@@ -26,6 +26,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <typeinfo>
 #include <utility>
 #include <vector>
 
@@ -95,8 +96,11 @@ class ParamReader {
   void ReadSection(const std::string& key, T* value);
 
   // Validates `params` (ValidateLoaded: its ValidateParams hook or Validate() member) and re-throws
-  // the std::invalid_argument prefixed with the location and name of this section, so a
-  // non-physical value names the file (or --set item) it came from.
+  // the std::invalid_argument in the user's terms: a struct-qualified field in the message
+  // ("GapMissionParams.hover_s", "TraverseParameters: max_evaluations =") becomes the key path
+  // of the section that struct was loaded from ("mission.hover_s"), and the message starts with
+  // where that value came from (file:line:column or the --set item), so a non-physical value
+  // names the file (or --set item) and key to fix.
   template <typename Params>
   void Validate(const Params& params) const;
 
@@ -113,8 +117,11 @@ class ParamReader {
   // For a map keyed by names (scenario cameras, objects): a `--set` item adds to an existing entry
   // but cannot create one, so `--set cameras.frnt.rate_hz=30` is a typo rather than a second
   // camera. Throws config::UsageError naming the item and listing the names `entry_kind` has
-  // (a new entry belongs in a --config file).
-  void RejectEntriesCreatedBySet(const std::string& entry_kind) const;
+  // (a new entry belongs in a --config file). With a `declaring_key`, --set may create an entry
+  // by setting that key (`objects.crate.shape=box` declares the object crate), so only an entry
+  // that --set items create without it (`objects.crat.radius_m=1`, a typo) is refused.
+  void RejectEntriesCreatedBySet(const std::string& entry_kind,
+                                 const std::string& declaring_key = "") const;
   // Throws the error about the value at `key`: "<where>: '<full key>' <what>", a
   // config::UsageError when the value came from a --set item, else std::invalid_argument.
   [[noreturn]] void Fail(const std::string& key, const std::string& what) const;
@@ -132,11 +139,18 @@ class ParamReader {
   ValueContext ContextOf(const std::string& key, const YAML::Node& child) const;
   // The --set items that set values inside this section ("" when none did).
   std::string CommandLineItemsInside() const;
+  // Validate's halves: records that this section holds a `type`; throws the validation error
+  // `what` of a `type` in the user's terms (see Validate).
+  void NoteSectionType(const std::type_info& type) const;
+  [[noreturn]] void FailValidation(const std::type_info& type, const std::string& what) const;
 
   YAML::Node node_;
   std::string path_;
   std::shared_ptr<const OriginMap> origins_;
   std::set<std::string> known_keys_;
+  // Struct name -> key paths of the sections validated as that struct, shared by every reader of
+  // one tree (Section passes it on): a message naming a nested struct's field finds its key.
+  std::shared_ptr<std::map<std::string, std::set<std::string>>> section_types_;
 };
 
 [[noreturn]] void ThrowTypeError(const ValueContext& context, const YAML::Node& node,
@@ -231,18 +245,11 @@ void ParamReader::ReadEnum(const std::string& key, Enum* value,
 
 template <typename Params>
 void ParamReader::Validate(const Params& params) const {
+  NoteSectionType(typeid(Params));
   try {
     ValidateLoaded(params);
   } catch (const std::invalid_argument& e) {
-    std::string section = FullKey("");
-    if (!section.empty()) section.pop_back();  // FullKey("") ends in the separating '.'
-    // A --set item inside the section makes it a usage error, named beside the section's source.
-    const std::string items = CommandLineItemsInside();
-    const std::string message = Where("") + " (section '" + section + "'" +
-                                (items.empty() ? "" : "; set on the command line: " + items) +
-                                "): " + e.what();
-    if (!items.empty()) throw UsageError(message);
-    throw std::invalid_argument(message);
+    FailValidation(typeid(Params), e.what());
   }
 }
 

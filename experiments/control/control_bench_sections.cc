@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "config/usage_error.h"
 #include "experiments/control/drag_sections.h"
 #include "experiments/control/low_level_sections.h"
 #include "experiments/control/recovery_section.h"
@@ -10,12 +11,8 @@ namespace aperture::experiments {
 
 std::vector<ControlBenchSection> ControlBenchSections() {
   return {
-      MakeDragSection(),
-      MakeDragIdSection(),
-      MakeBodyRateSection(),
-      MakeMixerSection(),
-      MakeSaturationSection(),
-      MakeRecoverySection(),
+      MakeDragSection(),  MakeDragIdSection(),     MakeBodyRateSection(),
+      MakeMixerSection(), MakeSaturationSection(), MakeRecoverySection(),
   };
 }
 
@@ -34,7 +31,7 @@ std::vector<ControlBenchSection> SelectControlBenchSections(const std::vector<st
       }
     }
     if (!found) {
-      throw std::invalid_argument("--only: unknown section '" + key + "'; known: " + known);
+      throw config::UsageError("--only: unknown section '" + key + "'; known: " + known);
     }
   }
   return selected;

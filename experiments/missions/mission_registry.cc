@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "config/usage_error.h"
+
 namespace aperture::experiments {
 
 void MissionRegistry::Register(const std::string& name, std::string description,
@@ -37,7 +39,7 @@ const MissionRegistry::Entry& MissionRegistry::Find(const std::string& name) con
   std::ostringstream message;
   message << "unknown mission '" << name << "'; known missions:";
   for (const auto& [known, entry] : entries_) message << " " << known;
-  throw std::invalid_argument(message.str());
+  throw config::UsageError(message.str());  // the name came from --mission or --set mission=
 }
 
 const std::string& MissionRegistry::Description(const std::string& name) const {

@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <opencv2/core.hpp>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "config/regular_file.h"
+#include "config/usage_error.h"
 #include "perception/camera/camera_factory.h"
 
 namespace aperture::perception {
@@ -367,13 +369,21 @@ std::string KalibrCameraKey(const YAML::Node& root, const std::string& path,
       cameras.push_back(key);
     }
   }
-  if (!requested.empty() || cameras.size() <= 1) return requested.empty() ? "cam0" : requested;
   std::string names;
   for (const std::string& name : cameras) names += (names.empty() ? "" : ", ") + name;
-  Fail(path, "(camera)",
-       "a camchain of " + std::to_string(cameras.size()) + " cameras (" + names +
-           "); choose the one the frames come from with --camera (e.g. --camera " + cameras[1] +
-           ")");
+  // The choice of camera is the caller's (--camera): a usage error, not bad data in the file.
+  if (!requested.empty()) {
+    if (std::find(cameras.begin(), cameras.end(), requested) != cameras.end()) return requested;
+    throw config::UsageError("--camera " + requested + ": calibration file '" + path +
+                             "' has no camera '" + requested +
+                             "'; its cameras: " + (names.empty() ? std::string("(none)") : names));
+  }
+  if (cameras.size() <= 1) return "cam0";
+  throw config::UsageError("calibration file '" + path + "' is a camchain of " +
+                           std::to_string(cameras.size()) + " cameras (" + names +
+                           "); choose the one the frames come from with --camera (e.g. "
+                           "--camera " +
+                           cameras[1] + ")");
 }
 
 CameraCalibration LoadKalibr(const std::string& path, const std::string& requested_camera) {

@@ -9,15 +9,16 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "config/usage_error.h"
 #include "perception/camera/camera_factory.h"
 
 namespace aperture::perception {
 namespace {
 
 [[noreturn]] void FailSpec(const std::string& spec, const std::string& problem) {
-  throw std::invalid_argument("calibration pattern '" + spec + "': " + problem +
-                              "; expected KIND:COLSxROWS:SPACING_M, e.g. chessboard:9x6:0.025 "
-                              "or circles:6x6:0.03");
+  throw config::UsageError("--pattern '" + spec + "': " + problem +
+                           "; expected KIND:COLSxROWS:SPACING_M, e.g. chessboard:9x6:0.025 "
+                           "or circles:6x6:0.03");
 }
 
 cv::Mat Gray8(const cv::Mat& image) {

@@ -4,6 +4,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "config/usage_error.h"
+
 namespace aperture::perception {
 
 void FrontEndRegistry::Register(const std::string& name, std::string description,
@@ -29,7 +31,7 @@ const FrontEndRegistry::Entry& FrontEndRegistry::Find(const std::string& name) c
     std::ostringstream message;
     message << "unknown front end '" << name << "'; known front ends:";
     for (const auto& [known, entry] : entries_) message << " " << known;
-    throw std::invalid_argument(message.str());
+    throw config::UsageError(message.str());  // the name came from --frontends
   }
   return it->second;
 }
@@ -38,18 +40,17 @@ const std::string& FrontEndRegistry::Description(const std::string& name) const 
   return Find(name).description;
 }
 
-const CameraCalibration& FrontEndResources::RequireCalibration(
-    const std::string& front_end) const {
+const CameraCalibration& FrontEndResources::RequireCalibration(const std::string& front_end) const {
   if (!calibration) {
-    throw std::invalid_argument("front end '" + front_end +
-                                "' needs a camera calibration: pass --calib FILE (OpenCV, ROS "
-                                "camera_info or Kalibr YAML)");
+    // A missing option: a usage error (exit 2).
+    throw config::UsageError("front end '" + front_end +
+                             "' needs a camera calibration: pass --calib FILE (OpenCV, ROS "
+                             "camera_info or Kalibr YAML)");
   }
   return *calibration;
 }
 
-std::unique_ptr<Node> FrontEndRegistry::Create(const std::string& name,
-                                               config::ParamReader& params,
+std::unique_ptr<Node> FrontEndRegistry::Create(const std::string& name, config::ParamReader& params,
                                                const FrontEndResources& resources) const {
   std::unique_ptr<Node> node = Find(name).factory(params, resources);
   if (!node) {
@@ -65,9 +66,9 @@ std::unique_ptr<Node> FrontEndRegistry::Create(const std::string& name,
   return Create(name, defaults, resources);
 }
 
-FrameGraph FrontEndRegistry::BuildGraph(
-    const std::vector<std::string>& front_ends, config::ParamReader& root,
-    const FrontEndResources& resources) const {
+FrameGraph FrontEndRegistry::BuildGraph(const std::vector<std::string>& front_ends,
+                                        config::ParamReader& root,
+                                        const FrontEndResources& resources) const {
   if (front_ends.empty()) {
     std::string known;
     for (const std::string& name : Names()) known += " " + name;

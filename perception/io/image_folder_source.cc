@@ -4,6 +4,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "config/usage_error.h"
 #include "perception/io/image_file_reader.h"
 #include "perception/io/natural_sort.h"
 
@@ -119,7 +120,8 @@ void ImageFolderSource::AssignTimes(const fs::path& image_folder) {
         times_s_.push_back(static_cast<double>(i) / options_.fps);
       }
     } else {
-      throw std::invalid_argument(
+      // The missing option is the mistake (the folder is fine): a usage error, exit 2.
+      throw config::UsageError(
           "image folder '" + folder_.string() +
           "' has no timestamps: pass --fps <rate> (frame rate in Hz), or add a times.txt there "
           "(one time in seconds per image in natural file order, or '<file name> <t>' lines), or "

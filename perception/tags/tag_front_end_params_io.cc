@@ -58,8 +58,7 @@ void LoadParams(config::ParamReader& reader, TagFrontEndParams* params) {
       used = 0;
     }
     if (used != key.size() || id < 0) {
-      throw std::invalid_argument(sizes.Where(key) + ": " + sizes.FullKey(key) +
-                                  ": keys of apriltag.sizes are tag ids (0, 1, ...)");
+      sizes.Fail(key, "is not a tag id: the keys of apriltag.sizes are tag ids (0, 1, ...)");
     }
     double size = 0.0;
     sizes.Read(key, &size);

@@ -6,10 +6,22 @@
 
 #include "control/require.h"
 #include "perception/led/led_configuration.h"
+#include "sim/render/camera_effects.h"
 #include "sim/sim_params_io.h"
 
 namespace aperture::sim {
 namespace {
+
+// The largest camera image side [px] and supersampling factor a scenario accepts.
+constexpr int kMaxCameraSidePx = 8192;
+constexpr int kMaxSupersampling = 8;
+
+// The camera effects' own checks (gain, noise, exposure, CameraEffects) at load time, so a bad
+// value names its file line or --set item and the camera's key.
+struct CameraEffectsCheck {
+  CameraEffectsParams effects;
+  void Validate() const { CameraEffects checked(effects); }
+};
 
 // String choices through ReadEnum so a typo lists the allowed names with its location.
 void ReadChoice(config::ParamReader& reader, const std::string& key, std::string* value,
@@ -153,10 +165,22 @@ void LoadParams(config::ParamReader& reader, CameraParams* params) {
   reader.Read("infrared", &params->infrared);
   reader.Read("supersampling", &params->supersampling);
   reader.Read("drop_probability", &params->drop_probability);
-  RequirePositiveAt(reader, "width", params->width);
-  RequirePositiveAt(reader, "height", params->height);
+  // Image sides up to 8K (7680 x 4320) and 8 x 8 rays per pixel: larger frames do not fit the
+  // renderer's per-frame buffers in memory.
+  for (const auto& [key, value] :
+       {std::pair<const char*, int>{"width", params->width}, {"height", params->height}}) {
+    if (value < 1 || value > kMaxCameraSidePx) {
+      ThrowAt(reader, key,
+              "must be in [1, " + std::to_string(kMaxCameraSidePx) + "] pixels, got " +
+                  std::to_string(value));
+    }
+  }
   RequirePositiveAt(reader, "rate_hz", params->rate_hz);
-  RequirePositiveAt(reader, "supersampling", params->supersampling);
+  if (params->supersampling < 1 || params->supersampling > kMaxSupersampling) {
+    ThrowAt(reader, "supersampling",
+            "must be in [1, " + std::to_string(kMaxSupersampling) +
+                "] (rays per pixel side), got " + std::to_string(params->supersampling));
+  }
   if (!(params->latency_s >= 0.0) || !std::isfinite(params->latency_s)) {
     ThrowAt(reader, "latency_s",
             "must be finite and >= 0, got " + std::to_string(params->latency_s));
@@ -165,6 +189,13 @@ void LoadParams(config::ParamReader& reader, CameraParams* params) {
     ThrowAt(reader, "drop_probability",
             "must be in [0, 1), got " + std::to_string(params->drop_probability));
   }
+  CameraEffectsCheck effects;
+  effects.effects.gain = params->gain;
+  effects.effects.full_well_electrons = params->full_well_electrons;
+  effects.effects.read_noise_sigma = params->read_noise_sigma;
+  effects.effects.exposure_s = params->exposure_s;
+  effects.effects.motion_blur_subframes = params->motion_blur_subframes;
+  reader.Validate(effects);
   if (params->intrinsics.size() == 0 &&
       (!(params->fov_deg > 0.0) || (params->model != "equidistant" && !(params->fov_deg < 180.0)) ||
        params->fov_deg > 360.0)) {
@@ -335,9 +366,10 @@ void LoadParams(config::ParamReader& reader, ScenarioParams* params) {
   if (params->scenario == "tags") reader.ReadSection("tags", &params->tags);
   if (params->scenario == "forest") reader.ReadSection("forest", &params->forest);
   {
-    // Extra objects are the user's to add, also by --set (objects.crate.shape=box); cameras are
-    // not.
+    // Extra objects are the user's to add, also by --set when it names the shape
+    // (objects.crate.shape=box); --set objects.crat.radius_m=1 alone is a typo.
     config::ParamReader objects = reader.Section("objects");
+    objects.RejectEntriesCreatedBySet("object", "shape");
     params->objects.clear();
     for (const std::string& name : objects.Keys()) {
       ObjectParams object;
@@ -356,8 +388,12 @@ void LoadParams(config::ParamReader& reader, ScenarioParams* params) {
     bool found = false;
     for (const auto& [name, camera] : params->cameras) found = found || name == trajectory_camera;
     if (!found) {
-      ThrowAt(reader.Section("trajectory"), "camera",
-              "names camera '" + trajectory_camera + "', which is not in 'cameras'");
+      std::string known;
+      for (const auto& [name, camera] : params->cameras)
+        known += (known.empty() ? "" : ", ") + name;
+      ThrowAt(
+          reader.Section("trajectory"), "camera",
+          "names camera '" + trajectory_camera + "', which is not in 'cameras'; known: " + known);
     }
   }
 }

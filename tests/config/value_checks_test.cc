@@ -113,6 +113,71 @@ TEST(ValueChecks, AFileMayAddANamedEntryAndSetThenChangesIt) {
   EXPECT_NO_THROW(cameras.RejectEntriesCreatedBySet("camera"));
 }
 
+TEST(ValueChecks, SetDeclaresAnEntryByItsDeclaringKeyOnly) {
+  ConfigTree tree;
+  tree.ApplySet("objects.crate.shape=box");     // declares crate
+  tree.ApplySet("objects.crate.radius_m=0.2");  // changes it
+  ParamReader declared = tree.Reader().Section("objects");
+  EXPECT_NO_THROW(declared.RejectEntriesCreatedBySet("object", "shape"));
+  EXPECT_THAT(MessageOf<UsageError>([&] { declared.RejectEntriesCreatedBySet("object"); }),
+              HasSubstr("unknown object 'crate'"));  // without a declaring key: refused
+
+  tree.ApplySet("objects.crat.radius_m=1");  // no shape: a typo of crate
+  ParamReader typo = tree.Reader().Section("objects");
+  EXPECT_THAT(MessageOf<UsageError>([&] { typo.RejectEntriesCreatedBySet("object", "shape"); }),
+              AllOf(HasSubstr("--set objects.crat.radius_m=1"), HasSubstr("unknown object 'crat'"),
+                    HasSubstr("known: crate"), HasSubstr("--set objects.crat.shape=")));
+}
+
+// Validators that name fields the way the code does (struct.field), as control::Require does.
+struct InnerGainParams {
+  double p_per_s = 1.0;
+  void Validate() const {
+    if (!(p_per_s >= 0.0)) throw std::invalid_argument("InnerGainParams.p_per_s must be >= 0");
+  }
+};
+struct OuterLoopParams {
+  InnerGainParams gains;
+  double rate_hz = 10.0;
+  void Validate() const {
+    if (!(rate_hz > gains.p_per_s)) {
+      throw std::invalid_argument("OuterLoopParams.rate_hz = " + std::to_string(rate_hz) +
+                                  " must exceed InnerGainParams.p_per_s");
+    }
+  }
+};
+
+OuterLoopParams LoadLoop(const ConfigTree& tree) {
+  ParamReader loop = tree.Reader().Section("loop");
+  OuterLoopParams params;
+  loop.Read("rate_hz", &params.rate_hz);
+  ParamReader gains = loop.Section("gains");
+  gains.Read("p_per_s", &params.gains.p_per_s);
+  gains.Validate(params.gains);
+  loop.Validate(params);
+  return params;
+}
+
+TEST(ValueChecks, ValidationMessagesNameKeyPathsInsteadOfStructs) {
+  ConfigTree file;
+  file.MergeYaml("loop:\n  rate_hz: 1\n  gains: {p_per_s: 5}\n", "loop.yaml");
+  // The outer check names both structs: each becomes the key path it was loaded from, and the
+  // message starts at the first named value's line and column.
+  EXPECT_EQ(MessageOf([&] { LoadLoop(file); }),
+            "loop.yaml:2:12: loop.rate_hz = 1.000000 must exceed loop.gains.p_per_s");
+
+  ConfigTree set;
+  set.MergeYaml("loop:\n  rate_hz: 10\n", "built-in defaults");
+  set.ApplySet("loop.gains.p_per_s=-1");
+  EXPECT_EQ(MessageOf<UsageError>([&] { LoadLoop(set); }),
+            "--set loop.gains.p_per_s=-1: loop.gains.p_per_s must be >= 0");
+  // A check failing at a value no --set item set still names the items inside the section.
+  set.ApplySet("loop.gains.p_per_s=20");
+  EXPECT_THAT(MessageOf<UsageError>([&] { LoadLoop(set); }),
+              AllOf(HasSubstr("loop.rate_hz = 10.000000 must exceed loop.gains.p_per_s"),
+                    Not(HasSubstr("Params"))));
+}
+
 TEST(ValueChecks, MistakesInSetItemsAreUsageErrors) {
   ConfigTree tree;
   EXPECT_THAT(MessageOf<UsageError>([&] { tree.ApplySet("gap.roll_deg"); }),
