@@ -37,7 +37,7 @@ void AddBenchDeliveryCommand(CLI::App& bench, int* exit_code) {
   command->add_option("--out", options->out_dir, "Output folder (created if missing)")->required();
   AddOverwriteFlag(command, &options->overwrite);
   command->add_option("--trials", options->bench.trials, "Fields (seeds --seed ..)")
-      ->check(CLI::PositiveNumber);
+      ->check(IntegerIn(1));
   AddSeedOption(command, &options->bench.first_seed, "Seed of the first field");
   command
       ->add_option("--mission", options->bench.mission,
