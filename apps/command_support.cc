@@ -126,7 +126,17 @@ CLI::Validator CommaListOf(const std::vector<std::string>& allowed) {
       "LIST of " + names, "comma list");
 }
 
+std::string BuiltinScenarioList() {
+  std::string names;
+  for (const std::string& name : sim::BuiltinScenarioNames())
+    names += (names.empty() ? "" : ", ") + name;
+  return names;
+}
+
 void RequireBuiltinScenario(const std::string& name) {
+  if (name.empty()) {
+    throw config::UsageError("a scenario NAME is required: one of " + BuiltinScenarioList());
+  }
   try {
     sim::BuiltinScenarioYaml(name);
   } catch (const std::invalid_argument& e) {

@@ -61,8 +61,11 @@ inline constexpr double kMaxDurationS = 864000.0;
 inline constexpr double kMinFps = 1e-3;
 inline constexpr double kMaxFps = 1e4;
 
-// A built-in scenario's name (the NAME of sim and render): an unknown one is a usage error
-// (config::UsageError) listing the built-in scenarios.
+// The built-in scenarios' names, comma-separated ("forest, gap, ...").
+std::string BuiltinScenarioList();
+
+// A built-in scenario's name (the NAME of sim and render): a missing or unknown one is a usage
+// error (config::UsageError) listing the built-in scenarios.
 void RequireBuiltinScenario(const std::string& name);
 
 // Records the LEDs a `led` scenario really renders (those of the led.config file when one is

@@ -256,12 +256,10 @@ void RenderDataset(const RenderCommandOptions& options, output::OutputFolder& ou
 
 void AddRenderCommand(CLI::App& app, int* exit_code) {
   auto options = std::make_shared<RenderCommandOptions>();
-  std::string names;
-  for (const std::string& name : sim::BuiltinScenarioNames())
-    names += (names.empty() ? "" : ", ") + name;
   CLI::App* command =
       app.add_subcommand("render", "Render a dataset with ground truth from a scenario");
-  command->add_option("scenario", options->scenario, "Built-in scenario: " + names)->required();
+  command->add_option("scenario", options->scenario,
+                      "Built-in scenario (REQUIRED): " + BuiltinScenarioList());
   command
       ->add_option("--trajectory", options->trajectory,
                    "hover | line | circle | scan | random (default: the scenario's)")

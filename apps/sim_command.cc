@@ -35,6 +35,7 @@
 #include "apps/path_views.h"
 #include "apps/sitl_outputs.h"
 #include "config/config_tree.h"
+#include "config/usage_error.h"
 #include "experiments/led/led_hover_flight.h"
 #include "experiments/missions/builtin_missions.h"
 #include "output/background_video_writer.h"
@@ -323,7 +324,7 @@ void AddSimCommand(CLI::App& app, int* exit_code) {
   CLI::App* command =
       app.add_subcommand("sim", "Fly a scenario closed-loop in the rendered simulator (SITL)");
   command->add_option("scenario", options->scenario,
-                      "Built-in scenario name (see aperture render); or a flow below");
+                      "Built-in scenario: " + BuiltinScenarioList() + "; or a flow below");
   command->add_option(
       "--mission", options->mission,
       "Mission to fly (gap, gapflyt, led_hover, forest, map, follow, hover); default: the "
@@ -356,7 +357,10 @@ void AddSimCommand(CLI::App& app, int* exit_code) {
   AddSimRecoveryCommand(*command, exit_code);
   command->callback([command, options, exit_code] {
     if (!command->get_subcommands().empty()) return;
-    if (options->scenario.empty()) throw CLI::RequiredError("scenario");
+    if (options->scenario.empty()) {
+      throw config::UsageError("a scenario NAME is required: one of " + BuiltinScenarioList() +
+                               "; or a flow: tracking, recovery");
+    }
     if (options->common.out_dir.empty()) throw CLI::RequiredError("--out");
     RequireBuiltinScenario(options->scenario);
     output::OutputFolder out = OpenOutputFolder(options->common);

@@ -120,6 +120,10 @@ OutputFolder::OutputFolder(const std::string& directory, bool overwrite)
     throw std::invalid_argument("output folder path is empty; pass --out DIR");
   }
   std::error_code error;
+  if (std::filesystem::exists(directory_, error) && !std::filesystem::is_directory(directory_)) {
+    throw FolderInUseError("output folder '" + directory_ +
+                           "' is a file, not a folder; choose another --out");
+  }
   std::filesystem::create_directories(directory_, error);
   if (error || !std::filesystem::is_directory(directory_)) {
     throw std::runtime_error("cannot create output folder '" + directory_ + "'" +

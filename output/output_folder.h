@@ -31,7 +31,8 @@ namespace aperture::output {
 // done until then.
 enum class RunStatus { kOk, kFailed, kInterrupted };
 
-// The folder holds an earlier run's outputs (or files of no aperture run) and `overwrite` is off.
+// The path is taken: a file, or a folder holding an earlier run's outputs (or files of no
+// aperture run) while `overwrite` is off.
 class FolderInUseError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
@@ -40,8 +41,8 @@ class FolderInUseError : public std::runtime_error {
 class OutputFolder {
  public:
   // std::runtime_error naming `directory` when it cannot be created or written to;
-  // FolderInUseError when it holds other files and `overwrite` is false, or (with `overwrite`)
-  // files no aperture run recorded.
+  // FolderInUseError when it is a file, holds other files and `overwrite` is false, or (with
+  // `overwrite`) files no aperture run recorded.
   explicit OutputFolder(const std::string& directory, bool overwrite = false);
 
   // `directory`/`name`; `name` may contain subfolders, which the caller creates.

@@ -2,6 +2,9 @@
 // `bench` needs the name of a benchmark.
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <string>
+
 #include "tests/apps/cli_runner.h"
 
 namespace aperture::apps::testing {
@@ -41,6 +44,31 @@ TEST(Cli, RenderNamesTheBuiltinScenariosForAnUnknownOne) {
   EXPECT_EQ(result.exit_code, 2);  // a usage mistake
   EXPECT_NE(result.output.find("unknown scenario 'nope'"), std::string::npos) << result.output;
   EXPECT_NE(result.output.find("gapflyt"), std::string::npos) << result.output;
+}
+
+TEST(Cli, SimAndRenderWithoutAScenarioListTheBuiltinOnes) {
+  TempFolder temp("no-scenario");
+  for (const std::string command : {"sim", "render"}) {
+    const CommandResult result = RunAperture(command + " --out " + temp.path() + "/out");
+    EXPECT_EQ(result.exit_code, 2) << command;  // a usage mistake
+    EXPECT_NE(result.output.find("scenario NAME is required"), std::string::npos) << result.output;
+    for (const char* name : {"gap", "gapflyt", "led", "tags", "forest"})
+      EXPECT_NE(result.output.find(name), std::string::npos) << command << ": " << result.output;
+  }
+  EXPECT_NE(RunAperture("sim").output.find("tracking, recovery"), std::string::npos);
+}
+
+TEST(Cli, AFileGivenAsOutIsAUsageMistakeAndIsKept) {
+  TempFolder temp("out-is-a-file");
+  const std::string file = temp.path() + "/notes.txt";
+  std::ofstream(file) << "mine";
+  const CommandResult result = RunAperture("sim led --duration 0.1 --out " + file);
+  EXPECT_EQ(result.exit_code, 2) << result.output;
+  EXPECT_NE(result.output.find("is a file"), std::string::npos) << result.output;
+  std::ifstream kept(file);
+  std::string text;
+  kept >> text;
+  EXPECT_EQ(text, "mine");
 }
 
 }  // namespace

@@ -188,6 +188,22 @@ TEST_F(OutputTest, FolderOfForeignFilesIsRefusedEvenWithOverwrite) {
   EXPECT_TRUE(fs::exists(directory_ / "thesis.tex"));
 }
 
+// --out naming a file is a usage mistake (exit 2 through FolderInUseError), even with --overwrite.
+TEST_F(OutputTest, FileInPlaceOfTheFolderIsRefusedAndKept) {
+  fs::create_directories(directory_.parent_path());
+  std::ofstream(directory_) << "mine";
+  for (const bool overwrite : {false, true}) {
+    try {
+      OutputFolder out(directory_.string(), overwrite);
+      FAIL() << "a file given as --out must be refused";
+    } catch (const FolderInUseError& e) {
+      EXPECT_THAT(e.what(), HasSubstr(directory_.string()));
+      EXPECT_THAT(e.what(), HasSubstr("is a file"));
+    }
+  }
+  EXPECT_EQ(ReadFile(directory_), "mine");
+}
+
 TEST_F(OutputTest, FolderOfARunThatWroteNothingButItsSummaryIsReused) {
   {
     OutputFolder failed(directory_.string());
