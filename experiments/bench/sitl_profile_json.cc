@@ -5,7 +5,7 @@
 namespace aperture::experiments {
 namespace {
 
-constexpr const char* kDefinition =
+constexpr const char* kSitlCpuProfileDefinition =
     "process CPU seconds (every thread) per stage of the SITL loop, exact while the flight is "
     "alone in the process (aperture sim; a bench on --threads 1); perception = Autopilot::OnFrame, "
     "control = the other Autopilot calls; render_stages_s split render; other = total minus the "
@@ -42,7 +42,7 @@ void AddNumbers(const nlohmann::json& from, nlohmann::json* to) {
 
 nlohmann::json SitlCpuProfileToJson(const sim::SitlCpuProfile& profile, double sim_time_s) {
   const sim::RenderProfile& render = profile.render;
-  nlohmann::json json = {{"definition", kDefinition},
+  nlohmann::json json = {{"definition", kSitlCpuProfileDefinition},
                          {"sim_time_s", sim_time_s},
                          {"total_s", profile.total_s},
                          {"renders", render.renders},
