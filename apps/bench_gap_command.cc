@@ -5,6 +5,7 @@
 //                      [--max-roll-deg R] [--max-pitch-deg P]
 //                      [--max-drop-probability D] [--motion-blur-subframes K]
 //                      [--autopilot mission|ground_truth] [--duration S] [--threads T]
+//                      [--render-ignored-frames]
 //                      [--shard K/N] [--config FILE] [--set key=value ...] --out DIR
 //
 // --config/--set override the built-in `gap` scenario (e.g. --set cameras.front.supersampling=1)
@@ -59,6 +60,9 @@ void AddBenchGapCommand(CLI::App& bench, int* exit_code) {
                    "Renders averaged per frame over the random exposure (1 = no blur; each "
                    "one costs a full render)")
       ->check(IntegerIn(1, 64));
+  command->add_flag("--render-ignored-frames", options->bench.render_ignored_frames,
+                    "Also render the frames the mission ignores (after the planned crossing); "
+                    "the same outcome at a higher cost");
   command->add_option("--duration", options->bench.duration_s, "Simulated time per trial [s]")
       ->check(FiniteNumberIn(0.0, kMaxDurationS, /*min_inclusive=*/false));
   command

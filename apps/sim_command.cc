@@ -43,6 +43,7 @@
 #include "output/interruption.h"
 #include "output/progress_bar.h"
 #include "output/svg_plot.h"
+#include "perception/cpu_time.h"
 #include "sim/scenario/scenario.h"
 #include "sim/scenario/scenario_sitl.h"
 #include "sim/sim_params_io.h"
@@ -250,6 +251,7 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
   };
   const sim::SitlResult result = runner.Run(autopilot, hooks);
   progress.Finish();
+  const double outputs_cpu_start_s = perception::ProcessCpuSeconds();
 
   nlohmann::json& summary = out.summary();
   summary["command"] = "sim";
@@ -311,6 +313,9 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
   summary["outputs"] = outputs;
   WriteReport(result, key_frames, "aperture sim: " + options.scenario, scenario, out, *flight,
               evaluation);
+  // After the flight: the evaluation, the video's last frames, CSV files and report.html.
+  summary["timing"]["cpu"]["outputs_after_flight_s"] =
+      perception::ProcessCpuSeconds() - outputs_cpu_start_s;
   std::cout << "aperture sim " << options.scenario << ": " << sim::ToString(result.outcome) << " ("
             << result.reason << ") after " << result.sim_time_s << " s, real-time factor "
             << result.real_time_factor << "\n";

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "apps/imu_csv.h"
+#include "experiments/bench/sitl_profile_json.h"
 #include "output/csv_writer.h"
 #include "output/svg_plot.h"
 #include "output/tum_trajectory_writer.h"
@@ -58,13 +59,13 @@ void AddSitlCommandPlots(const sim::SitlResult& result, output::HtmlReport* repo
   }
   report->AddSection("Commands");
   report->AddSvg(output::SvgPlot({"Collective thrust command", "t [s]", "c [m/s^2]"})
-                    .AddLine("c_cmd", tc, thrust)
-                    .Render());
+                     .AddLine("c_cmd", tc, thrust)
+                     .Render());
   report->AddSvg(output::SvgPlot({"Body-rate command", "t [s]", "omega_des [rad/s]"})
-                    .AddLine("p", tc, wx)
-                    .AddLine("q", tc, wy)
-                    .AddLine("r", tc, wz)
-                    .Render());
+                     .AddLine("p", tc, wx)
+                     .AddLine("q", tc, wy)
+                     .AddLine("r", tc, wz)
+                     .Render());
   output::SvgPlot rotor_plot({"Rotor thrusts (flight controller)", "t [s]", "f [N]"});
   for (int i = 0; i < 4; ++i) rotor_plot.AddLine("f" + std::to_string(i + 1), tc, rotors[i]);
   report->AddSvg(rotor_plot.Render());
@@ -80,9 +81,13 @@ void AddSitlRunSummary(const sim::SitlResult& result, nlohmann::json* summary) {
                         {"commands", result.commands.size()},
                         {"imu", result.imu.size()}};
   (*summary)["timing"] = {
-      {"wall_time_s", result.timing.wall_time_s}, {"dynamics_s", result.timing.dynamics_s},
-      {"render_s", result.timing.render_s},       {"autopilot_s", result.timing.autopilot_s},
-      {"collision_s", result.timing.collision_s}, {"hooks_s", result.timing.hooks_s}};
+      {"wall_time_s", result.timing.wall_time_s},
+      {"dynamics_s", result.timing.dynamics_s},
+      {"render_s", result.timing.render_s},
+      {"autopilot_s", result.timing.autopilot_s},
+      {"collision_s", result.timing.collision_s},
+      {"hooks_s", result.timing.hooks_s},
+      {"cpu", experiments::SitlCpuProfileToJson(result.timing.cpu, result.sim_time_s)}};
 }
 
 }  // namespace aperture::apps

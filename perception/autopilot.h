@@ -44,6 +44,9 @@ class Autopilot {
   virtual void OnImu(const ImuSample& /*sample*/) {}
   // frame.camera_id indexes the rig's cameras (the order the driver was configured with).
   virtual void OnFrame(const Frame& /*frame*/) {}
+  // false promises that OnFrame ignores a frame of camera camera_id stamped t_s, whenever it is
+  // delivered from now on; a simulator may then skip rendering it (sim/sitl/sitl_runner.h).
+  virtual bool WantsFrame(int /*camera_id*/, double /*t_s*/) const { return true; }
   virtual void OnRange(const RangeReading& /*reading*/) {}
   // Simulation only (see above): true if the autopilot needs OnGroundTruth.
   virtual bool UsesGroundTruth() const { return false; }

@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "control/constants.h"
+#include "experiments/bench/sitl_profile_json.h"
 #include "experiments/gap/gap_mission_factory.h"
 #include "experiments/gap/gap_trial_record_json.h"
 #include "output/interruption.h"
@@ -36,6 +37,9 @@ class RecordingAutopilot : public perception::Autopilot {
   std::string name() const override { return inner_.name(); }
   void OnImu(const perception::ImuSample& sample) override { inner_.OnImu(sample); }
   void OnFrame(const perception::Frame& frame) override { inner_.OnFrame(frame); }
+  bool WantsFrame(int camera_id, double t_s) const override {
+    return inner_.WantsFrame(camera_id, t_s);
+  }
   void OnRange(const perception::RangeReading& reading) override { inner_.OnRange(reading); }
   bool UsesGroundTruth() const override { return inner_.UsesGroundTruth(); }
   void OnGroundTruth(const control::QuadState& state) override { inner_.OnGroundTruth(state); }
@@ -172,6 +176,7 @@ GapTrialRecord RunGapTrial(const GapBenchOptions& options, const sim::ScenarioPa
     sim::ConfigureSitlFromScenario(scenario, &params);
     if (!options.render_cameras) params.cameras.clear();
     for (sim::SitlCamera& camera : params.cameras) camera.render.ground_truth = false;
+    params.render_ignored_frames = options.render_ignored_frames;
     const sim::ImuSensorParams nominal_imu = params.imu;
     ApplyGapTrial(trial, &params);
     GapGeometry gap;
@@ -196,11 +201,13 @@ GapTrialRecord RunGapTrial(const GapBenchOptions& options, const sim::ScenarioPa
         EvaluateGapTrial(result, gap, record.plan, record.traverse_start_time_s, options.hover);
     record.outcome = sim::ToString(result.outcome);
     record.sim_time_s = result.sim_time_s;
+    record.cpu_profile = SitlCpuProfileToJson(result.timing.cpu, result.sim_time_s);
     record.autopilot_name = result.autopilot_name;
     record.autopilot_status = result.autopilot_status;
     for (const sim::SitlCameraStats& camera : result.cameras) {
       record.frames_delivered += camera.frames_delivered;
       record.frames_dropped += camera.frames_dropped;
+      record.frames_skipped += camera.frames_skipped;
     }
     record.estimate_trace = std::move(recorder.estimates());
     record.truth_trace = SampleTruth(result.trajectory, record.estimate_trace);

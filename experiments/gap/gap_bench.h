@@ -37,7 +37,7 @@ struct GapBenchOptions {
   // 100 trials of seed 1 (detection, hover, transfer, approach, traverse, recovery, 2 s position
   // hold), so the default leaves margin for slow recoveries.
   double duration_s = 15.0;
-  int threads = 0;           // concurrent trials; 0 = oneTBB's default (all cores)
+  int threads = 0;  // concurrent trials; 0 = oneTBB's default (all cores)
   HoverCriteria hover;
   // Overrides of the built-in `gap` scenario (sim/scenario), e.g. "cameras.front.supersampling=1",
   // and of the mission's parameters (section `mission`,
@@ -46,6 +46,9 @@ struct GapBenchOptions {
   std::vector<std::string> set_items;
   // false: the SITL renders no camera (for ground-truth autopilots, which need none).
   bool render_cameras = true;
+  // false: frames the mission would ignore (after the planned crossing) are not rendered
+  // (SitlRunnerParams::render_ignored_frames; the same outcome, fewer renders).
+  bool render_ignored_frames = false;
   // Throws std::invalid_argument naming the option (trials < 1, duration <= 0, threads < 0, bad
   // ranges).
   void Validate() const;
@@ -63,6 +66,10 @@ struct GapTrialRecord {
   std::string autopilot_status;  // at the end of the run
   int frames_delivered = 0;
   int frames_dropped = 0;
+  int frames_skipped = 0;  // not rendered: the mission would have ignored them
+  // The SITL's CPU profile (experiments/bench/sitl_profile_json.h; null if the trial threw): a
+  // measurement, exact when the trials run on one thread.
+  nlohmann::json cpu_profile;
   // Fig. 6: the autopilot's estimate after every control step (when it had one, with a gap
   // estimate), in simulator coordinates relative to the gap (T_WG_true * T_MG_est^-1 * estimate
   // of the autopilot's frame M), and the ground truth at the same times.

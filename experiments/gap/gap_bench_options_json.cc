@@ -12,6 +12,7 @@ nlohmann::json GapBenchOptionsToJson(const GapBenchOptions& o) {
           {"first_trial", o.first_trial},
           {"duration_s", o.duration_s},
           {"render_cameras", o.render_cameras},
+          {"render_ignored_frames", o.render_ignored_frames},
           {"ranges",
            {{"max_roll_deg", o.ranges.max_roll_deg},
             {"max_pitch_deg", o.ranges.max_pitch_deg},
@@ -41,6 +42,7 @@ GapBenchOptions GapBenchOptionsFromJson(const nlohmann::json& json) {
     o.first_trial = json.at("first_trial").get<int>();
     o.duration_s = json.at("duration_s").get<double>();
     o.render_cameras = json.at("render_cameras").get<bool>();
+    o.render_ignored_frames = json.at("render_ignored_frames").get<bool>();
     const nlohmann::json& r = json.at("ranges");
     o.ranges.max_roll_deg = r.at("max_roll_deg").get<double>();
     o.ranges.max_pitch_deg = r.at("max_pitch_deg").get<double>();

@@ -5,8 +5,10 @@
 #include <functional>
 #include <limits>
 #include <set>
+#include <vector>
 
 #include "control/constants.h"
+#include "experiments/bench/sitl_profile_json.h"
 #include "experiments/gap/gap_bench.h"
 #include "output/csv_writer.h"
 #include "output/html_report.h"
@@ -54,6 +56,7 @@ void WriteTrialsCsv(const GapBenchResult& result, const std::string& path) {
                                "error_time_s",
                                "frames_delivered",
                                "frames_dropped",
+                               "frames_skipped",
                                "sim_time_s",
                                "wall_time_s",
                                "autopilot_status"});
@@ -82,7 +85,8 @@ void WriteTrialsCsv(const GapBenchResult& result, const std::string& path) {
     for (int i = 0; i < 3; ++i) numbers({e ? e->velocity_mps(i) : kNaN});
     for (int i = 0; i < 2; ++i) numbers({e ? e->orientation_deg(i) : kNaN});
     numbers({e ? e->time_s : kNaN, static_cast<double>(r.frames_delivered),
-             static_cast<double>(r.frames_dropped), r.sim_time_s, r.wall_time_s});
+             static_cast<double>(r.frames_dropped), static_cast<double>(r.frames_skipped),
+             r.sim_time_s, r.wall_time_s});
     row.emplace_back(r.autopilot_status);
     csv.WriteCells(row);
   }
@@ -266,6 +270,12 @@ void WriteGapBenchOutputs(const GapBenchResult& result, output::OutputFolder& ou
   summary["config"] = result.scenario_config;
   const nlohmann::json figures = SummarizeGapBench(result);
   for (const auto& [key, value] : figures.items()) summary[key] = value;
+  // A measurement, not a figure: the trials' SITL CPU profiles summed (exact on one thread).
+  std::vector<nlohmann::json> profiles;
+  for (const GapTrialRecord& record : result.trials) {
+    if (!record.cpu_profile.is_null()) profiles.push_back(record.cpu_profile);
+  }
+  summary["timing"] = {{"trials_profiled", profiles.size()}, {"cpu", SumSitlCpuProfiles(profiles)}};
   WriteTrialsCsv(result, out.Path("trials.csv"));
   WriteReport(result, figures, out);
   summary["outputs"] = {{"trials", "trials.csv"}, {"report", "report.html"}};

@@ -11,8 +11,8 @@ namespace {
 constexpr int kQuadStateSize = 14;
 
 nlohmann::json QuadStateToJson(const control::QuadState& s) {
-  return {s.t_s,      s.p_WB.x(),  s.p_WB.y(),  s.p_WB.z(),    s.v_W.x(),
-          s.v_W.y(),  s.v_W.z(),   s.q_WB.w(),  s.q_WB.x(),    s.q_WB.y(),
+  return {s.t_s,      s.p_WB.x(),    s.p_WB.y(),    s.p_WB.z(),   s.v_W.x(),
+          s.v_W.y(),  s.v_W.z(),     s.q_WB.w(),    s.q_WB.x(),   s.q_WB.y(),
           s.q_WB.z(), s.omega_B.x(), s.omega_B.y(), s.omega_B.z()};
 }
 
@@ -68,6 +68,7 @@ nlohmann::json GapTrialSummaryJson(const GapTrialRecord& record) {
       {"autopilot_status", record.autopilot_status},
       {"frames_delivered", record.frames_delivered},
       {"frames_dropped", record.frames_dropped},
+      {"frames_skipped", record.frames_skipped},
       {"traverse_start_time_s", record.traverse_start_time_s},
   };
   if (const std::optional<GapCrossing>& crossing = record.evaluation.crossing) {
@@ -93,6 +94,7 @@ nlohmann::json GapTrialRecordToJson(const GapTrialRecord& record) {
   }
   json["estimate_trace"] = TraceToJson(record.estimate_trace);
   json["truth_trace"] = TraceToJson(record.truth_trace);
+  json["cpu_profile"] = record.cpu_profile;
   return json;
 }
 
@@ -121,6 +123,7 @@ GapTrialRecord GapTrialRecordFromJson(const nlohmann::json& json) {
     r.autopilot_status = json.at("autopilot_status").get<std::string>();
     r.frames_delivered = json.at("frames_delivered").get<int>();
     r.frames_dropped = json.at("frames_dropped").get<int>();
+    r.frames_skipped = json.at("frames_skipped").get<int>();
     r.traverse_start_time_s = json.at("traverse_start_time_s").get<double>();
     if (json.contains("crossing")) {
       const nlohmann::json& j = json["crossing"];
@@ -142,6 +145,7 @@ GapTrialRecord GapTrialRecordFromJson(const nlohmann::json& json) {
     }
     r.estimate_trace = TraceFromJson(json.at("estimate_trace"));
     r.truth_trace = TraceFromJson(json.at("truth_trace"));
+    r.cpu_profile = json.value("cpu_profile", nlohmann::json());
     return r;
   } catch (const nlohmann::json::exception& e) {
     throw std::invalid_argument(std::string("gap trial record: ") + e.what());

@@ -4,13 +4,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <ctime>
 #include <limits>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/ximgproc/edge_filter.hpp>
 #include <optional>
 #include <stdexcept>
 
+#include "perception/cpu_time.h"
 #include "perception/elapsed_time.h"
 #include "perception/ts2p/disk_kernel.h"
 
@@ -20,11 +20,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 // CPU time of the calling thread [ms]: the cost on one core, whatever else loads the machine.
-double ThreadCpuMs() {
-  timespec now{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
-  return now.tv_sec * 1e3 + now.tv_nsec * 1e-6;
-}
+double ThreadCpuMs() { return 1e3 * ThreadCpuSeconds(); }
 
 cv::Mat GrayOfOneOrThreeChannels(const cv::Mat& image) {
   if (image.channels() == 1) return image;

@@ -49,15 +49,24 @@ void GapMissionParams::Validate() const {
 
 const char* ToString(GapMissionPhase phase) {
   switch (phase) {
-    case GapMissionPhase::kDetect: return "detect";
-    case GapMissionPhase::kHover: return "hover";
-    case GapMissionPhase::kTransfer: return "transfer";
-    case GapMissionPhase::kApproach: return "approach";
-    case GapMissionPhase::kLeadIn: return "lead_in";
-    case GapMissionPhase::kTraverse: return "traverse";
-    case GapMissionPhase::kRecover: return "recover";
-    case GapMissionPhase::kDone: return "done";
-    case GapMissionPhase::kAborted: return "aborted";
+    case GapMissionPhase::kDetect:
+      return "detect";
+    case GapMissionPhase::kHover:
+      return "hover";
+    case GapMissionPhase::kTransfer:
+      return "transfer";
+    case GapMissionPhase::kApproach:
+      return "approach";
+    case GapMissionPhase::kLeadIn:
+      return "lead_in";
+    case GapMissionPhase::kTraverse:
+      return "traverse";
+    case GapMissionPhase::kRecover:
+      return "recover";
+    case GapMissionPhase::kDone:
+      return "done";
+    case GapMissionPhase::kAborted:
+      return "aborted";
   }
   return "unknown";
 }
@@ -134,11 +143,14 @@ bool GapMission::LookingForGap(double frame_t_s) const {
   }
 }
 
+bool GapMission::WantsFrame(int camera_id, double t_s) const {
+  return camera_id == params_.camera_id && LookingForGap(t_s);
+}
+
 void GapMission::OnFrame(const perception::Frame& frame) {
-  if (frame.camera_id != params_.camera_id || !LookingForGap(frame.t_s)) return;
+  if (!WantsFrame(frame.camera_id, frame.t_s)) return;
   const std::vector<perception::PoseObservation>& observations = front_ends_.Process(frame);
-  last_detection_ =
-      *front_ends_.Latest<perception::GapDetection>(perception::GapNode::kOutputSlot);
+  last_detection_ = *front_ends_.Latest<perception::GapDetection>(perception::GapNode::kOutputSlot);
   last_frame_t_s_ = frame.t_s;
   ++frames_processed_;
   for (const perception::PoseObservation& observation : observations) {
@@ -287,15 +299,29 @@ perception::AutopilotCommand GapMission::Step(double t_s) {
   for (;;) {
     std::optional<perception::AutopilotCommand> command;
     switch (phase_) {
-      case GapMissionPhase::kDetect: command = StepDetect(t_s); break;
-      case GapMissionPhase::kHover: command = StepHover(t_s); break;
-      case GapMissionPhase::kTransfer: command = StepTransfer(t_s); break;
-      case GapMissionPhase::kApproach: command = StepApproach(t_s); break;
-      case GapMissionPhase::kLeadIn: command = StepLeadIn(t_s); break;
-      case GapMissionPhase::kTraverse: command = StepTraverse(t_s); break;
+      case GapMissionPhase::kDetect:
+        command = StepDetect(t_s);
+        break;
+      case GapMissionPhase::kHover:
+        command = StepHover(t_s);
+        break;
+      case GapMissionPhase::kTransfer:
+        command = StepTransfer(t_s);
+        break;
+      case GapMissionPhase::kApproach:
+        command = StepApproach(t_s);
+        break;
+      case GapMissionPhase::kLeadIn:
+        command = StepLeadIn(t_s);
+        break;
+      case GapMissionPhase::kTraverse:
+        command = StepTraverse(t_s);
+        break;
       case GapMissionPhase::kRecover:
       case GapMissionPhase::kDone:
-      case GapMissionPhase::kAborted: command = StepRecovery(t_s); break;
+      case GapMissionPhase::kAborted:
+        command = StepRecovery(t_s);
+        break;
     }
     if (command) return *command;
   }
@@ -358,8 +384,8 @@ std::optional<perception::AutopilotCommand> GapMission::StepApproach(double t_s)
   }
   if (remaining_s > params_.min_replan_remaining_s) {
     const control::QuadState x = estimate();
-    const ApproachCandidate candidate = approach_planner_.Replan(
-        approach_target_, x.p_WB, x.v_W, last_reference_a_W_, remaining_s);
+    const ApproachCandidate candidate =
+        approach_planner_.Replan(approach_target_, x.p_WB, x.v_W, last_reference_a_W_, remaining_s);
     if (candidate.IsValid()) {
       primitive_ = candidate.primitive;
       primitive_start_t_s_ = t_s;

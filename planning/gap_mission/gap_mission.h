@@ -33,11 +33,12 @@
 // --frontends gap` runs) inside a perception::FrontEndRunner; its pose observations (T_CG of the
 // fixed gap) go through perception::ToPoseMeasurement with the rig {T_WG, T_BC,
 // detection_covariance_scale} into perception::PoseFusion (PoseImuFilter with the one restart
-// policy, latency handled by the filter), which the mission starts itself once W is fixed. Mission frame W (Sec. III: the state is
-// estimated relative to the gap): origin at the gap centre, z_W up (gravity from the averaged
-// accelerometer while hovering, expressed in G through the detections' R_CG), x_W the horizontal
-// projection of the gap normal z_G (direction of traversal). The gap pose in W is therefore fixed,
-// and TraverseTrajectory's gap frame G (x_G long side, z_G through the gap) is the detector's.
+// policy, latency handled by the filter), which the mission starts itself once W is fixed. Mission
+// frame W (Sec. III: the state is estimated relative to the gap): origin at the gap centre, z_W up
+// (gravity from the averaged accelerometer while hovering, expressed in G through the detections'
+// R_CG), x_W the horizontal projection of the gap normal z_G (direction of traversal). The gap pose
+// in W is therefore fixed, and TraverseTrajectory's gap frame G (x_G long side, z_G through the
+// gap) is the detector's.
 //
 // Times are on the sensor clock (the simulator clock in SITL).
 #include <Eigen/Core>
@@ -93,7 +94,7 @@ struct GapMissionParams {
     return limits;
   }();
   control::PositionControllerParams controller;  // approach / transfer / hover tracking
-  control::RecoveryParams recovery;             // after the gap
+  control::RecoveryParams recovery;              // after the gap
   int camera_id = 0;  // Frame::camera_id of the forward camera; other cameras are ignored
 
   // Detections whose gravity direction is averaged to fix the mission frame (detection noise of
@@ -176,6 +177,8 @@ class GapMission : public perception::Autopilot {
   std::string name() const override { return "gap_mission"; }
   void OnImu(const perception::ImuSample& sample) override;
   void OnFrame(const perception::Frame& frame) override;
+  // Frames of the mission's camera until the planned crossing (the phases only move on).
+  bool WantsFrame(int camera_id, double t_s) const override;
   void OnRange(const perception::RangeReading& reading) override;
   perception::AutopilotCommand Step(double t_s) override;
   // "<phase>" plus details, e.g. "approach 1.2/2.0 s", "recover: horizontal_velocity".

@@ -3,23 +3,17 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <ctime>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 #include <utility>
 
+#include "perception/cpu_time.h"
 #include "perception/mono_depth/mono_depth_node.h"
 
 namespace aperture::planning {
 namespace {
 
-// CPU time of the calling thread [s]: the per-module cost on one core, whatever else the machine
-// runs (wall time would count the other processes).
-double ThreadCpuSeconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
+using perception::ThreadCpuSeconds;  // the per-module cost on one core
 
 std::vector<std::unique_ptr<perception::Node>> MonoDepthFrontEnd(perception::MonoDepthModel model) {
   std::vector<std::unique_ptr<perception::Node>> nodes;

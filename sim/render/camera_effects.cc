@@ -12,6 +12,8 @@
 #include <string>
 
 #include "control/require.h"
+#include "perception/cpu_time.h"
+#include "sim/render/render_profile.h"
 #include "sim/scene/counter_hash.h"
 
 namespace aperture::sim {
@@ -155,6 +157,7 @@ CapturedFrame CameraEffects::Capture(const RenderFunction& render,
     RenderOptions sub_options = render_options;
     sub_options.ground_truth = options.ground_truth && i == ground_truth_subframe;
     render(T_WC_at(t), sub_options, &sub);
+    const perception::ScopedCpuTimer timer(RenderStage(&RenderProfile::blur_s));
     // Render reuses sub's buffers: copies only while another subframe follows.
     const bool last = i == n - 1;
     if (i == 0) {
@@ -167,9 +170,13 @@ CapturedFrame CameraEffects::Capture(const RenderFunction& render,
       captured.object_id = last ? sub.object_id : sub.object_id.clone();
     }
   }
-  if (n > 1) captured.radiance *= 1.0 / n;
+  if (n > 1) {
+    const perception::ScopedCpuTimer timer(RenderStage(&RenderProfile::blur_s));
+    captured.radiance *= 1.0 / n;
+  }
   captured.frame.t_s = t_mid_s;
   captured.frame.index = frame_index;
+  const perception::ScopedCpuTimer timer(RenderStage(&RenderProfile::noise_s));
   captured.frame.image = ToImage8U(captured.radiance, frame_index);
   return captured;
 }

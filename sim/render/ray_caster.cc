@@ -11,6 +11,8 @@
 #include <stdexcept>
 
 #include "control/constants.h"
+#include "perception/cpu_time.h"
+#include "sim/render/render_profile.h"
 
 namespace aperture::sim {
 namespace {
@@ -565,6 +567,9 @@ void RayCaster::Render(const Scene& scene, const perception::CameraModel& camera
   if (!T_WC.matrix().allFinite()) {
     throw std::invalid_argument("RayCaster::Render: T_WC is not finite; pass a valid camera pose");
   }
+  if (RenderProfile* profile = RenderProfileScope::Current()) ++profile->renders;
+  std::optional<perception::ScopedCpuTimer> setup_timer(std::in_place,
+                                                        RenderStage(&RenderProfile::setup_s));
   const int w = camera.width();
   const int h = camera.height();
   const int k = options.supersampling;
@@ -589,8 +594,16 @@ void RayCaster::Render(const Scene& scene, const perception::CameraModel& camera
     edge_pairs_.resize(rays.center.size());
   }
   const PixelPass pass{scene, frame, rays, options, output, w, k, 1.0f / static_cast<float>(k * k)};
-  ShadePixelCenters(pass, h, adaptive);
-  if (adaptive) SupersampleEdges(pass, h);
+  setup_timer.reset();
+  {
+    const perception::ScopedCpuTimer timer(RenderStage(&RenderProfile::centers_s));
+    ShadePixelCenters(pass, h, adaptive);
+  }
+  if (adaptive) {
+    const perception::ScopedCpuTimer timer(RenderStage(&RenderProfile::supersampling_s));
+    SupersampleEdges(pass, h);
+  }
+  const perception::ScopedCpuTimer timer(RenderStage(&RenderProfile::leds_s));
   SplatLeds(leds, frame, camera, T_WC, options, output);
 }
 

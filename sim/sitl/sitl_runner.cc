@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "control/require.h"
+#include "perception/cpu_time.h"
 #include "perception/elapsed_time.h"
 #include "sim/sensors/sample_schedule.h"
 
@@ -18,7 +19,23 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+using perception::ProcessCpuSeconds;
+using perception::ScopedCpuTimer;
 using perception::SecondsSince;
+
+// Adds the wall time of its lifetime to *wall_s and the process CPU time to *cpu_s.
+class SectionTimer {
+ public:
+  SectionTimer(double* wall_s, double* cpu_s) : wall_s_(wall_s), cpu_(cpu_s) {}
+  ~SectionTimer() { *wall_s_ += SecondsSince(start_); }
+  SectionTimer(const SectionTimer&) = delete;
+  SectionTimer& operator=(const SectionTimer&) = delete;
+
+ private:
+  double* wall_s_;
+  Clock::time_point start_ = Clock::now();
+  ScopedCpuTimer cpu_;
+};
 
 // Ground-truth poses of the last few steps, for motion blur over an exposure that ends now.
 class PoseHistory {
@@ -201,9 +218,13 @@ class SitlFlight {
       SampleSensors(t_s);
       CaptureFrames(t_s);
       const Clock::time_point section = Clock::now();
+      const double section_cpu_s = ProcessCpuSeconds();
+      const double perception_before_s = cpu().perception_s;
       Deliver(t_s);
       const bool done = StepAutopilot(t_s);
       result_->timing.autopilot_s += SecondsSince(section);
+      cpu().control_s +=
+          ProcessCpuSeconds() - section_cpu_s - (cpu().perception_s - perception_before_s);
       if (done) {
         result_->outcome = SitlResult::Outcome::kAutopilotDone;
         result_->reason = "autopilot done: " + autopilot_->status();
@@ -259,9 +280,20 @@ class SitlFlight {
     flight_controller_.ResetThrustEstimate(vehicle_.RotorThrusts_N());
   }
 
+  SitlCpuProfile& cpu() { return result_->timing.cpu; }
+
+  // Runs a SitlHooks callback outside the render profile (a chase view renders too), adding its
+  // wall and CPU time to *wall_s and the profile's hooks_s.
+  template <typename Callback>
+  void RunHook(double* wall_s, const Callback& callback) {
+    const RenderProfileScope not_rendering(nullptr);
+    const SectionTimer timer(wall_s, &cpu().hooks_s);
+    callback();
+  }
+
   // Step 1a: IMU and range sensor sample the state at t_s.
   void SampleSensors(double t_s) {
-    const Clock::time_point section = Clock::now();
+    const SectionTimer timer(&result_->timing.dynamics_s, &cpu().dynamics_s);
     const control::QuadState& state = vehicle_.state();
     imu_samples_ = imu_.Update(t_s, vehicle_.SpecificForce_B(), state.omega_B);
     if (p_.range_enabled) {
@@ -269,14 +301,15 @@ class SitlFlight {
         range_in_flight_.emplace_back(t_s + p_.range_latency_s, *reading);
       }
     }
-    result_->timing.dynamics_s += SecondsSince(section);
   }
 
   // Step 1b: every camera due at t_s drops its frame or renders it (exposure ending at t_s) and
   // sends it on its way (delivery at t_s + latency_s).
   void CaptureFrames(double t_s) {
     const Clock::time_point section = Clock::now();
+    const double section_cpu_s = ProcessCpuSeconds();
     double hooks_s = 0.0;  // inside this section, booked apart from rendering
+    const double hooks_cpu_before_s = cpu().hooks_s;
     const control::QuadState& state = vehicle_.state();
     for (size_t c = 0; c < cameras_.size(); ++c) {
       CameraRuntime& runtime = cameras_[c];
@@ -288,10 +321,11 @@ class SitlFlight {
         ++runtime.stats.frames_dropped;
         continue;
       }
-      if (hooks_.before_render) {
-        const Clock::time_point hook_start = Clock::now();
-        hooks_.before_render(t_s, state);
-        hooks_s += SecondsSince(hook_start);
+      if (hooks_.before_render) RunHook(&hooks_s, [&] { hooks_.before_render(t_s, state); });
+      const double t_mid_s = t_s - 0.5 * camera.effects.exposure_s;
+      if (!p_.render_ignored_frames && !autopilot_->WantsFrame(static_cast<int>(c), t_mid_s)) {
+        ++runtime.stats.frames_skipped;
+        continue;
       }
       const Eigen::Isometry3d T_BC = camera.T_BC;
       const std::optional<Eigen::Isometry3d>& T_WC_fixed = camera.T_WC_fixed;
@@ -299,7 +333,6 @@ class SitlFlight {
       const auto T_WC_at = [&history, &T_BC, &T_WC_fixed](double t) {
         return T_WC_fixed ? *T_WC_fixed : Eigen::Isometry3d(history.T_WB(t) * T_BC);
       };
-      const double t_mid_s = t_s - 0.5 * camera.effects.exposure_s;
       CapturedFrame captured =
           runtime.fixed
               ? runtime.effects.Capture(
@@ -311,14 +344,13 @@ class SitlFlight {
                                         slot, camera.render);
       captured.frame.camera_id = static_cast<int>(c);
       if (hooks_.on_frame) {
-        const Clock::time_point hook_start = Clock::now();
-        hooks_.on_frame(static_cast<int>(c), captured, state);
-        hooks_s += SecondsSince(hook_start);
+        RunHook(&hooks_s, [&] { hooks_.on_frame(static_cast<int>(c), captured, state); });
       }
       runtime.in_flight.emplace_back(t_s + camera.latency_s, captured.frame);
     }
     result_->timing.render_s += SecondsSince(section) - hooks_s;
     result_->timing.hooks_s += hooks_s;
+    cpu().render_s += ProcessCpuSeconds() - section_cpu_s - (cpu().hooks_s - hooks_cpu_before_s);
   }
 
   // Step 2: everything delivered by t_s goes to the autopilot (IMU also to the flight
@@ -337,6 +369,7 @@ class SitlFlight {
     }
     for (CameraRuntime& runtime : cameras_) {
       while (!runtime.in_flight.empty() && runtime.in_flight.front().first <= due_s) {
+        const ScopedCpuTimer timer(&cpu().perception_s);
         autopilot_->OnFrame(runtime.in_flight.front().second);
         ++runtime.stats.frames_delivered;
         runtime.in_flight.pop_front();
@@ -358,7 +391,7 @@ class SitlFlight {
   // Steps 4-5: commands due reach the flight controller, which runs at its rate; the vehicle
   // advances one step under the disturbances.
   void StepVehicle(long k, double t_s) {
-    const Clock::time_point section = Clock::now();
+    const SectionTimer timer(&result_->timing.dynamics_s, &cpu().dynamics_s);
     const double due_s = DueTime(t_s);
     while (!commands_in_flight_.empty() && commands_in_flight_.front().first <= due_s) {
       flight_controller_.SetCommand(commands_in_flight_.front().second);
@@ -386,21 +419,21 @@ class SitlFlight {
     history_.Add(vehicle_.state());
     if (p_.estimate_latency_s > 0.0) estimate_history_.push_back(vehicle_.state());
     if ((k + 1) % p_.trajectory_decimation == 0) result_->trajectory.push_back(vehicle_.state());
-    result_->timing.dynamics_s += SecondsSince(section);
   }
 
   // Step 6: collision along the step, or a touchdown too hard for the landing gear. Records it
   // and returns true when the run ends.
   bool CheckCollision() {
-    const Clock::time_point section = Clock::now();
-    std::optional<Collision> collision =
-        collision_checker_.Check(scene_, vehicle_.state(), previous_p_WB_);
-    if (!collision && vehicle_.on_ground() && !was_on_ground_) {
-      collision = collision_checker_.CheckTouchdown(vehicle_.state().p_WB,
-                                                    vehicle_.last_touchdown_speed_mps(),
-                                                    vehicle_.last_touchdown_tilt_rad());
+    std::optional<Collision> collision;
+    {
+      const SectionTimer timer(&result_->timing.collision_s, &cpu().collision_s);
+      collision = collision_checker_.Check(scene_, vehicle_.state(), previous_p_WB_);
+      if (!collision && vehicle_.on_ground() && !was_on_ground_) {
+        collision = collision_checker_.CheckTouchdown(vehicle_.state().p_WB,
+                                                      vehicle_.last_touchdown_speed_mps(),
+                                                      vehicle_.last_touchdown_tilt_rad());
+      }
     }
-    result_->timing.collision_s += SecondsSince(section);
     if (!collision) return false;
     result_->outcome = SitlResult::Outcome::kCollision;
     result_->collision = collision;
@@ -463,9 +496,14 @@ class SitlFlight {
 
 SitlResult SitlRunner::Run(perception::Autopilot& autopilot, const SitlHooks& hooks) {
   const Clock::time_point wall_start = Clock::now();
+  const double cpu_start_s = ProcessCpuSeconds();
   SitlResult result;
   result.autopilot_name = autopilot.name();
-  SitlFlight(params_, scene_, &ray_caster_, &autopilot, hooks, &result).Fly();
+  {
+    const RenderProfileScope render_profile(&result.timing.cpu.render);
+    SitlFlight(params_, scene_, &ray_caster_, &autopilot, hooks, &result).Fly();
+  }
+  result.timing.cpu.total_s = ProcessCpuSeconds() - cpu_start_s;
   result.timing.wall_time_s = SecondsSince(wall_start);
   result.real_time_factor =
       result.timing.wall_time_s > 0.0 ? result.sim_time_s / result.timing.wall_time_s : 0.0;

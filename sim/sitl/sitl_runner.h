@@ -56,6 +56,7 @@
 #include "perception/sensor_data.h"
 #include "sim/render/camera_effects.h"
 #include "sim/render/ray_caster.h"
+#include "sim/render/render_profile.h"
 #include "sim/scene/scene.h"
 #include "sim/sensors/imu_sensor.h"
 #include "sim/sensors/range_sensor.h"
@@ -117,6 +118,10 @@ struct SitlRunnerParams {
   // moved can appear (sim/sitl/fixed_camera_renderer.h: same images; valid while the hooks change
   // only object poses between frames, not materials, lighting or sky).
   bool reuse_fixed_camera_background = true;
+  // false: a due frame that the autopilot says it would ignore (Autopilot::WantsFrame) is not
+  // rendered nor delivered (SitlCameraStats::frames_skipped); the drop draw happens first, so
+  // the other frames and the flight are the same. true: every frame (e.g. for a video).
+  bool render_ignored_frames = true;
   // Records every n-th dynamics step in SitlResult::trajectory (1 = all).
   int trajectory_decimation = 1;
   // Sets every random stream from one seed: IMU, range, camera noise (per camera) and drops.
@@ -138,15 +143,37 @@ struct SitlCameraStats {
   int frames_due = 0;
   int frames_dropped = 0;
   int frames_delivered = 0;
+  int frames_skipped = 0;  // not rendered (render_ignored_frames = false)
 };
 
-struct SitlTiming {
+// The same stages in process CPU seconds (perception/cpu_time.h: every thread, so the renderer's
+// oneTBB workers count; exact while this flight is alone in the process, e.g. `aperture sim` or
+// a bench on one thread). The autopilot's time is split into perception (Autopilot::OnFrame) and
+// control (every other Autopilot call: IMU, range, ground truth, Step); total_s is the whole Run,
+// so total_s - the stages is what ran beside them (e.g. a background video encoder).
+struct SitlCpuProfile {
+  double total_s = 0.0;
+  double dynamics_s = 0.0;
+  double render_s = 0.0;  // = render.total_s() + the time between the renderer's stages
+  double perception_s = 0.0;
+  double control_s = 0.0;
+  double collision_s = 0.0;
+  double hooks_s = 0.0;
+  RenderProfile render;  // the render stages (render_profile.h)
+
+  double stages_s() const {
+    return dynamics_s + render_s + perception_s + control_s + collision_s + hooks_s;
+  }
+};
+
+struct SitlTiming {  // wall time [s] per stage
   double wall_time_s = 0.0;
   double dynamics_s = 0.0;   // vehicle, disturbances, sensors, flight controller
   double render_s = 0.0;     // ray casting + camera effects of the onboard cameras
   double autopilot_s = 0.0;  // every Autopilot call
   double collision_s = 0.0;
   double hooks_s = 0.0;  // SitlHooks callbacks (the caller's scene updates, videos, views)
+  SitlCpuProfile cpu;
 };
 
 struct SitlResult {
