@@ -1,0 +1,39 @@
+// KeepLastWindow (SitlRunnerParams::record_window_s): a long record stays within about two
+// windows and the last window is always whole (the SITL side: sitl_runner_test.cc).
+#include "sim/sitl/record_window.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <vector>
+
+namespace aperture::sim {
+namespace {
+
+struct Stamped {
+  double t_s = 0.0;
+};
+
+TEST(RecordWindow, KeepsBetweenOneAndTwoWindowsOfRecords) {
+  std::vector<Stamped> records;
+  std::size_t largest = 0;
+  for (int k = 0; k <= 10000; ++k) {  // 100 Hz for 100 s, a 1 s window
+    const double t_s = 0.01 * k;
+    records.push_back({t_s});
+    KeepLastWindow(&records, t_s, 1.0);
+    largest = std::max(largest, records.size());
+    ASSERT_LE(records.front().t_s, std::max(0.0, t_s - 1.0) + 1e-9) << "the last window is whole";
+    ASSERT_GE(records.front().t_s, t_s - 2.0 - 1e-9);
+  }
+  EXPECT_LE(largest, 202u);
+  EXPECT_LE(records.capacity(), 512u);  // the vector stops growing with the flight
+  std::vector<Stamped> all;
+  for (int k = 0; k < 500; ++k) {
+    all.push_back({0.01 * k});
+    KeepLastWindow(&all, 0.01 * k, 0.0);  // 0: keep everything
+  }
+  EXPECT_EQ(all.size(), 500u);
+}
+
+}  // namespace
+}  // namespace aperture::sim
