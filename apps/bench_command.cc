@@ -16,6 +16,7 @@ void AddBenchCommand(CLI::App& app, int* exit_code) {
   AddBenchLedCommand(*bench, exit_code);
   AddBenchMergeCommand(*bench, exit_code);
   AddBenchMononavCommand(*bench, exit_code);
+  AddBenchSoakCommand(*bench, exit_code);
   AddBenchTs2pCommand(*bench, exit_code);
   AddBenchTagsCommand(*bench, exit_code);
 }

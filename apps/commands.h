@@ -27,6 +27,7 @@ void AddBenchGapflytCommand(CLI::App& bench, int* exit_code);
 // `aperture bench merge`: the shards of any Monte-Carlo bench (apps/monte_carlo_command.h).
 void AddBenchMergeCommand(CLI::App& bench, int* exit_code);
 void AddBenchMononavCommand(CLI::App& bench, int* exit_code);
+void AddBenchSoakCommand(CLI::App& bench, int* exit_code);
 void AddBenchTs2pCommand(CLI::App& bench, int* exit_code);
 void AddBenchTagsCommand(CLI::App& bench, int* exit_code);
 

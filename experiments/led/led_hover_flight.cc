@@ -7,15 +7,16 @@
 
 #include "output/svg_plot.h"
 #include "perception/led/led_configuration.h"
+#include "sim/sitl/record_window.h"
 
 namespace aperture::experiments {
 namespace {
 
 // Ground-truth position at t_s, linear between the recorded states (clamped to their span).
 Eigen::Vector3d TruePositionAt(const std::vector<control::QuadState>& trajectory, double t_s) {
-  const auto later = std::lower_bound(
-      trajectory.begin(), trajectory.end(), t_s,
-      [](const control::QuadState& s, double t) { return s.t_s < t; });
+  const auto later =
+      std::lower_bound(trajectory.begin(), trajectory.end(), t_s,
+                       [](const control::QuadState& s, double t) { return s.t_s < t; });
   if (later == trajectory.begin()) return trajectory.front().p_WB;
   if (later == trajectory.end()) return trajectory.back().p_WB;
   const control::QuadState& a = *(later - 1);
@@ -55,9 +56,10 @@ HoverMetrics ComputeHoverMetrics(const std::vector<control::QuadState>& trajecto
     PushRecovery recovery;
     recovery.t_push_s = t_push;
     double inside_since = -1.0;  // < 0: outside the radius
-    std::size_t i = std::lower_bound(trajectory.begin(), trajectory.end(), t_push,
-                                     [](const control::QuadState& s, double t) { return s.t_s < t; }) -
-                    trajectory.begin();
+    std::size_t i =
+        std::lower_bound(trajectory.begin(), trajectory.end(), t_push,
+                         [](const control::QuadState& s, double t) { return s.t_s < t; }) -
+        trajectory.begin();
     std::size_t window_end = trajectory.size();  // one past the window
     for (; i < trajectory.size(); ++i) {
       const double t = trajectory[i].t_s;
@@ -71,12 +73,12 @@ HoverMetrics ComputeHoverMetrics(const std::vector<control::QuadState>& trajecto
     if (i < trajectory.size() || (inside_since >= 0.0 && t_end - inside_since >= recovery_hold_s)) {
       recovery.recovery_time_s = inside_since - t_push;
       // The window ends with the first sample back inside (included).
-      window_end = static_cast<std::size_t>(
-                       std::lower_bound(
-                           trajectory.begin(), trajectory.end(), inside_since,
-                           [](const control::QuadState& s, double t) { return s.t_s < t; }) -
-                       trajectory.begin()) +
-                   1;
+      window_end =
+          static_cast<std::size_t>(
+              std::lower_bound(trajectory.begin(), trajectory.end(), inside_since,
+                               [](const control::QuadState& s, double t) { return s.t_s < t; }) -
+              trajectory.begin()) +
+          1;
     }
     for (std::size_t k = 0; k < window_end; ++k) {
       if (trajectory[k].t_s < t_push) continue;
@@ -100,25 +102,30 @@ HoverMetrics ComputeHoverMetrics(const std::vector<control::QuadState>& trajecto
   return metrics;
 }
 
-// LedHoverAutopilot behind a recorder: every LED frame and, after each control step, the estimate.
+// LedHoverAutopilot behind a recorder: every LED frame and, after each control step, the estimate
+// (the last record_window_s of them when that is > 0, like the SITL records).
 class LedHoverFlight::Recorder : public perception::Autopilot {
  public:
   Recorder(const control::VehicleParameters& vehicle, perception::LedConfiguration configuration,
            std::shared_ptr<const perception::CameraModel> camera,
-           const planning::LedHoverAutopilotParams& params)
-      : inner_(vehicle, std::move(configuration), std::move(camera), params) {}
+           const planning::LedHoverAutopilotParams& params, double record_window_s)
+      : inner_(vehicle, std::move(configuration), std::move(camera), params),
+        record_window_s_(record_window_s) {}
 
   std::string name() const override { return inner_.name(); }
   void OnImu(const perception::ImuSample& sample) override { inner_.OnImu(sample); }
   void OnFrame(const perception::Frame& frame) override {
     const int before = inner_.counts().frames;
     inner_.OnFrame(frame);
-    if (inner_.counts().frames != before) frames_.push_back(inner_.last_frame());
+    if (inner_.counts().frames == before) return;
+    frames_.push_back(inner_.last_frame());
+    sim::KeepLastWindow(&frames_, frame.t_s, record_window_s_);
   }
   perception::AutopilotCommand Step(double t_s) override {
     const perception::AutopilotCommand command = inner_.Step(t_s);
     if (const auto estimate = inner_.hold().estimate()) {
       estimates_.push_back({estimate->state.t_s, estimate->state.p_WB, Eigen::Vector3d::Zero()});
+      sim::KeepLastWindow(&estimates_, t_s, record_window_s_);
     }
     return command;
   }
@@ -130,6 +137,7 @@ class LedHoverFlight::Recorder : public perception::Autopilot {
 
  private:
   planning::LedHoverAutopilot inner_;
+  const double record_window_s_;
   std::vector<planning::LedHoverFrameRecord> frames_;
   std::vector<LedHoverEstimateRecord> estimates_;
 };
@@ -168,7 +176,7 @@ LedHoverFlight::LedHoverFlight(const sim::Scenario& scenario, const sim::SitlRun
                                    scenario.params().led.config.empty()
                                        ? "led scenario (led.leds)"
                                        : scenario.params().led.config),
-      params.cameras[camera_id].model, autopilot);
+      params.cameras[camera_id].model, autopilot, params.record_window_s);
 }
 
 LedHoverFlight::~LedHoverFlight() = default;
@@ -186,7 +194,10 @@ LedHoverFlightResult LedHoverFlight::Finish(const sim::SitlResult& sitl,
   result.setpoint = autopilot.hold().setpoint();
   std::vector<double> push_times;
   for (const sim::Push& push : pushes) {
-    if (push.t_s <= sitl.sim_time_s) push_times.push_back(push.t_s);
+    // Pushes within the recorded trajectory (all of them unless SITL keeps a record window).
+    if (push.t_s <= sitl.sim_time_s && push.t_s >= sitl.trajectory.front().t_s) {
+      push_times.push_back(push.t_s);
+    }
   }
   result.hover = ComputeHoverMetrics(sitl.trajectory, result.setpoint.p_W, push_times,
                                      params_.recovery_radius_m, params_.recovery_hold_s);
@@ -201,8 +212,7 @@ LedHoverFlightResult LedHoverFlight::Finish(const sim::SitlResult& sitl,
       result.led_pose_error_m.push_back(std::nan(""));
       continue;
     }
-    const double error =
-        (frame.p_WB - TruePositionAt(sitl.trajectory, frame.t_s)).norm();
+    const double error = (frame.p_WB - TruePositionAt(sitl.trajectory, frame.t_s)).norm();
     result.led_pose_error_m.push_back(error);
     led_sum_sq += error * error;
   }
@@ -227,11 +237,12 @@ nlohmann::json LedHoverSummary(const LedHoverFlightResult& result) {
   const Eigen::Vector3d& p = result.setpoint.p_W;
   nlohmann::json pushes = nlohmann::json::array();
   for (const PushRecovery& push : result.hover.pushes) {
-    pushes.push_back({{"t_s", push.t_push_s},
-                      {"max_error_m", push.max_error_m},
-                      {"recovered", push.recovery_time_s.has_value()},
-                      {"recovery_time_s", push.recovery_time_s ? nlohmann::json(*push.recovery_time_s)
-                                                               : nlohmann::json(nullptr)}});
+    pushes.push_back(
+        {{"t_s", push.t_push_s},
+         {"max_error_m", push.max_error_m},
+         {"recovered", push.recovery_time_s.has_value()},
+         {"recovery_time_s",
+          push.recovery_time_s ? nlohmann::json(*push.recovery_time_s) : nlohmann::json(nullptr)}});
   }
   const planning::LedHoverCounts& c = result.counts;
   return {{"setpoint_p_W_m", {p.x(), p.y(), p.z()}},
@@ -289,9 +300,10 @@ void AddLedHoverReport(const LedHoverFlightResult& result, output::HtmlReport* r
     t_frame.push_back(result.frames[i].t_s);
     frame_error.push_back(result.led_pose_error_m[i]);
   }
-  report->AddSvg(output::SvgPlot({"LED pose error |p_WB,LED - p_WB| per frame", "t [s]", "error [m]"})
-                     .AddScatter("LED pose (T_WC T_CT T_BT^-1)", t_frame, frame_error)
-                     .Render());
+  report->AddSvg(
+      output::SvgPlot({"LED pose error |p_WB,LED - p_WB| per frame", "t [s]", "error [m]"})
+          .AddScatter("LED pose (T_WC T_CT T_BT^-1)", t_frame, frame_error)
+          .Render());
   std::vector<double> t_lost, lost;
   for (const planning::LedHoverFrameRecord& frame : result.frames) {
     if (frame.has_pose) continue;

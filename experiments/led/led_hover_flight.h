@@ -15,6 +15,8 @@
 // both outside the push-recovery windows), per push the peak error and the recovery time (from
 // the push until the error is back within recovery_radius_m for recovery_hold_s), the estimate
 // error |p_WB,est - p_WB| at every control step, the LED pose rate and frames without a pose.
+// With SitlRunnerParams::record_window_s set, the per-frame and per-step records (and so the
+// scores, not the counts) cover the last window of the flight only, like the SITL records.
 #include <Eigen/Core>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -48,7 +50,7 @@ struct LedHoverEstimateRecord {
 
 struct PushRecovery {
   double t_push_s = 0.0;
-  double max_error_m = 0.0;              // peak |p - p_set| from the push until recovered / end
+  double max_error_m = 0.0;               // peak |p - p_set| from the push until recovered / end
   std::optional<double> recovery_time_s;  // none: not recovered before the run ended
 };
 
@@ -73,12 +75,12 @@ struct LedHoverFlightResult {
   HoverMetrics hover;
   planning::LedHoverCounts counts;
   double sim_time_s = 0.0;
-  double pose_rate_hz = 0.0;  // LED poses per simulated second
+  double pose_rate_hz = 0.0;                          // LED poses per simulated second
   std::vector<planning::LedHoverFrameRecord> frames;  // every LED-camera frame
   std::vector<double> led_pose_error_m;  // per frame: |p_WB,LED - p_WB| (NaN without a pose)
   double led_pose_rms_error_m = 0.0;     // over the frames with a pose
-  std::vector<LedHoverEstimateRecord> estimates;      // every control step after the first pose
-  double estimate_rms_error_m = 0.0;                  // over `estimates`
+  std::vector<LedHoverEstimateRecord> estimates;  // every control step after the first pose
+  double estimate_rms_error_m = 0.0;              // over `estimates`
   double estimate_max_error_m = 0.0;
 };
 
@@ -97,7 +99,8 @@ class LedHoverFlight {
   // The LED front end's overlay of the latest LED-camera frame onto `bgr` (that camera's size).
   void DrawOverlay(cv::Mat& bgr) const;
   // Scores the run (its ground-truth trajectory and the recorded estimates).
-  LedHoverFlightResult Finish(const sim::SitlResult& sitl, const std::vector<sim::Push>& pushes) const;
+  LedHoverFlightResult Finish(const sim::SitlResult& sitl,
+                              const std::vector<sim::Push>& pushes) const;
 
  private:
   class Recorder;

@@ -26,6 +26,7 @@ MissionFlightRun FlyMission(const MissionFlightSpec& spec) {
   sim::SitlRunnerParams sitl;
   sitl.duration_s = spec.duration_s;
   sitl.trajectory_decimation = spec.trajectory_decimation;
+  sitl.record_window_s = spec.record_window_s;
   sim::ConfigureSitlFromScenario(scenario, &sitl);
   for (sim::SitlCamera& camera : sitl.cameras) camera.render.ground_truth = false;
   sitl.SetSeed(spec.seed);
@@ -38,8 +39,16 @@ MissionFlightRun FlyMission(const MissionFlightSpec& spec) {
       missions.Create(mission, {scenario, sitl, mission_params});
   sitl.duration_s = std::max(sitl.duration_s, flight->MinimumDurationS());
   sim::SitlRunner runner(sitl, &scenario.scene());
-  const sim::SitlResult result =
-      runner.Run(flight->autopilot(), MakeMissionHooks(flight.get(), &scenario));
+  sim::SitlHooks hooks = MakeMissionHooks(flight.get(), &scenario);
+  if (spec.on_frame) {
+    hooks.on_frame = [&spec](int camera_index, const sim::CapturedFrame&,
+                             const control::QuadState& state) {
+      spec.on_frame(camera_index, state.t_s);
+    };
+  }
+  hooks.stop_requested = spec.stop_requested;
+  const sim::SitlResult result = runner.Run(flight->autopilot(), hooks);
+  if (spec.on_result) spec.on_result(result);
   MissionFlightRun run;
   run.evaluation = flight->Evaluate(result);
   run.sim_outcome = sim::ToString(result.outcome);

@@ -5,11 +5,13 @@
 // MakeMissionHooks (objects the mission moves), scored by the mission's own Evaluate. No video,
 // no per-frame outputs.
 #include <cstdint>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "experiments/missions/mission_registry.h"
+#include "sim/sitl/sitl_runner.h"
 
 namespace aperture::experiments {
 
@@ -28,6 +30,15 @@ struct MissionFlightSpec {
   // Simulated time; the mission's MinimumDurationS when longer (it may end earlier) [s].
   double duration_s = 0.0;
   int trajectory_decimation = 5;  // ground truth kept every k-th 1 kHz state
+  // > 0: the flight keeps only its last record_window_s of records and is scored on them
+  // (sim::SitlRunnerParams::record_window_s: flat memory over a long flight) [s].
+  double record_window_s = 0.0;
+  // Optional observers of the flight (aperture bench soak's samples): every rendered camera
+  // frame's camera index and simulated time; asked before every simulation step whether to stop
+  // (sim::SitlHooks::stop_requested); the raw SITL result before it is scored.
+  std::function<void(int camera_index, double t_s)> on_frame;
+  std::function<bool()> stop_requested;
+  std::function<void(const sim::SitlResult&)> on_result;
 };
 
 // Throws std::invalid_argument (or config::UsageError) for an unknown scenario, mission or key,

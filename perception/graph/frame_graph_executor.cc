@@ -5,13 +5,13 @@
 namespace aperture::perception {
 
 FrameGraphExecutor::FrameGraphExecutor(FrameGraph& graph)
-    : graph_(graph), node_durations_s_(graph.size()) {}
+    : graph_(graph), node_durations_(graph.size()) {}
 
 void FrameGraphExecutor::Run(const Frame& frame, FrameSlots& slots) {
   const auto start = std::chrono::steady_clock::now();
   graph_.ResetSlots(frame, slots);
   RunNodes(slots);
-  frame_durations_s_.push_back(SecondsSince(start));
+  frame_durations_.Add(SecondsSince(start));
 }
 
 FrameSlots FrameGraphExecutor::Run(const Frame& frame) {
@@ -24,19 +24,17 @@ void FrameGraphExecutor::RunNode(std::size_t index, FrameSlots& slots) {
   NodeContext context = graph_.ContextFor(index, slots);
   const auto start = std::chrono::steady_clock::now();
   graph_.node(index).Run(context);
-  node_durations_s_[index].push_back(SecondsSince(start));
+  node_durations_[index].Add(SecondsSince(start));
 }
 
 std::vector<NodeTiming> FrameGraphExecutor::Timing() const {
   std::vector<NodeTiming> table;
   for (std::size_t index : graph_.topological_order()) {
-    table.push_back({graph_.declaration(index).name, SummarizeDurations(node_durations_s_[index])});
+    table.push_back({graph_.declaration(index).name, node_durations_[index].Summary()});
   }
   return table;
 }
 
-TimingStats FrameGraphExecutor::FrameTiming() const {
-  return SummarizeDurations(frame_durations_s_);
-}
+TimingStats FrameGraphExecutor::FrameTiming() const { return frame_durations_.Summary(); }
 
 }  // namespace aperture::perception

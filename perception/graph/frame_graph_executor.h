@@ -37,7 +37,8 @@ class FrameGraphExecutor {
   // Convenience: a fresh slot table per frame.
   FrameSlots Run(const Frame& frame);
 
-  // Per node (topological order) over all frames run so far: count, median, p95, max [s].
+  // Per node (topological order) over all frames run so far: count, median, p95, max [s]
+  // (median and p95 over an evenly spread subset on very long runs: DurationRecord).
   std::vector<NodeTiming> Timing() const;
   // Whole-graph wall time per frame [s].
   TimingStats FrameTiming() const;
@@ -51,8 +52,8 @@ class FrameGraphExecutor {
   FrameGraph& graph_;
 
  private:
-  std::vector<std::vector<double>> node_durations_s_;  // [node index][frame]
-  std::vector<double> frame_durations_s_;
+  std::vector<DurationRecord> node_durations_;  // [node index]
+  DurationRecord frame_durations_;
 };
 
 }  // namespace aperture::perception

@@ -28,4 +28,25 @@ TimingStats SummarizeDurations(std::vector<double> durations_s) {
   return stats;
 }
 
+void DurationRecord::Add(double duration_s) {
+  const bool kept = count_ % stride_ == 0;
+  max_s_ = count_ == 0 ? duration_s : std::max(max_s_, duration_s);
+  ++count_;
+  if (!kept) return;
+  kept_s_.push_back(duration_s);
+  if (kept_s_.size() < kMaxKept) return;
+  // Keep indices 0, 2 stride, 4 stride, ...: the kept ones of twice the stride.
+  std::size_t out = 0;
+  for (std::size_t i = 0; i < kept_s_.size(); i += 2) kept_s_[out++] = kept_s_[i];
+  kept_s_.resize(out);
+  stride_ *= 2;
+}
+
+TimingStats DurationRecord::Summary() const {
+  TimingStats stats = SummarizeDurations(kept_s_);
+  stats.count = count_;
+  stats.max_s = max_s_;
+  return stats;
+}
+
 }  // namespace aperture::perception

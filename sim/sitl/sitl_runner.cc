@@ -13,6 +13,7 @@
 #include "perception/cpu_time.h"
 #include "perception/elapsed_time.h"
 #include "sim/sensors/sample_schedule.h"
+#include "sim/sitl/record_window.h"
 
 namespace aperture::sim {
 namespace {
@@ -130,6 +131,7 @@ void SitlRunnerParams::Validate() const {
   if (trajectory_decimation < 1) {
     throw std::invalid_argument("SitlRunnerParams.trajectory_decimation must be >= 1");
   }
+  control::RequireNonNegative(record_window_s, "the record window (record_window_s) [s]");
   for (size_t i = 0; i < cameras.size(); ++i) {
     const SitlCamera& c = cameras[i];
     const std::string field = "cameras." + c.name + ".";
@@ -361,12 +363,14 @@ class SitlFlight {
       autopilot_->OnImu(sample);
       result_->imu.push_back(sample);
     }
+    KeepLastWindow(&result_->imu, t_s, p_.record_window_s);
     const double due_s = DueTime(t_s);
     while (!range_in_flight_.empty() && range_in_flight_.front().first <= due_s) {
       autopilot_->OnRange(range_in_flight_.front().second);
       result_->range.push_back(range_in_flight_.front().second);
       range_in_flight_.pop_front();
     }
+    KeepLastWindow(&result_->range, t_s, p_.record_window_s);
     for (CameraRuntime& runtime : cameras_) {
       while (!runtime.in_flight.empty() && runtime.in_flight.front().first <= due_s) {
         const ScopedCpuTimer timer(&cpu().perception_s);
@@ -385,6 +389,7 @@ class SitlFlight {
     const perception::AutopilotCommand command = autopilot_->Step(t_s);
     commands_in_flight_.emplace_back(t_s + p_.command_latency_s, command);
     result_->commands.push_back(SitlCommandRecord{t_s, command, rotor_thrusts_.thrust_N});
+    KeepLastWindow(&result_->commands, t_s, p_.record_window_s);
     return command.done;
   }
 
@@ -418,7 +423,10 @@ class SitlFlight {
     }
     history_.Add(vehicle_.state());
     if (p_.estimate_latency_s > 0.0) estimate_history_.push_back(vehicle_.state());
-    if ((k + 1) % p_.trajectory_decimation == 0) result_->trajectory.push_back(vehicle_.state());
+    if ((k + 1) % p_.trajectory_decimation == 0) {
+      result_->trajectory.push_back(vehicle_.state());
+      KeepLastWindow(&result_->trajectory, vehicle_.state().t_s, p_.record_window_s);
+    }
   }
 
   // Step 6: collision along the step, or a touchdown too hard for the landing gear. Records it

@@ -124,6 +124,10 @@ struct SitlRunnerParams {
   bool render_ignored_frames = true;
   // Records every n-th dynamics step in SitlResult::trajectory (1 = all).
   int trajectory_decimation = 1;
+  // > 0: SitlResult keeps only about the last record_window_s of its trajectory, commands, IMU
+  // samples and range readings (between one and two windows, sim/sitl/record_window.h), so a long
+  // flight's memory stays flat (aperture bench soak); 0 keeps the whole flight [s].
+  double record_window_s = 0.0;
   // Sets every random stream from one seed: IMU, range, camera noise (per camera) and drops.
   void SetSeed(std::uint64_t seed);
   // Throws std::invalid_argument naming the field for non-positive rates or durations, a
@@ -185,7 +189,8 @@ struct SitlResult {
   double real_time_factor = 0.0;  // sim_time_s / timing.wall_time_s
   SitlTiming timing;
   std::string autopilot_name;
-  std::string autopilot_status;                 // Autopilot::status() at the end
+  std::string autopilot_status;  // Autopilot::status() at the end
+  // The whole flight, or its last SitlRunnerParams::record_window_s when that is set.
   std::vector<control::QuadState> trajectory;   // ground truth, t = 0 first
   std::vector<SitlCommandRecord> commands;      // one per control step
   std::vector<perception::ImuSample> imu;       // as delivered

@@ -505,5 +505,35 @@ TEST(TimingStats, PercentilesOfKnownSamples) {
   EXPECT_EQ(SummarizeDurations({}).max_s, 0.0);
 }
 
+TEST(DurationRecord, ExactForShortRunsBoundedAndEvenlySpreadForLongOnes) {
+  std::vector<double> durations(1000);
+  std::iota(durations.begin(), durations.end(), 1.0);
+  std::shuffle(durations.begin(), durations.end(), std::mt19937(5));
+  DurationRecord short_run;
+  for (double d : durations) short_run.Add(d);
+  const TimingStats exact = SummarizeDurations(durations);
+  EXPECT_EQ(short_run.Summary().count, exact.count);
+  EXPECT_EQ(short_run.Summary().median_s, exact.median_s);
+  EXPECT_EQ(short_run.Summary().p95_s, exact.p95_s);
+  EXPECT_EQ(short_run.Summary().max_s, exact.max_s);
+
+  // A ramp 0, 1, ..., n - 1 over ~10 x kMaxKept frames (an hour of 40 Hz frames is 144000): the
+  // memory stays below kMaxKept durations, count and max stay exact, and the kept ones, evenly
+  // spread over the run, give the ramp's median and p95 within 0.1 %.
+  const int n = 10 * static_cast<int>(DurationRecord::kMaxKept) + 123;
+  DurationRecord long_run;
+  std::size_t most_kept = 0;
+  for (int i = 0; i < n; ++i) {
+    long_run.Add(i);
+    most_kept = std::max(most_kept, long_run.kept());
+  }
+  EXPECT_LT(most_kept, DurationRecord::kMaxKept);
+  const TimingStats stats = long_run.Summary();
+  EXPECT_EQ(stats.count, n);
+  EXPECT_EQ(stats.max_s, n - 1.0);
+  EXPECT_NEAR(stats.median_s, 0.5 * (n - 1), 1e-3 * n);
+  EXPECT_NEAR(stats.p95_s, 0.95 * (n - 1), 1e-3 * n);
+}
+
 }  // namespace
 }  // namespace aperture::perception

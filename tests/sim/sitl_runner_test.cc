@@ -242,6 +242,38 @@ TEST(SitlRunner, FramesAreDroppedAtTheConfiguredRate) {
   EXPECT_EQ(gaps, stats.frames_dropped);
 }
 
+// record_window_s: a long flight's records keep their last window (between one and two windows),
+// the tail of the same flight with every record kept.
+TEST(SitlRunner, RecordWindowKeepsTheLastWindowOfTheSameFlight) {
+  SitlRunnerParams params = test_support::QuietSitlParams(6.0);
+  params.trajectory_decimation = 5;
+  GroundTruthAutopilot autopilot_all(params.dynamics.vehicle, HoverAt(params.initial_state.p_WB));
+  const SitlResult all = SitlRunner(params, nullptr).Run(autopilot_all);
+  params.record_window_s = 1.0;
+  GroundTruthAutopilot autopilot_window(params.dynamics.vehicle,
+                                        HoverAt(params.initial_state.p_WB));
+  const SitlResult window = SitlRunner(params, nullptr).Run(autopilot_window);
+  // The same flight: its last states agree to the bit.
+  ASSERT_FALSE(window.trajectory.empty());
+  EXPECT_EQ(window.trajectory.back().p_WB, all.trajectory.back().p_WB);
+  EXPECT_EQ(window.trajectory.back().t_s, all.trajectory.back().t_s);
+  const auto check = [](const auto& kept, const auto& every, const char* name) {
+    ASSERT_FALSE(kept.empty()) << name;
+    EXPECT_LT(kept.size(), every.size() / 2) << name;
+    EXPECT_GE(kept.front().t_s, 6.0 - 2.0 - 1e-9) << name;
+    EXPECT_LE(kept.front().t_s, 6.0 - 1.0 + 0.01) << name;
+    // Exactly the tail of the full record.
+    EXPECT_EQ(kept.back().t_s, every.back().t_s) << name;
+    EXPECT_EQ(every[every.size() - kept.size()].t_s, kept.front().t_s) << name;
+  };
+  check(window.trajectory, all.trajectory, "trajectory");
+  check(window.commands, all.commands, "commands");
+  check(window.imu, all.imu, "imu");
+  check(window.range, all.range, "range");
+  params.record_window_s = -1.0;
+  EXPECT_THROW(SitlRunner(params, nullptr), std::invalid_argument);
+}
+
 TEST(SitlRunner, TwoCamerasDeliverAtTheirOwnRatesTheirOwnViews) {
   // A forward camera at 30 Hz sees the box ahead; a downward one at 20 Hz sees only the ground.
   const Scene scene = TexturedBoxScene();
