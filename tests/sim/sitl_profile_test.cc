@@ -16,11 +16,7 @@
 namespace aperture::sim {
 namespace {
 
-GroundTruthAutopilotParams HoverAt(const Eigen::Vector3d& p_W) {
-  GroundTruthAutopilotParams params;
-  params.waypoints.push_back(Waypoint{p_W, 0.0, 0.0});
-  return params;
-}
+using test_support::HoverAt;
 
 // 160 x 120 pinhole looking forward along x_B at a textured box: edges to supersample.
 SitlCamera ProfiledCamera() {

@@ -17,11 +17,7 @@
 namespace aperture::sim {
 namespace {
 
-GroundTruthAutopilotParams HoverAt(const Eigen::Vector3d& p_W) {
-  GroundTruthAutopilotParams params;
-  params.waypoints.push_back(Waypoint{p_W, 0.0, 0.0});
-  return params;
-}
+using test_support::HoverAt;
 
 double MaxDeviation(const SitlResult& result, const Eigen::Vector3d& p_W) {
   double max_m = 0.0;

@@ -229,9 +229,8 @@ TEST(VehicleMismatch, MismatchedVehiclesHoverWithThePredictedHeightOffset) {
       SitlRunnerParams params = test_support::QuietSitlParams(6.0);
       params.trajectory_decimation = 10;
       params.SetSeed(seed);
-      GroundTruthAutopilotParams autopilot_params;
-      autopilot_params.waypoints.push_back(Waypoint{params.initial_state.p_WB, 0.0, 0.0});
-      GroundTruthAutopilot autopilot(params.dynamics.vehicle, autopilot_params);
+      GroundTruthAutopilot autopilot(params.dynamics.vehicle,
+                                     test_support::HoverAt(params.initial_state.p_WB));
       const VehicleMismatch m = DrawVehicleMismatch(VehicleMismatchBounds(), seed);
       ApplyVehicleMismatch(m, &params);
       const double lambda = calibrated ? CalibrateHoverThrust(m, &params) : 1.0;

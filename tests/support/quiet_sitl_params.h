@@ -1,8 +1,10 @@
 #pragma once
 // Test support: SITL parameters with noise-free sensors (the IMU exact, no biases), starting at
-// rest 1.5 m above the origin, so closed-loop tests see only the effect they isolate.
+// rest 1.5 m above the origin, so closed-loop tests see only the effect they isolate; and a
+// hover on ground truth.
 #include <Eigen/Core>
 
+#include "sim/sitl/ground_truth_autopilot.h"
 #include "sim/sitl/sitl_runner.h"
 
 namespace aperture::test_support {
@@ -15,6 +17,13 @@ inline sim::SitlRunnerParams QuietSitlParams(double duration_s) {
   params.imu.gyro_noise_density = 0.0;
   params.imu.accel_bias_random_walk = 0.0;
   params.imu.gyro_bias_random_walk = 0.0;
+  return params;
+}
+
+// The ground-truth autopilot holding one waypoint: position p_W, yaw 0, no dwell.
+inline sim::GroundTruthAutopilotParams HoverAt(const Eigen::Vector3d& p_W) {
+  sim::GroundTruthAutopilotParams params;
+  params.waypoints.push_back(sim::Waypoint{p_W, 0.0, 0.0});
   return params;
 }
 
