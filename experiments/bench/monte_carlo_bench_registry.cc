@@ -24,6 +24,9 @@ MonteCarloBenchRegistry MonteCarloBenchRegistry::WithBuiltins(
   registry.Register(kMononavBenchName, &MakeMononavMonteCarloBench);
   registry.Register(kTagsBenchName, MakeTagsMonteCarloBenchFactory(tag_detectors));
   registry.Register(kTs2pBenchName, &MakeTs2pMonteCarloBench);
+  registry.DeclareUnsharded("soak",
+                            "one flight for a simulated hour: its figures are one process's memory "
+                            "and per-frame time over time, which shards cannot split");
   return registry;
 }
 

@@ -31,7 +31,8 @@ class MonteCarloBenchRegistry {
   // (experiments/led/led_monte_carlo_bench.h), "mononav"
   // (experiments/mononav/mononav_monte_carlo_bench.h), "tags" with `tag_detectors`
   // (experiments/tags/tags_monte_carlo_bench.h), "ts2p"
-  // (experiments/ts2p/ts2p_monte_carlo_bench.h); and the benches declared unsharded (none now).
+  // (experiments/ts2p/ts2p_monte_carlo_bench.h); and the benches declared unsharded: "soak"
+  // (apps/bench_soak_command.cc).
   static MonteCarloBenchRegistry WithBuiltins(const perception::TagDetectorRegistry& tag_detectors =
                                                   perception::TagDetectorRegistry::WithBuiltins());
 
