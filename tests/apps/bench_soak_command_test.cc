@@ -53,7 +53,7 @@ TEST(BenchSoakCommand, ShortSoakWritesSamplesFiguresAndBoundedRecords) {
 
 TEST(BenchSoakCommand, BadValuesAreUsageErrors) {
   TempFolder out("bench_soak_usage");
-  for (const std::string& values :
+  for (const std::string values :
        {"--duration 0", "--duration -5", "--duration nan", "--duration inf", "--interval 0",
         "--interval nan", "--duration 20 --interval 30"}) {
     const CommandResult run = RunAperture("bench soak " + values + " --out " + out.path());
