@@ -12,6 +12,7 @@
 #include "sim/sitl/ground_truth_autopilot.h"
 #include "sim/sitl/sitl_runner.h"
 #include "tests/support/quiet_sitl_params.h"
+#include "tests/support/textured_box_scene.h"
 
 namespace aperture::sim {
 namespace {
@@ -35,16 +36,7 @@ SitlCamera ProfiledCamera() {
   return camera;
 }
 
-Scene BoxScene() {
-  Scene scene;
-  ProceduralTextureParams texture;
-  scene.AddObject({"ground", GroundPlane{}, Material{MakeValueNoiseTexture(texture)}});
-  Eigen::Isometry3d T_WO = Eigen::Isometry3d::Identity();
-  T_WO.translation() = Eigen::Vector3d(4.0, 0.0, 1.0);
-  scene.AddObject(
-      {"box", Box{Eigen::Vector3d(0.5, 2.0, 2.0)}, Material{MakeValueNoiseTexture(texture)}, T_WO});
-  return scene;
-}
+using test_support::TexturedBoxScene;
 
 // Hovers and records the frames it is given; wants none stamped after ignore_after_s.
 class FrameCountingAutopilot : public GroundTruthAutopilot {
@@ -63,7 +55,7 @@ class FrameCountingAutopilot : public GroundTruthAutopilot {
 };
 
 TEST(SitlProfile, EveryStageIsPresentAndTheStagesSumToTheTotal) {
-  const Scene scene = BoxScene();
+  const Scene scene = TexturedBoxScene();
   SitlRunnerParams params = test_support::QuietSitlParams(2.0);
   params.cameras.push_back(ProfiledCamera());
   SitlRunner runner(params, &scene);
@@ -105,7 +97,7 @@ TEST(SitlProfile, EveryStageIsPresentAndTheStagesSumToTheTotal) {
 // Frames the autopilot would ignore are neither rendered nor delivered, and nothing else changes:
 // the same drops (drawn first), the same frames before, the same flight.
 TEST(SitlProfile, IgnoredFramesAreSkippedAndTheFlightIsTheSame) {
-  const Scene scene = BoxScene();
+  const Scene scene = TexturedBoxScene();
   SitlRunnerParams params = test_support::QuietSitlParams(1.0);
   SitlCamera camera = ProfiledCamera();
   camera.model = std::make_shared<perception::PinholeCamera>(

@@ -13,6 +13,7 @@
 #include "sim/scene/textures.h"
 #include "sim/sitl/ground_truth_autopilot.h"
 #include "tests/support/quiet_sitl_params.h"
+#include "tests/support/textured_box_scene.h"
 
 namespace aperture::sim {
 namespace {
@@ -41,16 +42,7 @@ SitlCamera ForwardCamera(double rate_hz) {
   return camera;
 }
 
-Scene TexturedBoxScene() {
-  Scene scene;
-  ProceduralTextureParams texture;
-  scene.AddObject({"ground", GroundPlane{}, Material{MakeValueNoiseTexture(texture)}});
-  Eigen::Isometry3d T_WO = Eigen::Isometry3d::Identity();
-  T_WO.translation() = Eigen::Vector3d(4.0, 0.0, 1.0);
-  scene.AddObject(
-      {"box", Box{Eigen::Vector3d(0.5, 2.0, 2.0)}, Material{MakeValueNoiseTexture(texture)}, T_WO});
-  return scene;
-}
+using test_support::TexturedBoxScene;
 
 std::uint64_t HashImage(const cv::Mat& image) {
   std::uint64_t hash = 1469598103934665603ull;  // FNV-1a
