@@ -33,6 +33,21 @@ set(APERTURE_VISP visp_vs visp_visual_features visp_detection visp_core)
 aperture_find_package(apriltag)
 # libceres-dev: the tag map's pose graph (perception/tags/tag_map.cc).
 aperture_find_package(Ceres)
+# libembree-dev (Embree 3.13): the renderer's optional Embree back end (sim/render/embree_scene.h,
+# RayBackend::kEmbree; docs/results/speed.md). APERTURE_EMBREE is ON when Embree is found; OFF,
+# the back end is left out and asking for it throws. aperture_sim links it privately, so a
+# consumer of a build with it finds it too (apertureConfig.cmake sets APERTURE_EMBREE).
+if(CMAKE_FIND_PACKAGE_NAME STREQUAL "aperture")
+  if(APERTURE_EMBREE)
+    find_dependency(embree 3)
+  endif()
+else()
+  find_package(embree 3 QUIET)
+  option(APERTURE_EMBREE "Build the renderer's Embree back end (libembree-dev)" ${embree_FOUND})
+  if(APERTURE_EMBREE)
+    find_package(embree 3 REQUIRED)
+  endif()
+endif()
 
 # yaml-cpp 0.7 on Debian exports the plain target name `yaml-cpp`.
 set(APERTURE_OPENCV_CORE opencv_core opencv_imgproc opencv_imgcodecs)

@@ -13,6 +13,7 @@ packages=(
   librosbag-dev librosbag-storage-dev libsensor-msgs-dev
   pybind11-dev python3-dev python3-numpy python3-pytest
   libvisp-dev
+  libembree-dev
   visp-images-data
   chromium
   # `make test-slurm` (scripts/slurm/test-single-node.sh): a one-node Slurm with its munge auth.

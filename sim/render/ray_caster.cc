@@ -12,13 +12,14 @@
 
 #include "control/constants.h"
 #include "perception/cpu_time.h"
+#include "sim/render/embree_scene.h"
+#include "sim/render/ray_trace.h"
 #include "sim/render/render_profile.h"
 
 namespace aperture::sim {
 namespace {
 
 using control::kInf;
-constexpr double kMinT = 1e-9;  // ignore hits at the ray origin [m]
 constexpr size_t kMaxCachedCameras = 4;
 // LED blob: ground-truth mask radius in sigmas (the window: kLedWindowSigmas, ray_caster.h).
 constexpr double kLedMaskSigmas = 2.0;
@@ -28,11 +29,6 @@ constexpr double kLedMaskSigmas = 2.0;
 // 0.02 (~5 grey levels; pattern edges step by ~0.9).
 constexpr float kEdgeNormalCos = 0.99f;
 constexpr float kEdgeLuminanceStep = 0.02f;
-// Planar objects are rejected from the ray-plane distance in C before the exact test in O; the
-// two computations of that distance differ by rounding (~1e-15 relative), so rejecting only
-// beyond these margins never drops a hit the exact test would find.
-constexpr double kPlaneRejectRelative = 1e-9;
-constexpr double kPlaneRejectAbsolute_m = 1e-9;
 // Pixels per side of the image tiles whose rays share one candidate-object list per frame.
 constexpr int kTileSize = 16;
 // Widening of each tile's ray cone [rad]: covers the float rounding of the stored rays.
@@ -40,99 +36,10 @@ constexpr double kTileConeMargin_rad = 1e-5;
 // Relative shrink of each tile's lower bounds on the hit distance: covers the stored rays' norm
 // (float rounding, |d| = 1 +- 1e-7, and t is in units of |d|) and the rounding of the bound.
 constexpr double kTileLowerDistanceRelative = 1e-6;
+// Sub-pixel rays handed to the Embree back end at once (EmbreeScene::NearestN).
+constexpr int kEmbreeBatch = 16;
 
 float Luminance(const Rgb& c) { return 0.299f * c.x() + 0.587f * c.y() + 0.114f * c.z(); }
-
-// One non-LED object prepared for a frame: everything in or relative to the camera frame C.
-struct FrameObject {
-  const Primitive* primitive;
-  const Material* material;
-  int id;
-  Eigen::Matrix3d R_OC;
-  Eigen::Vector3d p_OC;        // camera centre in O
-  Eigen::Vector3d to_light_O;  // unit vector towards the light, in O
-  bool hard_edged;             // texture with hard edges (Texture::has_hard_edges)
-  bool planar;                 // Rectangle or GroundPlane: the plane z_O = 0
-  Eigen::Vector3d n_C;         // planar: z_O in C
-  double plane_offset_m;       // planar: n_C . (origin of O in C)
-  bool bounded;
-  Eigen::Vector3d center_C;  // bounding sphere centre in C
-  double center_sq;
-  double radius;
-  double radius_sq;
-};
-
-// A candidate object of an image tile with a lower bound on the distance t at which any ray of
-// the tile can hit it (0 when unknown).
-struct TileCandidate {
-  int index;  // into FrameContext::objects
-  double t_lower_m;
-};
-
-struct FrameContext {
-  std::vector<FrameObject> objects;
-  Eigen::Matrix3d R_WC;
-  // Candidates per image tile, each list sorted by t_lower_m:
-  // tile_candidates[tile_begin[t] .. tile_begin[t + 1]).
-  std::vector<TileCandidate> tile_candidates;
-  std::vector<size_t> tile_begin;
-  std::vector<TileCandidate> all_objects;  // every object, t_lower_m = 0
-
-  // Candidate list of tile t.
-  std::pair<const TileCandidate*, const TileCandidate*> Candidates(size_t t) const {
-    return {tile_candidates.data() + tile_begin[t], tile_candidates.data() + tile_begin[t + 1]};
-  }
-};
-
-// The nearest hit of a ray: object index (-1: none, sky), the hit in the object's frame and the
-// ray direction in that frame.
-struct RayHit {
-  int index = -1;
-  LocalHit local;
-  Eigen::Vector3d d_O;
-};
-
-// Nearest hit along the unit ray d_C from the camera centre with t < t_max among the candidates
-// [first, last) (sorted by t_lower_m). Tries `hint` first so its hit tightens t for the
-// early-outs, and stops at the first candidate whose lower bound is not below the nearest hit.
-RayHit TraceRay(const Eigen::Vector3d& d_C, const std::vector<FrameObject>& objects,
-                std::pair<const TileCandidate*, const TileCandidate*> candidates, int hint,
-                double t_max) {
-  RayHit best;
-  double best_t = t_max;
-  auto test = [&](int i) {
-    const FrameObject& f = objects[static_cast<size_t>(i)];
-    if (f.bounded) {
-      const double tca = f.center_C.dot(d_C);
-      if (tca + f.radius < 0.0 || tca - f.radius >= best_t) return;
-      if (f.center_sq - tca * tca > f.radius_sq) return;
-    }
-    if (f.planar) {
-      // t = plane_offset / n_C.d outside [-absolute margin, best_t (1 + relative margin)],
-      // without the division (best_t = inf gives +-inf bounds, which reject nothing).
-      const double den = f.n_C.dot(d_C);
-      const double near = -kPlaneRejectAbsolute_m * den;
-      const double far = best_t * (1.0 + kPlaneRejectRelative) * den;
-      if (den > 0.0 ? (f.plane_offset_m < near || f.plane_offset_m > far)
-                    : (den < 0.0 && (f.plane_offset_m > near || f.plane_offset_m < far))) {
-        return;
-      }
-    }
-    const Eigen::Vector3d direction_O = f.R_OC * d_C;
-    // Written in place (IntersectPrimitive leaves *hit alone on a miss): no copy of the hit.
-    if (IntersectPrimitive(*f.primitive, f.p_OC, direction_O, kMinT, best_t, &best.local)) {
-      best_t = best.local.t_m;
-      best.index = i;
-      best.d_O = direction_O;
-    }
-  };
-  if (hint >= 0) test(hint);
-  for (const TileCandidate* c = candidates.first; c != candidates.second; ++c) {
-    if (c->t_lower_m >= best_t) break;
-    if (c->index != hint) test(c->index);
-  }
-  return best;
-}
 
 // sample_angle_rad: angular size of the sample (pixel angle / supersampling) for the texture
 // footprint: distance * angle, stretched by 1 / sqrt(cos incidence) (geometric mean of the
@@ -282,7 +189,9 @@ bool operator==(const RenderOptions& a, const RenderOptions& b) {
          a.reflectance_scale == b.reflectance_scale && a.min_led_sigma_px == b.min_led_sigma_px;
 }
 
-RayCaster::RayCaster() = default;
+RayCaster::RayCaster(RayBackend backend) {
+  if (backend == RayBackend::kEmbree) embree_ = std::make_unique<EmbreeScene>();
+}
 RayCaster::~RayCaster() = default;
 
 const RayCaster::RayTable& RayCaster::Rays(const perception::CameraModel& camera,
@@ -456,6 +365,24 @@ void CullObjectsPerTile(const std::vector<Eigen::Vector3d>& tile_axis,
   }
 }
 
+using CandidateRange = std::pair<const TileCandidate*, const TileCandidate*>;
+
+// Candidate objects of tile t for TraceRay (none with Embree, which does not use them).
+CandidateRange TileCandidates(const FrameContext& frame, size_t t) {
+  return frame.embree ? CandidateRange{} : frame.Candidates(t);
+}
+
+// Nearest hit along the unit ray d_C with t < t_max, from the frame's back end: the Embree BVH,
+// or TraceRay over *candidates (nullptr: every object) trying `hint` first.
+RayHit NearestHit(const FrameContext& frame, const Eigen::Vector3d& d_C,
+                  const CandidateRange* candidates, int hint, double t_max) {
+  if (frame.embree) return frame.embree->Nearest(d_C, t_max);
+  if (candidates) return TraceRay(d_C, frame.objects, *candidates, hint, t_max);
+  const CandidateRange all(frame.all_objects.data(),
+                           frame.all_objects.data() + frame.all_objects.size());
+  return TraceRay(d_C, frame.objects, all, hint, t_max);
+}
+
 // Render step 5: LEDs as exact pixel integrals of an isotropic Gaussian around the projected
 // centre, added to the radiance (and the ground truth within kLedMaskSigmas), unless occluded.
 void SplatLeds(const std::vector<const SceneObject*>& leds, const FrameContext& frame,
@@ -471,9 +398,7 @@ void SplatLeds(const std::vector<const SceneObject*>& leds, const FrameContext& 
     if (!camera.Project(p_C, &px)) continue;
     const double distance = p_C.norm();
     if (!(distance > led.radius_m)) continue;  // camera inside the emitter
-    const std::pair<const TileCandidate*, const TileCandidate*> all(
-        frame.all_objects.data(), frame.all_objects.data() + frame.all_objects.size());
-    if (TraceRay(p_C / distance, frame.objects, all, -1, distance - led.radius_m).index >= 0) {
+    if (NearestHit(frame, p_C / distance, nullptr, -1, distance - led.radius_m).index >= 0) {
       continue;
     }
     double projected_radius_px = 0.0;
@@ -535,12 +460,24 @@ struct RayCaster::PixelPass {
   // Average radiance of the k x k sub-pixel rays of pixel (x, y); `hint` is tried first.
   Rgb Supersample(int x, int y, int hint) const {
     const size_t p = static_cast<size_t>(y) * w + x;
-    const auto candidates = frame.Candidates(rays.Tile(x, y));
+    const auto candidates = TileCandidates(frame, rays.Tile(x, y));
     const double sample_angle = rays.pixel_angle_rad[p] / k;
+    const Eigen::Vector3f* sub = &rays.sub[p * k * k];
     Rgb sum = Rgb::Zero();
+    if (frame.embree) {  // in packets of up to kEmbreeBatch rays
+      std::array<RayHit, kEmbreeBatch> hits;
+      for (int first = 0; first < k * k; first += kEmbreeBatch) {
+        const int n = std::min(kEmbreeBatch, k * k - first);
+        frame.embree->NearestN(sub + first, n, hits.data());
+        for (int s = 0; s < n; ++s) {
+          sum += Shade(scene, frame, sub[first + s].cast<double>(), hits[s], sample_angle);
+        }
+      }
+      return Rgb(sum * inv_samples);
+    }
     for (int s = 0; s < k * k; ++s) {
-      const Eigen::Vector3d d = rays.sub[p * k * k + static_cast<size_t>(s)].cast<double>();
-      const RayHit hit = TraceRay(d, frame.objects, candidates, hint, kInf);
+      const Eigen::Vector3d d = sub[s].cast<double>();
+      const RayHit hit = NearestHit(frame, d, &candidates, hint, kInf);
       sum += Shade(scene, frame, d, hit, sample_angle);
       hint = hit.index;
     }
@@ -577,7 +514,12 @@ void RayCaster::Render(const Scene& scene, const perception::CameraModel& camera
 
   std::vector<const SceneObject*> leds;
   FrameContext frame = PrepareFrameObjects(scene, T_WC, &leds);
-  CullObjectsPerTile(rays.tile_axis, rays.tile_half_angle_rad, &frame);
+  if (embree_) {
+    embree_->Build(frame);
+    frame.embree = embree_.get();
+  } else {
+    CullObjectsPerTile(rays.tile_axis, rays.tile_half_angle_rad, &frame);
+  }
 
   const int image_type = options.color ? CV_32FC3 : CV_32FC1;
   output->radiance.create(h, w, image_type);
@@ -618,15 +560,20 @@ void RayCaster::ShadePixelCenters(const PixelPass& pass, int h, bool adaptive) {
   RenderOutput* output = pass.output;
   const bool ground_truth = pass.options.ground_truth;
   tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& row_range) {
+    std::vector<RayHit> row_hits(frame.embree ? static_cast<size_t>(w) : 0);
     for (int y = row_range.begin(); y < row_range.end(); ++y) {
+      // Embree: the row's centre rays in packets first.
+      if (frame.embree)
+        frame.embree->NearestN(&rays.center[static_cast<size_t>(y) * w], w, row_hits.data());
       int hint = -1;  // per row, so results never depend on how rows are split among threads
       float* depth = ground_truth ? output->depth_C.ptr<float>(y) : nullptr;
       int32_t* ids = ground_truth ? output->object_id.ptr<int32_t>(y) : nullptr;
       for (int x = 0; x < w; ++x) {
         const size_t p = static_cast<size_t>(y) * w + x;
         const Eigen::Vector3d d = rays.center[p].cast<double>();
-        const RayHit hit =
-            TraceRay(d, frame.objects, frame.Candidates(rays.Tile(x, y)), hint, kInf);
+        const auto candidates = TileCandidates(frame, rays.Tile(x, y));
+        const RayHit hit = frame.embree ? row_hits[static_cast<size_t>(x)]
+                                        : NearestHit(frame, d, &candidates, hint, kInf);
         const int index = hit.index;
         if (depth) {
           depth[x] = index < 0 ? std::numeric_limits<float>::infinity()

@@ -37,6 +37,11 @@
 // hit so far. Rows run in parallel (oneTBB) and each row first tries the object hit by its
 // previous pixel. Output is independent of the thread count (rows are independent).
 // A RayCaster is not safe for concurrent Render calls (the ray cache); use one per thread.
+//
+// Back ends of the ray-object step (RayBackend): kTileCulling is the search above; kEmbree puts
+// each frame's objects into an Intel Embree 3 BVH (embree_scene.h) and shades its hits with the
+// same code. The two give the same images up to rays grazing an edge (tests/sim/
+// render_backend_test.cc); docs/results/speed.md compares their speed.
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <memory>
@@ -50,8 +55,8 @@
 namespace aperture::sim {
 
 struct RenderOptions {
-  bool color = false;      // false: gray CV_32FC1; true: BGR CV_32FC3
-  int supersampling = 1;   // k >= 1: k x k rays per pixel (2-3 for sub-pixel-accurate edges)
+  bool color = false;     // false: gray CV_32FC1; true: BGR CV_32FC3
+  int supersampling = 1;  // k >= 1: k x k rays per pixel (2-3 for sub-pixel-accurate edges)
   // true: k x k rays only for pixels at edges (see above), ~1.3x the cost of k = 1 instead of k^2.
   bool adaptive_supersampling = true;
   bool ground_truth = true;  // fill depth_C and object_id
@@ -74,16 +79,20 @@ struct RenderOutput {
   cv::Mat object_id;
 };
 
+enum class RayBackend { kTileCulling, kEmbree };
+
+class EmbreeScene;
+
 class RayCaster {
  public:
-  RayCaster();
+  // Throws std::runtime_error for kEmbree in a build without Embree (EmbreeAvailable()).
+  explicit RayCaster(RayBackend backend = RayBackend::kTileCulling);
   ~RayCaster();
 
   // Renders into *output (buffers reused when their size and type match). Throws
   // std::invalid_argument for supersampling < 1 or a non-finite T_WC.
   void Render(const Scene& scene, const perception::CameraModel& camera,
-              const Eigen::Isometry3d& T_WC, const RenderOptions& options,
-              RenderOutput* output);
+              const Eigen::Isometry3d& T_WC, const RenderOptions& options, RenderOutput* output);
   RenderOutput Render(const Scene& scene, const perception::CameraModel& camera,
                       const Eigen::Isometry3d& T_WC, const RenderOptions& options = {});
 
@@ -96,6 +105,7 @@ class RayCaster {
   void ShadePixelCenters(const PixelPass& pass, int h, bool adaptive);
   void SupersampleEdges(const PixelPass& pass, int h);
 
+  std::unique_ptr<EmbreeScene> embree_;               // set for RayBackend::kEmbree
   std::vector<std::unique_ptr<RayTable>> ray_cache_;  // most recently used last
   // Adaptive supersampling, per pixel: centre samples and edge bits towards 4 neighbours.
   std::vector<CenterSample> center_samples_;

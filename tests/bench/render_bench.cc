@@ -1,6 +1,9 @@
 // Ray-caster throughput on a gap-like scene: a newspaper-textured wall with a rectangular hole
 // 3 m in front of the camera, a value-noise backdrop 3 m behind it and a grass ground plane.
 // Reports frames/s ("fps") for 752 x 480 fisheye and pinhole frames (gray, ground truth on).
+// BM_RenderScenarioBackend: the two ray-object back ends side by side (ray_caster.h RayBackend:
+// our tile culling vs Intel Embree 3) on the gap, gapflyt, tags and forest scenarios' render
+// camera at its start pose and the scenario's own render settings (docs/results/speed.md).
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 
@@ -8,7 +11,9 @@
 
 #include "perception/camera/equidistant_camera.h"
 #include "perception/camera/pinhole_camera.h"
+#include "sim/render/embree_scene.h"
 #include "sim/render/ray_caster.h"
+#include "sim/scenario/scenario.h"
 
 namespace aperture::sim {
 namespace {
@@ -26,7 +31,8 @@ Eigen::Isometry3d Pose(double rx, double ry, double rz, const Eigen::Vector3d& p
 Scene GapScene() {
   Scene scene;
   ProceduralTextureParams params;
-  scene.AddObject({"ground", GroundPlane{}, {MakeGrassTexture(params)}, Eigen::Isometry3d::Identity()});
+  scene.AddObject(
+      {"ground", GroundPlane{}, {MakeGrassTexture(params)}, Eigen::Isometry3d::Identity()});
   // Walls stand in planes x_W = const: z_O along +x_W, x_O along -y_W, y_O down (-z_W).
   Eigen::Isometry3d T_WG = Eigen::Isometry3d::Identity();
   T_WG.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;
@@ -35,7 +41,8 @@ Scene GapScene() {
   scene.AddObject({"gap", wall, {MakeNewspaperTexture(params)}, T_WG});
   Eigen::Isometry3d T_WBack = T_WG;
   T_WBack.translation() = Eigen::Vector3d(6.0, 0.0, 2.0);
-  scene.AddObject({"background", Rectangle{{12.0, 4.0}, {}, {}}, {MakeValueNoiseTexture(params)}, T_WBack});
+  scene.AddObject(
+      {"background", Rectangle{{12.0, 4.0}, {}, {}}, {MakeValueNoiseTexture(params)}, T_WBack});
   return scene;
 }
 
@@ -60,8 +67,8 @@ void RenderFrames(benchmark::State& state, const perception::CameraModel& camera
     caster.Render(scene, camera, T_WC, options, &output);
     benchmark::DoNotOptimize(output.radiance.data);
   }
-  state.counters["fps"] = benchmark::Counter(static_cast<double>(state.iterations()),
-                                             benchmark::Counter::kIsRate);
+  state.counters["fps"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 
 void BM_RenderFisheye752x480(benchmark::State& state) {
@@ -83,6 +90,40 @@ BENCHMARK(BM_RenderFisheye752x480)
 BENCHMARK(BM_RenderPinhole752x480)
     ->ArgsProduct({{1, 2}, {0, 1}})
     ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+const char* const kBackendScenarios[] = {"gap", "gapflyt", "tags", "forest"};
+
+void BM_RenderScenarioBackend(benchmark::State& state) {
+  const std::string name = kBackendScenarios[state.range(0)];
+  const auto backend = state.range(1) == 0 ? RayBackend::kTileCulling : RayBackend::kEmbree;
+  if (backend == RayBackend::kEmbree && !EmbreeAvailable()) {
+    state.SkipWithError("built without Embree (APERTURE_EMBREE=OFF)");
+    return;
+  }
+  state.SetLabel(name + (backend == RayBackend::kEmbree ? "/embree" : "/ours"));
+  const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                                  static_cast<size_t>(state.range(2)));
+  const Scenario scenario = BuildScenario(LoadScenarioParams(ScenarioConfig(name)));
+  const ScenarioCamera& camera = scenario.render_camera();
+  const Eigen::Isometry3d T_WC = camera.T_WC(scenario.T_WB_start());
+  RayCaster caster(backend);
+  RenderOutput output;
+  caster.Render(scenario.scene(), *camera.model, T_WC, camera.render, &output);  // ray cache
+  for (auto _ : state) {
+    caster.Render(scenario.scene(), *camera.model, T_WC, camera.render, &output);
+    benchmark::DoNotOptimize(output.radiance.data);
+  }
+  state.counters["fps"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+
+// Args: {scenario index into kBackendScenarios, backend (0 ours, 1 Embree), threads}.
+BENCHMARK(BM_RenderScenarioBackend)
+    ->ArgNames({"scene", "embree", "threads"})
+    ->ArgsProduct({{0, 1, 2, 3}, {0, 1}, {1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
     ->UseRealTime();
 
 }  // namespace
