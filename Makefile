@@ -11,7 +11,7 @@ UNITY ?= ON
 DEMO_OUT ?= out/demo
 APERTURE := $(BUILD_DIR)/apps/aperture
 
-.PHONY: all deps configure build test test-asan test-slurm demo python bench clean
+.PHONY: all deps configure build test test-asan test-tsan test-slurm demo python bench clean
 
 all: build
 
@@ -27,12 +27,17 @@ build: configure
 test: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 
-# AddressSanitizer + UndefinedBehaviorSanitizer (issue 18, scripts/test-sanitized.sh): the suites
-# listed, built in $(BUILD_DIR)-asan and run binary by binary; any finding fails. Not yet in
-# .ci/run: the perception, sim and flight suites and ThreadSanitizer are still to come.
+# Sanitizers (issue 18, scripts/test-sanitized.sh): the suites listed are built at -O1 in their
+# own folder and run binary by binary; any finding fails. `make test-asan`: AddressSanitizer +
+# UndefinedBehaviorSanitizer (leaks too). `make test-tsan`: ThreadSanitizer over the concurrent
+# parts (SUITE:FILTER keeps a suite to its threaded tests); third-party suppressions with their
+# reasons in scripts/tsan-suppressions.txt.
 ASAN_SUITES ?= config output control
+TSAN_SUITES ?= output 'perception:FrameGraph*:ParallelExecutor*:TimingStats*:DurationRecord*'
 test-asan: deps
 	@scripts/test-sanitized.sh $(BUILD_DIR)-asan address,undefined $(JOBS) $(ASAN_SUITES)
+test-tsan: deps
+	@scripts/test-sanitized.sh $(BUILD_DIR)-tsan thread $(JOBS) $(TSAN_SUITES)
 
 # scripts/slurm/bench.sbatch for real: a 4-shard bench plus the merge on a one-node Slurm that the
 # test starts on localhost and stops, compared with the unsharded run. The daemons need root:

@@ -10,8 +10,10 @@ build_dir=$1 sanitizers=$2 jobs=$3
 shift 3
 ((${#@})) || { echo "test-sanitized: name at least one test suite" >&2; exit 2; }
 
-cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DAPERTURE_UNITY_BUILD=ON \
-  -DAPERTURE_SANITIZE="$sanitizers" >/dev/null
+# -O1: instrumented code compiles several times faster than at the Release -O3 and still runs the
+# numerically heavy tests at a usable speed.
+cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" \
+  -DAPERTURE_UNITY_BUILD=ON -DAPERTURE_SANITIZE="$sanitizers" >/dev/null
 targets=()
 for spec in "$@"; do targets+=("aperture_${spec%%:*}_tests"); done
 cmake --build "$build_dir" -j "$jobs" --target "${targets[@]}"
@@ -20,7 +22,7 @@ cmake --build "$build_dir" -j "$jobs" --target "${targets[@]}"
 # stack trace; leaks are findings too.
 export ASAN_OPTIONS=detect_leaks=1:halt_on_error=1:detect_stack_use_after_return=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-export TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1
+export TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1:suppressions=$PWD/scripts/tsan-suppressions.txt
 failed=()
 for spec in "$@"; do
   suite=${spec%%:*}

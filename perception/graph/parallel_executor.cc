@@ -11,7 +11,15 @@
 #include <string>
 #include <vector>
 
+#include "perception/graph/happens_before.h"
+
 namespace aperture::perception {
+
+namespace {
+// The start of every frame's tasks, for ThreadSanitizer: a key that a task can name before it
+// reads its own captures (which the constructing thread wrote).
+const char kFrameHandOff = 0;
+}  // namespace
 
 struct ParallelExecutor::Flow {
   // Requests above the machine's concurrency are clamped: oneTBB would cap them anyway (with a
@@ -49,7 +57,13 @@ ParallelExecutor::ParallelExecutor(FrameGraph& graph, const ParallelExecutorPara
     for (std::size_t index = 0; index < graph_.size(); ++index) {
       flow.nodes.push_back(std::make_unique<tbb::flow::continue_node<tbb::flow::continue_msg>>(
           *flow.graph, [this, index](const tbb::flow::continue_msg&) {
+            // The graph's edges, spelled out for ThreadSanitizer: a node starts after the frame
+            // was handed over and after its producers ended; wait_for_all() after every node.
+            HappensAfter(&kFrameHandOff);
             Flow& state = *flow_;
+            for (std::size_t producer : graph_.dependencies(index)) {
+              HappensAfter(state.nodes[producer].get());
+            }
             {
               std::lock_guard<std::mutex> lock(state.error_mutex);
               if (state.error) return;
@@ -60,6 +74,7 @@ ParallelExecutor::ParallelExecutor(FrameGraph& graph, const ParallelExecutorPara
               std::lock_guard<std::mutex> lock(state.error_mutex);
               if (!state.error) state.error = std::current_exception();
             }
+            HappensBefore(state.nodes[index].get());
           }));
     }
     for (std::size_t index = 0; index < graph_.size(); ++index) {
@@ -82,10 +97,12 @@ void ParallelExecutor::RunNodes(FrameSlots& slots) {
   Flow& flow = *flow_;
   flow.slots = &slots;
   flow.error = nullptr;
+  HappensBefore(&kFrameHandOff);
   flow.arena.execute([&flow] {
     flow.start->try_put(tbb::flow::continue_msg());
     flow.graph->wait_for_all();
   });
+  for (const auto& node : flow.nodes) HappensAfter(node.get());
   flow.slots = nullptr;
   if (flow.error) std::rethrow_exception(flow.error);
 }
