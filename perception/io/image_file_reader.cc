@@ -131,12 +131,17 @@ cv::Mat ReadImageFile(const std::filesystem::path& path, ColorMode mode) {
     throw std::runtime_error("cannot read image file '" + path.string() +
                              "'; check that it is a readable regular file");
   }
+  return DecodeImageBytes(bytes, path.string(), mode);
+}
+
+cv::Mat DecodeImageBytes(const std::vector<unsigned char>& bytes, const std::string& name,
+                         ColorMode mode) {
   if (bytes.empty()) {
-    throw std::runtime_error("image file '" + path.string() +
+    throw std::runtime_error("image file '" + name +
                              "' is empty; re-export it or remove it from the sequence");
   }
   if (const std::optional<std::string> truncation = FindTruncation(bytes)) {
-    throw std::runtime_error("image file '" + path.string() + "' is incomplete: " + *truncation +
+    throw std::runtime_error("image file '" + name + "' is incomplete: " + *truncation +
                              "; re-copy or re-export it");
   }
   // IMREAD_ANYDEPTH: a 16-bit image comes back as such instead of silently losing its low byte.
@@ -146,16 +151,16 @@ cv::Mat ReadImageFile(const std::filesystem::path& path, ColorMode mode) {
   try {
     image = cv::imdecode(bytes, flags);
   } catch (const cv::Exception& e) {
-    throw std::runtime_error("image file '" + path.string() + "' cannot be decoded (" + e.what() +
+    throw std::runtime_error("image file '" + name + "' cannot be decoded (" + e.what() +
                              "); re-export it");
   }
   if (image.empty()) {
-    throw std::runtime_error("image file '" + path.string() +
+    throw std::runtime_error("image file '" + name +
                              "' cannot be decoded (corrupt or not an image); re-export it");
   }
   if (image.depth() != CV_8U) {
     throw std::runtime_error(
-        "image file '" + path.string() + "' has " + std::to_string(8 * image.elemSize1()) +
+        "image file '" + name + "' has " + std::to_string(8 * image.elemSize1()) +
         "-bit samples; frame sources take 8-bit images, and cutting to the high byte would hide "
         "e.g. 12-bit data: convert the sequence to 8 bits over its actual range");
   }

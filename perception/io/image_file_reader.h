@@ -29,6 +29,11 @@ std::optional<std::string> FindTruncation(const std::vector<unsigned char>& byte
 // target), is truncated, cannot be decoded, or has 16-bit (or float) samples.
 cv::Mat ReadImageFile(const std::filesystem::path& path, ColorMode mode);
 
+// ReadImageFile's checks and decoding of a file's content `bytes`; `name` (the file) names it in
+// the std::runtime_error.
+cv::Mat DecodeImageBytes(const std::vector<unsigned char>& bytes, const std::string& name,
+                         ColorMode mode);
+
 // True when the extension (case-insensitive) is one the image folder source reads:
 // .png .jpg .jpeg .pgm .ppm .pnm .bmp .tif .tiff
 bool HasImageExtension(const std::filesystem::path& path);
