@@ -68,7 +68,8 @@ TEST_P(ImageFormat, ReadImageFileRejectsTheFirstHalfOfARealFile) {
   const std::filesystem::path file = dir.path() / ("half" + GetParam().extension);
   const std::vector<unsigned char> bytes = Encode(GetParam().extension, GetParam().channels);
   std::ofstream(file, std::ios::binary)
-      .write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size() / 2));
+      .write(reinterpret_cast<const char*>(bytes.data()),
+             static_cast<std::streamsize>(bytes.size() / 2));
   const std::string message = MessageOfRead(file);
   EXPECT_THAT(message, HasSubstr(file.string()));
   EXPECT_THAT(message, HasSubstr("truncated"));
@@ -117,6 +118,16 @@ TEST(ReadImageFile, DecodesLosslessFormatsExactlyInBothColorModes) {
     EXPECT_NEAR(read_gray.at<uchar>(r, c), 0.299 * (r + c) + 0.587 * (3 * c) + 0.114 * (2 * r), 1.0)
         << extension;
   }
+}
+
+TEST(DecodeImageBytes, DecodesContentAsReadImageFileDoesAndNamesTheGivenFile) {
+  const std::vector<unsigned char> png = Encode(".png", 3);
+  const cv::Mat decoded = DecodeImageBytes(png, "cam0/0001.png", ColorMode::kColor);
+  EXPECT_EQ(cv::norm(decoded, MakeTestImage(3), cv::NORM_INF), 0.0);
+  const std::vector<unsigned char> half(png.begin(), png.begin() + png.size() / 2);
+  const std::string message = test_support::MessageOf<std::runtime_error>(
+      [&] { DecodeImageBytes(half, "cam0/0001.png", ColorMode::kGray); });
+  EXPECT_THAT(message, HasSubstr("'cam0/0001.png' is incomplete"));
 }
 
 TEST(ReadImageFile, GarbageEmptyAndMissingFilesNameTheFile) {
