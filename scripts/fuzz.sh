@@ -24,16 +24,20 @@ if ((${#targets[@]} == 0)); then
 fi
 
 # Seeds: fuzz/seeds/TARGET (small inputs written for the fuzzers) plus the repository's own
-# files of each format; `--set` items are collected from the documentation.
+# files of each format; the `--set` items of the documentation, each on every built-in scenario.
 seeds_dir=$build_dir/fuzz-seeds
 rm -rf "$seeds_dir"
 mkdir -p "$seeds_dir/set_override"
 i=0
 while IFS= read -r item; do
-  printf 'gap\n%s\n' "$item" >"$seeds_dir/set_override/doc_$((i++))"
+  for scenario in gap gapflyt led tags forest; do
+    printf '%s\n%s\n' "$scenario" "$item" >"$seeds_dir/set_override/${scenario}_$i"
+  done
+  i=$((i + 1))
 done < <(grep -rhoE -- "--set '?[a-z_]+(\.[a-z_]+)*=[^ '\`\"]+" README.md docs |
   sed -E "s/^--set '?//" | sort -u)
-extra_seeds() {
+seed_dirs() {
+  [[ -d fuzz/seeds/$1 ]] && echo "fuzz/seeds/$1"
   case $1 in
     calibration_file) echo tests/data/calibration ;;
     set_override) echo "$seeds_dir/set_override" ;;
@@ -56,8 +60,8 @@ for target in "${targets[@]}"; do
   log=$build_dir/fuzz-$target.log
   start=$(date +%s)
   # -timeout: seconds for one input; -rss_limit_mb also caps a single allocation (malloc_limit).
-  # shellcheck disable=SC2046  # the dictionary option is one word or none
-  if "$binary" "$corpus" fuzz/seeds/"$target" $(extra_seeds "$target") $(dictionary "$target") \
+  # shellcheck disable=SC2046  # folder names and the dictionary option: no spaces
+  if "$binary" "$corpus" $(seed_dirs "$target") $(dictionary "$target") \
     -max_total_time="$seconds" -rss_limit_mb=2048 -timeout=10 -print_final_stats=1 \
     -artifact_prefix="$findings_dir/$target-" >"$log" 2>&1; then
     status=clean
@@ -67,9 +71,9 @@ for target in "${targets[@]}"; do
   fi
   executions=$(sed -nE 's/^stat::number_of_executed_units: *//p' "$log")
   per_second=$(sed -nE 's/^stat::average_exec_per_sec: *//p' "$log")
-  coverage=$(grep -oE 'cov: [0-9]+ ft: [0-9]+' "$log" | tail -n 1)
+  coverage=$(grep -oE 'cov: [0-9]+ ft: [0-9]+' "$log" | tail -n 1 || true)
   echo "fuzz $target: $(($(date +%s) - start)) s, ${executions:-?} executions," \
-    "${per_second:-?} exec/s, ${coverage:-no coverage line}, corpus $(ls "$corpus" | wc -l)" \
+    "${per_second:-?} exec/s, ${coverage:-no coverage line}, corpus $(find "$corpus" -type f | wc -l)" \
     "files: $status"
 done
 if ((${#failed[@]})); then
