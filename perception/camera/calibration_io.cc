@@ -168,6 +168,12 @@ CameraCalibration LoadOpenCv(const std::string& path) {
     Fail(path, "(file)", "not a valid OpenCV FileStorage file: " + e.err);
   }
   if (!fs.isOpened()) Fail(path, "(file)", "cannot be opened as OpenCV FileStorage");
+  // cv::FileStorage::operator[] throws cv::Exception (an assertion naming no file) on a root that
+  // is not a map.
+  if (!fs.root().isMap()) {
+    Fail(path, "(file)",
+         "the top level must be a map of keys (image_width, image_height, camera_matrix, ...)");
+  }
   ParsedCalibration parsed;
   parsed.width = ReadInt(fs, "image_width", path);
   parsed.height = ReadInt(fs, "image_height", path);

@@ -98,6 +98,16 @@ std::optional<std::string> FindBmpTruncation(const Bytes& bytes) {
   return std::nullopt;
 }
 
+// The formats of HasImageExtension, by their signatures. cv::imdecode also decodes DICOM,
+// JPEG 2000, OpenEXR, Radiance HDR, WebP, Sun raster and more, whatever the file name; their
+// decoders are not for input we do not expect (GDCM aborts the process on a malformed DICOM file).
+bool HasFrameSourceFormat(const Bytes& bytes) {
+  const bool pnm = bytes.size() >= 2 && bytes[0] == 'P' && bytes[1] >= '1' && bytes[1] <= '6';
+  return pnm || StartsWith(bytes, {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'}) ||
+         StartsWith(bytes, {0xFF, 0xD8, 0xFF}) || StartsWith(bytes, {'B', 'M'}) ||
+         StartsWith(bytes, {'I', 'I', 42, 0}) || StartsWith(bytes, {'M', 'M', 0, 42});
+}
+
 }  // namespace
 
 std::optional<std::string> FindTruncation(const Bytes& bytes) {
@@ -139,6 +149,11 @@ cv::Mat DecodeImageBytes(const std::vector<unsigned char>& bytes, const std::str
   if (bytes.empty()) {
     throw std::runtime_error("image file '" + name +
                              "' is empty; re-export it or remove it from the sequence");
+  }
+  if (!HasFrameSourceFormat(bytes)) {
+    throw std::runtime_error("image file '" + name +
+                             "' is not a PNG, JPEG, PNM, BMP or TIFF image (frame sources read "
+                             "only those); convert it or remove it from the sequence");
   }
   if (const std::optional<std::string> truncation = FindTruncation(bytes)) {
     throw std::runtime_error("image file '" + name + "' is incomplete: " + *truncation +

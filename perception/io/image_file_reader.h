@@ -9,7 +9,8 @@
 //   JPEG        the data ends with the EOI marker FF D9 (trailing zero padding allowed);
 //   PGM/PPM     (binary P5/P6) the pixel payload width*height*channels*bytes is all present;
 //   BMP         the file is at least as long as the size in its header.
-// Other formats (TIFF, ASCII PNM) rely on the decoder's own checks.
+// Other formats (TIFF, ASCII PNM) rely on the decoder's own checks. Content of any other format
+// (DICOM, JPEG 2000, WebP, ..., which cv::imdecode would try) is rejected before decoding.
 #include <filesystem>
 #include <opencv2/core/mat.hpp>
 #include <optional>
@@ -26,7 +27,8 @@ std::optional<std::string> FindTruncation(const std::vector<unsigned char>& byte
 
 // Reads, checks and decodes `path` into an 8-bit image of the given colour mode. Throws
 // std::runtime_error naming the file when it cannot be read (a dangling symbolic link names its
-// target), is truncated, cannot be decoded, or has 16-bit (or float) samples.
+// target), is not a PNG, JPEG, PNM, BMP or TIFF image, is truncated, cannot be decoded, or has
+// 16-bit (or float) samples.
 cv::Mat ReadImageFile(const std::filesystem::path& path, ColorMode mode);
 
 // ReadImageFile's checks and decoding of a file's content `bytes`; `name` (the file) names it in

@@ -255,6 +255,9 @@ INSTANTIATE_TEST_SUITE_P(
                    "  - [0, 0, 1, 0]\n  - [0, 0, 0, 1]\n"),
             "cam0.T_cam_imu"},
         InvalidFileCase{"not_yaml", "image_width: [640\n", "(file)"},
+        // Found by fuzz/calibration_file_fuzzer.cc: was an escaping cv::Exception (isMap()).
+        InvalidFileCase{"opencv_top_level_sequence", "%YAML:1.0\n- image_width: 640\n",
+                        "top level must be a map"},
         InvalidFileCase{"unknown_format", "foo: 1\n", "(format)"}),
     [](const auto& info) { return info.param.label; });
 

@@ -134,15 +134,31 @@ TEST(ReadImageFile, GarbageEmptyAndMissingFilesNameTheFile) {
   test_support::TempDirectory dir;
   const std::filesystem::path garbage = dir.path() / "garbage.png";
   std::ofstream(garbage) << "this is not an image at all, just text with a .png name";
+  // A TIFF signature, then nothing a TIFF decoder can read.
+  const std::filesystem::path bad_tiff = dir.path() / "bad.tif";
+  std::ofstream(bad_tiff) << "II*" << '\0' << "and then no image file directory at all";
   const std::filesystem::path empty = dir.path() / "empty.png";
   std::ofstream{empty};
   const std::filesystem::path missing = dir.path() / "missing.png";
   for (const auto& [file, expected] :
-       {std::pair{garbage, "cannot be decoded"}, std::pair{empty, "is empty"},
+       {std::pair{garbage, "is not a PNG, JPEG, PNM, BMP or TIFF image"},
+        std::pair{bad_tiff, "cannot be decoded"}, std::pair{empty, "is empty"},
         std::pair{missing, "cannot open"}}) {
     const std::string message = MessageOfRead(file);
     EXPECT_THAT(message, HasSubstr(file.string()));
     EXPECT_THAT(message, HasSubstr(expected));
+  }
+}
+
+// Found by fuzz/image_file_fuzzer.cc: a DICOM file (128-byte preamble, "DICM") reached
+// cv::imdecode, whose GDCM decoder aborted the process on this malformed one.
+TEST(DecodeImageBytes, DicomContentIsRejectedBeforeDecoding) {
+  std::string dicom = "6" + std::string(127, '\xff') + "DICM685";
+  const std::vector<unsigned char> bytes(dicom.begin(), dicom.end());
+  for (const ColorMode mode : {ColorMode::kGray, ColorMode::kColor}) {
+    EXPECT_THAT(test_support::MessageOf<std::runtime_error>(
+                    [&] { DecodeImageBytes(bytes, "seq/frame_3.png", mode); }),
+                HasSubstr("'seq/frame_3.png' is not a PNG, JPEG, PNM, BMP or TIFF image"));
   }
 }
 
