@@ -162,6 +162,44 @@ TEST(DecodeImageBytes, DicomContentIsRejectedBeforeDecoding) {
   }
 }
 
+// Found by fuzz/image_file_fuzzer.cc: 37 bytes of malformed ASCII PGM header made cv::imdecode
+// allocate 3.1 GB.
+TEST(DecodeImageBytes, MalformedAsciiPnmHeaderIsRejectedBeforeDecoding) {
+  const std::string pgm = "P2\n588888x888P68\n68888888856\n6688T\n5#";
+  const std::vector<unsigned char> bytes(pgm.begin(), pgm.end());
+  EXPECT_THAT(test_support::MessageOf<std::runtime_error>(
+                  [&] { DecodeImageBytes(bytes, "a.pgm", ColorMode::kColor); }),
+              HasSubstr("'a.pgm' is incomplete: PNM header has no width and height"));
+}
+
+TEST(DecodeImageBytes, GigapixelHeadersAreRejectedBeforeDecoding) {
+  // Headers of valid small images with their declared size patched to 60000 x 60000.
+  std::vector<unsigned char> png = Encode(".png", 1);  // IHDR width, height at bytes 16, 20
+  for (const size_t offset : {16, 20}) {
+    png[offset] = 0;
+    png[offset + 1] = 0;
+    png[offset + 2] = 60000 >> 8;
+    png[offset + 3] = 60000 & 0xFF;
+  }
+  const std::string pgm = "P2\n60000 60000\n255\n1 2 3\n";
+  std::vector<unsigned char> jpeg = Encode(".jpg", 1);
+  for (size_t i = 2; i + 8 < jpeg.size(); ++i) {
+    if (jpeg[i] == 0xFF && jpeg[i + 1] == 0xC0) {  // SOF0: height, width at +5, +7
+      for (const size_t offset : {i + 5, i + 7}) {
+        jpeg[offset] = 60000 >> 8;
+        jpeg[offset + 1] = 60000 & 0xFF;
+      }
+      break;
+    }
+  }
+  for (const std::vector<unsigned char>& bytes :
+       {png, std::vector<unsigned char>(pgm.begin(), pgm.end()), jpeg}) {
+    EXPECT_THAT(test_support::MessageOf<std::runtime_error>(
+                    [&] { DecodeImageBytes(bytes, "big", ColorMode::kGray); }),
+                HasSubstr("'big' declares 60000 x 60000 pixels"));
+  }
+}
+
 TEST(HasImageExtension, IsCaseInsensitiveAndRejectsOtherFiles) {
   EXPECT_TRUE(HasImageExtension("a/b/FRAME.PNG"));
   EXPECT_TRUE(HasImageExtension("x.tif"));
