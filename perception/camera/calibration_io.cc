@@ -166,6 +166,9 @@ CameraCalibration LoadOpenCv(const std::string& path) {
     fs.open(path, cv::FileStorage::READ);
   } catch (const cv::Exception& e) {
     Fail(path, "(file)", "not a valid OpenCV FileStorage file: " + e.err);
+  } catch (const std::length_error& e) {  // its parser on an empty key before a '[' (fuzzing)
+    Fail(path, "(file)",
+         std::string("not a valid OpenCV FileStorage file (its parser failed: ") + e.what() + ")");
   }
   if (!fs.isOpened()) Fail(path, "(file)", "cannot be opened as OpenCV FileStorage");
   // cv::FileStorage::operator[] throws cv::Exception (an assertion naming no file) on a root that

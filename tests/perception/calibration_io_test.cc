@@ -258,6 +258,10 @@ INSTANTIATE_TEST_SUITE_P(
         // Found by fuzz/calibration_file_fuzzer.cc: was an escaping cv::Exception (isMap()).
         InvalidFileCase{"opencv_top_level_sequence", "%YAML:1.0\n- image_width: 640\n",
                         "top level must be a map"},
+        // Found by fuzz/calibration_file_fuzzer.cc: OpenCV's parser threw std::length_error
+        // (basic_string::_M_create) on the empty key before '['.
+        InvalidFileCase{"opencv_empty_key_before_bracket", "%YAML:1.0\nm:\n   rows: 3\n   :[a\n",
+                        "not a valid OpenCV FileStorage file"},
         InvalidFileCase{"unknown_format", "foo: 1\n", "(format)"}),
     [](const auto& info) { return info.param.label; });
 
