@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <opencv2/core.hpp>
 #include <sstream>
 #include <stdexcept>
@@ -161,6 +162,15 @@ FlatMatrix ReadOpenCvMatrix(const cv::FileNode& node, const std::string& path,
 }
 
 CameraCalibration LoadOpenCv(const std::string& path) {
+  // OpenCV 4.6's base64 reader (cv::FileStorage::Impl::parseBase64) can loop forever on a
+  // malformed `!!binary` value (found by fuzzing); calibration files hold a few numbers as text.
+  std::ifstream file(path);
+  const std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  if (text.find("!!binary") != std::string::npos) {
+    Fail(path, "(file)",
+         "base64 (!!binary) data is not supported in a calibration file; write the matrices as "
+         "text (cv::FileStorage without the BASE64 flag)");
+  }
   cv::FileStorage fs;
   try {
     fs.open(path, cv::FileStorage::READ);
