@@ -11,7 +11,7 @@ UNITY ?= ON
 DEMO_OUT ?= out/demo
 APERTURE := $(BUILD_DIR)/apps/aperture
 
-.PHONY: all deps configure build test test-asan test-tsan test-slurm demo python bench clean
+.PHONY: all deps configure build test test-asan test-tsan test-slurm fuzz fuzz-smoke demo python bench clean
 
 all: build
 
@@ -38,6 +38,18 @@ test-asan: deps
 	@scripts/test-sanitized.sh $(BUILD_DIR)-asan address,undefined $(JOBS) $(ASAN_SUITES)
 test-tsan: deps
 	@scripts/test-sanitized.sh $(BUILD_DIR)-tsan thread $(JOBS) $(TSAN_SUITES)
+
+# libFuzzer targets of fuzz/ (issue 18, scripts/fuzz.sh): clang build in $(BUILD_DIR)-fuzz holding
+# only the fuzzers and the parser sources they call; each target runs FUZZ_S seconds in turn and
+# any crash, leak, timeout or out-of-memory fails. `fuzz-smoke` is the short CI form.
+FUZZ_S ?= 60
+fuzz:
+	@scripts/install-deps.sh fuzz
+	@scripts/fuzz.sh $(BUILD_DIR)-fuzz $(FUZZ_S) $(JOBS)
+
+fuzz-smoke:
+	@scripts/install-deps.sh fuzz
+	@scripts/fuzz-smoke.sh $(BUILD_DIR)-fuzz-smoke $(JOBS)
 
 # scripts/slurm/bench.sbatch for real: a 4-shard bench plus the merge on a one-node Slurm that the
 # test starts on localhost and stops, compared with the unsharded run. The daemons need root:

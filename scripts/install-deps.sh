@@ -2,6 +2,9 @@
 # Installs every Debian 12 package aperture builds, tests and runs with. Idempotent: quiet when all
 # is present, one `apt-get update` only when something is missing. Root runs apt-get directly;
 # anyone else goes through sudo.
+#   scripts/install-deps.sh          the packages of the build, tests and commands
+#   scripts/install-deps.sh fuzz     also clang and its runtime libraries (libFuzzer, sanitizers)
+#                                    for `make fuzz` (scripts/fuzz.sh)
 set -euo pipefail
 
 packages=(
@@ -19,6 +22,14 @@ packages=(
   # `make test-slurm` (scripts/slurm/test-single-node.sh): a one-node Slurm with its munge auth.
   slurm-wlm munge
 )
+if (($# > 1)) || [[ $# -eq 1 && "$1" != fuzz ]]; then
+  echo "usage: scripts/install-deps.sh [fuzz]" >&2
+  exit 2
+fi
+if [[ "${1:-}" == fuzz ]]; then
+  # libclang-rt-14-dev (libFuzzer, ASan/UBSan runtimes) is only a recommendation of clang.
+  packages+=(clang libclang-rt-14-dev)
+fi
 
 missing=()
 for package in "${packages[@]}"; do

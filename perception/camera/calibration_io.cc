@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <opencv2/core.hpp>
 #include <sstream>
 #include <stdexcept>
@@ -161,13 +162,31 @@ FlatMatrix ReadOpenCvMatrix(const cv::FileNode& node, const std::string& path,
 }
 
 CameraCalibration LoadOpenCv(const std::string& path) {
+  // OpenCV 4.6's base64 reader (cv::FileStorage::Impl::parseBase64) can loop forever on a
+  // malformed `!!binary` value (found by fuzzing); calibration files hold a few numbers as text.
+  std::ifstream file(path);
+  const std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  if (text.find("!!binary") != std::string::npos) {
+    Fail(path, "(file)",
+         "base64 (!!binary) data is not supported in a calibration file; write the matrices as "
+         "text (cv::FileStorage without the BASE64 flag)");
+  }
   cv::FileStorage fs;
   try {
     fs.open(path, cv::FileStorage::READ);
   } catch (const cv::Exception& e) {
     Fail(path, "(file)", "not a valid OpenCV FileStorage file: " + e.err);
+  } catch (const std::length_error& e) {  // its parser on an empty key before a '[' (fuzzing)
+    Fail(path, "(file)",
+         std::string("not a valid OpenCV FileStorage file (its parser failed: ") + e.what() + ")");
   }
   if (!fs.isOpened()) Fail(path, "(file)", "cannot be opened as OpenCV FileStorage");
+  // cv::FileStorage::operator[] throws cv::Exception (an assertion naming no file) on a root that
+  // is not a map.
+  if (!fs.root().isMap()) {
+    Fail(path, "(file)",
+         "the top level must be a map of keys (image_width, image_height, camera_matrix, ...)");
+  }
   ParsedCalibration parsed;
   parsed.width = ReadInt(fs, "image_width", path);
   parsed.height = ReadInt(fs, "image_height", path);

@@ -4,6 +4,7 @@
 #include <array>
 #include <cctype>
 #include <cstdint>
+#include <cstdlib>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <stdexcept>
@@ -56,11 +57,14 @@ std::optional<std::string> FindJpegTruncation(const Bytes& bytes) {
          " bytes without its end-of-image marker FF D9 (truncated JPEG)";
 }
 
-// Binary PGM (P5) / PPM (P6): "P5 <width> <height> <maxval>" + one whitespace, then the pixels.
-std::optional<std::string> FindPnmTruncation(const Bytes& bytes) {
+// The first `fields.size()` numbers of a PNM header "P<n> <width> <height> [<maxval>]" (comments
+// from '#' to the end of a line allowed between them): the offset just after the last one, or
+// nullopt when the header ends before them.
+template <size_t N>
+std::optional<size_t> ReadPnmHeader(const Bytes& bytes, std::array<uint64_t, N>* fields) {
   size_t offset = 2;
-  std::array<uint64_t, 3> fields{};  // width, height, maxval
-  for (uint64_t& field : fields) {
+  for (uint64_t& field : *fields) {
+    field = 0;
     while (offset < bytes.size() && (std::isspace(bytes[offset]) || bytes[offset] == '#')) {
       if (bytes[offset] == '#') {
         while (offset < bytes.size() && bytes[offset] != '\n') ++offset;
@@ -68,15 +72,21 @@ std::optional<std::string> FindPnmTruncation(const Bytes& bytes) {
         ++offset;
       }
     }
-    if (offset >= bytes.size() || !std::isdigit(bytes[offset])) {
-      return std::string("PGM/PPM header is incomplete (truncated or corrupt)");
-    }
+    if (offset >= bytes.size() || !std::isdigit(bytes[offset])) return std::nullopt;
     while (offset < bytes.size() && std::isdigit(bytes[offset]) && field < (1u << 30)) {
       field = field * 10 + (bytes[offset] - '0');
       ++offset;
     }
   }
-  ++offset;  // the single whitespace after maxval
+  return offset;
+}
+
+// Binary PGM (P5) / PPM (P6): "P5 <width> <height> <maxval>" + one whitespace, then the pixels.
+std::optional<std::string> FindPnmTruncation(const Bytes& bytes) {
+  std::array<uint64_t, 3> fields{};  // width, height, maxval
+  const std::optional<size_t> header_end = ReadPnmHeader(bytes, &fields);
+  if (!header_end) return std::string("PGM/PPM header is incomplete (truncated or corrupt)");
+  const uint64_t offset = *header_end + 1;  // the single whitespace after maxval
   const uint64_t channels = bytes[1] == '5' ? 1 : 3;
   const uint64_t bytes_per_sample = fields[2] > 255 ? 2 : 1;
   const uint64_t needed = offset + fields[0] * fields[1] * channels * bytes_per_sample;
@@ -98,6 +108,69 @@ std::optional<std::string> FindBmpTruncation(const Bytes& bytes) {
   return std::nullopt;
 }
 
+// The formats of HasImageExtension, by their signatures. cv::imdecode also decodes DICOM,
+// JPEG 2000, OpenEXR, Radiance HDR, WebP, Sun raster and more, whatever the file name; their
+// decoders are not for input we do not expect (GDCM aborts the process on a malformed DICOM file).
+uint32_t ReadBigEndian16(const Bytes& bytes, size_t offset) {
+  return (uint32_t{bytes[offset]} << 8) | uint32_t{bytes[offset + 1]};
+}
+
+struct DeclaredSize {
+  uint64_t width = 0;
+  uint64_t height = 0;
+};
+
+// The image size a PNG (IHDR), BMP (info header), PNM or JPEG (start-of-frame marker) header
+// declares, read before decoding: a few bytes can declare a gigapixel image, which cv::imdecode
+// would allocate (up to its own limit of 2^30 pixels) before finding the data missing. nullopt
+// for TIFF and for a header too short to tell (the decoder then rejects the file).
+std::optional<DeclaredSize> FindDeclaredSize(const Bytes& bytes) {
+  if (StartsWith(bytes, {0x89, 'P', 'N', 'G'}) && bytes.size() >= 24) {
+    return DeclaredSize{ReadBigEndian32(bytes, 16), ReadBigEndian32(bytes, 20)};
+  }
+  if (StartsWith(bytes, {'B', 'M'}) && bytes.size() >= 26) {
+    if (ReadLittleEndian32(bytes, 14) == 12) {  // OS/2 BITMAPCOREHEADER: 16-bit sizes
+      return DeclaredSize{bytes[18] | (uint64_t{bytes[19]} << 8),
+                          bytes[20] | (uint64_t{bytes[21]} << 8)};
+    }
+    const auto width = static_cast<int32_t>(ReadLittleEndian32(bytes, 18));
+    const auto height = static_cast<int32_t>(ReadLittleEndian32(bytes, 22));  // < 0: top-down
+    return DeclaredSize{static_cast<uint64_t>(std::abs(int64_t{width})),
+                        static_cast<uint64_t>(std::abs(int64_t{height}))};
+  }
+  if (bytes.size() >= 2 && bytes[0] == 'P') {
+    std::array<uint64_t, 2> fields{};
+    if (!ReadPnmHeader(bytes, &fields)) return std::nullopt;
+    return DeclaredSize{fields[0], fields[1]};
+  }
+  if (StartsWith(bytes, {0xFF, 0xD8})) {
+    size_t offset = 2;
+    while (offset + 9 <= bytes.size() && bytes[offset] == 0xFF) {
+      const unsigned char marker = bytes[offset + 1];
+      if (marker == 0xFF) {  // fill byte
+        ++offset;
+      } else if (marker == 0x01 || (marker >= 0xD0 && marker <= 0xD8)) {  // no length
+        offset += 2;
+      } else if (marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 &&
+                 marker != 0xCC) {  // SOFn: length, precision, height, width
+        return DeclaredSize{ReadBigEndian16(bytes, offset + 7), ReadBigEndian16(bytes, offset + 5)};
+      } else if (marker == 0xDA || marker == 0xD9) {  // scan data or end before any frame
+        return std::nullopt;
+      } else {
+        offset += 2 + ReadBigEndian16(bytes, offset + 2);
+      }
+    }
+  }
+  return std::nullopt;
+}
+
+bool HasFrameSourceFormat(const Bytes& bytes) {
+  const bool pnm = bytes.size() >= 2 && bytes[0] == 'P' && bytes[1] >= '1' && bytes[1] <= '6';
+  return pnm || StartsWith(bytes, {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'}) ||
+         StartsWith(bytes, {0xFF, 0xD8, 0xFF}) || StartsWith(bytes, {'B', 'M'}) ||
+         StartsWith(bytes, {'I', 'I', 42, 0}) || StartsWith(bytes, {'M', 'M', 0, 42});
+}
+
 }  // namespace
 
 std::optional<std::string> FindTruncation(const Bytes& bytes) {
@@ -107,6 +180,12 @@ std::optional<std::string> FindTruncation(const Bytes& bytes) {
   if (StartsWith(bytes, {0xFF, 0xD8})) return FindJpegTruncation(bytes);
   if (StartsWith(bytes, {'P', '5'}) || StartsWith(bytes, {'P', '6'})) {
     return FindPnmTruncation(bytes);
+  }
+  if (std::array<uint64_t, 2> size{}; bytes.size() >= 2 && bytes[0] == 'P' && bytes[1] >= '1' &&
+                                      bytes[1] <= '4' && !ReadPnmHeader(bytes, &size)) {
+    // ASCII PBM/PGM/PPM and binary PBM: the pixels are not checked, the header is (OpenCV's
+    // reader makes sizes of a malformed one).
+    return std::string("PNM header has no width and height (truncated or corrupt)");
   }
   if (StartsWith(bytes, {'B', 'M'})) return FindBmpTruncation(bytes);
   return std::nullopt;
@@ -131,13 +210,30 @@ cv::Mat ReadImageFile(const std::filesystem::path& path, ColorMode mode) {
     throw std::runtime_error("cannot read image file '" + path.string() +
                              "'; check that it is a readable regular file");
   }
+  return DecodeImageBytes(bytes, path.string(), mode);
+}
+
+cv::Mat DecodeImageBytes(const std::vector<unsigned char>& bytes, const std::string& name,
+                         ColorMode mode) {
   if (bytes.empty()) {
-    throw std::runtime_error("image file '" + path.string() +
+    throw std::runtime_error("image file '" + name +
                              "' is empty; re-export it or remove it from the sequence");
   }
+  if (!HasFrameSourceFormat(bytes)) {
+    throw std::runtime_error("image file '" + name +
+                             "' is not a PNG, JPEG, PNM, BMP or TIFF image (frame sources read "
+                             "only those); convert it or remove it from the sequence");
+  }
   if (const std::optional<std::string> truncation = FindTruncation(bytes)) {
-    throw std::runtime_error("image file '" + path.string() + "' is incomplete: " + *truncation +
+    throw std::runtime_error("image file '" + name + "' is incomplete: " + *truncation +
                              "; re-copy or re-export it");
+  }
+  if (const std::optional<DeclaredSize> size = FindDeclaredSize(bytes);
+      size && size->width * size->height > kMaxImagePixels) {
+    throw std::runtime_error("image file '" + name + "' declares " + std::to_string(size->width) +
+                             " x " + std::to_string(size->height) + " pixels, more than the " +
+                             std::to_string(kMaxImagePixels) +
+                             " a frame may have (8192 x 8192); corrupt or not a camera frame");
   }
   // IMREAD_ANYDEPTH: a 16-bit image comes back as such instead of silently losing its low byte.
   const int flags =
@@ -146,16 +242,16 @@ cv::Mat ReadImageFile(const std::filesystem::path& path, ColorMode mode) {
   try {
     image = cv::imdecode(bytes, flags);
   } catch (const cv::Exception& e) {
-    throw std::runtime_error("image file '" + path.string() + "' cannot be decoded (" + e.what() +
+    throw std::runtime_error("image file '" + name + "' cannot be decoded (" + e.what() +
                              "); re-export it");
   }
   if (image.empty()) {
-    throw std::runtime_error("image file '" + path.string() +
+    throw std::runtime_error("image file '" + name +
                              "' cannot be decoded (corrupt or not an image); re-export it");
   }
   if (image.depth() != CV_8U) {
     throw std::runtime_error(
-        "image file '" + path.string() + "' has " + std::to_string(8 * image.elemSize1()) +
+        "image file '" + name + "' has " + std::to_string(8 * image.elemSize1()) +
         "-bit samples; frame sources take 8-bit images, and cutting to the high byte would hide "
         "e.g. 12-bit data: convert the sequence to 8 bits over its actual range");
   }

@@ -102,18 +102,22 @@ LedConfiguration LedConfiguration::Load(const std::string& path) {
   config::RequireRegularFileIfPresent(path, "LED configuration file");
   std::ifstream stream(path);
   if (!stream) throw std::runtime_error("cannot read LED configuration file " + path);
+  return Parse(stream, path);
+}
+
+LedConfiguration LedConfiguration::Parse(std::istream& yaml, const std::string& source) {
   YAML::Node root;
   try {
-    root = YAML::Load(stream);
+    root = YAML::Load(yaml);
   } catch (const YAML::Exception& e) {
-    throw std::invalid_argument("LED configuration " + path + " is not valid YAML: " + e.what());
+    throw std::invalid_argument("LED configuration " + source + " is not valid YAML: " + e.what());
   }
-  config::ParamReader reader(root, path);
-  if (!reader.Has("leds")) Reject(path, "has no key `leds: [[x, y, z], ...]` (metres, frame T)");
+  config::ParamReader reader(root, source);
+  if (!reader.Has("leds")) Reject(source, "has no key `leds: [[x, y, z], ...]` (metres, frame T)");
   std::vector<Eigen::Vector3d> p_T;
   reader.Read("leds", &p_T);
   reader.RejectUnknownKeys();
-  return LedConfiguration(std::move(p_T), path);
+  return LedConfiguration(std::move(p_T), source);
 }
 
 LedConfiguration LedConfiguration::Default() {

@@ -10,6 +10,7 @@
 //    within kSymmetryTolerance_m (else the correspondences, hence the pose, are ambiguous).
 // Violations throw std::invalid_argument naming the source (file) and the reason.
 #include <Eigen/Core>
+#include <istream>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,8 @@ class LedConfiguration {
   // Reads `leds: [[x, y, z], ...]` (metres, frame T) from a YAML file; other keys are rejected.
   // Unreadable file -> std::runtime_error; malformed or invalid content -> std::invalid_argument.
   static LedConfiguration Load(const std::string& path);
+  // Load's parsing of a file's content `yaml`; `source` (the file) names it in errors.
+  static LedConfiguration Parse(std::istream& yaml, const std::string& source);
 
   // A 5-LED target with circumsphere radius ~11 cm (size of the thesis' targets, Fig. C.2).
   static LedConfiguration Default();

@@ -255,6 +255,42 @@ INSTANTIATE_TEST_SUITE_P(
                    "  - [0, 0, 1, 0]\n  - [0, 0, 0, 1]\n"),
             "cam0.T_cam_imu"},
         InvalidFileCase{"not_yaml", "image_width: [640\n", "(file)"},
+        // Found by fuzz/calibration_file_fuzzer.cc: was an escaping cv::Exception (isMap()).
+        InvalidFileCase{"opencv_top_level_sequence", "%YAML:1.0\n- image_width: 640\n",
+                        "top level must be a map"},
+        // Found by fuzz/calibration_file_fuzzer.cc: OpenCV's parser threw std::length_error
+        // (basic_string::_M_create) on the empty key before '['.
+        InvalidFileCase{"opencv_empty_key_before_bracket", "%YAML:1.0\nm:\n   rows: 3\n   :[a\n",
+                        "not a valid OpenCV FileStorage file"},
+        // Found by fuzz/calibration_file_fuzzer.cc: OpenCV's base64 reader looped forever.
+        InvalidFileCase{
+            "opencv_malformed_base64",
+            "%YAML:1.0\n"
+            "---\n"
+            "calibration_time: \"Sat 21 Nov \xaf"
+            "2026 10:00:00 UTC\"\n"
+            "nframes:\xe0"
+            "\xce"
+            "3\n"
+            "image_width: 640\n"
+            "image_height: 480\n"
+            "\xa0"
+            "\x90"
+            "ard_wflags: 0\n"
+            "camera_matrix: !!opencv-matrix\n"
+            "   rows: 3\n"
+            "   cols: 3\n"
+            "   dt: !!binary : [ 5.3591573396163199e+02, 0., 3.4228315473308373e+02, 0.,\n"
+            "       5.3598120025513981e+02, 2.3557082909788173e+02, 0., 0., 1. ]\n"
+            "distortion_coefficients: !!opencv-matrix\n"
+            "   rows:*a 5\n"
+            "   cols: 1\n"
+            "   dt: d\n"
+            "   data: [ -2.6637260909660682e-01, -3.7831947042852964e-03, "
+            "-2.8122100441115472e-04,\n"
+            "       258391.33080878486e-01 ]\n"
+            "avg_reprojection_error: 3.9259098975581364e-01\n",
+            "base64 (!!binary) data is not supported"},
         InvalidFileCase{"unknown_format", "foo: 1\n", "(format)"}),
     [](const auto& info) { return info.param.label; });
 

@@ -345,7 +345,7 @@ INSTANTIATE_TEST_SUITE_P(
                      [](const fs::path& file) {
                        WriteText(file, "garbage bytes pretending to be a PNG file\x01\x02\x03");
                      },
-                     "runtime_error", "cannot be decoded"},
+                     "runtime_error", "is not a PNG, JPEG, PNM, BMP or TIFF image"},
         BadFrameCase{"TruncatedPng", TruncateToHalf, "runtime_error", "truncated PNG"},
         BadFrameCase{"TruncatedJpegWithPngName",
                      [](const fs::path& file) {

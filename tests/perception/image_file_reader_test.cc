@@ -68,7 +68,8 @@ TEST_P(ImageFormat, ReadImageFileRejectsTheFirstHalfOfARealFile) {
   const std::filesystem::path file = dir.path() / ("half" + GetParam().extension);
   const std::vector<unsigned char> bytes = Encode(GetParam().extension, GetParam().channels);
   std::ofstream(file, std::ios::binary)
-      .write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size() / 2));
+      .write(reinterpret_cast<const char*>(bytes.data()),
+             static_cast<std::streamsize>(bytes.size() / 2));
   const std::string message = MessageOfRead(file);
   EXPECT_THAT(message, HasSubstr(file.string()));
   EXPECT_THAT(message, HasSubstr("truncated"));
@@ -119,19 +120,83 @@ TEST(ReadImageFile, DecodesLosslessFormatsExactlyInBothColorModes) {
   }
 }
 
+TEST(DecodeImageBytes, DecodesContentAsReadImageFileDoesAndNamesTheGivenFile) {
+  const std::vector<unsigned char> png = Encode(".png", 3);
+  const cv::Mat decoded = DecodeImageBytes(png, "cam0/0001.png", ColorMode::kColor);
+  EXPECT_EQ(cv::norm(decoded, MakeTestImage(3), cv::NORM_INF), 0.0);
+  const std::vector<unsigned char> half(png.begin(), png.begin() + png.size() / 2);
+  const std::string message = test_support::MessageOf<std::runtime_error>(
+      [&] { DecodeImageBytes(half, "cam0/0001.png", ColorMode::kGray); });
+  EXPECT_THAT(message, HasSubstr("'cam0/0001.png' is incomplete"));
+}
+
 TEST(ReadImageFile, GarbageEmptyAndMissingFilesNameTheFile) {
   test_support::TempDirectory dir;
   const std::filesystem::path garbage = dir.path() / "garbage.png";
   std::ofstream(garbage) << "this is not an image at all, just text with a .png name";
+  // A TIFF signature, then nothing a TIFF decoder can read.
+  const std::filesystem::path bad_tiff = dir.path() / "bad.tif";
+  std::ofstream(bad_tiff) << "II*" << '\0' << "and then no image file directory at all";
   const std::filesystem::path empty = dir.path() / "empty.png";
   std::ofstream{empty};
   const std::filesystem::path missing = dir.path() / "missing.png";
   for (const auto& [file, expected] :
-       {std::pair{garbage, "cannot be decoded"}, std::pair{empty, "is empty"},
+       {std::pair{garbage, "is not a PNG, JPEG, PNM, BMP or TIFF image"},
+        std::pair{bad_tiff, "cannot be decoded"}, std::pair{empty, "is empty"},
         std::pair{missing, "cannot open"}}) {
     const std::string message = MessageOfRead(file);
     EXPECT_THAT(message, HasSubstr(file.string()));
     EXPECT_THAT(message, HasSubstr(expected));
+  }
+}
+
+// Found by fuzz/image_file_fuzzer.cc: a DICOM file (128-byte preamble, "DICM") reached
+// cv::imdecode, whose GDCM decoder aborted the process on this malformed one.
+TEST(DecodeImageBytes, DicomContentIsRejectedBeforeDecoding) {
+  std::string dicom = "6" + std::string(127, '\xff') + "DICM685";
+  const std::vector<unsigned char> bytes(dicom.begin(), dicom.end());
+  for (const ColorMode mode : {ColorMode::kGray, ColorMode::kColor}) {
+    EXPECT_THAT(test_support::MessageOf<std::runtime_error>(
+                    [&] { DecodeImageBytes(bytes, "seq/frame_3.png", mode); }),
+                HasSubstr("'seq/frame_3.png' is not a PNG, JPEG, PNM, BMP or TIFF image"));
+  }
+}
+
+// Found by fuzz/image_file_fuzzer.cc: 37 bytes of malformed ASCII PGM header made cv::imdecode
+// allocate 3.1 GB.
+TEST(DecodeImageBytes, MalformedAsciiPnmHeaderIsRejectedBeforeDecoding) {
+  const std::string pgm = "P2\n588888x888P68\n68888888856\n6688T\n5#";
+  const std::vector<unsigned char> bytes(pgm.begin(), pgm.end());
+  EXPECT_THAT(test_support::MessageOf<std::runtime_error>(
+                  [&] { DecodeImageBytes(bytes, "a.pgm", ColorMode::kColor); }),
+              HasSubstr("'a.pgm' is incomplete: PNM header has no width and height"));
+}
+
+TEST(DecodeImageBytes, GigapixelHeadersAreRejectedBeforeDecoding) {
+  // Headers of valid small images with their declared size patched to 60000 x 60000.
+  std::vector<unsigned char> png = Encode(".png", 1);  // IHDR width, height at bytes 16, 20
+  for (const size_t offset : {16, 20}) {
+    png[offset] = 0;
+    png[offset + 1] = 0;
+    png[offset + 2] = 60000 >> 8;
+    png[offset + 3] = 60000 & 0xFF;
+  }
+  const std::string pgm = "P2\n60000 60000\n255\n1 2 3\n";
+  std::vector<unsigned char> jpeg = Encode(".jpg", 1);
+  for (size_t i = 2; i + 8 < jpeg.size(); ++i) {
+    if (jpeg[i] == 0xFF && jpeg[i + 1] == 0xC0) {  // SOF0: height, width at +5, +7
+      for (const size_t offset : {i + 5, i + 7}) {
+        jpeg[offset] = 60000 >> 8;
+        jpeg[offset + 1] = 60000 & 0xFF;
+      }
+      break;
+    }
+  }
+  for (const std::vector<unsigned char>& bytes :
+       {png, std::vector<unsigned char>(pgm.begin(), pgm.end()), jpeg}) {
+    EXPECT_THAT(test_support::MessageOf<std::runtime_error>(
+                    [&] { DecodeImageBytes(bytes, "big", ColorMode::kGray); }),
+                HasSubstr("'big' declares 60000 x 60000 pixels"));
   }
 }
 

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <sstream>
 
 #include "temp_directory.h"
 
@@ -39,8 +40,9 @@ TEST(LedConfigurationTest, DefaultIsValidAndSizedLikeTheThesisTargets) {
 
 TEST(LedConfigurationTest, LoadsYamlFile) {
   test_support::TempDirectory dir;
-  const std::string path = WriteFile(
-      dir, "leds.yaml", "leds: [[0, 0.105, 0], [0.1, 0.01, 0], [0.02, -0.09, 0.03], [-0.09, -0.04, 0], [-0.04, 0.04, 0.08]]\n");
+  const std::string path = WriteFile(dir, "leds.yaml",
+                                     "leds: [[0, 0.105, 0], [0.1, 0.01, 0], [0.02, -0.09, 0.03], "
+                                     "[-0.09, -0.04, 0], [-0.04, 0.04, 0.08]]\n");
   const LedConfiguration configuration = LedConfiguration::Load(path);
   ASSERT_EQ(configuration.size(), 5);
   EXPECT_TRUE(configuration.p_T()[2].isApprox(Eigen::Vector3d(0.02, -0.09, 0.03)));
@@ -54,15 +56,29 @@ TEST(LedConfigurationTest, RejectsBadFilesNamingThem) {
   EXPECT_THAT([&] { LedConfiguration::Load(no_key); },
               ::testing::ThrowsMessage<std::invalid_argument>(
                   AllOf(HasSubstr("no_key.yaml"), HasSubstr("leds"))));
-  const std::string extra = WriteFile(
-      dir, "extra.yaml",
-      "leds: [[0, 0.105, 0], [0.1, 0.01, 0], [0.02, -0.09, 0.03], [-0.09, -0.04, 0]]\ncolour: red\n");
+  const std::string extra = WriteFile(dir, "extra.yaml",
+                                      "leds: [[0, 0.105, 0], [0.1, 0.01, 0], [0.02, -0.09, 0.03], "
+                                      "[-0.09, -0.04, 0]]\ncolour: red\n");
   EXPECT_THAT([&] { LedConfiguration::Load(extra); },
               ::testing::ThrowsMessage<std::invalid_argument>(
                   AllOf(HasSubstr("extra.yaml"), HasSubstr("colour"))));
   const std::string bad_point = WriteFile(dir, "bad.yaml", "leds: [[0, 0.1], [1, 2, 3]]\n");
   EXPECT_THAT([&] { LedConfiguration::Load(bad_point); },
               ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("bad.yaml")));
+}
+
+TEST(LedConfigurationTest, ParsesTextAsLoadDoesNamingTheGivenSource) {
+  std::istringstream good(
+      "leds: [[0, 0.105, 0], [0.1, 0.01, 0], [0.02, -0.09, 0.03], [-0.09, -0.04, 0], "
+      "[-0.04, 0.04, 0.08]]\n");
+  const LedConfiguration configuration = LedConfiguration::Parse(good, "target_a.yaml");
+  ASSERT_EQ(configuration.size(), 5);
+  EXPECT_TRUE(configuration.p_T()[4].isApprox(Eigen::Vector3d(-0.04, 0.04, 0.08)));
+  EXPECT_EQ(configuration.source(), "target_a.yaml");
+  std::istringstream unclosed("leds: [[0, 0.1, 0]\n");
+  EXPECT_THAT([&] { LedConfiguration::Parse(unclosed, "target_b.yaml"); },
+              ::testing::ThrowsMessage<std::invalid_argument>(
+                  AllOf(HasSubstr("target_b.yaml"), HasSubstr("not valid YAML"))));
 }
 
 TEST(LedConfigurationTest, RejectsTooFewLeds) {
@@ -78,8 +94,9 @@ TEST(LedConfigurationTest, RejectsCoplanarLeds) {
 
 TEST(LedConfigurationTest, RejectsSymmetricLeds) {
   // A square pyramid: 90 deg rotations about its axis permute the base LEDs.
-  EXPECT_THAT(RejectionMessage({{0.1, 0, 0}, {0, 0.1, 0}, {-0.1, 0, 0}, {0, -0.1, 0}, {0, 0, 0.08}}),
-              AllOf(HasSubstr("test.yaml"), HasSubstr("symmetric")));
+  EXPECT_THAT(
+      RejectionMessage({{0.1, 0, 0}, {0, 0.1, 0}, {-0.1, 0, 0}, {0, -0.1, 0}, {0, 0, 0.08}}),
+      AllOf(HasSubstr("test.yaml"), HasSubstr("symmetric")));
   // A tetrahedron with a two-fold axis (two pairs of equal edges swapped), 1 mm off: still
   // within the 15 mm tolerance.
   EXPECT_THAT(RejectionMessage({{0.1, 0, 0}, {-0.1, 0, 0}, {0, 0.07, 0.09}, {0, -0.07, 0.091}}),
