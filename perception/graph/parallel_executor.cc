@@ -64,17 +64,20 @@ ParallelExecutor::ParallelExecutor(FrameGraph& graph, const ParallelExecutorPara
             for (std::size_t producer : graph_.dependencies(index)) {
               HappensAfter(state.nodes[producer].get());
             }
+            bool failed_before = false;
             {
               std::lock_guard<std::mutex> lock(state.error_mutex);
-              if (state.error) return;
+              failed_before = static_cast<bool>(state.error);
             }
-            try {
-              RunNode(index, *state.slots);
-            } catch (...) {
-              std::lock_guard<std::mutex> lock(state.error_mutex);
-              if (!state.error) state.error = std::current_exception();
+            if (!failed_before) {
+              try {
+                RunNode(index, *state.slots);
+              } catch (...) {
+                std::lock_guard<std::mutex> lock(state.error_mutex);
+                if (!state.error) state.error = std::current_exception();
+              }
             }
-            HappensBefore(state.nodes[index].get());
+            HappensBefore(state.nodes[index].get());  // on every path, skipped nodes too
           }));
     }
     for (std::size_t index = 0; index < graph_.size(); ++index) {
@@ -91,6 +94,7 @@ ParallelExecutor::ParallelExecutor(FrameGraph& graph, const ParallelExecutorPara
 
 ParallelExecutor::~ParallelExecutor() {
   flow_->arena.execute([this] { flow_->graph->wait_for_all(); });
+  for (const auto& node : flow_->nodes) HappensAfter(node.get());
 }
 
 void ParallelExecutor::RunNodes(FrameSlots& slots) {
