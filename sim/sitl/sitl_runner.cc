@@ -142,6 +142,13 @@ void SitlRunnerParams::Validate() const {
                      field + "drop_probability", c.drop_probability, "must be in [0, 1)");
     control::Require(c.rate_hz <= dynamics_rate_hz, field + "rate_hz", c.rate_hz,
                      "exceeds sitl.dynamics_rate_hz");
+    for (size_t w = 0; w < c.outages.size(); ++w) {
+      const TimeWindow& window = c.outages[w];
+      control::Require(std::isfinite(window.start_s) && std::isfinite(window.end_s) &&
+                           window.end_s >= window.start_s,
+                       field + "outages[" + std::to_string(w) + "].end_s", window.end_s,
+                       "must be finite and not before its start");
+    }
     if (!c.T_BC.matrix().allFinite() || (c.T_WC_fixed && !c.T_WC_fixed->matrix().allFinite())) {
       throw std::invalid_argument(field + "pose (T_BC / T_WC_fixed) is not finite");
     }
@@ -159,6 +166,11 @@ SitlRunner::SitlRunner(const SitlRunnerParams& params, const Scene* scene)
 SitlRunner::~SitlRunner() = default;
 
 namespace {
+
+bool InOutage(const SitlCamera& camera, double t_s) {
+  return std::any_of(camera.outages.begin(), camera.outages.end(),
+                     [t_s](const TimeWindow& window) { return window.Contains(t_s); });
+}
 
 // One flight of SitlRunner::Run: the simulated parts, what is in flight between them, and one
 // method per step of the lockstep loop (sitl_runner.h, "Per dynamics step k").
@@ -319,7 +331,9 @@ class SitlFlight {
       const int slot = runtime.slot++;
       ++runtime.stats.frames_due;
       const SitlCamera& camera = *runtime.camera;
-      if (camera.drop_probability > 0.0 && uniform_(drop_rng_) < camera.drop_probability) {
+      const bool drawn_drop =
+          camera.drop_probability > 0.0 && uniform_(drop_rng_) < camera.drop_probability;
+      if (drawn_drop || InOutage(camera, t_s)) {
         ++runtime.stats.frames_dropped;
         continue;
       }

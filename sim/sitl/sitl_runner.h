@@ -8,7 +8,7 @@
 //      latency), range sensor, cameras due at their rate. A camera frame's exposure ends at t
 //      (mid-exposure stamp t - exposure_s / 2, motion blur over the exposure from the recorded
 //      pose history); it is dropped with probability drop_probability (seeded, not rendered) or
-//      rendered (sim/render: the camera's model at T_WB * T_BC, camera_effects noise) and
+//      lost in one of the camera's outage windows, or rendered (sim/render: the camera's model at T_WB * T_BC, camera_effects noise) and
 //      delivered at t + latency_s. Range readings are delivered latency_s after t.
 //   2. everything delivered by t goes to the autopilot (IMU also to the flight controller's gyro);
 //   3. at the control rate: ground truth (only if the autopilot UsesGroundTruth(); the state of
@@ -68,6 +68,13 @@
 
 namespace aperture::sim {
 
+// A span of simulator time [start_s, end_s) [s].
+struct TimeWindow {
+  double start_s = 0.0;
+  double end_s = 0.0;
+  bool Contains(double t_s) const { return t_s >= start_s && t_s < end_s; }
+};
+
 // One onboard camera. Its index in SitlRunnerParams::cameras is the Frame::camera_id.
 struct SitlCamera {
   std::string name = "camera";
@@ -79,6 +86,10 @@ struct SitlCamera {
   double rate_hz = 30.0;
   double latency_s = 0.0;         // end of exposure -> delivery [s]
   double drop_probability = 0.0;  // in [0, 1): frames lost (driver / transport)
+  // Outages (a blinded or disconnected camera): frames whose exposure ends inside one of these
+  // windows are lost like drops (SitlCameraStats::frames_dropped), after the drop draw, so the
+  // drop stream of the other frames is unchanged.
+  std::vector<TimeWindow> outages;
   CameraEffectsParams effects;    // noise, gain, exposure + motion blur, infrared
   RenderOptions render;           // gray by default; ground_truth off saves time
 };

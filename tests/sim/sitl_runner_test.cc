@@ -7,6 +7,9 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <stdexcept>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "perception/camera/pinhole_camera.h"
@@ -228,6 +231,53 @@ TEST(SitlRunner, FramesAreDroppedAtTheConfiguredRate) {
   }
   gaps += autopilot.frames.front().index + (stats.frames_due - 1 - autopilot.frames.back().index);
   EXPECT_EQ(gaps, stats.frames_dropped);
+}
+
+// An outage loses exactly the frames whose exposure ends inside it; the drop draws of the other
+// frames are those of the same run without the outage (the same frames are dropped).
+TEST(SitlRunner, OutageLosesTheFramesInsideItsWindowOnly) {
+  const Scene scene = TexturedBoxScene();
+  const auto run = [&scene](const std::vector<TimeWindow>& outages) {
+    SitlRunnerParams params = test_support::QuietSitlParams(2.0);
+    SitlCamera camera = ForwardCamera(30.0);
+    camera.model = std::make_shared<perception::PinholeCamera>(
+        40, 30, perception::PinholeIntrinsics{20.0, 20.0, 19.5, 14.5});
+    camera.drop_probability = 0.2;
+    camera.outages = outages;
+    params.cameras.push_back(camera);
+    params.SetSeed(4);
+    RecordingAutopilot autopilot(params.dynamics.vehicle, HoverAt(params.initial_state.p_WB));
+    const SitlResult result = SitlRunner(params, &scene).Run(autopilot);
+    std::vector<int> indices;
+    for (const RecordingAutopilot::Arrival& frame : autopilot.frames) indices.push_back(frame.index);
+    return std::make_pair(result.cameras.at(0), indices);
+  };
+  const auto [stats_free, indices_free] = run({});
+  const auto [stats_out, indices_out] = run({TimeWindow{0.5, 1.0}});
+  // Frame k ends its exposure at k / 30 s: k = 15 .. 29 lie in [0.5, 1.0).
+  std::vector<int> expected;
+  for (int k : indices_free) {
+    if (k < 15 || k > 29) expected.push_back(k);
+  }
+  EXPECT_EQ(indices_out, expected);
+  EXPECT_EQ(stats_out.frames_due, stats_free.frames_due);
+  EXPECT_EQ(stats_out.frames_dropped + stats_out.frames_delivered, stats_out.frames_due);
+  EXPECT_GT(stats_out.frames_dropped, stats_free.frames_dropped);
+}
+
+TEST(SitlRunner, OutageEndingBeforeItStartsIsRejected) {
+  SitlRunnerParams params = test_support::QuietSitlParams(1.0);
+  SitlCamera camera = ForwardCamera(30.0);
+  camera.outages = {TimeWindow{1.0, 0.5}};
+  params.cameras.push_back(camera);
+  const Scene scene = TexturedBoxScene();
+  try {
+    SitlRunner runner(params, &scene);
+    FAIL() << "an inverted outage window was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("cameras.front.outages[0]"), std::string::npos)
+        << e.what();
+  }
 }
 
 // record_window_s: a long flight's records keep their last window (between one and two windows),
