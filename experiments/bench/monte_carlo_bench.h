@@ -55,4 +55,12 @@ std::vector<nlohmann::json> RunTrialsInOrder(const TrialRange& trials, int threa
                                              const std::function<void(int)>& on_trial_done,
                                              const std::function<nlohmann::json(int)>& record_of);
 
+// RunTrials for a bench whose trials are independent flights: the same contract as
+// RunTrialsInOrder, but up to `threads` trials at a time (oneTBB parallel_for; `record_of` must
+// be safe to call concurrently). Records come back in index order; after an interruption, those
+// of the trials that finished.
+std::vector<nlohmann::json> RunTrialsInParallel(
+    const TrialRange& trials, int threads, const std::function<void(int)>& on_trial_done,
+    const std::function<nlohmann::json(int)>& record_of);
+
 }  // namespace aperture::experiments

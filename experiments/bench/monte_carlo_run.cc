@@ -1,6 +1,7 @@
 #include "experiments/bench/monte_carlo_run.h"
 
 #include <tbb/info.h>
+#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 #include <time.h>
 #include <unistd.h>
@@ -10,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <mutex>
 #include <utility>
 
 #include "output/atomic_file.h"
@@ -30,6 +32,31 @@ std::vector<nlohmann::json> RunTrialsInOrder(const TrialRange& trials, int threa
       if (on_trial_done) on_trial_done(static_cast<int>(records.size()));
     }
   });
+  return records;
+}
+
+std::vector<nlohmann::json> RunTrialsInParallel(
+    const TrialRange& trials, int threads, const std::function<void(int)>& on_trial_done,
+    const std::function<nlohmann::json(int)>& record_of) {
+  std::vector<nlohmann::json> slots(static_cast<std::size_t>(std::max(0, trials.count)));
+  std::mutex mutex;
+  int done = 0;
+  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    tbb::parallel_for(0, trials.count, 1, [&](int i) {
+      if (output::InterruptionRequested()) return;  // start no further trial
+      nlohmann::json record = record_of(trials.first + i);
+      record["trial"] = trials.first + i;
+      const std::lock_guard<std::mutex> lock(mutex);
+      slots[static_cast<std::size_t>(i)] = std::move(record);
+      ++done;
+      if (on_trial_done) on_trial_done(done);
+    });
+  });
+  std::vector<nlohmann::json> records;
+  for (nlohmann::json& record : slots) {
+    if (!record.is_null()) records.push_back(std::move(record));
+  }
   return records;
 }
 

@@ -13,7 +13,18 @@
 
 namespace aperture::experiments {
 
-MissionFlightRun FlyMission(const MissionFlightSpec& spec) {
+namespace {
+
+// A flight set up and not flown: the scenario, the SITL parameters (faults injected) and the
+// mission built on the nominal ones.
+struct PreparedFlight {
+  std::unique_ptr<sim::Scenario> scenario;
+  // Behind pointers: a mission may keep references to what it was built from.
+  std::unique_ptr<sim::SitlRunnerParams> sitl;
+  std::unique_ptr<MissionFlight> flight;
+};
+
+PreparedFlight Prepare(const MissionFlightSpec& spec) {
   std::vector<std::string> set_items = spec.set_items;
   set_items.push_back("seed=" + std::to_string(spec.seed));
   const config::ConfigTree tree = sim::ScenarioConfig(spec.scenario, {}, set_items);
@@ -22,12 +33,15 @@ MissionFlightRun FlyMission(const MissionFlightSpec& spec) {
   LoadParams(root, &scenario_params);
   config::ParamReader mission_params = root.Section("mission");
   root.RejectUnknownKeys();
-  sim::Scenario scenario = sim::BuildScenario(scenario_params);
-  sim::SitlRunnerParams sitl;
+  PreparedFlight prepared;
+  prepared.scenario = std::make_unique<sim::Scenario>(sim::BuildScenario(scenario_params));
+  prepared.sitl = std::make_unique<sim::SitlRunnerParams>();
+  sim::SitlRunnerParams& sitl = *prepared.sitl;
   sitl.duration_s = spec.duration_s;
   sitl.trajectory_decimation = spec.trajectory_decimation;
   sitl.record_window_s = spec.record_window_s;
-  sim::ConfigureSitlFromScenario(scenario, &sitl);
+  sitl.render_ignored_frames = spec.render_ignored_frames;
+  sim::ConfigureSitlFromScenario(*prepared.scenario, &sitl);
   for (sim::SitlCamera& camera : sitl.cameras) camera.render.ground_truth = false;
   sitl.SetSeed(spec.seed);
 
@@ -35,11 +49,22 @@ MissionFlightRun FlyMission(const MissionFlightSpec& spec) {
   RegisterBuiltinMissions(missions);
   const std::string mission =
       spec.mission.empty() ? missions.DefaultFor(scenario_params.scenario) : spec.mission;
-  const std::unique_ptr<MissionFlight> flight =
-      missions.Create(mission, {scenario, sitl, mission_params});
-  sitl.duration_s = std::max(sitl.duration_s, flight->MinimumDurationS());
-  sim::SitlRunner runner(sitl, &scenario.scene());
-  sim::SitlHooks hooks = MakeMissionHooks(flight.get(), &scenario);
+  prepared.flight = missions.Create(mission, {*prepared.scenario, sitl, mission_params});
+  sitl.duration_s = std::max(sitl.duration_s, prepared.flight->MinimumDurationS());
+  if (spec.inject_faults) spec.inject_faults(&sitl);
+  sitl.Validate();
+  return prepared;
+}
+
+}  // namespace
+
+void CheckMissionFlight(const MissionFlightSpec& spec) { Prepare(spec); }
+
+MissionFlightRun FlyMission(const MissionFlightSpec& spec) {
+  PreparedFlight prepared = Prepare(spec);
+  MissionFlight* flight = prepared.flight.get();
+  sim::SitlRunner runner(*prepared.sitl, &prepared.scenario->scene());
+  sim::SitlHooks hooks = MakeMissionHooks(flight, prepared.scenario.get());
   if (spec.on_frame) {
     hooks.on_frame = [&spec](int camera_index, const sim::CapturedFrame&,
                              const control::QuadState& state) {

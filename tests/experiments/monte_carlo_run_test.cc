@@ -242,5 +242,32 @@ TEST_F(MonteCarloRunTest, InterruptedRunKeepsTheFinishedTrialsRecords) {
   }
 }
 
+// RunTrialsInParallel: the records of RunTrialsInOrder, in index order, whatever order the
+// trials finish in; after an interruption, only the trials that ran, still in order.
+TEST(RunTrialsInParallel, RecordsInIndexOrderAsRunInOrder) {
+  const auto record_of = [](int k) {
+    volatile double x = 0.0;  // uneven work: later trials finish first
+    for (int i = 0; i < (20 - k) * 20000; ++i) x = x + 1.0;
+    return nlohmann::json{{"x", k * k}};
+  };
+  std::vector<int> done_counts;
+  const std::vector<nlohmann::json> parallel = RunTrialsInParallel(
+      {3, 12}, 2, [&done_counts](int done) { done_counts.push_back(done); }, record_of);
+  const std::vector<nlohmann::json> in_order = RunTrialsInOrder({3, 12}, 1, {}, record_of);
+  EXPECT_EQ(parallel, in_order);
+  ASSERT_EQ(parallel.size(), 12u);
+  EXPECT_EQ(parallel.front()["trial"], 3);
+  EXPECT_EQ(parallel.back()["x"], 14 * 14);
+  std::vector<int> expected(12);
+  for (int i = 0; i < 12; ++i) expected[i] = i + 1;
+  EXPECT_EQ(done_counts, expected);  // serialized, counting up
+
+  output::ClearInterruption();
+  output::RequestInterruption(SIGINT);
+  const std::vector<nlohmann::json> none = RunTrialsInParallel({0, 5}, 2, {}, record_of);
+  output::ClearInterruption();
+  EXPECT_TRUE(none.empty());
+}
+
 }  // namespace
 }  // namespace aperture::experiments
