@@ -11,6 +11,7 @@ void AddBenchCommand(CLI::App& app, int* exit_code) {
   bench->require_subcommand(1);
   AddBenchControlCommand(*bench, exit_code);
   AddBenchDeliveryCommand(*bench, exit_code);
+  AddBenchFaultsCommand(*bench, exit_code);
   AddBenchGapCommand(*bench, exit_code);
   AddBenchGapflytCommand(*bench, exit_code);
   AddBenchLedCommand(*bench, exit_code);

@@ -22,6 +22,7 @@ void AddSimRecoveryCommand(CLI::App& sim, int* exit_code);
 // Benchmarks under `aperture bench` (apps/bench_<name>_command.cc).
 void AddBenchControlCommand(CLI::App& bench, int* exit_code);
 void AddBenchDeliveryCommand(CLI::App& bench, int* exit_code);
+void AddBenchFaultsCommand(CLI::App& bench, int* exit_code);
 void AddBenchGapCommand(CLI::App& bench, int* exit_code);
 void AddBenchGapflytCommand(CLI::App& bench, int* exit_code);
 // `aperture bench merge`: the shards of any Monte-Carlo bench (apps/monte_carlo_command.h).

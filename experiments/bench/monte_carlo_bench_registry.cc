@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "experiments/control/control_monte_carlo_bench.h"
+#include "experiments/faults/faults_monte_carlo_bench.h"
 #include "experiments/gap/gap_monte_carlo_bench.h"
 #include "experiments/gapflyt/gapflyt_monte_carlo_bench.h"
 #include "experiments/led/led_monte_carlo_bench.h"
@@ -18,6 +19,7 @@ MonteCarloBenchRegistry MonteCarloBenchRegistry::WithBuiltins(
   MonteCarloBenchRegistry registry;
   registry.Register(kControlBenchName, &MakeControlMonteCarloBench);
   registry.Register(kDeliveryBenchName, &MakeDeliveryMonteCarloBench);
+  registry.Register(kFaultsBenchName, &MakeFaultsMonteCarloBench);
   registry.Register(kGapBenchName, &MakeGapMonteCarloBench);
   registry.Register(kGapflytBenchName, &MakeGapflytMonteCarloBench);
   registry.Register(kLedBenchName, &MakeLedMonteCarloBench);

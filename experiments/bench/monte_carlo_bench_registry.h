@@ -26,6 +26,7 @@ using MonteCarloBenchFactory =
 class MonteCarloBenchRegistry {
  public:
   // The benches of this library: "control" (experiments/control/control_monte_carlo_bench.h),
+  // "faults" (experiments/faults/faults_monte_carlo_bench.h),
   // "gap" (experiments/gap/gap_monte_carlo_bench.h), "gapflyt"
   // (experiments/gapflyt/gapflyt_monte_carlo_bench.h), "led"
   // (experiments/led/led_monte_carlo_bench.h), "mononav"
