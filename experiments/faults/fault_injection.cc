@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "control/constants.h"
 #include "control/require.h"
 #include "sim/scene/counter_hash.h"
 
@@ -12,7 +13,6 @@ namespace {
 
 constexpr double kGustDurationS = 1.0;
 constexpr double kEarliestOnsetS = 1.0;  // after the first second: the missions have started
-constexpr double kTwoPi = 6.283185307179586;
 
 }  // namespace
 
@@ -52,7 +52,7 @@ FaultDraw DrawFault(std::uint64_t seed) {
                     sim::NormalFromHash(sim::HashCounters(seed, 3)));
   draw.direction_unit = v.norm() > 1e-12 ? Eigen::Vector3d(v.normalized())
                                          : Eigen::Vector3d(Eigen::Vector3d::UnitX());
-  draw.heading_rad = kTwoPi * sim::UniformFromHash(sim::HashCounters(seed, 4));
+  draw.heading_rad = 2.0 * control::kPi * sim::UniformFromHash(sim::HashCounters(seed, 4));
   draw.onset_fraction = sim::UniformFromHash(sim::HashCounters(seed, 5));
   return draw;
 }

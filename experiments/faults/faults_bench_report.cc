@@ -42,7 +42,7 @@ struct OutcomeCounts {
 // Counts per fault and level; the baseline under "none".
 using CountsByLevel = std::map<double, OutcomeCounts>;
 
-void WriteFlightsCsv(const std::vector<nlohmann::json>& records, const std::string& path) {
+void WriteFaultFlightsCsv(const std::vector<nlohmann::json>& records, const std::string& path) {
   output::CsvWriter csv(
       path, {"trial", "repeat", "fault", "level", "seed", "outcome", "mission_passed",
              "sim_outcome", "sim_time_s", "wall_time_s", "reason", "mission_outcome", "condition"});
@@ -63,7 +63,7 @@ void WriteFlightsCsv(const std::vector<nlohmann::json>& records, const std::stri
   csv.Close();
 }
 
-std::string Percent(double rate) {
+std::string CrashPercent(double rate) {
   if (!std::isfinite(rate)) return "-";
   return std::to_string(static_cast<int>(std::lround(100.0 * rate))) + " %";
 }
@@ -94,7 +94,7 @@ void WriteFaultsBenchSections(const FaultsBenchOptions& options,
                           {"mission_outcome", r.at("mission_outcome")}});
     }
   }
-  WriteFlightsCsv(records, flights_csv_path);
+  WriteFaultFlightsCsv(records, flights_csv_path);
 
   bool no_crash_at_default = baseline.crash == 0;
   bool few_crashes_at_twice = true;
@@ -141,7 +141,7 @@ void WriteFaultsBenchSections(const FaultsBenchOptions& options,
          {"success / safe abort / crash at twice",
           std::to_string(at_twice.success) + " / " + std::to_string(at_twice.safe_abort) + " / " +
               std::to_string(at_twice.crash) + " of " + std::to_string(at_twice.trials)},
-         {"crash rate at twice", Percent(at_twice.Rate(at_twice.crash))}});
+         {"crash rate at twice", CrashPercent(at_twice.Rate(at_twice.crash))}});
     output::SvgPlot plot({fault.name + " (" + options.scenario + ")", fault.label, "flights [%]"});
     plot.AddLine("success", x, success).AddLine("safe abort", x, safe).AddLine("crash", x, crash);
     report->AddSvg(plot.Render());

@@ -5,14 +5,13 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "control/constants.h"
 #include "control/require.h"
 
 namespace aperture::experiments {
 namespace {
 
-constexpr double kRadToDeg = 57.29577951308232;
-
-std::string Describe(const char* what, double value, const char* unit, double t_s) {
+std::string UnstableEnd(const char* what, double value, const char* unit, double t_s) {
   char line[120];
   std::snprintf(line, sizeof(line), "not stable at the end: %s %.2f %s at t = %.2f s", what, value,
                 unit, t_s);
@@ -51,15 +50,15 @@ FlightOutcome ClassifyFlight(bool mission_passed, const sim::SitlResult& result,
        ++it) {
     const double speed = it->v_W.norm();
     if (!(speed <= criteria.max_speed_mps))
-      return {FlightOutcomeKind::kCrash, Describe("speed", speed, "m/s", it->t_s)};
+      return {FlightOutcomeKind::kCrash, UnstableEnd("speed", speed, "m/s", it->t_s)};
     const Eigen::Vector3d z_B = it->q_WB * Eigen::Vector3d::UnitZ();
-    const double tilt_deg = std::acos(std::clamp(z_B.z(), -1.0, 1.0)) * kRadToDeg;
+    const double tilt_deg = std::acos(std::clamp(z_B.z(), -1.0, 1.0)) * control::kRadToDeg;
     if (!(tilt_deg <= criteria.max_tilt_deg)) {
-      return {FlightOutcomeKind::kCrash, Describe("tilt", tilt_deg, "deg", it->t_s)};
+      return {FlightOutcomeKind::kCrash, UnstableEnd("tilt", tilt_deg, "deg", it->t_s)};
     }
     const double rate = it->omega_B.head<2>().norm();
     if (!(rate <= criteria.max_rate_radps)) {
-      return {FlightOutcomeKind::kCrash, Describe("roll/pitch rate", rate, "rad/s", it->t_s)};
+      return {FlightOutcomeKind::kCrash, UnstableEnd("roll/pitch rate", rate, "rad/s", it->t_s)};
     }
   }
   return {FlightOutcomeKind::kSafeAbort, ""};
