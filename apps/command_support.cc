@@ -62,15 +62,15 @@ output::OutputFolder OpenOutputFolder(const std::string& out_dir, bool overwrite
   }
 }
 
+CLI::Validator SeedValidator() { return CLI::Validator(SeedError, "UINT64", "seed"); }
+
 CLI::Option* AddSeedOption(CLI::App* command, std::uint64_t* seed, const std::string& description) {
-  return command->add_option("--seed", *seed, description)
-      ->check(CLI::Validator(SeedError, "UINT64", "seed"));
+  return command->add_option("--seed", *seed, description)->check(SeedValidator());
 }
 
 CLI::Option* AddSeedOption(CLI::App* command, std::optional<std::uint64_t>* seed,
                            const std::string& description) {
-  return command->add_option("--seed", *seed, description)
-      ->check(CLI::Validator(SeedError, "UINT64", "seed"));
+  return command->add_option("--seed", *seed, description)->check(SeedValidator());
 }
 
 CLI::Validator FiniteNumberIn(double min, double max, bool min_inclusive) {

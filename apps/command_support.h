@@ -44,6 +44,8 @@ inline output::OutputFolder OpenOutputFolder(const CommonOptions& options) {
 CLI::Option* AddSeedOption(CLI::App* command, std::uint64_t* seed, const std::string& description);
 CLI::Option* AddSeedOption(CLI::App* command, std::optional<std::uint64_t>* seed,
                            const std::string& description);
+// The same rule for another seed option (e.g. sim's --fault-seed).
+CLI::Validator SeedValidator();
 // The check of a number option: finite and in [min, max] (CLI11's own number checks pass nan and
 // inf); the error prints the bounds readably ("in (0, 1e+06]").
 CLI::Validator FiniteNumberIn(double min, double max, bool min_inclusive = true);

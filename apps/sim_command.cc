@@ -17,6 +17,9 @@
 // onboard camera with overlays beside a third-person view from behind the vehicle) and
 // OUT/report.html (position and command plots, key frames), and the mission's own files
 // (MissionFlight::WriteFiles, e.g. the tag map's).
+// --fault NAME=LEVEL [--fault-seed N] injects one fault of `aperture bench faults` after the
+// mission was built (experiments/faults/fault_injection.h): a failing bench flight flown again with
+// video (its flights.csv gives the command in its replay column).
 // SIGINT/SIGTERM end the flight at the next simulation step (outcome "stopped"): every output is
 // then written for the flight so far (the video finalised with its frames) and summary.json says
 // "status": "interrupted" (exit 130/143).
@@ -36,6 +39,7 @@
 #include "apps/sitl_outputs.h"
 #include "config/config_tree.h"
 #include "config/usage_error.h"
+#include "experiments/faults/fault_injection.h"
 #include "experiments/led/led_hover_flight.h"
 #include "experiments/missions/builtin_missions.h"
 #include "output/background_video_writer.h"
@@ -63,6 +67,10 @@ struct SimOptions {
   // (MissionFlight::MinimumDurationS).
   std::optional<double> duration_s;
   int video_every = 2;  // camera frames per video frame (30 Hz camera: 15 frames/s video)
+  // --fault NAME=LEVEL: one fault of `aperture bench faults` injected after the mission was
+  // built (it is not told of it); --fault-seed: its draw (direction, onset), default the seed.
+  std::string fault;
+  std::optional<std::uint64_t> fault_seed;
   ChaseViewParams chase;
 };
 
@@ -206,6 +214,14 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
   if (!options.duration_s) {
     params.duration_s = std::max(params.duration_s, flight->MinimumDurationS());
   }
+  nlohmann::json fault_input;  // summary.json inputs.fault
+  if (!options.fault.empty()) {
+    const experiments::FaultSetting fault = experiments::ParseFaultSetting(options.fault);
+    const std::uint64_t fault_seed = options.fault_seed.value_or(scenario_params.seed);
+    experiments::InjectFault(fault.fault->kind, fault.level, experiments::DrawFault(fault_seed),
+                             &params);
+    fault_input = {{"name", fault.fault->name}, {"level", fault.level}, {"fault_seed", fault_seed}};
+  }
   perception::Autopilot& autopilot = flight->autopilot();
   sim::SitlRunner runner(params, &scenario.scene());
 
@@ -260,6 +276,7 @@ void RunSim(const SimOptions& options, output::OutputFolder& out) {
                        {"seed", scenario_params.seed},
                        {"duration_s", params.duration_s},
                        {"autopilot", result.autopilot_name}};
+  if (!fault_input.is_null()) summary["inputs"]["fault"] = fault_input;
   // The full effective configuration: `--config OUT/summary.json` flies this run again.
   sim::PutEffectiveSitlBlocks(scenario_params, &tree);
   PutEffectiveLeds(scenario_params, &tree);
@@ -354,6 +371,22 @@ void AddSimCommand(CLI::App& app, int* exit_code) {
                    "Rows the third-person view is rendered at, scaled to the video "
                    "(default 240 px)")
       ->check(IntegerIn(16, 2160));
+  command
+      ->add_option("--fault", options->fault,
+                   "Inject one fault of `aperture bench faults` that the mission is not told of, "
+                   "NAME=LEVEL (e.g. motor_loss=0.15; flights.csv's replay column)")
+      ->check([](const std::string& text) {
+        try {
+          experiments::ParseFaultSetting(text);
+          return std::string();
+        } catch (const std::invalid_argument& e) {
+          return std::string(e.what());
+        }
+      });
+  command
+      ->add_option("--fault-seed", options->fault_seed,
+                   "Seed of the fault's direction and onset (default: the run's seed)")
+      ->check(SeedValidator());
   AddCommonOptions(command, &options->common);
   // Flows with their own options (apps/sim_<flow>_command.cc); a scenario run needs NAME and --out.
   command->get_option("--out")->required(false)->description(

@@ -16,6 +16,7 @@ using BodyRateLaw = control::LowLevelControllerParameters::BodyRateLaw;
 
 void ControlStackParams::Validate() const {
   position.Validate();
+  low_level.Validate();
   const auto& lqr = low_level.lqr;
   if (!lqr.state_weights.allFinite() || (lqr.state_weights.array() < 0.0).any()) {
     throw std::invalid_argument(

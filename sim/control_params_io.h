@@ -11,6 +11,7 @@
 //     mixer: iterative             # iterative (G.4) | one_shot (Table G.2 baseline)
 //     saturation: prioritized      # prioritized (Algorithm 4) | clipping
 //     assured_yaw_torque_Nm: 0.0   # eta_z,assured of Algorithm 4 (0: off)
+//     torque_observer_time_constant_s: 0  # beyond the thesis: torque-disturbance observer (0: off)
 //     position: {p_xy_per_s2: 5, p_z_per_s2: 15, d_xy_per_s: 4, d_z_per_s: 6,
 //                p_rp_per_s: 16.6, p_yaw_per_s: 5}          # Table A.2
 //     lqr: {state_weights: [0.01, 0.01, 0.0016, 0, 0, 0], input_weights: [1, 1, 1]}  # (G.10)
@@ -65,6 +66,7 @@ void Serialize(Archive* a, ControlStackParams* p) {
   a->Visit("mixer", &p->low_level.mixer.mixing, MixingNames());
   a->Visit("saturation", &p->low_level.mixer.saturation, SaturationNames());
   a->Visit("assured_yaw_torque_Nm", &p->low_level.mixer.assured_yaw_torque_Nm);
+  a->Visit("torque_observer_time_constant_s", &p->low_level.torque_observer_time_constant_s);
   a->VisitSection("position",
                   [p](auto* section) { control::SerializePositionGains(section, &p->position); });
   a->Visit("lqr", &p->low_level.lqr);

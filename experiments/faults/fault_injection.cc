@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <sstream>
 #include <stdexcept>
 
 #include "control/constants.h"
@@ -15,6 +17,10 @@ constexpr double kGustDurationS = 1.0;
 constexpr double kEarliestOnsetS = 1.0;  // after the first second: the missions have started
 
 }  // namespace
+
+double FaultSpec::LevelAt(double fraction) const {
+  return std::round((low + fraction * (high - low)) * 1e9) / 1e9;
+}
 
 std::vector<double> FaultSpec::SweepLevels() const {
   std::vector<double> levels;
@@ -42,6 +48,28 @@ const FaultSpec& FindFault(const std::string& name) {
     known += (known.empty() ? "" : ", ") + fault.name;
   }
   throw std::invalid_argument("unknown fault '" + name + "'; the faults are " + known);
+}
+
+FaultSetting ParseFaultSetting(const std::string& text) {
+  const std::size_t equals = text.find('=');
+  if (equals == std::string::npos) {
+    throw std::invalid_argument("fault '" + text + "': write NAME=LEVEL, e.g. motor_loss=0.15");
+  }
+  FaultSetting setting;
+  setting.fault = &FindFault(text.substr(0, equals));
+  const std::string level_text = text.substr(equals + 1);
+  char* end = nullptr;
+  setting.level = std::strtod(level_text.c_str(), &end);
+  const FaultSpec& fault = *setting.fault;
+  if (level_text.empty() || *end != '\0' || !std::isfinite(setting.level) ||
+      setting.level < fault.low || setting.level > fault.high) {
+    std::ostringstream range;
+    range << fault.low << " to " << fault.high;
+    throw std::invalid_argument("fault '" + text + "': the level of " + fault.name +
+                                " is a number from " + range.str() +
+                                (fault.unit.empty() ? "" : " " + fault.unit));
+  }
+  return setting;
 }
 
 FaultDraw DrawFault(std::uint64_t seed) {

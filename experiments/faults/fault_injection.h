@@ -51,7 +51,8 @@ struct FaultSpec {
   std::string label;  // axis label of the report's plot
   double low = 0.0;   // the level without the fault
   double high = 0.0;  // the top of the range
-  double LevelAt(double fraction) const { return low + fraction * (high - low); }
+  // Rounded to 1e-9 so that a level reads as it is written (0.225, not 0.22499999999999998).
+  double LevelAt(double fraction) const;
   double DefaultLevel() const { return LevelAt(0.5); }
   double TwiceDefaultLevel() const { return high; }
   std::vector<double> SweepLevels() const;  // LevelAt(kSweepFractions)
@@ -61,6 +62,15 @@ struct FaultSpec {
 const std::vector<FaultSpec>& FaultCatalogue();
 // std::invalid_argument listing the known names for an unknown one.
 const FaultSpec& FindFault(const std::string& name);
+
+// A fault at a level as written on the command line: "NAME=LEVEL", e.g. "motor_loss=0.15"
+// (aperture sim --fault). std::invalid_argument quoting the text for a missing '=', an unknown
+// name (listing the known ones), or a level that is not a number in [low, high] of the fault.
+struct FaultSetting {
+  const FaultSpec* fault = nullptr;
+  double level = 0.0;
+};
+FaultSetting ParseFaultSetting(const std::string& text);
 
 // What a trial draws for its fault (a pure function of the seed): the gust's and the bias'
 // direction and the onset of the gust and the outage as a fraction of their window.

@@ -128,13 +128,31 @@ FaultTrialPlan PlanFaultTrial(const FaultsBenchOptions& options, int trial) {
   throw std::logic_error("bench faults: trial slot beyond the selected faults");
 }
 
+std::string ReplayCommand(const FaultsBenchOptions& options, const FaultTrialPlan& plan) {
+  char duration[32];
+  std::snprintf(duration, sizeof(duration), "%.12g", options.duration_s);
+  std::string command = "aperture sim " + options.scenario + " --seed " +
+                        std::to_string(plan.seed) + " --duration " + duration;
+  if (plan.fault != "none") {
+    char level[32];
+    std::snprintf(level, sizeof(level), "%.12g", plan.level);
+    command += " --fault " + plan.fault + "=" + level + " --fault-seed " +
+               std::to_string(plan.fault_seed);
+  }
+  for (const std::string& item : plan.condition_items) command += " --set " + item;
+  for (const std::string& item : options.set_items) command += " --set '" + item + "'";
+  return command;
+}
+
 nlohmann::json FlyFaultTrial(const FaultsBenchOptions& options, int trial) {
   const FaultTrialPlan plan = PlanFaultTrial(options, trial);
   nlohmann::json record = {{"repeat", plan.repeat},
                            {"fault", plan.fault},
                            {"level", plan.level},
                            {"seed", plan.seed},
-                           {"condition", plan.condition_items}};
+                           {"fault_seed", plan.fault_seed},
+                           {"condition", plan.condition_items},
+                           {"replay", ReplayCommand(options, plan)}};
   MissionFlightSpec spec;
   spec.scenario = options.scenario;
   spec.set_items = plan.condition_items;

@@ -54,10 +54,13 @@ struct FaultTrialPlan {
   std::vector<std::string> condition_items;  // per repeat (gap: roll and pitch)
 };
 FaultTrialPlan PlanFaultTrial(const FaultsBenchOptions& options, int trial);
+// The `aperture sim` command line (without --out) that flies trial k's flight again, with video:
+// the same seed, condition, duration, --set items and fault (--fault NAME=LEVEL --fault-seed N).
+std::string ReplayCommand(const FaultsBenchOptions& options, const FaultTrialPlan& plan);
 
 // Flies trial k; errors of the flight become a record with outcome "error" (counted as a crash).
-// Record: {"repeat", "fault", "level", "seed", "condition", "outcome", "reason", "mission_passed",
-// "mission_outcome", "sim_outcome", "sim_time_s", "wall_time_s"}.
+// Record: {"repeat", "fault", "level", "seed", "fault_seed", "condition", "replay", "outcome",
+// "reason", "mission_passed", "mission_outcome", "sim_outcome", "sim_time_s", "wall_time_s"}.
 nlohmann::json FlyFaultTrial(const FaultsBenchOptions& options, int trial);
 
 // summary.json "faults" (per fault and level: trials, success, safe_abort, crash and rates; the

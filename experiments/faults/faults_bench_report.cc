@@ -45,7 +45,7 @@ using CountsByLevel = std::map<double, OutcomeCounts>;
 void WriteFaultFlightsCsv(const std::vector<nlohmann::json>& records, const std::string& path) {
   output::CsvWriter csv(
       path, {"trial", "repeat", "fault", "level", "seed", "outcome", "mission_passed",
-             "sim_outcome", "sim_time_s", "wall_time_s", "reason", "mission_outcome", "condition"});
+             "sim_outcome", "sim_time_s", "wall_time_s", "reason", "mission_outcome", "condition", "replay"});
   for (const nlohmann::json& r : records) {
     std::string condition;
     for (const auto& item : r.at("condition")) {
@@ -58,7 +58,8 @@ void WriteFaultFlightsCsv(const std::vector<nlohmann::json>& records, const std:
          r.at("outcome").get<std::string>(), r.at("mission_passed").get<bool>() ? 1.0 : 0.0,
          r.at("sim_outcome").get<std::string>(), r.at("sim_time_s").get<double>(),
          r.at("wall_time_s").get<double>(), r.at("reason").get<std::string>(),
-         r.at("mission_outcome").get<std::string>(), condition});
+         r.at("mission_outcome").get<std::string>(), condition,
+         r.at("replay").get<std::string>()});
   }
   csv.Close();
 }

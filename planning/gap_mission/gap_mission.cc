@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "control/require.h"
+#include "control/so3.h"
 #include "perception/gap/gap_node.h"
 
 namespace aperture::planning {
@@ -114,6 +115,11 @@ void GapMission::Abort(const std::string& reason, double t_s) {
 }
 
 void GapMission::OnImu(const perception::ImuSample& sample) {
+  if (last_imu_ && !fusion_.started()) {
+    const double dt_s = sample.t_s - last_imu_->t_s;
+    q_B0B_ = (q_B0B_ * control::ExpQuaternion(0.5 * (last_imu_->omega_B + sample.omega_B) * dt_s))
+                 .normalized();
+  }
   last_imu_ = sample;
   fusion_.AddImu(sample);
   if (fusion_.started()) return;
@@ -275,6 +281,8 @@ perception::AutopilotCommand GapMission::HoverCommand() const {
   perception::AutopilotCommand command;
   command.kind = perception::AutopilotCommand::Kind::kThrustRates;
   command.thrust_rates.collective_thrust_mps2 = vehicle_.gravity_mps2;
+  command.thrust_rates.omega_des_B =
+      attitude_controller_.Compute(q_B0B_, Eigen::Vector3d::UnitZ(), 0.0).omega_fb_B;
   return command;
 }
 

@@ -2,8 +2,10 @@
 // The narrow-gap mission of Falanga et al. 2017 (seed 000) as a perception::Autopilot that flies
 // from camera images and IMU samples only (no ground truth, nothing from sim/):
 //
-//   detect    hover on the last command (zero body rates, hover thrust) until the gap detector
-//             has found the gap in init_detections frames; the mission frame W is then fixed.
+//   detect    hover thrust, holding the attitude the vehicle had at its first IMU sample (gyro-
+//             integrated; a vehicle that starts hovering stays level, so the specific force it
+//             averages for gravity is gravity) until the gap detector has found the gap in
+//             init_detections frames; the mission frame W is then fixed.
 //   hover     position control on the filter estimate at the pose where the filter started,
 //             until hover_s have passed and the position is known to init_max_relative_sigma
 //             of the distance to the gap.
@@ -269,6 +271,8 @@ class GapMission : public perception::Autopilot {
   std::size_t recent_up_next_ = 0;
   Eigen::Vector3d up_G_sum_ = Eigen::Vector3d::Zero();
   std::optional<perception::ImuSample> last_imu_;
+  // Attitude relative to the body at the first IMU sample, integrated from the gyro (detect).
+  Eigen::Quaterniond q_B0B_ = Eigen::Quaterniond::Identity();
   Eigen::Isometry3d last_T_CG_ = Eigen::Isometry3d::Identity();
 
   GapPose gap_W_;

@@ -3,7 +3,8 @@
 // at its own rate (1 kHz by default) it turns the autopilot's latest command into rotor thrust
 // commands for QuadrotorDynamics, as the flight-controller board does on hardware:
 //   kThrustRates  -> control::LowLevelController (LQR (G.12) or P (B.21) body-rate law on the
-//                    IMU gyro, iterative mixer (G.4), prioritized saturation (Algorithm 4))
+//                    IMU gyro, iterative mixer (G.4), prioritized saturation (Algorithm 4),
+//                    torque-disturbance observer)
 //   kRotorThrusts -> passed through, clamped to [MinThrust, MaxThrust] of the rotor model
 //   kNone         -> every rotor at MinThrust (motors idling)
 // The gyro it uses is the latest IMU sample delivered to it (noise, bias and latency included).
@@ -18,7 +19,16 @@ namespace aperture::sim {
 
 struct SimulatedFlightControllerParams {
   double rate_hz = 1000.0;  // low-level loop rate (thesis G: 1 kHz on the flight controller)
-  control::LowLevelControllerParameters low_level;  // LQR + iterative mixer + Algorithm 4
+  // LQR + iterative mixer + Algorithm 4, and (beyond the thesis) the torque-disturbance observer
+  // that a flight controller flying missions needs against a weak rotor (0.1 s; the control
+  // benches and flows set their `control` block here, where it is off unless configured).
+  control::LowLevelControllerParameters low_level = WithTorqueObserver(0.1);
+
+  static control::LowLevelControllerParameters WithTorqueObserver(double time_constant_s) {
+    control::LowLevelControllerParameters params;
+    params.torque_observer_time_constant_s = time_constant_s;
+    return params;
+  }
   // Throws std::invalid_argument naming the field when rate_hz is not positive and finite.
   void Validate() const;
 };

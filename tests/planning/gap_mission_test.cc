@@ -104,6 +104,23 @@ TEST_F(GapMissionTest, HoversOpenLoopUntilTheGapIsSeen) {
   EXPECT_FALSE(last_command_.done);
 }
 
+TEST_F(GapMissionTest, DetectHoldsTheAttitudeOfTheStart) {
+  // A weak rotor rolls the vehicle at 0.5 rad/s for 0.1 s before the gap is seen: the detect
+  // phase steers back to the attitude of the first IMU sample (the attitude controller's
+  // p_rp times the 0.05 rad roll) instead of holding zero rates, which would keep the tilt.
+  const double roll_rate_radps = 0.5;
+  for (int k = 0; k <= 50; ++k) {  // 500 Hz for 0.1 s
+    mission_.OnImu({k * 2e-3, Eigen::Vector3d(0.0, 0.0, kGravity),
+                    Eigen::Vector3d(roll_rate_radps, 0.0, 0.0)});
+  }
+  const perception::AutopilotCommand command = mission_.Step(0.1);
+  const double p_rp = GapMissionParams{}.controller.attitude.p_rp_per_s;
+  EXPECT_NEAR(command.thrust_rates.omega_des_B.x(), -p_rp * roll_rate_radps * 0.1,
+              0.1 * p_rp * roll_rate_radps * 0.1);
+  EXPECT_NEAR(command.thrust_rates.omega_des_B.y(), 0.0, 1e-9);
+  EXPECT_EQ(mission_.phase(), GapMissionPhase::kDetect);
+}
+
 TEST_F(GapMissionTest, DetectsHoversAndPlansInTheGapAnchoredFrame) {
   Run(5.0, true, [&] {
     return mission_.phase() != GapMissionPhase::kDetect &&
