@@ -98,7 +98,7 @@ GapMission::GapMission(const GapMissionParams& params,
       recovery_(vehicle, params.recovery),
       rig_{Eigen::Isometry3d::Identity(), T_BC, params.detection_covariance_scale},
       fusion_({params.filter, params.max_consecutive_rejections}) {
-  recent_up_B_.reserve(static_cast<std::size_t>(params_.gravity_samples));
+  recent_up_B0_.reserve(static_cast<std::size_t>(params_.gravity_samples));
   phase_changes_.push_back({0.0, phase_});
 }
 
@@ -123,13 +123,14 @@ void GapMission::OnImu(const perception::ImuSample& sample) {
   last_imu_ = sample;
   fusion_.AddImu(sample);
   if (fusion_.started()) return;
-  // Hovering at rest before the filter starts: the specific force is gravity, up in B.
-  const Eigen::Vector3d up_B = sample.specific_force_B.normalized();
-  if (recent_up_B_.size() < static_cast<std::size_t>(params_.gravity_samples)) {
-    recent_up_B_.push_back(up_B);
+  // Hovering at rest before the filter starts: the specific force is gravity, up in B; kept in
+  // B0 so that samples taken while the vehicle turned average in one frame.
+  const Eigen::Vector3d up_B0 = q_B0B_ * sample.specific_force_B.normalized();
+  if (recent_up_B0_.size() < static_cast<std::size_t>(params_.gravity_samples)) {
+    recent_up_B0_.push_back(up_B0);
   } else {
-    recent_up_B_[recent_up_next_] = up_B;
-    recent_up_next_ = (recent_up_next_ + 1) % recent_up_B_.size();
+    recent_up_B0_[recent_up_next_] = up_B0;
+    recent_up_next_ = (recent_up_next_ + 1) % recent_up_B0_.size();
   }
 }
 
@@ -174,9 +175,10 @@ void GapMission::OnFrame(const perception::Frame& frame) {
 }
 
 void GapMission::AccumulateUpInGap(const Eigen::Isometry3d& T_CG) {
-  if (recent_up_B_.empty()) return;  // no IMU yet: gravity unknown
-  Eigen::Vector3d up_B = Eigen::Vector3d::Zero();
-  for (const Eigen::Vector3d& u : recent_up_B_) up_B += u;
+  if (recent_up_B0_.empty()) return;  // no IMU yet: gravity unknown
+  Eigen::Vector3d up_B0 = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& u : recent_up_B0_) up_B0 += u;
+  const Eigen::Vector3d up_B = q_B0B_.conjugate() * up_B0;  // in the body of this detection
   const Eigen::Matrix3d R_GB = T_CG.linear().transpose() * T_BC_.linear().transpose();
   up_G_sum_ += R_GB * up_B.normalized();
 }

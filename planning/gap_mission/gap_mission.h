@@ -265,14 +265,14 @@ class GapMission : public perception::Autopilot {
   std::vector<GapMissionPhaseChange> phase_changes_;
   std::string reason_;
 
-  // Before the filter: gravity direction (up) in B from the latest IMU samples, and the sum of
-  // the up directions in G of the detections so far.
-  std::vector<Eigen::Vector3d> recent_up_B_;
+  // Before the filter: gravity direction (up) from the latest IMU samples, in B0 (the body at the
+  // first IMU sample), and the sum of the up directions in G of the detections so far.
+  std::vector<Eigen::Vector3d> recent_up_B0_;
+  // Attitude relative to B0, integrated from the gyro until the filter starts (detect).
+  Eigen::Quaterniond q_B0B_ = Eigen::Quaterniond::Identity();
   std::size_t recent_up_next_ = 0;
   Eigen::Vector3d up_G_sum_ = Eigen::Vector3d::Zero();
   std::optional<perception::ImuSample> last_imu_;
-  // Attitude relative to the body at the first IMU sample, integrated from the gyro (detect).
-  Eigen::Quaterniond q_B0B_ = Eigen::Quaterniond::Identity();
   Eigen::Isometry3d last_T_CG_ = Eigen::Isometry3d::Identity();
 
   GapPose gap_W_;

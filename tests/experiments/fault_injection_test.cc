@@ -134,6 +134,25 @@ TEST(FaultInjection, LevelsOutsideTheRangeAreRejected) {
                std::invalid_argument);
 }
 
+TEST(FaultInjection, SettingsParseAsWrittenAndBadOnesAreNamed) {
+  const FaultSetting weak = ParseFaultSetting("motor_loss=0.15");
+  EXPECT_EQ(weak.fault->kind, FaultKind::kMotorLoss);
+  EXPECT_DOUBLE_EQ(weak.level, 0.15);
+  EXPECT_EQ(ParseFaultSetting("imu_noise=10").level, 10.0);
+  for (const std::string text : {"wind=1", "motor_loss", "motor_loss=", "motor_loss=0.31",
+                                 "gust=nan", "gust=1x", "imu_noise=0.5"}) {
+    try {
+      ParseFaultSetting(text);
+      ADD_FAILURE() << text << " was accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(text.substr(0, text.find('='))), std::string::npos)
+          << e.what();
+    }
+  }
+  // Sweep levels read as written: 3/4 of 0.3 is 0.225, not 0.22499999999999998.
+  EXPECT_EQ(FindFault("motor_loss").LevelAt(0.75), 0.225);
+}
+
 TEST(FaultInjection, DrawsArePureFunctionsOfTheSeed) {
   const FaultDraw a = DrawFault(42), b = DrawFault(42), c = DrawFault(43);
   EXPECT_EQ(a.direction_unit, b.direction_unit);

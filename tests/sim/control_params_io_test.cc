@@ -32,6 +32,7 @@ TEST(ControlParamsIoTest, DefaultsAreTheThesisStack) {
   EXPECT_EQ(BodyRateName(params.low_level), "lqr");
   EXPECT_EQ(params.low_level.mixer.mixing, Mixing::kIterative);
   EXPECT_EQ(params.low_level.mixer.saturation, Saturation::kPrioritized);
+  EXPECT_EQ(params.low_level.torque_observer_time_constant_s, 0.0);  // the thesis' law
 }
 
 TEST(ControlParamsIoTest, SelectsEveryBaselineAndGains) {
@@ -41,6 +42,7 @@ body_rate: p_high
 mixer: one_shot
 saturation: clipping
 assured_yaw_torque_Nm: 0.002
+torque_observer_time_constant_s: 0.2
 position: {p_xy_per_s2: 6, d_z_per_s: 7, p_rp_per_s: 12}
 lqr: {state_weights: [1, 2, 3, 4, 5, 6]}
 )");
@@ -52,6 +54,7 @@ lqr: {state_weights: [1, 2, 3, 4, 5, 6]}
   EXPECT_EQ(params.low_level.mixer.mixing, Mixing::kOneShot);
   EXPECT_EQ(params.low_level.mixer.saturation, Saturation::kClip);
   EXPECT_EQ(params.low_level.mixer.assured_yaw_torque_Nm, 0.002);
+  EXPECT_EQ(params.low_level.torque_observer_time_constant_s, 0.2);
   EXPECT_EQ(params.position.p_xy_per_s2, 6.0);
   EXPECT_EQ(params.position.p_z_per_s2, control::PositionControllerParams().p_z_per_s2);
   EXPECT_EQ(params.position.d_z_per_s, 7.0);
@@ -93,6 +96,10 @@ TEST(ControlParamsIoTest, NonPhysicalValuesAreRejectedWithTheirName) {
   EXPECT_NE(MessageOf([] {
               LoadControlParams("assured_yaw_torque_Nm: -1");
             }).find("assured_yaw_torque_Nm"),
+            std::string::npos);
+  EXPECT_NE(MessageOf([] {
+              LoadControlParams("torque_observer_time_constant_s: -0.1");
+            }).find("torque_observer_time_constant_s"),
             std::string::npos);
 }
 
