@@ -159,7 +159,36 @@ LedTrackResult LedTracker::Track(const cv::Mat& image, double t_s) {
   }
   result.status = LedTrackStatus::kReinitialized;
   Finish(&result, found.correspondences, *found.T_CT, t_s);
+  if (result.has_pose() && found.runner_up_T_CT) {
+    start = Clock::now();
+    result.runner_up_rms_px = RefinedRms(found.runner_up_correspondences, result.detections,
+                                         *found.runner_up_T_CT);
+    result.stage_times.refinement_s += SecondsSince(start);
+    if (result.runner_up_rms_px < params_.labelling_margin_ratio * result.rms_px) {
+      result.status = LedTrackStatus::kAmbiguous;
+      result.T_CT.reset();
+      result.covariance.reset();
+      history_.clear();
+    }
+  }
   return result;
+}
+
+double LedTracker::RefinedRms(const std::vector<LedCorrespondence>& correspondences,
+                              const std::vector<LedDetection>& detections,
+                              const Eigen::Isometry3d& T_CT_initial) const {
+  std::map<int, int> claims;
+  for (const LedCorrespondence& c : correspondences) ++claims[c.detection];
+  std::vector<Eigen::Vector3d> p_T;
+  std::vector<Eigen::Vector2d> px;
+  for (const LedCorrespondence& c : correspondences) {
+    if (claims[c.detection] > 1) continue;
+    p_T.push_back(configuration_.p_T()[c.led]);
+    px.push_back(detections[c.detection].px);
+  }
+  if (p_T.size() < 4) return std::numeric_limits<double>::infinity();
+  const LedPoseRefinement refined = RefineLedPose(*camera_, p_T, px, T_CT_initial, params_.refiner);
+  return refined.valid ? refined.rms_px : std::numeric_limits<double>::infinity();
 }
 
 bool LedTracker::TrackNearPrediction(LedTrackResult* result,
