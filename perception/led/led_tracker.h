@@ -131,6 +131,12 @@ class LedTracker {
   // Pose from fewer than 4 matched LEDs near the prediction; false when none passes.
   bool TrackNearPrediction(LedTrackResult* result, const Eigen::Isometry3d& T_CT_predicted,
                            double t_s);
+  // The correspondences whose detection no other LED claims (*unique) with their LEDs' p_T and
+  // detections' px appended; returns the number of detections several LEDs claim.
+  int UniquePairs(const std::vector<LedCorrespondence>& correspondences,
+                  const std::vector<LedDetection>& detections,
+                  std::vector<LedCorrespondence>* unique, std::vector<Eigen::Vector3d>* p_T,
+                  std::vector<Eigen::Vector2d>* px) const;
   // Reprojection RMS [px] of correspondences (those with unique detections, >= 4) refined from
   // T_CT_initial (C.8); infinite when fewer or when the refinement fails.
   double RefinedRms(const std::vector<LedCorrespondence>& correspondences,
