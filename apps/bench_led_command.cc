@@ -1,7 +1,7 @@
 // aperture bench led: the infrared-LED tracker against rendered ground truth (issue 6).
 //
 //   aperture bench led --out DIR [--seed S] [--quick] [--only body_occlusion,merged]
-//                      [--threads T] [--shard K/N]
+//                      [--calibration-errors] [--threads T] [--shard K/N]
 //
 // Writes DIR/summary.json (sections accuracy, sweep, occlusion, merged, body_occlusion, timing,
 // acceptance; see experiments/led/led_bench.h; --only runs the sections named), DIR/frames.csv
@@ -27,6 +27,7 @@ struct BenchLedOptions {
   std::uint64_t seed = 1;
   bool quick = false;
   std::vector<std::string> only;
+  bool calibration_errors = false;
   MonteCarloCommandOptions monte_carlo;
 };
 
@@ -43,6 +44,10 @@ void AddBenchLedCommand(CLI::App& bench, int* exit_code) {
   command->add_option("--only", options->only, "Run only these sections (comma-separated keys)")
       ->delimiter(',')
       ->check(CLI::IsMember(experiments::LedBenchSectionKeys()));
+  command->add_flag("--calibration-errors", options->calibration_errors,
+                    "Render with the intrinsics and LED positions off by calibration-level "
+                    "errors (focal +0.5 %, principal point (+1.5, -1) px, LEDs 1 mm) while the "
+                    "tracker keeps the nominal ones");
   AddMonteCarloOptions(command, &options->monte_carlo);
   command->callback([options, exit_code] {
     output::OutputFolder out = OpenOutputFolder(options->out_dir, options->overwrite);
@@ -51,6 +56,7 @@ void AddBenchLedCommand(CLI::App& bench, int* exit_code) {
       bench.seed = options->seed;
       bench.quick = options->quick;
       bench.only = options->only;
+      bench.calibration_errors = options->calibration_errors;
       RunMonteCarloCommand(experiments::kLedBenchName, experiments::LedBenchConfiguration(bench),
                            options->monte_carlo, out);
     });

@@ -49,13 +49,23 @@ std::shared_ptr<const perception::CameraModel> BenchCamera() {
       752, 480, perception::PinholeIntrinsics{376.0, 376.0, 375.5, 239.5});
 }
 
-// The bench's renderer of `configuration` seen by `camera`, its camera noise seeded with `seed`.
-LedTargetRenderer MakeBenchRenderer(const LedConfiguration& configuration,
-                                    std::shared_ptr<const perception::CameraModel> camera,
-                                    std::uint64_t seed) {
+// The bench's render parameters: camera noise seeded with `seed`, and with
+// options.calibration_errors the rendered world off the tracker's calibration by
+// BenchCalibrationError(options.seed).
+LedTargetRenderParams BenchRenderParams(const LedBenchOptions& options, std::uint64_t seed) {
   LedTargetRenderParams render_params;
   render_params.effects.seed = seed;
-  return LedTargetRenderer(configuration, std::move(camera), render_params);
+  if (options.calibration_errors) {
+    render_params.calibration_error = BenchCalibrationError(options.seed);
+  }
+  return render_params;
+}
+
+// The bench's renderer of `configuration` seen by `camera` (BenchRenderParams).
+LedTargetRenderer MakeBenchRenderer(const LedConfiguration& configuration,
+                                    std::shared_ptr<const perception::CameraModel> camera,
+                                    const LedBenchOptions& options, std::uint64_t seed) {
+  return LedTargetRenderer(configuration, std::move(camera), BenchRenderParams(options, seed));
 }
 
 // Thesis Fig. C.2 analog with four LEDs (circumsphere ~11 cm): three in the arm plane, one below,
@@ -286,11 +296,12 @@ void PlotErrorsOverTime(const std::vector<FrameRecord>& records, const std::stri
                      .Render());
 }
 
-void RunAccuracy(const SectionSizes& sizes, std::uint64_t seed, BenchContext* context,
+void RunAccuracy(const SectionSizes& sizes, const LedBenchOptions& options, BenchContext* context,
                  nlohmann::json* summary, output::HtmlReport* report) {
+  const std::uint64_t seed = options.seed;
   const LedConfiguration configuration = FourLedConfiguration();
   const auto camera = BenchCamera();
-  LedTargetRenderer renderer = MakeBenchRenderer(configuration, camera, seed);
+  LedTargetRenderer renderer = MakeBenchRenderer(configuration, camera, options, seed);
   LedTracker tracker(configuration, camera);
   const std::vector<FrameRecord> records = TrackSequence(
       "accuracy", renderer, tracker, ExcitationPose, sizes.accuracy_frames, 0, nullptr, context);
@@ -315,17 +326,51 @@ void RunAccuracy(const SectionSizes& sizes, std::uint64_t seed, BenchContext* co
   PlotErrorsOverTime(records, "Excitation", report);
 }
 
-void RunSweep(const SectionSizes& sizes, std::uint64_t seed, BenchContext* context,
+// Fig. C.7: an orientation error above this is a wrong labelling (an outlier) [deg].
+constexpr double kOutlierOrientationDeg = 90.0;
+
+// Frames with a pose off by more than kOutlierOrientationDeg: all, those that passed the
+// verification of a tracked frame (C.3.5), and those of each kind the covariance is confident of
+// (IsConfidentWrongPose).
+struct LabellingOutliers {
+  int outliers = 0, verified = 0, confident = 0, confident_verified = 0;
+
+  void Add(const LabellingOutliers& other) {
+    outliers += other.outliers;
+    verified += other.verified;
+    confident += other.confident;
+    confident_verified += other.confident_verified;
+  }
+};
+
+LabellingOutliers CountLabellingOutliers(const std::vector<FrameRecord>& records) {
+  LabellingOutliers counts;
+  for (const FrameRecord& record : records) {
+    if (!record.error || record.error->orientation_deg <= kOutlierOrientationDeg) continue;
+    const bool verified = record.result.status == LedTrackStatus::kTracked;
+    const bool confident =
+        IsConfidentWrongPose(*record.result.T_CT, *record.result.covariance, record.T_CT_true);
+    ++counts.outliers;
+    counts.verified += verified ? 1 : 0;
+    counts.confident += confident ? 1 : 0;
+    counts.confident_verified += confident && verified ? 1 : 0;
+  }
+  return counts;
+}
+
+void RunSweep(const SectionSizes& sizes, const LedBenchOptions& options, BenchContext* context,
               nlohmann::json* summary, output::HtmlReport* report) {
+  const std::uint64_t seed = options.seed;
   const LedConfiguration configuration = LedConfiguration::Default();
   const auto camera = BenchCamera();
-  LedTargetRenderer renderer = MakeBenchRenderer(configuration, camera, seed + 1);
+  LedTargetRenderer renderer = MakeBenchRenderer(configuration, camera, options, seed + 1);
   const perception::LedCorrespondenceSearch search(configuration.p_T());
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   nlohmann::json sweep = nlohmann::json::array();
   std::vector<output::NamedValues> position_groups, orientation_groups;
   std::vector<std::optional<PoseError>> all_errors;
+  LabellingOutliers total_outliers;
   int frame_index = 100000;
   for (const double distance_m : kSweepDistances) {
     // A random pose at this distance (orientation within +-20 deg, lateral offset keeping the
@@ -371,9 +416,18 @@ void RunSweep(const SectionSizes& sizes, std::uint64_t seed, BenchContext* conte
     all_errors.insert(all_errors.end(), errors.begin(), errors.end());
     nlohmann::json row = ComputePoseErrorStatistics(errors).ToJson();
     row["distance_m"] = distance_m;
+    // Fig. C.7: poses off by more than 90 deg in orientation are wrong labellings (outliers),
+    // counted apart and left out of the box plots and medians.
+    const LabellingOutliers outliers = CountLabellingOutliers(records);
+    row["outliers_over_90deg"] = outliers.outliers;
+    row["outlier_fraction"] = static_cast<double>(outliers.outliers) / records.size();
+    row["outliers_verified"] = outliers.verified;
+    row["confident_wrong_labellings"] = outliers.confident;
+    row["confident_wrong_labellings_verified"] = outliers.confident_verified;
+    total_outliers.Add(outliers);
     std::vector<double> position_cm, orientation_deg;
     for (const auto& error : errors) {
-      if (!error) continue;
+      if (!error || error->orientation_deg > kOutlierOrientationDeg) continue;
       position_cm.push_back(100.0 * error->position_m);
       orientation_deg.push_back(error->orientation_deg);
     }
@@ -390,9 +444,24 @@ void RunSweep(const SectionSizes& sizes, std::uint64_t seed, BenchContext* conte
                          {"distances", sweep},
                          {"frames", overall.frames},
                          {"frames_with_pose", overall.frames_with_pose},
+                         {"outliers_over_90deg", total_outliers.outliers},
+                         {"outlier_fraction",
+                          FiniteOrNull(static_cast<double>(total_outliers.outliers) /
+                                       overall.frames)},
+                         {"outliers_verified", total_outliers.verified},
+                         {"confident_wrong_labellings", total_outliers.confident},
+                         {"confident_wrong_labellings_verified",
+                          total_outliers.confident_verified},
                          {"min_distance_m", kSweepDistances.front()},
                          {"max_distance_m", kSweepDistances.back()}};
   report->AddSection("Distance sweep (Fig. C.7 analog, n_L = 5)");
+  report->AddParagraph(
+      "As in Fig. C.7, poses more than 90 deg off in orientation (a wrong labelling of the LEDs) "
+      "are outliers: counted per distance (outliers_over_90deg, of all frames at that distance; "
+      "outliers_verified: those that passed the verification of a tracked frame; "
+      "confident_wrong_labellings: those whose covariance puts the truth beyond the 99.9 % "
+      "chi-square bound) and left out of the box plots and the medians; the means and maxima "
+      "include them.");
   report->AddSvg(output::SvgPlot::BoxPlot({"Position error per distance", "distance", "error [cm]"},
                                           position_groups));
   report->AddSvg(output::SvgPlot::BoxPlot(
@@ -420,11 +489,12 @@ double MaxPositionJump(const std::vector<FrameRecord>& records) {
   return max_jump;
 }
 
-void RunOcclusion(const SectionSizes& sizes, std::uint64_t seed, BenchContext* context,
+void RunOcclusion(const SectionSizes& sizes, const LedBenchOptions& options, BenchContext* context,
                   nlohmann::json* summary, output::HtmlReport* report) {
+  const std::uint64_t seed = options.seed;
   const LedConfiguration configuration = LedConfiguration::Default();
   const auto camera = BenchCamera();
-  LedTargetRenderer renderer = MakeBenchRenderer(configuration, camera, seed + 2);
+  LedTargetRenderer renderer = MakeBenchRenderer(configuration, camera, options, seed + 2);
   LedTracker tracker(configuration, camera);
   const int n = sizes.occlusion_frames;
   const int occlusion_begin = static_cast<int>(0.3 * n), occlusion_end = static_cast<int>(0.7 * n);
@@ -485,11 +555,12 @@ void RunOcclusion(const SectionSizes& sizes, std::uint64_t seed, BenchContext* c
   PlotErrorsOverTime(records, "Occlusion", report);
 }
 
-void RunMerged(const SectionSizes& sizes, std::uint64_t seed, BenchContext* context,
+void RunMerged(const SectionSizes& sizes, const LedBenchOptions& options, BenchContext* context,
                nlohmann::json* summary, output::HtmlReport* report) {
+  const std::uint64_t seed = options.seed;
   const LedConfiguration configuration = LedConfiguration::Default();
   const auto camera = BenchCamera();
-  LedTargetRenderer renderer = MakeBenchRenderer(configuration, camera, seed + 3);
+  LedTargetRenderer renderer = MakeBenchRenderer(configuration, camera, options, seed + 3);
   LedTracker tracker(configuration, camera);
   // LEDs a and b (the longest baseline) lie along the viewing direction at angle 0; the target
   // turns about y_C through -12..12 deg, so their images approach, merge and separate again.
@@ -610,12 +681,13 @@ struct VisibleTally {
   }
 };
 
-void RunBodyOcclusion(const SectionSizes& sizes, std::uint64_t seed, BenchContext* context,
-                      nlohmann::json* summary, output::HtmlReport* report) {
+void RunBodyOcclusion(const SectionSizes& sizes, const LedBenchOptions& options,
+                      BenchContext* context, nlohmann::json* summary,
+                      output::HtmlReport* report) {
+  const std::uint64_t seed = options.seed;
   const LedConfiguration configuration = BodyOcclusionConfiguration();
   const auto camera = BenchCamera();
-  LedTargetRenderParams render_params;
-  render_params.effects.seed = seed + 4;
+  LedTargetRenderParams render_params = BenchRenderParams(options, seed + 4);
   render_params.body_size_m = kBodySize_m;
   LedTargetRenderer renderer(configuration, camera, render_params);
   LedTracker tracker(configuration, camera);
@@ -735,7 +807,7 @@ void WriteTiming(const StageTimeSamples& times, nlohmann::json* summary,
 // The sections in order: summary key, the run, and its acceptance checks (true = met).
 struct LedBenchSection {
   std::string key;
-  void (*run)(const SectionSizes&, std::uint64_t, BenchContext*, nlohmann::json*,
+  void (*run)(const SectionSizes&, const LedBenchOptions&, BenchContext*, nlohmann::json*,
               output::HtmlReport*);
   void (*accept)(const nlohmann::json& section, nlohmann::json* acceptance);
 };
@@ -759,6 +831,9 @@ const std::vector<LedBenchSection>& LedBenchSections() {
          (*a)["close_range_0.3m_tracked"] =
              !s["distances"].empty() && s["distances"][0]["frames_with_pose"].get<int>() ==
                                             s["distances"][0]["frames"].get<int>();
+         // Issue 21: no confident wrong labelling (> 90 deg, Fig. C.7) passes verification.
+         (*a)["sweep_no_confident_wrong_labelling_verified"] =
+             s["confident_wrong_labellings_verified"] == 0;
        }},
       {"occlusion", RunOcclusion,
        [](const nlohmann::json& s, nlohmann::json* a) {
@@ -785,6 +860,15 @@ const std::vector<LedBenchSection>& LedBenchSections() {
 }
 
 }  // namespace
+
+LedCalibrationError BenchCalibrationError(std::uint64_t seed) {
+  LedCalibrationError error;
+  error.focal_length_error = 0.005;
+  error.principal_point_error_px = Eigen::Vector2d(1.5, -1.0);
+  error.led_position_error_m = 0.001;
+  error.seed = seed;
+  return error;
+}
 
 std::vector<std::string> LedBenchSectionKeys() {
   std::vector<std::string> keys;
@@ -821,7 +905,7 @@ nlohmann::json RunLedBenchSection(const std::string& key, const LedBenchOptions&
   const LedBenchSection& section = FindSection(key);
   BenchContext context;
   nlohmann::json record = RecordSection([&](nlohmann::json* summary, output::HtmlReport* report) {
-    section.run(Sizes(options.quick), options.seed, &context, summary, report);
+    section.run(Sizes(options.quick), options, &context, summary, report);
   });
   record["section"] = key;
   record["frames"] = std::move(context.frames);
@@ -844,13 +928,26 @@ void WriteLedBenchOutputs(const LedBenchOptions& options,
   }
   if (frames_csv) frames_csv->Close();
   WriteTiming(times, summary, report);
+  if (options.calibration_errors) {
+    const LedCalibrationError error = BenchCalibrationError(options.seed);
+    (*summary)["calibration_error"] = {
+        {"focal_length_error", error.focal_length_error},
+        {"principal_point_error_px",
+         {error.principal_point_error_px.x(), error.principal_point_error_px.y()}},
+        {"led_position_error_m", error.led_position_error_m}};
+    report->AddSection("Calibration errors");
+    report->AddParagraph(
+        "Images rendered with the focal lengths, principal point and LED positions off by these "
+        "while the tracker keeps the nominal camera and target (issue 21).");
+    report->AddTable((*summary)["calibration_error"]);
+  }
   nlohmann::json acceptance = nlohmann::json::object();
   for (const nlohmann::json& record : section_records) {
     const std::string key = record.at("section").get<std::string>();
     FindSection(key).accept((*summary)[key], &acceptance);
   }
   (*summary)["acceptance"] = acceptance;
-  report->AddSection("Acceptance (issues 6 and 22)");
+  report->AddSection("Acceptance (issues 6, 21 and 22)");
   report->AddTable(acceptance);
 }
 

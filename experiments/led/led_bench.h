@@ -4,7 +4,9 @@
 // like the thesis' mvBlueFOX, infrared mode with sensor noise and motion blur) against their
 // ground truth. Sections, each under its own summary key:
 //   accuracy   Table C.1 analog: 6-DOF excitation at 1.05-1.95 m, n_L = 4
-//   sweep      Fig. C.7 analog: distances 0.3-5.6 m, n_L = 5 (box plots per distance)
+//   sweep      Fig. C.7 analog: distances 0.3-5.6 m, n_L = 5 (box plots per distance); poses
+//              > 90 deg off (wrong labellings) counted per distance as outliers, left out of the
+//              box plots and medians
 //   occlusion  C.4.2 / Fig. C.10 analog: one LED of five hidden mid-sequence; also a fresh start
 //              (no prior pose) during the occlusion
 //   merged     C.4.2 / Fig. C.11 analog: two LEDs sweep through alignment (merged blobs)
@@ -14,12 +16,15 @@
 //   timing     Table C.2 analog: medians per stage [s], from the tracker's LedStageTimes and a
 //              brute-force pass on the sweep's detections (+ one false detection)
 //   acceptance the issues' acceptance checks of the sections run, as booleans
+// With calibration_errors the images are rendered with the intrinsics and LED positions off by
+// BenchCalibrationError (summary key calibration_error) while the tracker keeps the nominal ones.
 // Errors: positions in m, orientations in deg (angle of the angle-axis error, C.4.1).
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
+#include "experiments/led/led_target_renderer.h"
 #include "output/html_report.h"
 
 namespace aperture::experiments {
@@ -34,7 +39,14 @@ struct LedBenchOptions {
   std::string frames_csv_path;
   // Section keys to run (LedBenchSectionKeys()); empty = all. Timing covers the sections run.
   std::vector<std::string> only;
+  // Render every section with BenchCalibrationError(seed) while the tracker keeps the nominal
+  // camera and LED positions (issue 21).
+  bool calibration_errors = false;
 };
+
+// The calibration-level errors of `--calibration-errors`: focal lengths +0.5 % (1.9 px of 376),
+// principal point off by (+1.5, -1.0) px, every LED 1 mm off in a direction drawn from `seed`.
+LedCalibrationError BenchCalibrationError(std::uint64_t seed);
 
 // The section keys in the order they run.
 std::vector<std::string> LedBenchSectionKeys();

@@ -19,6 +19,7 @@ class LedMonteCarloBench : public MonteCarloBench {
       options_.seed = o.at("seed").get<std::uint64_t>();
       options_.quick = o.at("quick").get<bool>();
       options_.only = o.at("only").get<std::vector<std::string>>();
+      options_.calibration_errors = o.value("calibration_errors", false);
     } catch (const nlohmann::json::exception& e) {
       throw std::invalid_argument(std::string("bench led configuration: ") + e.what());
     }
@@ -42,7 +43,8 @@ class LedMonteCarloBench : public MonteCarloBench {
                     output::OutputFolder& out) const override {
     nlohmann::json& summary = out.summary();
     summary["inputs"] = {
-        {"seed", options_.seed}, {"quick", options_.quick}, {"only", options_.only}};
+        {"seed", options_.seed}, {"quick", options_.quick}, {"only", options_.only},
+        {"calibration_errors", options_.calibration_errors}};
     LedBenchOptions options = options_;
     options.frames_csv_path = out.Path("frames.csv");
     output::HtmlReport report("aperture bench led");
@@ -64,7 +66,11 @@ class LedMonteCarloBench : public MonteCarloBench {
 }  // namespace
 
 nlohmann::json LedBenchConfiguration(const LedBenchOptions& options) {
-  return {{"options", {{"seed", options.seed}, {"quick", options.quick}, {"only", options.only}}}};
+  return {{"options",
+           {{"seed", options.seed},
+            {"quick", options.quick},
+            {"only", options.only},
+            {"calibration_errors", options.calibration_errors}}}};
 }
 
 std::unique_ptr<MonteCarloBench> MakeLedMonteCarloBench(const nlohmann::json& configuration) {

@@ -1,9 +1,11 @@
 #include "experiments/led/led_target_renderer.h"
 
 #include <algorithm>
+#include <random>
 #include <stdexcept>
 #include <string>
 
+#include "perception/camera/pinhole_camera.h"
 #include "sim/scene/textures.h"
 
 namespace aperture::experiments {
@@ -15,16 +17,48 @@ Eigen::Isometry3d AtPosition(const Eigen::Vector3d& p) {
   return T;
 }
 
+// The configuration with every LED moved by error.led_position_error_m in a random direction.
+perception::LedConfiguration DisplacedConfiguration(
+    const perception::LedConfiguration& configuration, const LedCalibrationError& error) {
+  if (error.led_position_error_m == 0.0) return configuration;
+  std::mt19937_64 rng(error.seed);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::vector<Eigen::Vector3d> p_T = configuration.p_T();
+  for (Eigen::Vector3d& p : p_T) {
+    const Eigen::Vector3d direction(normal(rng), normal(rng), normal(rng));
+    p += error.led_position_error_m * direction.normalized();
+  }
+  return perception::LedConfiguration(p_T, configuration.source() + " (LEDs displaced)");
+}
+
+// The camera with error's intrinsics errors; the camera itself when there are none.
+std::shared_ptr<const perception::CameraModel> RenderingCamera(
+    std::shared_ptr<const perception::CameraModel> camera, const LedCalibrationError& error) {
+  if (!camera) throw std::invalid_argument("LedTargetRenderer: no camera model given");
+  if (error.focal_length_error == 0.0 && error.principal_point_error_px.isZero()) return camera;
+  if (!dynamic_cast<const perception::PinholeCamera*>(camera.get())) {
+    throw std::invalid_argument(
+        "LedTargetRenderer: intrinsics errors (calibration_error) need a PinholeCamera; set "
+        "focal_length_error and principal_point_error_px to 0 for other camera models");
+  }
+  perception::PinholeIntrinsics k = perception::PinholeIntrinsics::FromVector(camera->intrinsics());
+  k.fx *= 1.0 + error.focal_length_error;
+  k.fy *= 1.0 + error.focal_length_error;
+  k.cx += error.principal_point_error_px.x();
+  k.cy += error.principal_point_error_px.y();
+  return std::make_shared<perception::PinholeCamera>(camera->width(), camera->height(), k);
+}
+
 }  // namespace
 
 LedTargetRenderer::LedTargetRenderer(const perception::LedConfiguration& configuration,
                                      std::shared_ptr<const perception::CameraModel> camera,
                                      const LedTargetRenderParams& params)
-    : configuration_(configuration),
+    : configuration_(DisplacedConfiguration(configuration, params.calibration_error)),
       camera_(std::move(camera)),
+      rendering_camera_(RenderingCamera(camera_, params.calibration_error)),
       params_(params),
       effects_(params.effects) {
-  if (!camera_) throw std::invalid_argument("LedTargetRenderer: no camera model given");
   sim::Material ceiling;
   ceiling.texture = sim::MakeValueNoiseTexture(sim::ProceduralTextureParams{});
   scene_.AddObject({"ceiling", sim::Rectangle{{30.0, 30.0}, {}, {}}, ceiling,
@@ -67,7 +101,7 @@ cv::Mat LedTargetRenderer::Render(const std::function<Eigen::Isometry3d(double)>
   options.ground_truth = false;
   options.min_led_sigma_px = params_.min_led_sigma_px;
   const sim::CapturedFrame captured = effects_.Capture(
-      ray_caster_, scene_, *camera_, [&](double t) { return T_CT_at(t).inverse(); }, t_s,
+      ray_caster_, scene_, *rendering_camera_, [&](double t) { return T_CT_at(t).inverse(); }, t_s,
       frame_index, options);
   return captured.frame.image;
 }

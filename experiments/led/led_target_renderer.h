@@ -8,6 +8,7 @@
 // hides the LEDs behind it as the ray caster does (an LED is drawn only when no surface lies
 // between it and the camera); OccludedLeds gives the ground truth of which.
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <opencv2/core/mat.hpp>
@@ -21,6 +22,23 @@
 
 namespace aperture::experiments {
 
+// Calibration-level errors of the rendered world against the nominal camera and configuration
+// the tracker is given (issue 21): the image is rendered with the intrinsics and LED positions
+// off by these, the ground truth stays the nominal target frame T. Zero = renders match the
+// tracker's model exactly.
+struct LedCalibrationError {
+  double focal_length_error = 0.0;  // fx, fy of the rendering camera = nominal * (1 + this)
+  Eigen::Vector2d principal_point_error_px = Eigen::Vector2d::Zero();  // added to cx, cy
+  // Every LED moved by this distance in a direction drawn per LED (seeded by `seed`) [m].
+  double led_position_error_m = 0.0;
+  std::uint64_t seed = 1;
+
+  bool Any() const {
+    return focal_length_error != 0.0 || !principal_point_error_px.isZero() ||
+           led_position_error_m != 0.0;
+  }
+};
+
 struct LedTargetRenderParams {
   double led_radius_m = 0.0025;  // SMD LED emitter (Harvatek HT-260, thesis C.4.1: ~2-3 mm)
   // Blob energy at 1 m [radiance * px^2]: ~3x full scale at the blob peak at 5.6 m, so the
@@ -32,6 +50,7 @@ struct LedTargetRenderParams {
   // are never occluded but by `hidden`).
   Eigen::Vector3d body_size_m = Eigen::Vector3d::Zero();
   sim::CameraEffectsParams effects = DefaultEffects();
+  LedCalibrationError calibration_error;  // needs a PinholeCamera when any is set
 
   // mvBlueFOX-like sensor behind an IR-pass filter: read noise 1 % of full scale (~2.5 gray
   // levels), shot noise of a 4000 e- well, 2 ms exposure with motion blur over 3 subframes.
@@ -48,7 +67,8 @@ struct LedTargetRenderParams {
 
 class LedTargetRenderer {
  public:
-  // Throws std::invalid_argument for a null camera or invalid effects parameters.
+  // Throws std::invalid_argument for a null camera, invalid effects parameters, or calibration
+  // errors with a camera that is not a PinholeCamera.
   LedTargetRenderer(const perception::LedConfiguration& configuration,
                     std::shared_ptr<const perception::CameraModel> camera,
                     const LedTargetRenderParams& params = {});
@@ -63,11 +83,17 @@ class LedTargetRenderer {
   // between the camera and the LED's emitter.
   std::vector<int> OccludedLeds(const Eigen::Isometry3d& T_CT) const;
 
+  // The nominal camera (the tracker's calibration).
   const perception::CameraModel& camera() const { return *camera_; }
+  // What the image is rendered with: the nominal camera and configuration with
+  // params.calibration_error applied.
+  const perception::CameraModel& rendering_camera() const { return *rendering_camera_; }
+  const perception::LedConfiguration& rendered_configuration() const { return configuration_; }
 
  private:
-  perception::LedConfiguration configuration_;
+  perception::LedConfiguration configuration_;  // as rendered (with the LED position errors)
   std::shared_ptr<const perception::CameraModel> camera_;
+  std::shared_ptr<const perception::CameraModel> rendering_camera_;
   LedTargetRenderParams params_;
   sim::CameraEffects effects_;
   sim::Scene scene_;

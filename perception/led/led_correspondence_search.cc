@@ -47,6 +47,7 @@ LedCorrespondenceResult LedCorrespondenceSearch::FindByBruteForce(
     int led, detection;
   };
   struct Candidate {
+    Eigen::Isometry3d T_CT;
     std::array<int, 3> d3, l3;
     int matched_leds;  // remaining LEDs with a detection within lambda_r
     std::uint64_t labelling;
@@ -106,8 +107,8 @@ LedCorrespondenceResult LedCorrespondenceSearch::FindByBruteForce(
                   continue;
                 }
                 max_matched = matched;
-                consistent.push_back(
-                    {d3, {i, j, l}, matched, labelling, error_sq, first_vote, remaining_votes.size()});
+                consistent.push_back({T_CT, d3, {i, j, l}, matched, labelling, error_sq,
+                                      first_vote, remaining_votes.size()});
               }
             }
           }
@@ -126,6 +127,12 @@ LedCorrespondenceResult LedCorrespondenceSearch::FindByBruteForce(
     return x.matched_leds != y.matched_leds ? x.matched_leds > y.matched_leds
                                             : x.labelling < y.labelling;
   });
+  // Groups of candidates sharing a labelling among those explaining max_matched LEDs.
+  struct LabellingGroup {
+    std::size_t first, end;
+    double mean_error_sq;
+  };
+  std::vector<LabellingGroup> groups;
   std::size_t best_first = 0, best_end = 0;
   double best_error = std::numeric_limits<double>::infinity();
   for (std::size_t first = 0;
@@ -138,6 +145,7 @@ LedCorrespondenceResult LedCorrespondenceSearch::FindByBruteForce(
     }
     const std::size_t support = end - first, best_support = best_end - best_first;
     error_sq /= static_cast<double>(support);
+    groups.push_back({first, end, error_sq});
     if (support >= 2 &&
         (support > best_support || (support == best_support && error_sq < best_error))) {
       best_first = first;
@@ -145,6 +153,25 @@ LedCorrespondenceResult LedCorrespondenceSearch::FindByBruteForce(
       best_error = error_sq;
     }
     first = end;
+  }
+  // The runner-up labelling: the smallest mean squared error among the other groups, whatever
+  // their support (a wrong labelling that fits as well is a risk even when few subsets
+  // reproduce it).
+  const LabellingGroup* runner_up = nullptr;
+  for (const LabellingGroup& group : groups) {
+    if (best_end > best_first && group.first == best_first) continue;
+    if (!runner_up || group.mean_error_sq < runner_up->mean_error_sq) runner_up = &group;
+  }
+  if (best_end > best_first && runner_up) {
+    const Candidate* closest = &consistent[runner_up->first];
+    for (std::size_t v = runner_up->first; v < runner_up->end; ++v) {
+      if (consistent[v].error_sq < closest->error_sq) closest = &consistent[v];
+    }
+    result.runner_up_T_CT = closest->T_CT;
+    for (int led = 0; led < n_leds; ++led) {
+      const int detection = static_cast<int>((closest->labelling >> (8 * led)) & 0xff) - 1;
+      if (detection >= 0) result.runner_up_correspondences.push_back({led, detection});
+    }
   }
   for (std::size_t v = best_first; v < best_end; ++v) {
     const Candidate& candidate = consistent[v];

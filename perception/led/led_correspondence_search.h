@@ -23,6 +23,12 @@
 //  - Verify: the check of predicted correspondences: for every 3-subset, P3P, reproject the other
 //    corresponded LEDs; the subset passes when for one candidate >= min_inlier_ratio of them lie
 //    within lambda_r; the set passes when > min_subset_ratio of the subsets pass.
+//    FindByBruteForce also returns the runner-up: among the other labellings that explain as many
+//    LEDs (each one reproduced by any number of candidates), the one with the smallest mean
+//    squared reprojection error of the LEDs it explains, with its best candidate pose. The tracker
+//    compares the two after refinement (LedTrackerParams::labelling_margin_ratio): at 4-5 m a
+//    wrong labelling of a compact target can fit within lambda_r nearly as well as the true one
+//    (Fig. C.7's outliers).
 // Both also return the candidate pose with the most correspondences within lambda_r, ties broken
 // by their squared reprojection error (the Gauss-Newton start, C.3.6).
 #include <Eigen/Core>
@@ -52,6 +58,10 @@ struct LedCorrespondence {
 struct LedCorrespondenceResult {
   std::vector<LedCorrespondence> correspondences;  // sorted by LED
   std::optional<Eigen::Isometry3d> T_CT;  // best candidate pose; none when no candidate fits
+  // FindByBruteForce: the second-best labelling (sorted by LED; empty when there is none) and its
+  // best P3P candidate.
+  std::vector<LedCorrespondence> runner_up_correspondences;
+  std::optional<Eigen::Isometry3d> runner_up_T_CT;
   int pose_candidates = 0;                // P3P solutions evaluated
   double verified_ratio = 0.0;            // Verify: fraction of 3-subsets that passed
   bool verified = false;                  // Verify: the rule above held

@@ -159,7 +159,50 @@ LedTrackResult LedTracker::Track(const cv::Mat& image, double t_s) {
   }
   result.status = LedTrackStatus::kReinitialized;
   Finish(&result, found.correspondences, *found.T_CT, t_s);
+  if (result.has_pose() && found.runner_up_T_CT) {
+    start = Clock::now();
+    result.runner_up_rms_px = RefinedRms(found.runner_up_correspondences, result.detections,
+                                         *found.runner_up_T_CT);
+    result.stage_times.refinement_s += SecondsSince(start);
+    if (result.runner_up_rms_px < params_.labelling_margin_ratio * result.rms_px) {
+      result.status = LedTrackStatus::kAmbiguous;
+      result.T_CT.reset();
+      result.covariance.reset();
+      history_.clear();
+    }
+  }
   return result;
+}
+
+int LedTracker::UniquePairs(const std::vector<LedCorrespondence>& correspondences,
+                            const std::vector<LedDetection>& detections,
+                            std::vector<LedCorrespondence>* unique,
+                            std::vector<Eigen::Vector3d>* p_T,
+                            std::vector<Eigen::Vector2d>* px) const {
+  std::map<int, int> claims;
+  for (const LedCorrespondence& c : correspondences) ++claims[c.detection];
+  unique->clear();
+  for (const LedCorrespondence& c : correspondences) {
+    if (claims[c.detection] > 1) continue;
+    unique->push_back(c);
+    p_T->push_back(configuration_.p_T()[c.led]);
+    px->push_back(detections[c.detection].px);
+  }
+  int shared = 0;
+  for (const auto& [detection, count] : claims) shared += count > 1 ? 1 : 0;
+  return shared;
+}
+
+double LedTracker::RefinedRms(const std::vector<LedCorrespondence>& correspondences,
+                              const std::vector<LedDetection>& detections,
+                              const Eigen::Isometry3d& T_CT_initial) const {
+  std::vector<LedCorrespondence> unique;
+  std::vector<Eigen::Vector3d> p_T;
+  std::vector<Eigen::Vector2d> px;
+  UniquePairs(correspondences, detections, &unique, &p_T, &px);
+  if (p_T.size() < 4) return std::numeric_limits<double>::infinity();
+  const LedPoseRefinement refined = RefineLedPose(*camera_, p_T, px, T_CT_initial, params_.refiner);
+  return refined.valid ? refined.rms_px : std::numeric_limits<double>::infinity();
 }
 
 bool LedTracker::TrackNearPrediction(LedTrackResult* result,
@@ -183,18 +226,10 @@ void LedTracker::Finish(LedTrackResult* result,
                         double max_rotation_sigma_rad) {
   // A blob claimed by several LEDs (merged LEDs, Section C.4.2) has a centroid between them:
   // drop it instead of pulling the pose towards it.
-  std::map<int, int> claims;
-  for (const LedCorrespondence& c : correspondences) ++claims[c.detection];
   std::vector<Eigen::Vector3d> p_T;
   std::vector<Eigen::Vector2d> px;
-  result->correspondences.clear();
-  for (const LedCorrespondence& c : correspondences) {
-    if (claims[c.detection] > 1) continue;
-    result->correspondences.push_back(c);
-    p_T.push_back(configuration_.p_T()[c.led]);
-    px.push_back(result->detections[c.detection].px);
-  }
-  for (const auto& [detection, count] : claims) result->merged_detections += count > 1 ? 1 : 0;
+  result->merged_detections += UniquePairs(correspondences, result->detections,
+                                           &result->correspondences, &p_T, &px);
   if (static_cast<int>(p_T.size()) < min_correspondences) {
     result->status = LedTrackStatus::kAmbiguous;
     history_.clear();

@@ -8,7 +8,8 @@
 // predicted onto a visible one's blob), the pose comes from three or more detections through P3P
 // candidates near the prediction (led_pose_near_prediction.h), refined, and kept only when its
 // covariance bounds the rotation within max_near_prediction_rotation_sigma_deg. A fresh start
-// still needs four LEDs (Algorithm 1).
+// still needs four LEDs (Algorithm 1), and (issue 21) a margin between its best labelling and the
+// runner-up (labelling_margin_ratio), else it reports the frame ambiguous.
 //
 // Output: T_CT (p_C = T_CT * p_T) with its 6x6 covariance [p_CT; rotation in C], or no pose with
 // the reason. A blob serving several LEDs (e.g. two LEDs merged) is never used; frames left with
@@ -50,6 +51,13 @@ struct LedTrackerParams {
   // 1.8-2.5 m have 6.6-9.3 deg and its four-LED poses up to 27 deg (sigma grows with distance),
   // so 30 deg rejects only a geometry worse than any the four-LED path meets there.
   double max_near_prediction_rotation_sigma_deg = 30.0;
+  // Margin between the best and the second-best labelling of a fresh start (issue 21): the
+  // brute-force pose (Algorithm 1, C.3.4) is accepted only when the runner-up labelling, refined
+  // like the best (C.8), has a reprojection RMS at least this many times the best's; else the
+  // frame is ambiguous. The thesis has no such test and saw wrong labellings > 90 deg off beyond
+  // 5 m (Fig. C.7); with a compact target at 4-5 m a relabelling fits within lambda_r = 5 px.
+  // 0 turns the test off. See max_rms_px for the absolute bound.
+  double labelling_margin_ratio = 2.0;
 };
 
 enum class LedTrackStatus {
@@ -57,7 +65,9 @@ enum class LedTrackStatus {
   kReinitialized,       // brute-force correspondences, refined
   kNoDetections,        // fewer than 3 blobs (also: nothing in the image)
   kNoCorrespondences,   // brute force found < 4 LEDs or no pose candidate fits
-  kAmbiguous,           // blobs shared by several LEDs leave too few unique correspondences
+  kAmbiguous,           // blobs shared by several LEDs leave too few unique correspondences,
+                        // or (fresh start) a second labelling fits nearly as well as the best
+                        // (labelling_margin_ratio)
   kInconsistent,        // refinement failed, reprojection RMS > max_rms_px, or (near the
                         // prediction) rotation sigma > max_near_prediction_rotation_sigma_deg
   // < 4 predicted LEDs matched: P3P candidate near the prediction, refined (issue 22).
@@ -84,6 +94,9 @@ struct LedTrackResult {
   std::vector<LedCorrespondence> correspondences;  // used for the pose (unique detections)
   int merged_detections = 0;  // detections that several LEDs claimed (dropped)
   double rms_px = 0.0;
+  // Brute force: the refined reprojection RMS of the second-best labelling [px]; infinite when
+  // there is none (or its refinement failed).
+  double runner_up_rms_px = std::numeric_limits<double>::infinity();
   bool used_roi = false;      // detection ran on ROIs around the prediction
   bool used_brute_force = false;
   // The P3P search near the prediction ran.
@@ -118,6 +131,17 @@ class LedTracker {
   // Pose from fewer than 4 matched LEDs near the prediction; false when none passes.
   bool TrackNearPrediction(LedTrackResult* result, const Eigen::Isometry3d& T_CT_predicted,
                            double t_s);
+  // The correspondences whose detection no other LED claims (*unique) with their LEDs' p_T and
+  // detections' px appended; returns the number of detections several LEDs claim.
+  int UniquePairs(const std::vector<LedCorrespondence>& correspondences,
+                  const std::vector<LedDetection>& detections,
+                  std::vector<LedCorrespondence>* unique, std::vector<Eigen::Vector3d>* p_T,
+                  std::vector<Eigen::Vector2d>* px) const;
+  // Reprojection RMS [px] of correspondences (those with unique detections, >= 4) refined from
+  // T_CT_initial (C.8); infinite when fewer or when the refinement fails.
+  double RefinedRms(const std::vector<LedCorrespondence>& correspondences,
+                    const std::vector<LedDetection>& detections,
+                    const Eigen::Isometry3d& T_CT_initial) const;
   // Refines T_CT_initial on the correspondences with unique detections (at least
   // min_correspondences of them) and records the pose when the refinement's rotation sigma is
   // at most max_rotation_sigma_rad; else sets the failure status and forgets the track.

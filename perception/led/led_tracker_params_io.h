@@ -15,6 +15,7 @@
 //     refiner: {max_iterations: 10, step_tolerance: 1e-9, detection_sigma_px: 1}  # (C.8), (C.9)
 //     near_prediction: {gate_px: 5}                # < 4 LEDs matched while tracking
 //     max_near_prediction_rotation_sigma_deg: 30
+//     labelling_margin_ratio: 2                    # fresh start: runner-up RMS / best RMS >=
 #include "config/yaml_read_archive.h"
 #include "perception/led/led_tracker.h"
 #include "perception/led/p3p_solver.h"
@@ -69,6 +70,7 @@ void Serialize(Archive* a, LedTrackerParams* p) {
   a->Visit(APERTURE_NVP(p, max_rms_px));
   a->Visit(APERTURE_NVP(p, near_prediction));
   a->Visit(APERTURE_NVP(p, max_near_prediction_rotation_sigma_deg));
+  a->Visit(APERTURE_NVP(p, labelling_margin_ratio));
 }
 
 }  // namespace aperture::perception

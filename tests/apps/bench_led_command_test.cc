@@ -41,6 +41,21 @@ TEST(BenchLedCommand, QuickRunWritesTheIssueKeys) {
   EXPECT_DOUBLE_EQ(distances.front()["distance_m"].get<double>(), 0.3);
   EXPECT_DOUBLE_EQ(distances.back()["distance_m"].get<double>(), 5.6);
   EXPECT_EQ(distances.front()["frames_with_pose"], distances.front()["frames"]);
+  // Fig. C.7's outliers (> 90 deg, wrong labellings) per distance add up to the sweep's, and
+  // (issue 21) none that the covariance is confident of passes verification.
+  int outliers = 0;
+  for (const nlohmann::json& distance : distances) {
+    EXPECT_LE(distance["outliers_over_90deg"].get<int>(), distance["frames_with_pose"].get<int>());
+    EXPECT_LE(distance["confident_wrong_labellings_verified"].get<int>(),
+              distance["outliers_verified"].get<int>());
+    EXPECT_DOUBLE_EQ(
+        distance["outlier_fraction"].get<double>(),
+        distance["outliers_over_90deg"].get<double>() / distance["frames"].get<double>());
+    outliers += distance["outliers_over_90deg"].get<int>();
+  }
+  EXPECT_EQ(summary["sweep"]["outliers_over_90deg"], outliers);
+  EXPECT_EQ(summary["sweep"]["confident_wrong_labellings_verified"], 0);
+  EXPECT_TRUE(summary["acceptance"]["sweep_no_confident_wrong_labelling_verified"].get<bool>());
   // One LED of five occluded: the pose stays, without jumps; a fresh start finds it too.
   const nlohmann::json& occlusion = summary["occlusion"];
   EXPECT_GT(occlusion["frames_occluded"].get<int>(), 0);

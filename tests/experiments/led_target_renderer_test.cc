@@ -1,12 +1,18 @@
 // The bench's LED target renderer with a body: the LEDs behind the body are not drawn, and
-// OccludedLeds names exactly those.
+// OccludedLeds names exactly those; with calibration errors the blobs move as the erroneous
+// camera and LED positions project them.
 #include "experiments/led/led_target_renderer.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <limits>
 #include <memory>
+#include <stdexcept>
 
+#include "perception/camera/equidistant_camera.h"
 #include "perception/camera/pinhole_camera.h"
+#include "perception/led/led_detector.h"
 
 namespace aperture::experiments {
 namespace {
@@ -53,6 +59,68 @@ TEST(LedTargetRendererTest, TheBodyHidesTheLedsBehindItAndOnlyThose) {
       }
     }
   }
+}
+
+// Issue 21's calibration-level errors: the image shows the LEDs where the erroneous intrinsics
+// and displaced LEDs put them, not where the nominal camera and configuration (the tracker's)
+// project them; the nominal camera stays the renderer's camera().
+TEST(LedTargetRendererTest, CalibrationErrorsMoveTheBlobsAsTheErroneousModelProjects) {
+  const perception::LedConfiguration configuration = perception::LedConfiguration::Default();
+  const auto camera = std::make_shared<perception::PinholeCamera>(
+      752, 480, perception::PinholeIntrinsics{376.0, 376.0, 375.5, 239.5});
+  LedTargetRenderParams params;
+  params.effects.read_noise_sigma = 0.0;
+  params.effects.full_well_electrons = 0.0;
+  params.calibration_error.focal_length_error = 0.02;
+  params.calibration_error.principal_point_error_px = Eigen::Vector2d(3.0, -2.0);
+  params.calibration_error.led_position_error_m = 0.001;
+  LedTargetRenderer renderer(configuration, camera, params);
+  EXPECT_EQ(&renderer.camera(), camera.get());
+  const Eigen::Vector4d k = renderer.rendering_camera().intrinsics();
+  EXPECT_DOUBLE_EQ(k[0], 376.0 * 1.02);
+  EXPECT_DOUBLE_EQ(k[1], 376.0 * 1.02);
+  EXPECT_DOUBLE_EQ(k[2], 378.5);
+  EXPECT_DOUBLE_EQ(k[3], 237.5);
+  for (int led = 0; led < configuration.size(); ++led) {
+    EXPECT_NEAR(
+        (renderer.rendered_configuration().p_T()[led] - configuration.p_T()[led]).norm(), 0.001,
+        1e-12)
+        << "LED " << led;
+  }
+  Eigen::Isometry3d T_CT = Eigen::Isometry3d::Identity();
+  T_CT.translation() = Eigen::Vector3d(0.3, 0.2, 1.0);
+  const cv::Mat image = renderer.Render([&](double) { return T_CT; }, 0.0, 0);
+  perception::LedDetector detector;
+  const std::vector<perception::LedDetection> detections =
+      detector.Detect(image, *camera).detections;
+  ASSERT_EQ(detections.size(), static_cast<std::size_t>(configuration.size()));
+  for (int led = 0; led < configuration.size(); ++led) {
+    Eigen::Vector2d px_rendered, px_nominal;
+    ASSERT_TRUE(renderer.rendering_camera().Project(
+        T_CT * renderer.rendered_configuration().p_T()[led], &px_rendered));
+    ASSERT_TRUE(camera->Project(T_CT * configuration.p_T()[led], &px_nominal));
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const perception::LedDetection& d : detections) {
+      nearest = std::min(nearest, (d.px - px_rendered).norm());
+    }
+    // The blob sits on the erroneous projection (centroid within 0.3 px) while the nominal one
+    // is off by the 2 % focal error at ~100-200 px from the centre plus the principal point.
+    EXPECT_LT(nearest, 0.3) << "LED " << led;
+    EXPECT_GT((px_rendered - px_nominal).norm(), 3.0) << "LED " << led;
+  }
+}
+
+TEST(LedTargetRendererTest, IntrinsicsErrorsNeedAPinholeCamera) {
+  const auto camera = std::make_shared<perception::EquidistantCamera>(
+      752, 480, perception::PinholeIntrinsics{376.0, 376.0, 375.5, 239.5},
+      perception::EquidistantDistortion{});
+  LedTargetRenderParams params;
+  params.calibration_error.focal_length_error = 0.005;
+  EXPECT_THROW(LedTargetRenderer(perception::LedConfiguration::Default(), camera, params),
+               std::invalid_argument);
+  params.calibration_error.focal_length_error = 0.0;
+  params.calibration_error.led_position_error_m = 0.001;  // LED errors alone: any camera
+  EXPECT_NO_THROW(LedTargetRenderer(perception::LedConfiguration::Default(), camera, params));
 }
 
 }  // namespace

@@ -3,7 +3,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
+#include <cmath>
 
 #include "control/so3.h"
 #include "led_test_images.h"
@@ -222,6 +225,98 @@ TEST_F(LedTrackerTest, FiftyFalseBlobsAreCappedWithAWarning) {
   EXPECT_EQ(static_cast<int>(result.detections.size()), LedDetectorParams{}.max_blobs);
   EXPECT_THAT(result.warning, ::testing::HasSubstr("50 bright blobs"));
   EXPECT_FALSE(result.has_pose());
+}
+
+
+// Issue 21, Fig. C.7's outliers: a fresh start accepts a pose only when the second-best labelling
+// fits clearly worse than the best (LedTrackerParams::labelling_margin_ratio). The target is 17 mm
+// (worst LED, after the best rigid fit) from a 180 deg symmetry about z_T that swaps LEDs 0 <-> 1
+// and 2 <-> 3: valid for LedConfiguration (tolerance 15 mm), but at 2.5 m the swapped labelling
+// reprojects within ~3 px of the true one.
+class LedTrackerLabellingMarginTest : public ::testing::Test {
+ protected:
+  static constexpr std::array<int, 4> kSwap{1, 0, 3, 2};
+
+  // The true pose: facing the camera at 2.5 m, tilted 10 deg.
+  Eigen::Isometry3d T_CT_true() const {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() =
+        Eigen::AngleAxisd(10.0 * M_PI / 180.0, Eigen::Vector3d::UnitX()).toRotationMatrix();
+    T.translation() = Eigen::Vector3d(0.05, -0.03, 2.5);
+    return T;
+  }
+  // The true LEDs' projections.
+  std::vector<Eigen::Vector2d> TrueProjections() const {
+    std::vector<Eigen::Vector2d> px(4);
+    for (int i = 0; i < 4; ++i) {
+      EXPECT_TRUE(camera_->Project(T_CT_true() * configuration_.p_T()[i], &px[i]));
+    }
+    return px;
+  }
+  // Halfway between each true projection and the projection of its swapped LED with the target
+  // at the pose that best fits the swapped labelling in 3D (Umeyama): both labellings explain
+  // these blobs about equally well.
+  std::vector<Eigen::Vector2d> AmbiguousProjections() const {
+    Eigen::Matrix<double, 3, 4> swapped, original;
+    for (int i = 0; i < 4; ++i) {
+      swapped.col(i) = configuration_.p_T()[kSwap[i]];
+      original.col(i) = configuration_.p_T()[i];
+    }
+    // S p_T[kSwap[i]] ~ p_T[i], so T_CT_true() S puts LED kSwap[i] where LED i is.
+    const Eigen::Isometry3d S(Eigen::Matrix4d(Eigen::umeyama(swapped, original, false)));
+    std::vector<Eigen::Vector2d> px = TrueProjections();
+    for (int i = 0; i < 4; ++i) {
+      Eigen::Vector2d px_swapped;
+      EXPECT_TRUE(camera_->Project(T_CT_true() * S * configuration_.p_T()[kSwap[i]], &px_swapped));
+      px[i] = 0.5 * (px[i] + px_swapped);
+    }
+    return px;
+  }
+
+  std::shared_ptr<const CameraModel> camera_ =
+      std::make_shared<PinholeCamera>(752, 480, PinholeIntrinsics{420.0, 420.0, 375.5, 239.5});
+  LedConfiguration configuration_{{{0.095, 0.0, 0.0},
+                                   {-0.06, 0.0, 0.0},
+                                   {0.0, 0.045, 0.03},
+                                   {0.0, -0.045, 0.03}},
+                                  "near-symmetric test target"};
+};
+
+TEST_F(LedTrackerLabellingMarginTest, TwoLabellingsFittingAlikeGiveNoPose) {
+  const cv::Mat image = test_support::BlobImage(752, 480, AmbiguousProjections(), 1.5);
+  LedTracker tracker(configuration_, camera_);
+  const LedTrackResult result = tracker.Track(image, 0.0);
+  EXPECT_EQ(result.status, LedTrackStatus::kAmbiguous) << LedTrackStatusName(result.status);
+  EXPECT_FALSE(result.has_pose());
+  EXPECT_FALSE(result.covariance.has_value());
+  EXPECT_LT(result.runner_up_rms_px, LedTrackerParams{}.labelling_margin_ratio * result.rms_px);
+  // No pose was kept: the next frame starts afresh.
+  EXPECT_FALSE(tracker.Predict(0.02).has_value());
+  // Without the margin the same image gives a pose, both labellings within max_rms_px: the
+  // margin is what rejects it.
+  LedTrackerParams no_margin;
+  no_margin.labelling_margin_ratio = 0.0;
+  LedTracker unguarded(configuration_, camera_, no_margin);
+  const LedTrackResult unguarded_result = unguarded.Track(image, 0.0);
+  EXPECT_TRUE(unguarded_result.has_pose()) << LedTrackStatusName(unguarded_result.status);
+  EXPECT_LE(unguarded_result.rms_px, LedTrackerParams{}.max_rms_px);
+  EXPECT_LE(unguarded_result.runner_up_rms_px, LedTrackerParams{}.max_rms_px);
+}
+
+TEST_F(LedTrackerLabellingMarginTest, AClearLabellingGivesTheTruePose) {
+  // The same target and pose, blobs at the true projections: the swapped labelling is off by
+  // ~1.5 px per LED after refinement, the true one by the centroids' rounding.
+  LedTracker tracker(configuration_, camera_);
+  const LedTrackResult result =
+      tracker.Track(test_support::BlobImage(752, 480, TrueProjections(), 1.5), 0.0);
+  ASSERT_TRUE(result.has_pose()) << LedTrackStatusName(result.status);
+  EXPECT_EQ(result.status, LedTrackStatus::kReinitialized);
+  EXPECT_TRUE(std::isfinite(result.runner_up_rms_px));
+  EXPECT_GE(result.runner_up_rms_px, LedTrackerParams{}.labelling_margin_ratio * result.rms_px);
+  const Eigen::Isometry3d T_true = T_CT_true();
+  EXPECT_LT(Eigen::AngleAxisd(result.T_CT->linear().transpose() * T_true.linear()).angle(),
+            1.0 * M_PI / 180.0);
+  EXPECT_LT((result.T_CT->translation() - T_true.translation()).norm(), 0.01);
 }
 
 }  // namespace
