@@ -35,13 +35,16 @@ struct LowLevelLoopRun {
   Eigen::Vector3d final_error = Eigen::Vector3d::Zero();
   int saturated_steps = 0;
   double max_estimate_mismatch_N = 0.0;
+  Eigen::Vector3d final_disturbance_B = Eigen::Vector3d::Zero();  // the observer's d_hat
 };
 
 LowLevelLoopRun TrackBodyRate(LowLevelControllerParameters::BodyRateLaw law,
-                              const Eigen::Vector3d& omega_des, double duration_s) {
+                              const Eigen::Vector3d& omega_des, double duration_s,
+                              double observer_time_constant_s = 0.0) {
   const VehicleParameters vehicle_params;
   LowLevelControllerParameters params;
   params.body_rate_law = law;
+  params.torque_observer_time_constant_s = observer_time_constant_s;
   LowLevelController controller(vehicle_params, params);
   Vehicle vehicle(vehicle_params);
   ThrustRatesCommand command;
@@ -53,6 +56,7 @@ LowLevelLoopRun TrackBodyRate(LowLevelControllerParameters::BodyRateLaw law,
     const MixerResult& mix = out.mix;
     run.saturated_steps +=
         mix.yaw_torque_saturated || mix.collective_thrust_saturated || mix.clipped;
+    run.final_disturbance_B = out.torque_disturbance_B;
     vehicle.Step(mix.command);
     // The estimator sees the thrusts actually commanded, so it tracks the true rotors exactly.
     run.max_estimate_mismatch_N = std::max(
@@ -151,22 +155,11 @@ TEST(LowLevelController, TorqueObserverRemovesTheRateErrorOfAWeakRotor) {
 
 TEST(LowLevelController, TorqueObserverLeavesTheNominalRateStepUnchangedAtTheEnd) {
   // Without a disturbance the observer's estimate stays near zero, so the LQR step still settles.
-  const VehicleParameters vehicle_params;
-  LowLevelControllerParameters params;
-  params.torque_observer_time_constant_s = 0.3;
-  LowLevelController controller(vehicle_params, params);
-  Vehicle vehicle(vehicle_params);
-  ThrustRatesCommand command;
-  command.collective_thrust_mps2 = vehicle_params.gravity_mps2;
-  command.omega_des_B = Eigen::Vector3d(2.0, 1.0, -1.0);
-  Eigen::Vector3d d_hat = Eigen::Vector3d::Zero();
-  for (double t = 0.0; t < 1.0; t += kLowLevelDt_s) {
-    const LowLevelOutput out = controller.Step(command, vehicle.omega_B, kLowLevelDt_s);
-    d_hat = out.torque_disturbance_B;
-    vehicle.Step(out.mix.command);
-  }
-  EXPECT_LT((command.omega_des_B - vehicle.omega_B).norm(), 1e-3);
-  EXPECT_LT(d_hat.norm(), 1e-4) << d_hat.transpose();
+  const Eigen::Vector3d omega_des(2.0, 1.0, -1.0);
+  const LowLevelLoopRun run =
+      TrackBodyRate(LowLevelControllerParameters::BodyRateLaw::kLqr, omega_des, 1.0, 0.3);
+  EXPECT_LT(run.final_error.norm(), 1e-3) << run.final_error.transpose();
+  EXPECT_LT(run.final_disturbance_B.norm(), 1e-4) << run.final_disturbance_B.transpose();
 }
 
 TEST(LowLevelController, RejectsABadObserverTimeConstant) {
