@@ -45,7 +45,8 @@
 //               ignored_objects: [name, ...], sphere_rays: 64, disk_rays: 12}
 //   sitl: {dynamics_rate_hz: 1000, control_rate_hz: 100, command_latency_s: 0,     # the loop
 //          range_latency_s: 0, estimate_latency_s: 0, esc_delay_s: 0,            # fields only
-//          range_enabled: true, start_hovering: true}
+//          range_enabled: true, start_hovering: true,
+//          torque_observer_time_constant_s: 0.1}  # the flight controller's (0: the thesis' law)
 //
 // All throw std::invalid_argument naming where the bad value is and what is expected.
 #include "config/yaml_read_archive.h"
@@ -180,8 +181,8 @@ void Serialize(Archive* a, CollisionParams* p) {
   a->Visit(APERTURE_NVP(p, disk_rays));
 }
 
-// The loop fields of SitlRunnerParams only (rates, latencies, range_enabled, start_hovering); its
-// components have their own descriptions above.
+// The loop fields of SitlRunnerParams only (rates, latencies, range_enabled, start_hovering, the
+// flight controller's torque observer); its components have their own descriptions above.
 template <typename Archive>
 void Serialize(Archive* a, SitlRunnerParams* p) {
   a->Visit(APERTURE_NVP(p, dynamics_rate_hz));
@@ -192,9 +193,12 @@ void Serialize(Archive* a, SitlRunnerParams* p) {
   a->Visit(APERTURE_NVP(p, esc_delay_s));
   a->Visit(APERTURE_NVP(p, range_enabled));
   a->Visit(APERTURE_NVP(p, start_hovering));
+  a->Visit("torque_observer_time_constant_s",
+           &p->flight_controller.low_level.torque_observer_time_constant_s);
 }
-// Not validated when loaded: the rate checks compare against the IMU, range and flight-controller
-// rates, which other sections set; SitlRunner validates the assembled struct.
-inline void ValidateParams(const SitlRunnerParams& /*loop_fields_only*/) {}
+// Only the torque observer is validated when loaded: the rate checks compare against the IMU,
+// range and flight-controller rates, which other sections set; SitlRunner validates the assembled
+// struct.
+inline void ValidateParams(const SitlRunnerParams& p) { p.flight_controller.low_level.Validate(); }
 
 }  // namespace aperture::sim

@@ -31,6 +31,8 @@ void ConfigureSitlFromScenario(const Scenario& scenario, SitlRunnerParams* param
     params->esc_delay_s = loop->esc_delay_s;
     params->range_enabled = loop->range_enabled;
     params->start_hovering = loop->start_hovering;
+    params->flight_controller.low_level.torque_observer_time_constant_s =
+        loop->flight_controller.low_level.torque_observer_time_constant_s;
   }
   params->cameras.clear();
   for (const ScenarioCamera& camera : scenario.cameras()) {

@@ -11,6 +11,7 @@ void SimulatedFlightControllerParams::Validate() const {
     throw std::invalid_argument("SimulatedFlightControllerParams.rate_hz = " +
                                 std::to_string(rate_hz) + " must be positive (e.g. 1000)");
   }
+  low_level.Validate();
 }
 
 SimulatedFlightController::SimulatedFlightController(const control::VehicleParameters& vehicle,

@@ -125,6 +125,23 @@ TEST(ScenarioSitlTest, DynamicsImuRangeCollisionSitlAndDropKeysReachTheRunner) {
   EXPECT_LT(AccelZSpread(nominal), 0.5);
 }
 
+// The flight controller's torque observer: on by default, off in the forest scenario (its benches
+// were measured on the thesis' law), and the key reaches the runner.
+TEST(ScenarioSitlTest, TheTorqueObserverKeyReachesTheFlightController) {
+  const auto observer_time_constant_s = [](const std::string& name,
+                                           const std::vector<std::string>& set_items) {
+    const Scenario scenario = BuildScenario(LoadScenarioParams(ScenarioConfig(name, {}, set_items)));
+    SitlRunnerParams params;
+    ConfigureSitlFromScenario(scenario, &params);
+    return params.flight_controller.low_level.torque_observer_time_constant_s;
+  };
+  EXPECT_EQ(observer_time_constant_s("gap", {}), SitlRunnerParams().flight_controller.low_level
+                                                     .torque_observer_time_constant_s);
+  EXPECT_GT(observer_time_constant_s("gap", {}), 0.0);
+  EXPECT_EQ(observer_time_constant_s("forest", {"forest.trees=0", "forest.boxes=0"}), 0.0);
+  EXPECT_EQ(observer_time_constant_s("gap", {"sitl.torque_observer_time_constant_s=0.25"}), 0.25);
+}
+
 TEST(ScenarioSitlTest, AbsentSitlBlocksLeaveTheCallersParams) {
   const Scenario scenario = SmallGapScenario({});
   SitlRunnerParams params;
@@ -155,7 +172,8 @@ TEST(ScenarioSitlTest, InvalidSitlValuesAreRejectedNamingTheKey) {
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"cameras.front.drop_probability=1.5", "cameras.front.drop_probability"},
       {"dynamics.vehicle.mass_kg=-1", "dynamics.vehicle"},
-      {"imu.rate_hz=0", "imu"}};
+      {"imu.rate_hz=0", "imu"},
+      {"sitl.torque_observer_time_constant_s=-0.1", "torque_observer_time_constant_s"}};
   for (const auto& [item, key] : cases) {
     try {
       LoadScenarioParams(ScenarioConfig("gap", {}, {item}));
