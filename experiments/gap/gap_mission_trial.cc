@@ -1,15 +1,19 @@
 #include "experiments/gap/gap_mission_trial.h"
 
 #include "experiments/gap/gap_mission_factory.h"
+#include "experiments/missions/odometry_adapter.h"
 
 namespace aperture::experiments {
 namespace {
 
 class GapMissionTrial : public GapTrialAutopilot {
  public:
-  explicit GapMissionTrial(std::unique_ptr<planning::GapMission> mission)
-      : mission_(std::move(mission)) {}
-  perception::Autopilot& autopilot() override { return *mission_; }
+  // The recovery's visual odometry is simulated with the sensor's default noise.
+  GapMissionTrial(std::unique_ptr<planning::GapMission> mission, const sim::Scenario& scenario)
+      : mission_(std::move(mission)),
+        adapter_(MakeOdometryAdapter(mission_.get(),
+                                     OdometryParamsFor(scenario, kGapOdometrySalt))) {}
+  perception::Autopilot& autopilot() override { return *adapter_; }
   std::optional<planning::TraverseTrajectory> traverse_plan() const override {
     return mission_->traverse_plan();
   }
@@ -26,6 +30,7 @@ class GapMissionTrial : public GapTrialAutopilot {
 
  private:
   std::unique_ptr<planning::GapMission> mission_;
+  std::unique_ptr<OdometryAdapter> adapter_;
 };
 
 }  // namespace
@@ -33,7 +38,7 @@ class GapMissionTrial : public GapTrialAutopilot {
 GapTrialAutopilotFactory MakeGapMissionTrialFactory() {
   return [](const GapTrialSetup& setup) -> std::unique_ptr<GapTrialAutopilot> {
     return std::make_unique<GapMissionTrial>(
-        MakeGapMission(*setup.scenario, setup.vehicle, setup.mission));
+        MakeGapMission(*setup.scenario, setup.vehicle, setup.mission), *setup.scenario);
   };
 }
 

@@ -7,6 +7,7 @@
 #include "config/yaml_write_archive.h"
 #include "experiments/gap/gap_mission_factory.h"
 #include "experiments/gap/gap_trial_evaluation.h"
+#include "experiments/missions/odometry_adapter.h"
 #include "output/json_eigen.h"
 #include "planning/gap_mission/gap_mission_params_io.h"
 
@@ -17,13 +18,19 @@ class GapMissionFlight final : public MissionFlight {
  public:
   explicit GapMissionFlight(const MissionContext& context)
       : scenario_(context.scenario),
-        params_(GapMissionParamsFor(context.scenario, context.sitl.imu)) {
+        params_(GapMissionParamsFor(context.scenario, context.sitl.imu)),
+        odometry_(LoadOdometryParams(context, kGapOdometrySalt)) {
     LoadParams(context.params, &params_);  // config::LoadParams: reads, rejects, validates
     mission_ = MakeGapMission(context.scenario, context.sitl.dynamics.vehicle, params_);
+    adapter_ = MakeOdometryAdapter(mission_.get(), odometry_);
   }
 
-  perception::Autopilot& autopilot() override { return *mission_; }
-  YAML::Node EffectiveParams() const override { return config::DumpParams(params_); }
+  perception::Autopilot& autopilot() override { return *adapter_; }
+  YAML::Node EffectiveParams() const override {
+    YAML::Node node = config::DumpParams(params_);
+    node["odometry"] = config::DumpParams(odometry_);
+    return node;
+  }
   void DrawOverlay(cv::Mat& onboard_bgr) const override { mission_->DrawOverlay(onboard_bgr); }
 
   MissionEvaluation Evaluate(const sim::SitlResult& result) override {
@@ -50,6 +57,8 @@ class GapMissionFlight final : public MissionFlight {
     figures["detections"] = m.detections();
     figures["pose_updates_rejected"] = m.updates_rejected();
     figures["filter_restarts"] = m.filter_restarts();
+    figures["filter_restarts_refused"] = m.filter_restarts_refused();
+    figures["recovery_odometry_fused"] = m.odometry_poses_fused();
     figures["approach_fallback_limits"] = m.used_fallback_limits();
     figures["replans_accepted"] = m.replans_accepted();
     figures["replans_kept_previous"] = m.replans_rejected();
@@ -116,7 +125,9 @@ class GapMissionFlight final : public MissionFlight {
 
   const sim::Scenario& scenario_;
   planning::GapMissionParams params_;
+  sim::OdometrySensorParams odometry_;  // the recovery's visual odometry (SVO in [12])
   std::unique_ptr<planning::GapMission> mission_;
+  std::unique_ptr<OdometryAdapter> adapter_;
 };
 
 }  // namespace

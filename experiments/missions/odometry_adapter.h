@@ -2,8 +2,8 @@
 // What the SITL flies for a mission that flies on the vehicle's odometry source (a VIO on
 // hardware): the mission, with a simulated one (sim::OdometrySensor: noisy ground-truth body
 // poses, no drift) fed from ground truth and handed to the mission's OnOdometry; every other call
-// is forwarded, so the mission itself never sees ground truth. Used by the forest and the tag
-// mapping flights.
+// is forwarded, so the mission itself never sees ground truth. Used by the forest, the tag
+// mapping and follow flights, and the gap mission's recovery (its downward camera's SVO).
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -28,6 +28,9 @@ class OdometryAdapter final : public perception::Autopilot {
   void OnImu(const perception::ImuSample& sample) override { mission_->OnImu(sample); }
   void OnFrame(const perception::Frame& frame) override { mission_->OnFrame(frame); }
   void OnRange(const perception::RangeReading& reading) override { mission_->OnRange(reading); }
+  bool WantsFrame(int camera_id, double t_s) const override {
+    return mission_->WantsFrame(camera_id, t_s);
+  }
   bool UsesGroundTruth() const override { return true; }  // the odometry sensor's input only
   void OnGroundTruth(const control::QuadState& state) override {
     if (auto pose = odometry_.Update(state)) on_odometry_(*pose);
@@ -41,13 +44,21 @@ class OdometryAdapter final : public perception::Autopilot {
   sim::OdometrySensor odometry_;
 };
 
+// Salt of the gap mission's recovery odometry (gap flight and gap bench trials draw the same).
+constexpr std::uint64_t kGapOdometrySalt = 37;
+
 // The odometry source's parameters of a mission flight: seeded from the scenario's seed (times
 // 7919 plus `salt`, so two missions do not draw the same noise), then the `odometry` section of
 // `mission` (read before the mission's own keys, which reject the rest).
+inline sim::OdometrySensorParams OdometryParamsFor(const sim::Scenario& scenario,
+                                                   std::uint64_t salt) {
+  sim::OdometrySensorParams odometry;
+  odometry.seed = scenario.params().seed * 7919 + salt;
+  return odometry;
+}
 inline sim::OdometrySensorParams LoadOdometryParams(const MissionContext& context,
                                                     std::uint64_t salt) {
-  sim::OdometrySensorParams odometry;
-  odometry.seed = context.scenario.params().seed * 7919 + salt;
+  sim::OdometrySensorParams odometry = OdometryParamsFor(context.scenario, salt);
   context.params.ReadSection("odometry", &odometry);
   return odometry;
 }

@@ -70,6 +70,18 @@ PoseMeasurement ToPoseMeasurement(const PoseObservation& observation, const Pose
   return z;
 }
 
+PoseMeasurement InWorldFrame(const Eigen::Isometry3d& T_WO, const PoseMeasurement& z_O) {
+  RequireRigid(T_WO, "InWorldFrame: T_WO");
+  const Eigen::Matrix3d R_WO = T_WO.linear();
+  PoseMeasurement z = z_O;
+  z.p_WX = T_WO * z_O.p_WX;
+  z.q_WX = (Eigen::Quaterniond(R_WO) * z_O.q_WX).normalized();
+  Matrix6d J = Matrix6d::Identity();
+  J.topLeftCorner<3, 3>() = R_WO;
+  z.covariance = J * z_O.covariance * J.transpose();
+  return z;
+}
+
 Eigen::Quaterniond BodyOrientation(const PoseMeasurement& z) {
   return (z.q_WX.normalized() * z.q_BX.normalized().conjugate()).normalized();
 }
@@ -83,6 +95,11 @@ void PoseFusionParams::Validate() const {
   if (max_consecutive_rejections < 1) {
     throw std::invalid_argument("PoseFusionParams.max_consecutive_rejections must be >= 1, got " +
                                 std::to_string(max_consecutive_rejections));
+  }
+  if (!(max_restart_rotation_rad > 0.0 && std::isfinite(max_restart_rotation_rad))) {
+    throw std::invalid_argument(
+        "PoseFusionParams.max_restart_rotation_rad must be finite and > 0 (pi: no limit), got " +
+        std::to_string(max_restart_rotation_rad));
   }
 }
 
@@ -123,9 +140,16 @@ std::vector<PoseFusionOutcome> PoseFusion::ApplyPending() {
       ++counts_.rejected_outlier;
       rejected_p_WB_.emplace_back(z.t_s, BodyPosition(z));
       if (++consecutive_rejections_ >= params_.max_consecutive_rejections) {
-        Restart(z);
-        ++counts_.restarts;
-        outcome.started_filter = true;
+        if (filter_->Estimate().state.q_WB.angularDistance(BodyOrientation(z)) >
+            params_.max_restart_rotation_rad) {
+          ++counts_.restarts_refused;
+          consecutive_rejections_ = 0;
+          rejected_p_WB_.clear();
+        } else {
+          Restart(z);
+          ++counts_.restarts;
+          outcome.started_filter = true;
+        }
       }
     } else {
       ++counts_.not_applied;

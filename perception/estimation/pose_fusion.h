@@ -26,7 +26,12 @@
 // feeds poses only afterwards. Restart: after max_consecutive_rejections outliers in a row (the
 // filter drifted on the IMU alone, or the pose source jumped) the filter starts again at the
 // latest measurement, keeping its bias estimates, with the velocity of the rejected run (its
-// first and last body positions; the previous estimate's velocity for a run of one).
+// first and last body positions; the previous estimate's velocity for a run of one). A restart
+// that would turn the body by more than max_restart_rotation_rad from the IMU-propagated attitude
+// is refused and the run forgotten: the gyro holds the attitude to a fraction of a degree over
+// seconds, so such a run is a consistently wrong pose (a symmetric pattern labelled the other
+// way round: a gap mission in a gust restarted on its gap turned by 180 deg and flew into the
+// ground), not a vehicle that turned.
 //
 // Calling order (perception/autopilot.h): AddImu / AddPose as measurements are delivered; a pose
 // stamped after the latest IMU sample waits for the IMU. Non-finite or non-rigid inputs throw
@@ -65,6 +70,10 @@ struct PoseRig {
 // det +1), the covariance is missing or not finite, t_s is not finite, or the scale is not > 0.
 PoseMeasurement ToPoseMeasurement(const PoseObservation& observation, const PoseRig& rig);
 
+// `z_O`, a measurement in a frame O, in W: T_WX = T_WO * T_OX, its position noise rotated by
+// R_WO (the rotation noise is in X already). Throws std::invalid_argument for a non-rigid T_WO.
+PoseMeasurement InWorldFrame(const Eigen::Isometry3d& T_WO, const PoseMeasurement& z_O);
+
 // The body pose a measurement implies, T_WB = T_WX * T_BX^-1: orientation q_WB and position p_WB.
 Eigen::Quaterniond BodyOrientation(const PoseMeasurement& measurement);
 Eigen::Vector3d BodyPosition(const PoseMeasurement& measurement);
@@ -73,6 +82,9 @@ struct PoseFusionParams {
   PoseImuFilterParams filter;
   // Outliers in a row that restart the filter (>= 1).
   int max_consecutive_rejections = 3;
+  // Largest body rotation from the current attitude estimate a restart may make [rad] (> 0; pi:
+  // no limit).
+  double max_restart_rotation_rad = 0.5;
   void Validate() const;  // throws std::invalid_argument naming the field
 };
 
@@ -89,6 +101,7 @@ struct PoseFusionCounts {
   int not_applied = 0;       // too old for the history (kTooOld)
   int starts = 0;            // first start + restarts
   int restarts = 0;          // restarts after max_consecutive_rejections outliers
+  int restarts_refused = 0;  // runs whose restart would have turned the body too far
 };
 
 class PoseFusion {

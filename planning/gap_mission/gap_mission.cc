@@ -46,6 +46,8 @@ void GapMissionParams::Validate() const {
   control::RequirePositive(detection_timeout_s, "GapMissionParams.detection_timeout_s");
   control::RequireNonNegative(approach_commit_s, "GapMissionParams.approach_commit_s");
   control::RequireNonNegative(recovered_hold_s, "GapMissionParams.recovered_hold_s");
+  control::RequireNonNegative(recovery_odometry_delay_s,
+                              "GapMissionParams.recovery_odometry_delay_s");
 }
 
 const char* ToString(GapMissionPhase phase) {
@@ -111,7 +113,12 @@ void GapMission::EnterPhase(GapMissionPhase phase, double t_s) {
 void GapMission::Abort(const std::string& reason, double t_s) {
   reason_ = reason;
   EnterPhase(GapMissionPhase::kAborted, t_s);
+  StartRecovery(t_s);
+}
+
+void GapMission::StartRecovery(double t_s) {
   recovery_.StartWithoutLaunch(t_s);
+  recovery_start_t_s_ = t_s;
 }
 
 void GapMission::OnImu(const perception::ImuSample& sample) {
@@ -185,6 +192,26 @@ void GapMission::AccumulateUpInGap(const Eigen::Isometry3d& T_CG) {
 
 void GapMission::OnRange(const perception::RangeReading& reading) {
   if (reading.valid) last_range_m_ = reading.range_m;
+}
+
+void GapMission::OnOdometry(const perception::PoseMeasurement& pose_OB) {
+  if (std::isnan(recovery_start_t_s_) || !fusion_.started() ||
+      !(pose_OB.t_s >= recovery_start_t_s_ + params_.recovery_odometry_delay_s)) {
+    return;
+  }
+  if (!T_WO_) {
+    // Both frames gravity-aligned: O's heading and origin from the estimate at the first pose.
+    const control::QuadState x = estimate();
+    Eigen::Isometry3d T_WO = Eigen::Isometry3d::Identity();
+    T_WO.linear() = Eigen::AngleAxisd(HeadingOf(x.q_WB) - HeadingOf(perception::BodyOrientation(
+                                                              pose_OB)),
+                                      Eigen::Vector3d::UnitZ())
+                        .toRotationMatrix();
+    T_WO.translation() = x.p_WB - T_WO.linear() * perception::BodyPosition(pose_OB);
+    T_WO_ = T_WO;
+  }
+  fusion_.AddPose(perception::InWorldFrame(*T_WO_, pose_OB));
+  ++odometry_poses_fused_;
 }
 
 void GapMission::StartFilter() {
@@ -428,7 +455,7 @@ std::optional<perception::AutopilotCommand> GapMission::StepLeadIn(double t_s) {
 std::optional<perception::AutopilotCommand> GapMission::StepTraverse(double t_s) {
   if (t_s - traverse_start_t_s_ >= traverse_->duration_s()) {
     EnterPhase(GapMissionPhase::kRecover, t_s);
-    recovery_.StartWithoutLaunch(t_s);
+    StartRecovery(t_s);
     return std::nullopt;
   }
   // Open loop: constant thrust, constant attitude (thrust along +-e3, traverse heading).

@@ -25,8 +25,13 @@
 //             attitude of the traverse (thrust along +-e3, the traverse heading), held from the
 //             IMU-propagated attitude; no position feedback. Lasts the traverse's duration_s.
 //   recover   the five-stage recovery of Faessler thesis paper B (control/recovery_state_machine.h)
-//             on the filter's IMU-only estimate (the gap is behind the camera, Sec. II-F), down to
-//             position hold; after recovered_hold_s in the position stage the mission is done.
+//             down to position hold; after recovered_hold_s in the position stage the mission is
+//             done. The gap is behind the camera: the filter carries on with the IMU until the
+//             downward camera's visual odometry (OnOdometry; SVO in [12], emulated in SITL) has
+//             initialized, recovery_odometry_delay_s after the recovery starts. Sec. II-F: "it
+//             has to recover a vision-based state estimate" — the downward camera and the range
+//             sensor are used solely in the recovery. Its poses, in its own gravity-aligned frame
+//             O, are aligned to the estimate at the first one (heading and position) and fused.
 //   aborted   (from hover/transfer/approach when the gap is not detected for
 //             detection_timeout_s, except in the approach's last approach_commit_s, or when
 //             planning fails): straight to the recovery stages.
@@ -143,6 +148,10 @@ struct GapMissionParams {
   // Time in the recovery's position stage before done [s]: long enough that the vehicle has
   // settled (the stage starts while attitude rates are still decaying).
   double recovered_hold_s = 2.0;
+  // The recovery's visual odometry (OnOdometry) is fused from this long after the recovery
+  // starts [s] (SVO initializes while the recovery levels the vehicle; [12], thesis B.3.2); a
+  // delay beyond the flight (1e9): recover on the IMU alone.
+  double recovery_odometry_delay_s = 1.0;
 
   // Throws std::invalid_argument naming the field (and via the components' Validate()).
   void Validate() const;
@@ -182,6 +191,9 @@ class GapMission : public perception::Autopilot {
   // Frames of the mission's camera until the planned crossing (the phases only move on).
   bool WantsFrame(int camera_id, double t_s) const override;
   void OnRange(const perception::RangeReading& reading) override;
+  // A body pose of the downward camera's visual odometry in its own gravity-aligned frame O
+  // (X = B); used only in the recovery (see the header comment), ignored before.
+  void OnOdometry(const perception::PoseMeasurement& pose_OB);
   perception::AutopilotCommand Step(double t_s) override;
   // "<phase>" plus details, e.g. "approach 1.2/2.0 s", "recover: horizontal_velocity".
   std::string status() const override;
@@ -226,6 +238,9 @@ class GapMission : public perception::Autopilot {
     return fusion_.counts().rejected_outlier + fusion_.counts().not_applied;
   }
   int filter_restarts() const { return fusion_.counts().restarts; }
+  int filter_restarts_refused() const { return fusion_.counts().restarts_refused; }
+  // Visual-odometry poses handed to the filter in the recovery.
+  int odometry_poses_fused() const { return odometry_poses_fused_; }
   // True when the approach was planned with fallback_limits.
   bool used_fallback_limits() const { return used_fallback_limits_; }
 
@@ -246,6 +261,7 @@ class GapMission : public perception::Autopilot {
   void AccumulateUpInGap(const Eigen::Isometry3d& T_CG);
   void EnterPhase(GapMissionPhase phase, double t_s);
   void Abort(const std::string& reason, double t_s);
+  void StartRecovery(double t_s);  // the recovery state machine, and the odometry's clock
   void StartFilter();
   void Plan(double t_s);
   perception::AutopilotCommand Track(const control::TrajectoryPoint& reference) const;
@@ -288,6 +304,9 @@ class GapMission : public perception::Autopilot {
   int replans_rejected_ = 0;
   bool used_fallback_limits_ = false;
   std::optional<double> last_range_m_;
+  double recovery_start_t_s_ = std::numeric_limits<double>::quiet_NaN();
+  std::optional<Eigen::Isometry3d> T_WO_;  // the visual odometry's frame O in W, once aligned
+  int odometry_poses_fused_ = 0;
 
   double phase_start_t_s_ = 0.0;
   control::TrajectoryPoint hover_reference_;

@@ -44,6 +44,7 @@ void Serialize(Archive* a, GapMissionParams* p) {
   a->Visit(APERTURE_NVP(p, detection_timeout_s));
   a->Visit(APERTURE_NVP(p, approach_commit_s));
   a->Visit(APERTURE_NVP(p, recovered_hold_s));
+  a->Visit(APERTURE_NVP(p, recovery_odometry_delay_s));
   a->Visit(APERTURE_NVP(p, detector));
   a->Visit(APERTURE_NVP(p, filter));
   a->Visit(APERTURE_NVP(p, traverse));

@@ -6,7 +6,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
+#include <vector>
 
 #include "control/constants.h"
 #include "control/so3.h"
@@ -62,6 +64,32 @@ const Vector6d kDelta = (Vector6d() << 1e-4, -2e-4, 0.5e-4, 1e-4, 0.7e-4, -1.5e-
 // entries' 1e-4) and rounding in Log stay below 1e-11, while a wrong block (R_CX for R_XC, a
 // missing lever arm) is off by ~1e-8, the size of the entries.
 constexpr double kCovarianceTolerance = 1e-11;
+
+// A measurement of another frame O (an odometry's) in W: the pose composes with T_WO, the position
+// noise turns with R_WO (a 90 deg yaw swaps its x and y variances), the rotation noise, in X,
+// stays.
+TEST(InWorldFrameTest, ComposesThePoseAndTurnsThePositionNoise) {
+  Eigen::Isometry3d T_WO = Eigen::Isometry3d::Identity();
+  T_WO.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T_WO.translation() = Eigen::Vector3d(1.0, 2.0, 0.5);
+  PoseMeasurement z_O;
+  z_O.t_s = 3.0;
+  z_O.p_WX = Eigen::Vector3d(1.0, 0.0, 0.0);
+  z_O.q_WX = Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX()));
+  z_O.covariance = Matrix6d::Zero();
+  z_O.covariance.diagonal() << 1e-4, 2e-4, 3e-4, 4e-6, 5e-6, 6e-6;
+  const PoseMeasurement z_W = InWorldFrame(T_WO, z_O);
+  EXPECT_EQ(z_W.t_s, 3.0);
+  EXPECT_LT((z_W.p_WX - Eigen::Vector3d(1.0, 3.0, 0.5)).norm(), 1e-12);
+  EXPECT_LT(z_W.q_WX.angularDistance(Eigen::Quaterniond(T_WO.linear()) * z_O.q_WX), 1e-12);
+  Vector6d expected;
+  expected << 2e-4, 1e-4, 3e-4, 4e-6, 5e-6, 6e-6;
+  EXPECT_LT((z_W.covariance.diagonal() - expected).norm(), 1e-15);
+  EXPECT_LT((z_W.covariance - Matrix6d(expected.asDiagonal())).norm(), 1e-15);
+  Eigen::Isometry3d scaled = T_WO;
+  scaled.linear() *= 2.0;
+  EXPECT_THROW(InWorldFrame(scaled, z_O), std::invalid_argument);
+}
 
 TEST(ToPoseMeasurementTest, FixedCameraMeasuresTheTargetInTheWorld) {
   std::mt19937_64 rng(5);
@@ -205,6 +233,47 @@ TEST(PoseFusionTest, RestartsAfterConsecutiveOutliersWithTheVelocityOfTheRejecte
   // Noise-free poses: position and velocity exact up to rounding.
   EXPECT_LT((fusion.estimate()->state.p_WB - pushed(t_s)).norm(), 1e-6);
   EXPECT_LT((fusion.estimate()->state.v_W - Eigen::Vector3d(1.0, 0.0, 0.0)).norm(), 1e-6);
+}
+
+TEST(PoseFusionTest, RefusesARestartThatWouldTurnTheBodyAwayFromItsGyroAttitude) {
+  const Eigen::Vector3d p_set(0.0, 0.0, 2.0);
+  // A pattern seen the other way round: the body turned by 180 deg about z and moved by 0.5 m.
+  const auto turned = [&](double t) {
+    PoseMeasurement z = PoseOfBodyAt(t, p_set + Eigen::Vector3d(0.5, 0.0, 0.0));
+    z.q_WX = Eigen::Quaterniond(Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitZ()));
+    return z;
+  };
+  const auto at_set = [&](double t) { return PoseOfBodyAt(t, p_set); };
+  // 10 true poses, then `turned_poses` turned ones, 24 ms apart with resting IMU in between.
+  const auto fly = [&](PoseFusion& fusion, int turned_poses) {
+    double t_s = 0.0;
+    for (int k = 0; k < 10 + turned_poses; ++k) {
+      for (int i = 1; i <= 12; ++i) fusion.AddImu(RestingImu(t_s + 0.002 * i));
+      t_s += 0.024;
+      fusion.AddPose(k < 10 ? at_set(t_s) : turned(t_s));
+    }
+    return t_s;
+  };
+  PoseFusionParams params;
+  params.max_consecutive_rejections = 3;
+  PoseFusion fusion(params);
+  // Two full runs of rejections, consistently turned: neither restarts the filter.
+  const double t_s = fly(fusion, 2 * params.max_consecutive_rejections);
+  EXPECT_EQ(fusion.counts().restarts, 0);
+  EXPECT_EQ(fusion.counts().restarts_refused, 2);
+  EXPECT_LT(fusion.estimate()->state.q_WB.angularDistance(Eigen::Quaterniond::Identity()), 1e-3);
+  // The true pose again: fused.
+  for (int i = 1; i <= 12; ++i) fusion.AddImu(RestingImu(t_s + 0.002 * i));
+  const std::vector<PoseFusionOutcome> back = fusion.AddPose(at_set(t_s + 0.024));
+  ASSERT_EQ(back.size(), 1u);
+  EXPECT_TRUE(back[0].update.applied());
+  // With the limit off, one run restarts the filter on the turned pose.
+  params.max_restart_rotation_rad = M_PI;
+  PoseFusion unlimited(params);
+  fly(unlimited, params.max_consecutive_rejections);
+  EXPECT_EQ(unlimited.counts().restarts, 1);
+  EXPECT_NEAR(unlimited.estimate()->state.q_WB.angularDistance(Eigen::Quaterniond::Identity()),
+              M_PI, 1e-3);
 }
 
 TEST(PoseFusionTest, ExplicitStartReplaysTheBufferedImu) {

@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <string>
 
 #include "config/config_tree.h"
@@ -72,6 +73,7 @@ class GapMissionTest : public ::testing::Test {
         frame.image = gap_visible ? gap_image_ : blank_image_;
         mission_.OnFrame(frame);
       }
+      if (step_ % 20 == 0 && odometry_) mission_.OnOdometry(odometry_(t));  // 50 Hz
       if (step_ % 10 == 0) {
         last_command_ = mission_.Step(t);
         if (stop()) {
@@ -86,6 +88,8 @@ class GapMissionTest : public ::testing::Test {
   GapMission mission_;
   cv::Mat gap_image_, blank_image_;
   perception::AutopilotCommand last_command_;
+  // The body pose the visual odometry reports at t (none when empty).
+  std::function<perception::PoseMeasurement(double t)> odometry_;
   int step_ = 0;
   int frame_index_ = 0;
 };
@@ -272,6 +276,40 @@ TEST_F(GapMissionTest, AbortsIntoRecoveryWhenTheGapIsLost) {
   EXPECT_EQ(mission_.phase(), GapMissionPhase::kAborted);
 }
 
+// The recovery's visual odometry: ignored until recovery_odometry_delay_s after the recovery
+// starts, then aligned to the estimate (heading, position) and fused. Its frame O is turned by
+// 90 deg against W and offset; it reports the body moving at 0.2 m/s along x_O, which the IMU (at
+// rest here) does not see, so the fused estimate must take that velocity, turned into W.
+TEST_F(GapMissionTest, FusesTheRecoveryOdometryOnlyAfterItHasInitialized) {
+  const Eigen::Vector3d v_O(0.2, 0.0, 0.0);
+  odometry_ = [&](double t) {
+    perception::PoseMeasurement z;
+    z.t_s = t;
+    z.p_WX = Eigen::Vector3d(2.0, 3.0, 0.5) + v_O * t;
+    z.q_WX = Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()));
+    z.covariance.setZero();
+    z.covariance.diagonal() << 4e-4, 4e-4, 4e-4, 7.6e-5, 7.6e-5, 7.6e-5;  // 2 cm, 0.5 deg
+    return z;
+  };
+  Run(5.0, true, [&] { return mission_.phase() == GapMissionPhase::kHover; });
+  Run(5.0, false, [&] { return mission_.phase() == GapMissionPhase::kAborted; });
+  ASSERT_EQ(mission_.phase(), GapMissionPhase::kAborted);
+  EXPECT_EQ(mission_.odometry_poses_fused(), 0);  // not before the recovery
+  const double abort_s = mission_.phase_changes().back().t_s;
+  const double delay_s = GapMissionParams{}.recovery_odometry_delay_s;
+  Run(abort_s + delay_s - 0.01, false, [] { return false; });
+  EXPECT_EQ(mission_.odometry_poses_fused(), 0);  // still initializing
+  const Eigen::Vector3d p_before = mission_.estimate().p_WB;
+  Run(abort_s + delay_s + 0.05, false, [] { return false; });
+  EXPECT_GT(mission_.odometry_poses_fused(), 0);
+  // Aligned to the estimate: no jump.
+  EXPECT_LT((mission_.estimate().p_WB - p_before).norm(), 0.03);
+  Run(abort_s + delay_s + 3.0, false, [] { return false; });
+  // x_O is -y_W (O's heading of the body is 90 deg, W's 0).
+  EXPECT_LT((mission_.estimate().v_W - Eigen::Vector3d(0.0, -0.2, 0.0)).norm(), 0.05)
+      << mission_.estimate().v_W.transpose();
+}
+
 TEST(GapMissionParamsTest, RejectsInvalidValuesAndInputs) {
   GapMissionParams params;
   params.init_detections = 0;
@@ -284,6 +322,11 @@ TEST(GapMissionParamsTest, RejectsInvalidValuesAndInputs) {
   params = GapMissionParams{};
   params.detection_timeout_s = 0.0;
   EXPECT_THROW(params.Validate(), std::invalid_argument);
+  params = GapMissionParams{};
+  params.recovery_odometry_delay_s = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(params.Validate(), std::invalid_argument);
+  params.recovery_odometry_delay_s = 1e9;  // the IMU alone
+  EXPECT_NO_THROW(params.Validate());
   EXPECT_THROW(
       GapMission(GapMissionParams{}, nullptr, ForwardCameraMount(), control::VehicleParameters{}),
       std::invalid_argument);
