@@ -138,7 +138,8 @@ std::vector<PoseFusionOutcome> PoseFusion::ApplyPending() {
       last_pose_t_s_ = std::max(last_pose_t_s_, z.t_s);
     } else if (outcome.update.status == PoseUpdateStatus::kRejectedOutlier) {
       ++counts_.rejected_outlier;
-      rejected_p_WB_.emplace_back(z.t_s, BodyPosition(z));
+      rejected_p_WB_.push_back(
+          {z.t_s, BodyPosition(z), z.covariance.topLeftCorner<3, 3>().trace() / 3.0});
       if (++consecutive_rejections_ >= params_.max_consecutive_rejections) {
         if (filter_->Estimate().state.q_WB.angularDistance(BodyOrientation(z)) >
             params_.max_restart_rotation_rad) {
@@ -178,14 +179,38 @@ void PoseFusion::Restart(const PoseMeasurement& z) {
     initial.accel_bias_B = previous.accel_bias_B;
     initial.gyro_bias_B = previous.gyro_bias_B;
     initial.state.v_W = previous.state.v_W;
-    if (rejected_p_WB_.size() >= 2 &&
-        rejected_p_WB_.back().first > rejected_p_WB_.front().first) {
-      initial.state.v_W = (rejected_p_WB_.back().second - rejected_p_WB_.front().second) /
-                          (rejected_p_WB_.back().first - rejected_p_WB_.front().first);
+    if (const std::optional<std::pair<Eigen::Vector3d, double>> fit = RejectedRunVelocity()) {
+      const auto& [v_run_W, standard_error_mps] = *fit;
+      if ((v_run_W - previous.state.v_W).norm() > 3.0 * standard_error_mps) {
+        initial.state.v_W = v_run_W;
+      }
     }
   }
   StartAt(initial);
   last_pose_t_s_ = z.t_s;
+}
+
+std::optional<std::pair<Eigen::Vector3d, double>> PoseFusion::RejectedRunVelocity() const {
+  if (rejected_p_WB_.size() < 2) return std::nullopt;
+  double t_mean = 0.0, variance_m2 = 0.0;
+  Eigen::Vector3d p_mean = Eigen::Vector3d::Zero();
+  for (const RejectedPosition& r : rejected_p_WB_) {
+    t_mean += r.t_s;
+    p_mean += r.p_WB;
+    variance_m2 += r.variance_m2;
+  }
+  const double n = static_cast<double>(rejected_p_WB_.size());
+  t_mean /= n;
+  p_mean /= n;
+  variance_m2 /= n;
+  double s_tt = 0.0;
+  Eigen::Vector3d s_tp = Eigen::Vector3d::Zero();
+  for (const RejectedPosition& r : rejected_p_WB_) {
+    s_tt += (r.t_s - t_mean) * (r.t_s - t_mean);
+    s_tp += (r.t_s - t_mean) * (r.p_WB - p_mean);
+  }
+  if (!(s_tt > 0.0)) return std::nullopt;
+  return std::make_pair(Eigen::Vector3d(s_tp / s_tt), std::sqrt(variance_m2 / s_tt));
 }
 
 void PoseFusion::StartAt(const PoseImuEstimate& initial) {

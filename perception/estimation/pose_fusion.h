@@ -25,8 +25,11 @@
 // it; a caller that must fix its world frame first (the gap mission) calls Start() itself and
 // feeds poses only afterwards. Restart: after max_consecutive_rejections outliers in a row (the
 // filter drifted on the IMU alone, or the pose source jumped) the filter starts again at the
-// latest measurement, keeping its bias estimates, with the velocity of the rejected run (its
-// first and last body positions; the previous estimate's velocity for a run of one). A restart
+// latest measurement, keeping its bias estimates, with the velocity of the rejected run (a least-
+// squares fit to its body positions) when it differs from the previous estimate's by more than
+// three of its standard errors (the vehicle was pushed, or the estimate diverged), else the
+// previous velocity (a short run of noisy poses, e.g. 5 odometry poses of 2 cm at 50 Hz, fits a
+// velocity to ~0.3 m/s only, and a restart on it jolts the controller). A restart
 // that would turn the body by more than max_restart_rotation_rad from the IMU-propagated attitude
 // is refused and the run forgotten: the gyro holds the attitude to a fraction of a degree over
 // seconds, so such a run is a consistently wrong pose (a symmetric pattern labelled the other
@@ -126,14 +129,22 @@ class PoseFusion {
  private:
   void Restart(const PoseMeasurement& measurement);
   void StartAt(const PoseImuEstimate& initial);
+  // Least-squares velocity of the rejected run and its standard error per axis [m/s] (the
+  // positions' mean variance over the spread of their times); nullopt for fewer than two times.
+  std::optional<std::pair<Eigen::Vector3d, double>> RejectedRunVelocity() const;
   std::vector<PoseFusionOutcome> ApplyPending();
 
   PoseFusionParams params_;
   std::unique_ptr<PoseImuFilter> filter_;
   std::deque<ImuSample> imu_buffer_;         // last filter.history_duration_s of IMU
   std::deque<PoseMeasurement> pending_;      // waiting for the IMU, in arrival order
-  // Body positions of the current run of rejected measurements: (t_s, p_WB).
-  std::deque<std::pair<double, Eigen::Vector3d>> rejected_p_WB_;
+  // The current run of rejected measurements: body positions and their position variances.
+  struct RejectedPosition {
+    double t_s = 0.0;
+    Eigen::Vector3d p_WB = Eigen::Vector3d::Zero();
+    double variance_m2 = 0.0;  // mean of the measurement's position variances
+  };
+  std::deque<RejectedPosition> rejected_p_WB_;
   int consecutive_rejections_ = 0;
   double last_pose_t_s_ = -1.0;
   PoseFusionCounts counts_;

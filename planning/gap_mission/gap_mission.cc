@@ -200,15 +200,19 @@ void GapMission::OnOdometry(const perception::PoseMeasurement& pose_OB) {
     return;
   }
   if (!T_WO_) {
-    // Both frames gravity-aligned: O's heading and origin from the estimate at the first pose.
+    // O placed so that the first pose is the estimate's, rotation included: W is only as
+    // gravity-aligned as the accelerometer average that fixed it (a bias tilts it), so aligning
+    // the heading alone would leave an attitude innovation the filter gates out, then restarts on.
     const control::QuadState x = estimate();
-    Eigen::Isometry3d T_WO = Eigen::Isometry3d::Identity();
-    T_WO.linear() = Eigen::AngleAxisd(HeadingOf(x.q_WB) - HeadingOf(perception::BodyOrientation(
-                                                              pose_OB)),
-                                      Eigen::Vector3d::UnitZ())
-                        .toRotationMatrix();
-    T_WO.translation() = x.p_WB - T_WO.linear() * perception::BodyPosition(pose_OB);
-    T_WO_ = T_WO;
+    Eigen::Isometry3d T_WB = Eigen::Isometry3d::Identity();
+    T_WB.linear() = x.q_WB.toRotationMatrix();
+    T_WB.translation() = x.p_WB;
+    Eigen::Isometry3d T_OB = Eigen::Isometry3d::Identity();
+    T_OB.linear() = perception::BodyOrientation(pose_OB).toRotationMatrix();
+    T_OB.translation() = perception::BodyPosition(pose_OB);
+    T_WO_ = T_WB * T_OB.inverse();
+    // The hold before done counts on the vision-based estimate ("locks to a hover position").
+    if (!std::isnan(position_stage_since_t_s_)) position_stage_since_t_s_ = pose_OB.t_s;
   }
   fusion_.AddPose(perception::InWorldFrame(*T_WO_, pose_OB));
   ++odometry_poses_fused_;

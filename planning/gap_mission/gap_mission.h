@@ -25,13 +25,13 @@
 //             attitude of the traverse (thrust along +-e3, the traverse heading), held from the
 //             IMU-propagated attitude; no position feedback. Lasts the traverse's duration_s.
 //   recover   the five-stage recovery of Faessler thesis paper B (control/recovery_state_machine.h)
-//             down to position hold; after recovered_hold_s in the position stage the mission is
-//             done. The gap is behind the camera: the filter carries on with the IMU until the
+//             down to position hold; after recovered_hold_s in the position stage (counted anew
+//             from the odometry's first pose) the mission is done. The gap is behind the camera: the filter carries on with the IMU until the
 //             downward camera's visual odometry (OnOdometry; SVO in [12], emulated in SITL) has
 //             initialized, recovery_odometry_delay_s after the recovery starts. Sec. II-F: "it
 //             has to recover a vision-based state estimate" — the downward camera and the range
-//             sensor are used solely in the recovery. Its poses, in its own gravity-aligned frame
-//             O, are aligned to the estimate at the first one (heading and position) and fused.
+//             sensor are used solely in the recovery. Its poses, in its own frame O, are aligned
+//             to the estimate at the first one (T_WO = T_WB_est T_OB^-1) and fused.
 //   aborted   (from hover/transfer/approach when the gap is not detected for
 //             detection_timeout_s, except in the approach's last approach_commit_s, or when
 //             planning fails): straight to the recovery stages.

@@ -235,6 +235,31 @@ TEST(PoseFusionTest, RestartsAfterConsecutiveOutliersWithTheVelocityOfTheRejecte
   EXPECT_LT((fusion.estimate()->state.v_W - Eigen::Vector3d(1.0, 0.0, 0.0)).norm(), 1e-6);
 }
 
+// A run of noisy poses (2 cm, as a visual odometry's) jumped 0.5 m away but not moving: the
+// endpoints would say 0.83 m/s, the least-squares fit's standard error is 0.59 m/s, so the restart
+// keeps the previous (resting) velocity.
+TEST(PoseFusionTest, RestartKeepsThePreviousVelocityWhenTheRunDoesNotResolveADifferentOne) {
+  PoseFusionParams params;
+  params.max_consecutive_rejections = 3;
+  PoseFusion fusion(params);
+  const Eigen::Vector3d p_set(0.0, 0.0, 2.0);
+  double t_s = 0.0;
+  const auto advance = [&](const PoseMeasurement& z) {
+    for (int i = 1; i <= 12; ++i) fusion.AddImu(RestingImu(t_s + 0.002 * i));
+    t_s += 0.024;
+    return fusion.AddPose(z);
+  };
+  for (int k = 0; k < 10; ++k) advance(PoseOfBodyAt(t_s + 0.024, p_set));
+  for (const double noise_m : {-0.02, 0.0, 0.02}) {
+    PoseMeasurement z =
+        PoseOfBodyAt(t_s + 0.024, p_set + Eigen::Vector3d(0.5, noise_m, 0.0));
+    z.covariance.topLeftCorner<3, 3>() = Eigen::Matrix3d::Identity() * 4e-4;
+    advance(z);
+  }
+  ASSERT_EQ(fusion.counts().restarts, 1);
+  EXPECT_LT(fusion.estimate()->state.v_W.norm(), 0.05) << fusion.estimate()->state.v_W.transpose();
+}
+
 TEST(PoseFusionTest, RefusesARestartThatWouldTurnTheBodyAwayFromItsGyroAttitude) {
   const Eigen::Vector3d p_set(0.0, 0.0, 2.0);
   // A pattern seen the other way round: the body turned by 180 deg about z and moved by 0.5 m.

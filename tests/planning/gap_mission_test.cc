@@ -310,6 +310,29 @@ TEST_F(GapMissionTest, FusesTheRecoveryOdometryOnlyAfterItHasInitialized) {
       << mission_.estimate().v_W.transpose();
 }
 
+// Done only after recovered_hold_s on the vision-based estimate: the hold in the position stage
+// counts anew from the odometry's first pose (the static vehicle reaches the position stage well
+// before the odometry has initialized).
+TEST_F(GapMissionTest, DoneOnlyAfterHoldingOnTheRecoveryOdometry) {
+  odometry_ = [](double t) {
+    perception::PoseMeasurement z;
+    z.t_s = t;
+    z.p_WX = Eigen::Vector3d(1.0, 2.0, 3.0);
+    z.covariance = perception::Matrix6d::Identity() * 1e-4;
+    return z;
+  };
+  Run(5.0, true, [&] { return mission_.phase() == GapMissionPhase::kHover; });
+  Run(5.0, false, [&] { return mission_.phase() == GapMissionPhase::kAborted; });
+  ASSERT_EQ(mission_.phase(), GapMissionPhase::kAborted);
+  const double abort_s = mission_.phase_changes().back().t_s;
+  Run(15.0, false, [&] { return last_command_.done; });
+  ASSERT_TRUE(last_command_.done);
+  const GapMissionParams defaults;
+  EXPECT_GE(step_ * 1e-3,
+            abort_s + defaults.recovery_odometry_delay_s + defaults.recovered_hold_s - 0.011);
+  EXPECT_GT(mission_.odometry_poses_fused(), 0);
+}
+
 TEST(GapMissionParamsTest, RejectsInvalidValuesAndInputs) {
   GapMissionParams params;
   params.init_detections = 0;
