@@ -5,14 +5,6 @@
 
 namespace aperture::control {
 
-void LowLevelControllerParameters::Validate() const {
-  if (!(std::isfinite(torque_observer_time_constant_s) && torque_observer_time_constant_s >= 0.0)) {
-    throw std::invalid_argument(
-        "LowLevelControllerParameters.torque_observer_time_constant_s must be finite and >= 0 "
-        "(0: off)");
-  }
-}
-
 LowLevelController::LowLevelController(const VehicleParameters& vehicle,
                                        const LowLevelControllerParameters& params)
     : vehicle_(vehicle),

@@ -11,7 +11,9 @@
 // the body torque and both laws subtract d_hat from their output, which removes the steady rate
 // error a constant disturbance leaves (integral action).
 #include <Eigen/Core>
+#include <cmath>
 #include <optional>
+#include <stdexcept>
 
 #include "control/commands.h"
 #include "control/lqr_body_rate_controller.h"
@@ -32,7 +34,15 @@ struct LowLevelControllerParameters {
   // Time constant of the torque-disturbance observer [s]; 0: off (the thesis' laws).
   double torque_observer_time_constant_s = 0.0;
   // Throws std::invalid_argument naming the field (a negative or non-finite time constant).
-  void Validate() const;
+  // Inline: the scenario loader checks it without linking the controller.
+  void Validate() const {
+    if (!(std::isfinite(torque_observer_time_constant_s) &&
+          torque_observer_time_constant_s >= 0.0)) {
+      throw std::invalid_argument(
+          "LowLevelControllerParameters.torque_observer_time_constant_s must be finite and >= 0 "
+          "(0: off)");
+    }
+  }
 };
 
 struct LowLevelOutput {
