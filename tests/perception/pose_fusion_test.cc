@@ -185,6 +185,14 @@ PoseMeasurement PoseOfBodyAt(double t_s, const Eigen::Vector3d& p_WB) {
   return z;
 }
 
+// 24 ms of resting IMU after *t_s, then the pose `pose_at` gives for the new time *t_s + 24 ms.
+template <typename PoseAt>
+std::vector<PoseFusionOutcome> AdvanceAtRest(PoseFusion& fusion, double* t_s, PoseAt pose_at) {
+  for (int i = 1; i <= 12; ++i) fusion.AddImu(RestingImu(*t_s + 0.002 * i));
+  *t_s += 0.024;
+  return fusion.AddPose(pose_at(*t_s));
+}
+
 TEST(PoseFusionTest, AMeasurementAheadOfTheImuWaitsForIt) {
   PoseFusion fusion(PoseFusionParams{});
   for (int k = 1; k <= 10; ++k) fusion.AddImu(RestingImu(0.002 * k));
@@ -204,12 +212,8 @@ TEST(PoseFusionTest, RestartsAfterConsecutiveOutliersWithTheVelocityOfTheRejecte
   PoseFusion fusion(params);
   const Eigen::Vector3d p_set(0.0, 0.0, 2.0);
   double t_s = 0.0;
-  const auto advance = [&](const Eigen::Vector3d& p_WB) {
-    for (int i = 1; i <= 12; ++i) fusion.AddImu(RestingImu(t_s + 0.002 * i));
-    t_s += 0.024;
-    return fusion.AddPose(PoseOfBodyAt(t_s, p_WB));
-  };
-  for (int k = 0; k < 10; ++k) advance(p_set);
+  const auto at_set = [&](double t) { return PoseOfBodyAt(t, p_set); };
+  for (int k = 0; k < 10; ++k) AdvanceAtRest(fusion, &t_s, at_set);
   EXPECT_EQ(fusion.counts().starts, 1);
   EXPECT_EQ(fusion.counts().applied, 9);
   // The pose source jumps by 0.5 m and moves on at 1 m/s (the vehicle was pushed and the IMU
@@ -219,13 +223,14 @@ TEST(PoseFusionTest, RestartsAfterConsecutiveOutliersWithTheVelocityOfTheRejecte
   const auto pushed = [&](double t) {
     return Eigen::Vector3d(p_set + Eigen::Vector3d(0.5 + 1.0 * (t - t_jump), 0.0, 0.0));
   };
+  const auto pushed_pose = [&](double t) { return PoseOfBodyAt(t, pushed(t)); };
   for (int k = 1; k < params.max_consecutive_rejections; ++k) {
-    const std::vector<PoseFusionOutcome> outcomes = advance(pushed(t_s + 0.024));
+    const std::vector<PoseFusionOutcome> outcomes = AdvanceAtRest(fusion, &t_s, pushed_pose);
     ASSERT_EQ(outcomes.size(), 1u);
     EXPECT_FALSE(outcomes[0].started_filter);
     EXPECT_EQ(outcomes[0].update.status, PoseUpdateStatus::kRejectedOutlier);
   }
-  const std::vector<PoseFusionOutcome> restart = advance(pushed(t_s + 0.024));
+  const std::vector<PoseFusionOutcome> restart = AdvanceAtRest(fusion, &t_s, pushed_pose);
   ASSERT_EQ(restart.size(), 1u);
   EXPECT_TRUE(restart[0].started_filter);
   EXPECT_EQ(fusion.counts().starts, 2);
@@ -244,17 +249,15 @@ TEST(PoseFusionTest, RestartKeepsThePreviousVelocityWhenTheRunDoesNotResolveADif
   PoseFusion fusion(params);
   const Eigen::Vector3d p_set(0.0, 0.0, 2.0);
   double t_s = 0.0;
-  const auto advance = [&](const PoseMeasurement& z) {
-    for (int i = 1; i <= 12; ++i) fusion.AddImu(RestingImu(t_s + 0.002 * i));
-    t_s += 0.024;
-    return fusion.AddPose(z);
-  };
-  for (int k = 0; k < 10; ++k) advance(PoseOfBodyAt(t_s + 0.024, p_set));
+  for (int k = 0; k < 10; ++k) {
+    AdvanceAtRest(fusion, &t_s, [&](double t) { return PoseOfBodyAt(t, p_set); });
+  }
   for (const double noise_m : {-0.02, 0.0, 0.02}) {
-    PoseMeasurement z =
-        PoseOfBodyAt(t_s + 0.024, p_set + Eigen::Vector3d(0.5, noise_m, 0.0));
-    z.covariance.topLeftCorner<3, 3>() = Eigen::Matrix3d::Identity() * 4e-4;
-    advance(z);
+    AdvanceAtRest(fusion, &t_s, [&](double t) {
+      PoseMeasurement z = PoseOfBodyAt(t, p_set + Eigen::Vector3d(0.5, noise_m, 0.0));
+      z.covariance.topLeftCorner<3, 3>() = Eigen::Matrix3d::Identity() * 4e-4;
+      return z;
+    });
   }
   ASSERT_EQ(fusion.counts().restarts, 1);
   EXPECT_LT(fusion.estimate()->state.v_W.norm(), 0.05) << fusion.estimate()->state.v_W.transpose();
@@ -272,24 +275,20 @@ TEST(PoseFusionTest, RefusesARestartThatWouldTurnTheBodyAwayFromItsGyroAttitude)
   // 10 true poses, then `turned_poses` turned ones, 24 ms apart with resting IMU in between.
   const auto fly = [&](PoseFusion& fusion, int turned_poses) {
     double t_s = 0.0;
-    for (int k = 0; k < 10 + turned_poses; ++k) {
-      for (int i = 1; i <= 12; ++i) fusion.AddImu(RestingImu(t_s + 0.002 * i));
-      t_s += 0.024;
-      fusion.AddPose(k < 10 ? at_set(t_s) : turned(t_s));
-    }
+    for (int k = 0; k < 10; ++k) AdvanceAtRest(fusion, &t_s, at_set);
+    for (int k = 0; k < turned_poses; ++k) AdvanceAtRest(fusion, &t_s, turned);
     return t_s;
   };
   PoseFusionParams params;
   params.max_consecutive_rejections = 3;
   PoseFusion fusion(params);
   // Two full runs of rejections, consistently turned: neither restarts the filter.
-  const double t_s = fly(fusion, 2 * params.max_consecutive_rejections);
+  double t_s = fly(fusion, 2 * params.max_consecutive_rejections);
   EXPECT_EQ(fusion.counts().restarts, 0);
   EXPECT_EQ(fusion.counts().restarts_refused, 2);
   EXPECT_LT(fusion.estimate()->state.q_WB.angularDistance(Eigen::Quaterniond::Identity()), 1e-3);
   // The true pose again: fused.
-  for (int i = 1; i <= 12; ++i) fusion.AddImu(RestingImu(t_s + 0.002 * i));
-  const std::vector<PoseFusionOutcome> back = fusion.AddPose(at_set(t_s + 0.024));
+  const std::vector<PoseFusionOutcome> back = AdvanceAtRest(fusion, &t_s, at_set);
   ASSERT_EQ(back.size(), 1u);
   EXPECT_TRUE(back[0].update.applied());
   // With the limit off, one run restarts the filter on the turned pose.
