@@ -193,6 +193,15 @@ std::vector<PoseFusionOutcome> AdvanceAtRest(PoseFusion& fusion, double* t_s, Po
   return fusion.AddPose(pose_at(*t_s));
 }
 
+// Ten poses of a body resting at p_WB, 24 ms apart: the filter started and fusing. Returns the time.
+double RestAt(PoseFusion& fusion, const Eigen::Vector3d& p_WB) {
+  double t_s = 0.0;
+  for (int k = 0; k < 10; ++k) {
+    AdvanceAtRest(fusion, &t_s, [&](double t) { return PoseOfBodyAt(t, p_WB); });
+  }
+  return t_s;
+}
+
 TEST(PoseFusionTest, AMeasurementAheadOfTheImuWaitsForIt) {
   PoseFusion fusion(PoseFusionParams{});
   for (int k = 1; k <= 10; ++k) fusion.AddImu(RestingImu(0.002 * k));
@@ -211,9 +220,7 @@ TEST(PoseFusionTest, RestartsAfterConsecutiveOutliersWithTheVelocityOfTheRejecte
   params.max_consecutive_rejections = 3;
   PoseFusion fusion(params);
   const Eigen::Vector3d p_set(0.0, 0.0, 2.0);
-  double t_s = 0.0;
-  const auto at_set = [&](double t) { return PoseOfBodyAt(t, p_set); };
-  for (int k = 0; k < 10; ++k) AdvanceAtRest(fusion, &t_s, at_set);
+  double t_s = RestAt(fusion, p_set);
   EXPECT_EQ(fusion.counts().starts, 1);
   EXPECT_EQ(fusion.counts().applied, 9);
   // The pose source jumps by 0.5 m and moves on at 1 m/s (the vehicle was pushed and the IMU
@@ -248,10 +255,7 @@ TEST(PoseFusionTest, RestartKeepsThePreviousVelocityWhenTheRunDoesNotResolveADif
   params.max_consecutive_rejections = 3;
   PoseFusion fusion(params);
   const Eigen::Vector3d p_set(0.0, 0.0, 2.0);
-  double t_s = 0.0;
-  for (int k = 0; k < 10; ++k) {
-    AdvanceAtRest(fusion, &t_s, [&](double t) { return PoseOfBodyAt(t, p_set); });
-  }
+  double t_s = RestAt(fusion, p_set);
   for (const double noise_m : {-0.02, 0.0, 0.02}) {
     AdvanceAtRest(fusion, &t_s, [&](double t) {
       PoseMeasurement z = PoseOfBodyAt(t, p_set + Eigen::Vector3d(0.5, noise_m, 0.0));
@@ -274,8 +278,7 @@ TEST(PoseFusionTest, RefusesARestartThatWouldTurnTheBodyAwayFromItsGyroAttitude)
   const auto at_set = [&](double t) { return PoseOfBodyAt(t, p_set); };
   // 10 true poses, then `turned_poses` turned ones, 24 ms apart with resting IMU in between.
   const auto fly = [&](PoseFusion& fusion, int turned_poses) {
-    double t_s = 0.0;
-    for (int k = 0; k < 10; ++k) AdvanceAtRest(fusion, &t_s, at_set);
+    double t_s = RestAt(fusion, p_set);
     for (int k = 0; k < turned_poses; ++k) AdvanceAtRest(fusion, &t_s, turned);
     return t_s;
   };
