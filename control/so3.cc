@@ -1,6 +1,7 @@
 #include "control/so3.h"
 
 #include <cmath>
+#include <stdexcept>
 
 namespace aperture::control {
 
@@ -37,6 +38,21 @@ Eigen::Quaterniond ExpQuaternion(const Eigen::Vector3d& phi) {
 Eigen::Vector3d LogQuaternion(const Eigen::Quaterniond& q) {
   const Eigen::AngleAxisd angle_axis(q.w() < 0.0 ? Eigen::Quaterniond(-q.coeffs()) : q);
   return angle_axis.angle() * angle_axis.axis();
+}
+
+Eigen::Quaterniond MeanRotation(const std::vector<Eigen::Quaterniond>& rotations) {
+  if (rotations.empty()) throw std::invalid_argument("MeanRotation: no rotations to average");
+  Eigen::Quaterniond mean = rotations.front().normalized();
+  for (int iteration = 0; iteration < 20; ++iteration) {
+    Eigen::Vector3d step = Eigen::Vector3d::Zero();
+    for (const Eigen::Quaterniond& q : rotations) {
+      step += LogQuaternion(mean.conjugate() * q.normalized());
+    }
+    step /= static_cast<double>(rotations.size());
+    mean = (mean * ExpQuaternion(step)).normalized();
+    if (step.norm() < 1e-12) break;
+  }
+  return mean;
 }
 
 Eigen::Matrix3d LeftJacobianSo3(const Eigen::Vector3d& phi) {

@@ -12,6 +12,7 @@
 // Nothing here throws; non-finite inputs give non-finite outputs.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <vector>
 
 namespace aperture::control {
 
@@ -31,6 +32,10 @@ Eigen::Vector3d LogSo3(const Eigen::Matrix3d& R);
 // q and -q, so its angle is in [0, pi].
 Eigen::Quaterniond ExpQuaternion(const Eigen::Vector3d& phi);
 Eigen::Vector3d LogQuaternion(const Eigen::Quaterniond& q);
+// Geodesic (Karcher) mean of rotations that lie within a hemisphere of each other: Gauss-Newton
+// on the sum of squared angles from the first (R <- R Exp(mean_k Log(R^T R_k))) until the step
+// is below 1e-12 rad. Throws std::invalid_argument for an empty list.
+Eigen::Quaterniond MeanRotation(const std::vector<Eigen::Quaterniond>& rotations);
 
 // Left Jacobian of SO(3): Exp(phi + d) = Exp(J_l(phi) d) Exp(phi) to first order in d, and the
 // V in exp(xi^) = (Exp(phi), J_l(phi) rho). The right Jacobian is J_r(phi) = J_l(-phi).

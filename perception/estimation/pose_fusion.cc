@@ -1,5 +1,6 @@
 #include "perception/estimation/pose_fusion.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -131,6 +132,7 @@ std::vector<PoseFusionOutcome> PoseFusion::ApplyPending() {
     PoseFusionOutcome outcome;
     outcome.t_s = z.t_s;
     outcome.update = filter_->Update(z);
+    AdaptToResidual(outcome.update);
     if (outcome.update.applied()) {
       ++counts_.applied;
       consecutive_rejections_ = 0;
@@ -217,10 +219,36 @@ void PoseFusion::StartAt(const PoseImuEstimate& initial) {
   rejected_p_WB_.clear();
   consecutive_rejections_ = 0;
   filter_ = std::make_unique<PoseImuFilter>(params_.filter, initial);
+  filter_->SetProcessNoiseScale(process_noise_scale_);
   for (const ImuSample& sample : imu_buffer_) {
     if (sample.t_s > filter_->time_s()) filter_->Propagate(sample);
   }
   ++counts_.starts;
+}
+
+void PoseFusion::AdaptProcessNoise(double max_scale) {
+  if (!(std::isfinite(max_scale) && max_scale >= 1.0)) {
+    throw std::invalid_argument("PoseFusion::AdaptProcessNoise max_scale must be finite and >= 1, got " +
+                                std::to_string(max_scale));
+  }
+  max_process_noise_scale_ = max_scale;
+}
+
+void PoseFusion::AdaptToResidual(const PoseUpdateResult& update) {
+  if (max_process_noise_scale_ <= 1.0 ||
+      (update.status != PoseUpdateStatus::kApplied &&
+       update.status != PoseUpdateStatus::kRejectedOutlier)) {
+    return;
+  }
+  constexpr double kWeight = 1.0 / 20.0;  // running mean over ~20 measurements
+  constexpr double kGain = 0.2;           // scale *= m^kGain per measurement
+  constexpr double kDegreesOfFreedom = 6.0;
+  const double normalized = std::min(update.mahalanobis_sq, update.gate) / kDegreesOfFreedom;
+  mean_normalized_innovation_ += kWeight * (normalized - mean_normalized_innovation_);
+  process_noise_scale_ =
+      std::clamp(process_noise_scale_ * std::pow(mean_normalized_innovation_, kGain), 1.0,
+                 max_process_noise_scale_);
+  filter_->SetProcessNoiseScale(process_noise_scale_);
 }
 
 std::optional<PoseImuEstimate> PoseFusion::estimate() const {

@@ -36,6 +36,14 @@
 // way round: a gap mission in a gust restarted on its gap turned by 180 deg and flew into the
 // ground), not a vehicle that turned.
 //
+// Process-noise adaptation (off until AdaptProcessNoise): an IMU noisier than the filter's
+// specification makes the filter overconfident, its residuals grow until the gate rejects runs of
+// good poses and the filter restarts (a jump in the estimate the controller turns into a jolt).
+// Covariance matching (Mehra 1972): a running mean m of d^2 / 6 (each d^2 capped at the gate, so
+// one outlier weighs little; ~20 measurements) should be 1 for a consistent filter; every
+// measurement multiplies the process-noise scale by m^(1/20), bounded to [1, max_scale], so it
+// settles where the residuals match their covariance. The scale survives restarts.
+//
 // Calling order (perception/autopilot.h): AddImu / AddPose as measurements are delivered; a pose
 // stamped after the latest IMU sample waits for the IMU. Non-finite or non-rigid inputs throw
 // std::invalid_argument naming them.
@@ -124,6 +132,11 @@ class PoseFusion {
   // Time of the latest measurement fused or started from (< 0: none).
   double last_pose_t_s() const { return last_pose_t_s_; }
   const PoseFusionCounts& counts() const { return counts_; }
+  // Adapt the process noise to the residuals from now on, up to max_scale (finite, >= 1; see the
+  // header comment). Throws std::invalid_argument.
+  void AdaptProcessNoise(double max_scale);
+  // The filter's current process-noise scale (1 until adapted).
+  double process_noise_scale() const { return process_noise_scale_; }
   const PoseFusionParams& params() const { return params_; }
 
  private:
@@ -133,6 +146,8 @@ class PoseFusion {
   // positions' mean variance over the spread of their times); nullopt for fewer than two times.
   std::optional<std::pair<Eigen::Vector3d, double>> RejectedRunVelocity() const;
   std::vector<PoseFusionOutcome> ApplyPending();
+  // One step of the process-noise adaptation on a fused or gated measurement (header comment).
+  void AdaptToResidual(const PoseUpdateResult& update);
 
   PoseFusionParams params_;
   std::unique_ptr<PoseImuFilter> filter_;
@@ -148,6 +163,9 @@ class PoseFusion {
   int consecutive_rejections_ = 0;
   double last_pose_t_s_ = -1.0;
   PoseFusionCounts counts_;
+  double max_process_noise_scale_ = 1.0;      // 1: no adaptation
+  double process_noise_scale_ = 1.0;
+  double mean_normalized_innovation_ = 1.0;   // running mean of min(d^2, gate) / 6
 };
 
 }  // namespace aperture::perception

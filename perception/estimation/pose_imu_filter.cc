@@ -175,13 +175,22 @@ void PoseImuFilter::PropagateBetween(const Entry& from, const Entry& to, Nominal
   const Matrix15d Adt2 = Adt * Adt;
   const Matrix15d Phi = Matrix15d::Identity() + Adt + 0.5 * Adt2 + Adt2 * Adt / 6.0;
   // Van Loan series (header); Q_c_ is diagonal so these products are cheap to write plainly.
-  const Matrix15d AQ = A * Q_c_;
+  const Matrix15d Q_c = Q_c_ * process_noise_scale_;
+  const Matrix15d AQ = A * Q_c;
   const Matrix15d AQAt = AQ * A.transpose();
   const Matrix15d A2Q = A * AQ;
-  Matrix15d Q_d = Q_c_ * dt + (AQ + AQ.transpose()) * (0.5 * dt * dt) +
+  Matrix15d Q_d = Q_c * dt + (AQ + AQ.transpose()) * (0.5 * dt * dt) +
                   (A2Q + 2.0 * AQAt + A2Q.transpose()) * (dt * dt * dt / 6.0);
   *P = Phi * (*P) * Phi.transpose() + Q_d;
   *P = 0.5 * (*P + P->transpose());
+}
+
+void PoseImuFilter::SetProcessNoiseScale(double scale) {
+  if (!(std::isfinite(scale) && scale >= 1.0)) {
+    throw std::invalid_argument("PoseImuFilter process noise scale must be finite and >= 1, got " +
+                                std::to_string(scale));
+  }
+  process_noise_scale_ = scale;
 }
 
 PoseUpdateResult PoseImuFilter::ApplyMeasurement(const PoseMeasurement& z, Nominal* x,

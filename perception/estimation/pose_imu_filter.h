@@ -155,6 +155,11 @@ class PoseImuFilter {
   // Estimate at the latest IMU sample.
   PoseImuEstimate Estimate() const;
   double time_s() const { return history_.back().t_s; }
+  // Multiplies the continuous process noise (every density and random walk) by `scale` (finite,
+  // >= 1) from now on, re-propagations of the history included: an IMU noisier than its
+  // specification (PoseFusion's innovation-matched adaptation). Throws std::invalid_argument.
+  void SetProcessNoiseScale(double scale);
+  double process_noise_scale() const { return process_noise_scale_; }
   // Number of entries held for re-propagation (bounded by history_duration_s times the IMU rate).
   std::size_t history_size() const { return history_.size(); }
   const PoseImuFilterParams& params() const { return params_; }
@@ -182,6 +187,7 @@ class PoseImuFilter {
 
   PoseImuFilterParams params_;
   Matrix15d Q_c_;              // continuous noise G Q_c G^T in error-state coordinates
+  double process_noise_scale_ = 1.0;  // multiplies Q_c_ (SetProcessNoiseScale)
   std::deque<Entry> history_;  // sorted by t_s; front() is the oldest kept posterior
 };
 

@@ -48,6 +48,14 @@ void GapMissionParams::Validate() const {
   control::RequireNonNegative(recovered_hold_s, "GapMissionParams.recovered_hold_s");
   control::RequireNonNegative(recovery_odometry_delay_s,
                               "GapMissionParams.recovery_odometry_delay_s");
+  if (!(std::isfinite(recovery_max_process_noise_scale) &&
+        recovery_max_process_noise_scale >= 1.0)) {
+    throw std::invalid_argument(
+        "GapMissionParams.recovery_max_process_noise_scale must be finite and >= 1 (1: off)");
+  }
+  if (recovery_odometry_alignment_poses < 1) {
+    throw std::invalid_argument("GapMissionParams.recovery_odometry_alignment_poses must be >= 1");
+  }
 }
 
 const char* ToString(GapMissionPhase phase) {
@@ -200,7 +208,7 @@ void GapMission::OnOdometry(const perception::PoseMeasurement& pose_OB) {
     return;
   }
   if (!T_WO_) {
-    // O placed so that the first pose is the estimate's, rotation included: W is only as
+    // O placed so that the odometry's poses are the estimate's, rotation included: W is only as
     // gravity-aligned as the accelerometer average that fixed it (a bias tilts it), so aligning
     // the heading alone would leave an attitude innovation the filter gates out, then restarts on.
     const control::QuadState x = estimate();
@@ -210,9 +218,31 @@ void GapMission::OnOdometry(const perception::PoseMeasurement& pose_OB) {
     Eigen::Isometry3d T_OB = Eigen::Isometry3d::Identity();
     T_OB.linear() = perception::BodyOrientation(pose_OB).toRotationMatrix();
     T_OB.translation() = perception::BodyPosition(pose_OB);
-    T_WO_ = T_WB * T_OB.inverse();
+    odometry_alignments_.emplace_back(pose_OB, T_WB * T_OB.inverse());
+    if (static_cast<int>(odometry_alignments_.size()) <
+        params_.recovery_odometry_alignment_poses) {
+      return;
+    }
+    std::vector<Eigen::Quaterniond> q_WO;
+    Eigen::Vector3d p_WO = Eigen::Vector3d::Zero();
+    for (const auto& [pose, T_WO] : odometry_alignments_) {
+      q_WO.emplace_back(T_WO.linear());
+      p_WO += T_WO.translation();
+    }
+    T_WO_ = Eigen::Isometry3d::Identity();
+    T_WO_->linear() = control::MeanRotation(q_WO).toRotationMatrix();
+    T_WO_->translation() = p_WO / static_cast<double>(odometry_alignments_.size());
     // The hold before done counts on the vision-based estimate ("locks to a hover position").
     if (!std::isnan(position_stage_since_t_s_)) position_stage_since_t_s_ = pose_OB.t_s;
+    // The earlier averaged poses are fused too, oldest first (within the filter's history);
+    // the last is pose_OB, fused below.
+    odometry_alignments_.pop_back();
+    for (const auto& alignment : odometry_alignments_) {
+      fusion_.AddPose(perception::InWorldFrame(*T_WO_, alignment.first));
+      ++odometry_poses_fused_;
+    }
+    odometry_alignments_.clear();
+    fusion_.AdaptProcessNoise(params_.recovery_max_process_noise_scale);
   }
   fusion_.AddPose(perception::InWorldFrame(*T_WO_, pose_OB));
   ++odometry_poses_fused_;

@@ -31,7 +31,9 @@
 //             initialized, recovery_odometry_delay_s after the recovery starts. Sec. II-F: "it
 //             has to recover a vision-based state estimate" — the downward camera and the range
 //             sensor are used solely in the recovery. Its poses, in its own frame O, are aligned
-//             to the estimate at the first one (T_WO = T_WB_est T_OB^-1) and fused.
+//             to the estimate over the first recovery_odometry_alignment_poses (T_WO = mean of
+//             T_WB_est T_OB^-1: one pose would fix its own noise, 0.5 deg and 2 cm, into every
+//             later residual, which the filter's gate then rejects) and fused from then on.
 //   aborted   (from hover/transfer/approach when the gap is not detected for
 //             detection_timeout_s, except in the approach's last approach_commit_s, or when
 //             planning fails): straight to the recovery stages.
@@ -55,6 +57,7 @@
 #include <opencv2/core/mat.hpp>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "control/position_controller.h"
@@ -152,6 +155,14 @@ struct GapMissionParams {
   // starts [s] (SVO initializes while the recovery levels the vehicle; [12], thesis B.3.2); a
   // delay beyond the flight (1e9): recover on the IMU alone.
   double recovery_odometry_delay_s = 1.0;
+  // Odometry poses whose alignments T_WB_est T_OB^-1 are averaged into T_WO (>= 1): the mean of
+  // N has 1/sqrt(N) of one pose's noise; 10 poses are 0.2 s of a 50 Hz odometry.
+  int recovery_odometry_alignment_poses = 10;
+  // Once the odometry is aligned, the filter's process noise adapts to its residuals up to this
+  // factor (>= 1; 1: off; perception::PoseFusion::AdaptProcessNoise): the mission is not told
+  // when its IMU is noisier than specified, and an overconfident filter gates good poses out,
+  // restarts and jolts the hover. 100 covers densities ten times the specification.
+  double recovery_max_process_noise_scale = 100.0;
 
   // Throws std::invalid_argument naming the field (and via the components' Validate()).
   void Validate() const;
@@ -306,6 +317,8 @@ class GapMission : public perception::Autopilot {
   std::optional<double> last_range_m_;
   double recovery_start_t_s_ = std::numeric_limits<double>::quiet_NaN();
   std::optional<Eigen::Isometry3d> T_WO_;  // the visual odometry's frame O in W, once aligned
+  // Until then: the odometry poses received and the alignment T_WB_est T_OB^-1 each implies.
+  std::vector<std::pair<perception::PoseMeasurement, Eigen::Isometry3d>> odometry_alignments_;
   int odometry_poses_fused_ = 0;
 
   double phase_start_t_s_ = 0.0;
