@@ -5,6 +5,8 @@
 #include <cmath>
 #include <functional>
 #include <random>
+#include <stdexcept>
+#include <vector>
 
 namespace aperture::control {
 namespace {
@@ -181,6 +183,31 @@ TEST(Se3Test, InversePoseCovarianceMatchesThePerturbedInverse) {
                 .cwiseAbs()
                 .maxCoeff(),
             1e-7);
+}
+
+
+TEST(So3Test, MeanRotationIsTheGeodesicCentre) {
+  const Eigen::Quaterniond centre = ExpQuaternion(Eigen::Vector3d(0.3, -1.2, 2.0));
+  // Pairs symmetric about the centre (right perturbations +-phi): the mean is the centre exactly.
+  std::vector<Eigen::Quaterniond> symmetric;
+  for (const Eigen::Vector3d& phi :
+       {Eigen::Vector3d(0.2, 0.0, 0.0), Eigen::Vector3d(0.0, 0.05, 0.1)}) {
+    symmetric.push_back(centre * ExpQuaternion(phi));
+    symmetric.push_back(centre * ExpQuaternion(-phi));
+  }
+  EXPECT_LT(MeanRotation(symmetric).angularDistance(centre), 1e-12);
+  // Noisy copies (10 mrad per axis; q and -q mixed): the mean of 400 is ~sqrt(3)*10/20 mrad off.
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> normal(0.0, 0.01);
+  std::vector<Eigen::Quaterniond> noisy;
+  for (int k = 0; k < 400; ++k) {
+    const Eigen::Quaterniond q = centre * ExpQuaternion(Eigen::Vector3d(normal(rng), normal(rng),
+                                                                       normal(rng)));
+    noisy.push_back(k % 2 == 0 ? q : Eigen::Quaterniond(-q.coeffs()));
+  }
+  EXPECT_LT(MeanRotation(noisy).angularDistance(centre), 2.5e-3);
+  EXPECT_GT(noisy.front().angularDistance(centre) + noisy.back().angularDistance(centre), 2.5e-3);
+  EXPECT_THROW(MeanRotation({}), std::invalid_argument);
 }
 
 }  // namespace

@@ -303,6 +303,57 @@ TEST(PoseFusionTest, RefusesARestartThatWouldTurnTheBodyAwayFromItsGyroAttitude)
               M_PI, 1e-3);
 }
 
+// A resting body whose accelerometer is `noise_factor` times noisier than the filter's
+// specification, seen by 1 cm / 10 mrad poses every 24 ms for 6 s. Returns the measurements the
+// filter gated out.
+int RejectionsWithAnImuNoisierThanSpecified(PoseFusion& fusion, double noise_factor) {
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  const double rate_hz = 500.0;
+  const double accel_sigma =
+      noise_factor * fusion.params().filter.accel_noise_density * std::sqrt(rate_hz);
+  double t_s = 0.0;
+  for (int k = 0; k < 250; ++k) {
+    for (int i = 1; i <= 12; ++i) {
+      ImuSample sample = RestingImu(t_s + i / rate_hz);
+      for (int axis = 0; axis < 3; ++axis) sample.specific_force_B(axis) += accel_sigma * normal(rng);
+      fusion.AddImu(sample);
+    }
+    t_s += 12 / rate_hz;
+    PoseMeasurement z = PoseOfBodyAt(t_s, Eigen::Vector3d(0.01 * normal(rng), 0.01 * normal(rng),
+                                                          2.0 + 0.01 * normal(rng)));
+    z.q_WX = control::ExpQuaternion(0.01 * Eigen::Vector3d(normal(rng), normal(rng), normal(rng)));
+    z.covariance = Matrix6d::Identity() * 1e-4;
+    fusion.AddPose(z);
+  }
+  return fusion.counts().rejected_outlier;
+}
+
+TEST(PoseFusionTest, AdaptsItsProcessNoiseToAnImuNoisierThanSpecified) {
+  // The specification's accelerometer (3.9e-3 m/s^2/sqrt(Hz)) drifts ~0.2 mm between poses; thirty
+  // times that wanders several centimetres over a second of 1 cm poses the filter over-trusts.
+  PoseFusion fixed(PoseFusionParams{});
+  PoseFusion adapting(PoseFusionParams{});
+  adapting.AdaptProcessNoise(1000.0);
+  const int rejected_fixed = RejectionsWithAnImuNoisierThanSpecified(fixed, 30.0);
+  const int rejected_adapting = RejectionsWithAnImuNoisierThanSpecified(adapting, 30.0);
+  EXPECT_DOUBLE_EQ(fixed.process_noise_scale(), 1.0);
+  EXPECT_GT(adapting.process_noise_scale(), 30.0);  // densities x30 are variances x900
+  EXPECT_LT(rejected_adapting, rejected_fixed / 2) << rejected_fixed;
+  EXPECT_LT(adapting.counts().restarts, fixed.counts().restarts + 1);
+
+  // An IMU as specified leaves the scale within a few of 1 (the residuals match their covariance;
+  // bounded below by 1, the scale's random walk on the noisy mean wanders a little above it).
+  PoseFusion consistent(PoseFusionParams{});
+  consistent.AdaptProcessNoise(1000.0);
+  RejectionsWithAnImuNoisierThanSpecified(consistent, 1.0);
+  EXPECT_LT(consistent.process_noise_scale(), 10.0);
+  EXPECT_LT(consistent.process_noise_scale() * 20.0, adapting.process_noise_scale());
+
+  EXPECT_THROW(consistent.AdaptProcessNoise(0.5), std::invalid_argument);
+  EXPECT_THROW(consistent.AdaptProcessNoise(std::nan("")), std::invalid_argument);
+}
+
 TEST(PoseFusionTest, ExplicitStartReplaysTheBufferedImu) {
   PoseFusion fusion(PoseFusionParams{});
   for (int k = 1; k <= 50; ++k) fusion.AddImu(RestingImu(0.002 * k));
