@@ -26,11 +26,12 @@
 //             IMU-propagated attitude; no position feedback. Lasts the traverse's duration_s.
 //   recover   the five-stage recovery of Faessler thesis paper B (control/recovery_state_machine.h)
 //             down to position hold; after recovered_hold_s in the position stage (counted anew
-//             from the odometry's first pose) the mission is done. The gap is behind the camera: the filter carries on with the IMU until the
-//             downward camera's visual odometry (OnOdometry; SVO in [12], emulated in SITL) has
-//             initialized, recovery_odometry_delay_s after the recovery starts. Sec. II-F: "it
-//             has to recover a vision-based state estimate" — the downward camera and the range
-//             sensor are used solely in the recovery. Its poses, in its own frame O, are aligned
+//             from the odometry's alignment) the mission is done. The gap is behind the camera:
+//             the filter carries on with the IMU until the downward camera's visual odometry
+//             (OnOdometry; SVO in [12], emulated in SITL) has initialized,
+//             recovery_odometry_delay_s after the recovery starts. Sec. II-F: "it has to recover
+//             a vision-based state estimate" — the downward camera and the range sensor are used
+//             solely in the recovery. Its poses, in its own frame O, are aligned
 //             to the estimate over the first recovery_odometry_alignment_poses (T_WO = mean of
 //             T_WB_est T_OB^-1: one pose would fix its own noise, 0.5 deg and 2 cm, into every
 //             later residual, which the filter's gate then rejects) and fused from then on.

@@ -316,7 +316,9 @@ int RejectionsWithAnImuNoisierThanSpecified(PoseFusion& fusion, double noise_fac
   for (int k = 0; k < 250; ++k) {
     for (int i = 1; i <= 12; ++i) {
       ImuSample sample = RestingImu(t_s + i / rate_hz);
-      for (int axis = 0; axis < 3; ++axis) sample.specific_force_B(axis) += accel_sigma * normal(rng);
+      for (int axis = 0; axis < 3; ++axis) {
+        sample.specific_force_B(axis) += accel_sigma * normal(rng);
+      }
       fusion.AddImu(sample);
     }
     t_s += 12 / rate_hz;

@@ -277,9 +277,10 @@ TEST_F(GapMissionTest, AbortsIntoRecoveryWhenTheGapIsLost) {
 }
 
 // The recovery's visual odometry: ignored until recovery_odometry_delay_s after the recovery
-// starts, then aligned to the estimate over its first poses (rotation, position) and fused. Its frame O is turned by
-// 90 deg against W and offset; it reports the body moving at 0.2 m/s along x_O, which the IMU (at
-// rest here) does not see, so the fused estimate must take that velocity, turned into W.
+// starts, then aligned to the estimate over its first poses (rotation, position) and fused. Its
+// frame O is turned by 90 deg against W and offset; it reports the body moving at 0.2 m/s along
+// x_O, which the IMU (at rest here) does not see, so the fused estimate must take that velocity,
+// turned into W.
 TEST_F(GapMissionTest, FusesTheRecoveryOdometryOnlyAfterItHasInitialized) {
   const Eigen::Vector3d v_O(0.2, 0.0, 0.0);
   odometry_ = [&](double t) {
