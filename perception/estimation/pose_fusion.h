@@ -41,7 +41,7 @@
 // good poses and the filter restarts (a jump in the estimate the controller turns into a jolt).
 // Covariance matching (Mehra 1972): a running mean m of d^2 / 6 (each d^2 capped at the gate, so
 // one outlier weighs little; ~20 measurements) should be 1 for a consistent filter; every
-// measurement multiplies the process-noise scale by m^(1/20), bounded to [1, max_scale], so it
+// measurement multiplies the process-noise scale by m^0.2, bounded to [1, max_scale], so it
 // settles where the residuals match their covariance. The scale survives restarts.
 //
 // Calling order (perception/autopilot.h): AddImu / AddPose as measurements are delivered; a pose
