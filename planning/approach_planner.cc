@@ -113,6 +113,7 @@ void ApproachPlannerParameters::Validate() const {
       "ApproachPlannerParameters.min_height_m", min_height_m,
       "must be a height or -infinity (no floor)");
   control::RequirePositive(max_view_angle_rad, "ApproachPlannerParameters.max_view_angle_rad");
+  control::RequireNonNegative(max_overshoot_m, "ApproachPlannerParameters.max_overshoot_m");
   const double axis_norm = optical_axis_B.norm();
   control::Require(optical_axis_B.allFinite() && axis_norm > 0.0 &&
                        std::abs(optical_axis_B.z()) < 0.999 * axis_norm,
@@ -226,6 +227,7 @@ ApproachCandidate ApproachPlanner::EvaluateCandidate(const ApproachTarget& targe
       MotionPrimitive(start_W, zero, zero, target.p_W, target.v_W, target.a_W, duration_s);
   ScorePerception(candidate.primitive, target.gap_center_W, kNoBound, candidate);
   candidate.above_floor = AboveFloor(candidate.primitive);
+  candidate.short_of_target = ShortOfTarget(candidate.primitive, target);
   candidate.feasibility = CheckInputFeasibility(candidate.primitive, parameters_.limits);
   return candidate;
 }
@@ -233,6 +235,15 @@ ApproachCandidate ApproachPlanner::EvaluateCandidate(const ApproachTarget& targe
 bool ApproachPlanner::AboveFloor(const MotionPrimitive& primitive) const {
   return !std::isfinite(parameters_.min_height_m) ||
          MinimumProjection(primitive, Eigen::Vector3d::UnitZ()) >= parameters_.min_height_m;
+}
+
+bool ApproachPlanner::ShortOfTarget(const MotionPrimitive& primitive,
+                                    const ApproachTarget& target) const {
+  const Eigen::Vector3d to_gap_W = target.gap_center_W - target.p_W;
+  if (to_gap_W.norm() == 0.0) return true;
+  const Eigen::Vector3d u_W = to_gap_W.normalized();
+  // max <u, p(t)> <= <u, p_0> + overshoot, as a minimum along -u.
+  return MinimumProjection(primitive, -u_W) >= -u_W.dot(target.p_W) - parameters_.max_overshoot_m;
 }
 
 ApproachPlan ApproachPlanner::Plan(const ApproachTarget& target) const {
@@ -270,7 +281,8 @@ ApproachPlan ApproachPlanner::Plan(const ApproachTarget& target) const {
             continue;
           }
           candidate.above_floor = AboveFloor(candidate.primitive);
-          if (!candidate.above_floor) continue;
+          candidate.short_of_target = ShortOfTarget(candidate.primitive, target);
+          if (!candidate.above_floor || !candidate.short_of_target) continue;
           ++plan.feasibility_tests;
           candidate.feasibility = CheckInputFeasibility(candidate.primitive, parameters_.limits);
           if (candidate.feasibility != Feasibility::kFeasible) continue;
@@ -299,6 +311,7 @@ ApproachCandidate ApproachPlanner::Replan(const ApproachTarget& target, const Ei
   candidate.feasibility = CheckInputFeasibility(candidate.primitive, parameters_.limits);
   ScorePerception(candidate.primitive, target.gap_center_W, kNoBound, candidate);
   candidate.above_floor = AboveFloor(candidate.primitive);
+  candidate.short_of_target = ShortOfTarget(candidate.primitive, target);
   return candidate;
 }
 

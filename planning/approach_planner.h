@@ -6,7 +6,8 @@
 // smallest angle (9) between the camera's optical axis and the direction to the gap centre that a
 // yaw rotation can achieve at each trajectory sample (8), and d_0 the distance from the start to
 // the gap centre. The planner returns the lowest-cost candidate that passes the input-feasibility
-// test (primitive_feasibility.h) and keeps the gap within max_view_angle_rad at every sample.
+// test (primitive_feasibility.h), keeps the gap within max_view_angle_rad at every sample and
+// never gets nearer the gap than the traverse start (max_overshoot_m; beyond the paper).
 // The approach ends with the traverse's thrust |<g, e3>| (traverse_trajectory.h): gaps whose short
 // side is near horizontal need a near free-fall traverse, which f_min > 0 rightly rejects.
 // Body rates are bounded for the position trajectory (omega_xy); the heading rate that the
@@ -76,6 +77,12 @@ struct ApproachPlannerParameters {
   // Floor: candidates whose height z_W drops below this anywhere (MinimumProjection, exact) are
   // rejected. -infinity (the default, since the floor height is scene knowledge) disables it.
   double min_height_m = -std::numeric_limits<double>::infinity();
+  // Candidates that get nearer the gap than their end, the traverse start p_0, by more than this
+  // (along p_0 -> gap centre; MinimumProjection, exact) are rejected: the approach never needs
+  // to, and a replan from a state a disturbance pushed towards the gap would otherwise swing past
+  // p_0 into the gap's frame and back (SITL, 5 m/s gusts). Keeping the previous primitive then
+  // leaves the position controller to push back. >= 0.
+  double max_overshoot_m = 0.05;
   FeasibilityLimits limits;
   // Throws std::invalid_argument naming the field for empty ranges, counts < 1, non-positive
   // durations/normalisations, an optical axis that is zero or parallel to z_B, or bad limits.
@@ -87,11 +94,13 @@ struct ApproachCandidate {
   Feasibility feasibility = Feasibility::kIndeterminable;
   bool gap_in_view = false;         // view angle <= max_view_angle_rad at every sample
   bool above_floor = true;          // height >= min_height_m over [0, T]
+  bool short_of_target = true;      // never nearer the gap than p_0 + max_overshoot_m
   double view_angle_rms_rad = 0.0;  // theta_rms
   double start_distance_m = 0.0;    // d_0
   double cost = 0.0;                // (10)
   bool IsValid() const {
-    return feasibility == Feasibility::kFeasible && gap_in_view && above_floor;
+    return feasibility == Feasibility::kFeasible && gap_in_view && above_floor &&
+           short_of_target;
   }
 };
 
@@ -143,6 +152,7 @@ class ApproachPlanner {
   bool ScorePerception(const MotionPrimitive& primitive, const Eigen::Vector3d& gap_center_W,
                        double cost_bound, ApproachCandidate& candidate) const;
   bool AboveFloor(const MotionPrimitive& primitive) const;
+  bool ShortOfTarget(const MotionPrimitive& primitive, const ApproachTarget& target) const;
   double HeadingAt(const MotionPrimitive& primitive, const Eigen::Vector3d& gap_center_W,
                    double t_s) const;
 

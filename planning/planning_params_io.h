@@ -59,6 +59,7 @@ void Serialize(Archive* a, ApproachPlannerParameters* p) {
   a->Visit(APERTURE_NVP(p, max_view_angle_rad));
   a->Visit(APERTURE_NVP(p, optical_axis_B));
   a->Visit(APERTURE_NVP(p, min_height_m));
+  a->Visit(APERTURE_NVP(p, max_overshoot_m));
   a->Visit(APERTURE_NVP(p, limits));
 }
 

@@ -16,8 +16,10 @@
 //   transfer  fly the transfer primitive (perception-aware heading (8)), then hold start_hold_s.
 //   approach  track the approach primitive, replanned from the current estimate at every control
 //             step (Sec. II-C, V-A: the previous primitive is kept when the replanned one is not
-//             provably feasible or loses the gap from view). It ends lead_in_s before the traverse
-//             start, on the traverse's own arc (3)-(5) extended backwards in time.
+//             provably feasible, loses the gap from view or passes the traverse start on its way,
+//             as a replan from a state a gust pushed towards the gap would; the position
+//             controller then pushes back). It ends lead_in_s before the traverse start, on the
+//             traverse's own arc (3)-(5) extended backwards in time.
 //   lead_in   (beyond the paper) track that arc with position feedback for lead_in_s: a constant
 //             acceleration reference lets the attitude and thrust settle after the approach's
 //             final jerk, so the open-loop part starts on its initial conditions (3a), (3b).

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <sstream>
@@ -244,6 +245,43 @@ TEST(ApproachPlanner, ReplanFromThePlannedStateReproducesThePlan) {
                std::invalid_argument);
 }
 
+// A state a gust pushed towards the gap with time to spare: the replan from it swings past the
+// traverse start and comes back, which the planner refuses (the flag agrees with a dense sampling
+// of the primitive's distance along traverse start -> gap centre); the replan from the planned
+// state stays short of the start, and so does every candidate of a plan.
+TEST(ApproachPlanner, RefusesAReplanThatPassesTheTraverseStart) {
+  const ApproachTarget target = TestTarget();
+  const ApproachPlanner planner(SmallGrid());
+  const Eigen::Vector3d u_W = (target.gap_center_W - target.p_W).normalized();
+  const double max_overshoot_m = planner.parameters().max_overshoot_m;
+  const auto farthest_along_u = [&](const MotionPrimitive& primitive) {
+    double farthest = -1e300;
+    for (int k = 0; k <= 2000; ++k) {
+      const double t = primitive.duration_s() * k / 2000.0;
+      farthest = std::max(farthest, u_W.dot(primitive.Position(t) - target.p_W));
+    }
+    return farthest;
+  };
+  const Eigen::Vector3d pushed_p_W = target.p_W - 0.3 * u_W;  // 0.3 m short of the start ...
+  const Eigen::Vector3d pushed_v_W = 1.5 * u_W;               // ... and heading for the gap
+  const ApproachCandidate pushed =
+      planner.Replan(target, pushed_p_W, pushed_v_W, Eigen::Vector3d::Zero(), 2.5);
+  EXPECT_GT(farthest_along_u(pushed.primitive), max_overshoot_m);
+  EXPECT_FALSE(pushed.short_of_target);
+  EXPECT_FALSE(pushed.IsValid());
+
+  const ApproachPlan plan = planner.Plan(target);
+  ASSERT_TRUE(plan.best.has_value());
+  EXPECT_TRUE(plan.best->short_of_target);
+  EXPECT_LE(farthest_along_u(plan.best->primitive), max_overshoot_m);
+  const MotionPrimitive& primitive = plan.best->primitive;
+  const double tau = 0.5 * primitive.duration_s();
+  const ApproachCandidate on_plan =
+      planner.Replan(target, primitive.Position(tau), primitive.Velocity(tau),
+                     primitive.Acceleration(tau), primitive.duration_s() - tau);
+  EXPECT_TRUE(on_plan.short_of_target);
+}
+
 TEST(ApproachPlanner, RejectsBadParameters) {
   ApproachPlannerParameters parameters;
   parameters.duration_count = 0;
@@ -253,6 +291,9 @@ TEST(ApproachPlanner, RejectsBadParameters) {
   EXPECT_THROW(ApproachPlanner{parameters}, std::invalid_argument);
   parameters = ApproachPlannerParameters();
   parameters.start_offset_max_A.x() = 0.0;  // below the minimum
+  EXPECT_THROW(ApproachPlanner{parameters}, std::invalid_argument);
+  parameters = ApproachPlannerParameters();
+  parameters.max_overshoot_m = -0.1;
   EXPECT_THROW(ApproachPlanner{parameters}, std::invalid_argument);
 }
 
