@@ -121,6 +121,16 @@ void ValidateGapDetectorParams(const GapDetectorParams& p) {
                    "must be >= 0");
 }
 
+Eigen::Isometry3d NearestGapLabelling(const Eigen::Isometry3d& T_CG,
+                                      const Eigen::Matrix3d& R_CG_expected) {
+  Eigen::Isometry3d turned = T_CG;
+  turned.linear() = T_CG.linear() * Eigen::Vector3d(-1.0, -1.0, 1.0).asDiagonal();  // Rz(pi)
+  // The nearer rotation has the larger trace of R_expected^T R (trace = 1 + 2 cos(angle)).
+  const double kept = (R_CG_expected.transpose() * T_CG.linear()).trace();
+  const double other = (R_CG_expected.transpose() * turned.linear()).trace();
+  return other > kept ? turned : T_CG;
+}
+
 std::string GapDetectionStatusName(GapDetectionStatus status) {
   switch (status) {
     case GapDetectionStatus::kDetected: return "detected";

@@ -89,6 +89,15 @@ struct GapDetection {
   bool from_roi = false;  // found in the ROI around the last detection
 };
 
+// The pattern's symmetry resolved by a prediction: of T_CG and T_CG turned by 180 deg about z_G
+// (the two labellings the detector chooses between by the image, R_CG(0, 0) >= 0), the one whose
+// rotation is nearer R_CG_expected. The image convention flips where x_G crosses the image's
+// vertical — a gap rolled 45 deg seen from a vehicle banked 45 deg by a gust — so a mission
+// flying through a fixed gap picks the labelling by its estimate instead. The translation and a
+// covariance in C (GapDetection::covariance) are the same for both.
+Eigen::Isometry3d NearestGapLabelling(const Eigen::Isometry3d& T_CG,
+                                      const Eigen::Matrix3d& R_CG_expected);
+
 class GapDetector {
  public:
   // Throws std::invalid_argument (ValidateGapDetectorParams).

@@ -175,15 +175,20 @@ void GapMission::OnFrame(const perception::Frame& frame) {
   last_detection_ = *front_ends_.Latest<perception::GapDetection>(perception::GapNode::kOutputSlot);
   last_frame_t_s_ = frame.t_s;
   ++frames_processed_;
-  for (const perception::PoseObservation& observation : observations) {
+  for (perception::PoseObservation observation : observations) {
     if (observation.stream != perception::GapNode::kName) continue;
     ++detections_;
     last_detected_t_s_ = frame.t_s;
-    last_T_CG_ = observation.T_CX;
     if (!fusion_.started()) {
+      last_T_CG_ = observation.T_CX;
       AccumulateUpInGap(last_T_CG_);
       continue;
     }
+    // The gap is fixed in W: its labelling follows the estimate, not the image's convention.
+    const Eigen::Matrix3d R_WC = estimate().q_WB.toRotationMatrix() * T_BC_.linear();
+    observation.T_CX = perception::NearestGapLabelling(
+        observation.T_CX, R_WC.transpose() * rig_.T_W_fixed.linear());
+    last_T_CG_ = observation.T_CX;
     // A frame stamped after the latest IMU sample (IMU latency) waits for the IMU to catch up.
     fusion_.AddPose(perception::ToPoseMeasurement(observation, rig_));
   }

@@ -91,6 +91,30 @@ TEST(GapDetectorTest, DrawnPatternGivesExactPoseWithSymmetryConvention) {
   EXPECT_GT(d.T_CG.linear().col(2).dot(d.T_CG.translation()), 0.0);
 }
 
+// Seen from a camera rolled so that x_G points to the image's left, the detector reports the
+// image convention's labelling, 180 deg from the truth about z_G; a prediction within 60 deg of
+// the truth gets the truth back (and a prediction near the convention keeps it).
+TEST(GapDetectorTest, NearestLabellingFollowsThePredictionNotTheImage) {
+  const auto camera = test_support::Pinhole752x480();
+  GapDetectorParams params;
+  GapDetector detector(params, camera);
+  const Eigen::Isometry3d T_CG = MakePose(2.2, 0.1, 0.2, Eigen::Vector3d(0.1, -0.05, 2.5));
+  ASSERT_LT(T_CG.linear()(0, 0), 0.0);  // x_G to the image's left
+  const GapDetection d = detector.DetectFullImage(DrawGapPattern(*camera, params, T_CG));
+  ASSERT_TRUE(d.detected());
+  const auto angle = [](const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
+    return Eigen::AngleAxisd(a.transpose() * b).angle();
+  };
+  EXPECT_GT(angle(d.T_CG.linear(), T_CG.linear()), 0.9 * M_PI);
+  const Eigen::Matrix3d R_predicted =
+      Eigen::AngleAxisd(1.0, Eigen::Vector3d(1, -2, 0.5).normalized()).toRotationMatrix() *
+      T_CG.linear();  // 57 deg off the truth
+  const Eigen::Isometry3d resolved = NearestGapLabelling(d.T_CG, R_predicted);
+  EXPECT_LT(angle(resolved.linear(), T_CG.linear()), 0.5 * M_PI / 180);
+  EXPECT_EQ(resolved.translation(), d.T_CG.translation());
+  EXPECT_TRUE(NearestGapLabelling(d.T_CG, d.T_CG.linear()).isApprox(d.T_CG, 0.0));
+}
+
 TEST(GapNodeTest, RegisteredAndNeedsCalibration) {
   FrontEndRegistry registry;
   RegisterBuiltinFrontEnds(registry);
