@@ -48,14 +48,13 @@ void GapMissionParams::Validate() const {
   control::RequireNonNegative(recovered_hold_s, "GapMissionParams.recovered_hold_s");
   control::RequireNonNegative(recovery_odometry_delay_s,
                               "GapMissionParams.recovery_odometry_delay_s");
-  if (!(std::isfinite(recovery_max_process_noise_scale) &&
-        recovery_max_process_noise_scale >= 1.0)) {
-    throw std::invalid_argument(
-        "GapMissionParams.recovery_max_process_noise_scale must be finite and >= 1 (1: off)");
-  }
-  if (recovery_odometry_alignment_poses < 1) {
-    throw std::invalid_argument("GapMissionParams.recovery_odometry_alignment_poses must be >= 1");
-  }
+  control::Require(
+      std::isfinite(recovery_max_process_noise_scale) && recovery_max_process_noise_scale >= 1.0,
+      "GapMissionParams.recovery_max_process_noise_scale", recovery_max_process_noise_scale,
+      "must be finite and >= 1 (1: off)");
+  control::Require(recovery_odometry_alignment_poses >= 1,
+                   "GapMissionParams.recovery_odometry_alignment_poses",
+                   recovery_odometry_alignment_poses, "must be >= 1");
 }
 
 const char* ToString(GapMissionPhase phase) {
@@ -188,7 +187,6 @@ void GapMission::OnFrame(const perception::Frame& frame) {
     const Eigen::Matrix3d R_WC = estimate().q_WB.toRotationMatrix() * T_BC_.linear();
     observation.T_CX = perception::NearestGapLabelling(
         observation.T_CX, R_WC.transpose() * rig_.T_W_fixed.linear());
-    last_T_CG_ = observation.T_CX;
     // A frame stamped after the latest IMU sample (IMU latency) waits for the IMU to catch up.
     fusion_.AddPose(perception::ToPoseMeasurement(observation, rig_));
   }

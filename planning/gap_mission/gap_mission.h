@@ -303,7 +303,7 @@ class GapMission : public perception::Autopilot {
   std::size_t recent_up_next_ = 0;
   Eigen::Vector3d up_G_sum_ = Eigen::Vector3d::Zero();
   std::optional<perception::ImuSample> last_imu_;
-  Eigen::Isometry3d last_T_CG_ = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d last_T_CG_ = Eigen::Isometry3d::Identity();  // latest before the filter (W)
 
   GapPose gap_W_;
   perception::PoseRig rig_;  // T_WG, T_BC and the detection covariance scale
