@@ -55,6 +55,9 @@ void PoseHoldParams::Validate() const {
     throw std::invalid_argument("PoseHoldParams.max_consecutive_rejections must be >= 1, got " +
                                 std::to_string(max_consecutive_rejections));
   }
+  control::Require(std::isfinite(max_process_noise_scale) && max_process_noise_scale >= 1.0,
+                   "PoseHoldParams.max_process_noise_scale", max_process_noise_scale,
+                   "must be finite and >= 1 (1: off)");
 }
 
 PoseHold::PoseHold(const control::VehicleParameters& vehicle, const PoseHoldParams& params,
@@ -62,6 +65,7 @@ PoseHold::PoseHold(const control::VehicleParameters& vehicle, const PoseHoldPara
     : params_((params.Validate(), params)),
       controller_(vehicle, params.controller),
       fusion_({params.filter, params.max_consecutive_rejections}) {
+  fusion_.AdaptProcessNoise(params_.max_process_noise_scale);
   SetSetpoint(setpoint);
 }
 
@@ -73,7 +77,8 @@ void PoseHold::SetSetpoint(const PoseHoldSetpoint& setpoint) {
 
 void PoseHold::AddImu(const perception::ImuSample& sample) {
   fusion_.AddImu(sample);
-  last_imu_ = sample;
+  specific_force_sum_B_ += sample.specific_force_B;
+  ++specific_force_count_;
 }
 
 std::vector<perception::PoseFusionOutcome> PoseHold::AddPose(
@@ -107,12 +112,12 @@ perception::AutopilotCommand PoseHold::Step(double t_s) {
       error_integral_W_ *= max_integral / error_integral_W_.norm();
     }
   }
-  if (stepped_ && params_.disturbance_time_constant_s > 0.0 && last_imu_ &&
+  if (stepped_ && params_.disturbance_time_constant_s > 0.0 && specific_force_count_ > 0 &&
       last_collective_thrust_mps2_ > 0.0) {
     const double dt_s = std::clamp(t_s - last_step_t_s_, 0.0, kMaxIntegrationStep_s);
     const Eigen::Matrix3d R_WB = estimate.state.q_WB.toRotationMatrix();
     const Eigen::Vector3d a_ext_W =
-        R_WB * (last_imu_->specific_force_B - estimate.accel_bias_B) -
+        R_WB * (specific_force_sum_B_ / specific_force_count_ - estimate.accel_bias_B) -
         last_collective_thrust_mps2_ * R_WB.col(2);
     const double alpha = dt_s / (params_.disturbance_time_constant_s + dt_s);
     disturbance_accel_W_ += alpha * (a_ext_W - disturbance_accel_W_);
@@ -122,6 +127,8 @@ perception::AutopilotCommand PoseHold::Step(double t_s) {
   }
   stepped_ = true;
   last_step_t_s_ = t_s;
+  specific_force_sum_B_.setZero();
+  specific_force_count_ = 0;
   // A constant reference at most max_position_error_m from the estimate: the PD law sees a
   // clamped error, not a different goal.
   Eigen::Vector3d clamped_error_W = error_W;

@@ -18,8 +18,10 @@
 //   a_ff = k_i * integral(p_set - p_est) - a_ext,
 // (both terms clamped, anti-windup) which the PD law of (F.31) lacks:
 //  * a_ext is the external (non-thrust, non-gravity) acceleration seen by the accelerometer,
-//    a_ext = R_WB (f_B - b_a) - c_prev z_B with the previous collective-thrust command c_prev,
-//    low-passed with disturbance_time_constant_s: a disturbance observer that cancels wind gusts
+//    a_ext = R_WB (f_B - b_a) - c_prev z_B with the previous collective-thrust command c_prev and
+//    f_B the mean specific force of the IMU samples since the previous step (one sample would
+//    alias the accelerometer's noise at the IMU rate into the reference: a noisy IMU made the
+//    whole loop jitter at ~0.5 rad/s), low-passed with disturbance_time_constant_s: a disturbance observer that cancels wind gusts
 //    (rotor drag on the airspeed, (F.2)) within ~one time constant instead of letting them push
 //    the vehicle off until the PD law balances them;
 //  * the integral removes what is left in steady state (thrust-map and motor-lag errors).
@@ -65,6 +67,10 @@ struct PoseHoldParams {
   double max_pose_age_s = 0.5;           // no pose for longer: status "dead reckoning"
   // Outliers in a row that restart the filter (>= 1): 3 LED frames at 40 Hz = 75 ms.
   int max_consecutive_rejections = 3;
+  // The filter's process noise adapts to its residuals up to this factor (>= 1; 1: off;
+  // perception::PoseFusion::AdaptProcessNoise): the hold is not told when its IMU is noisier than
+  // specified. 100 covers densities ten times the specification.
+  double max_process_noise_scale = 100.0;
   // Throws std::invalid_argument naming the field (negative gains, non-positive limits).
   void Validate() const;
 };
@@ -107,7 +113,9 @@ class PoseHold {
   perception::PoseFusion fusion_;
   Eigen::Vector3d error_integral_W_ = Eigen::Vector3d::Zero();  // [m s]
   Eigen::Vector3d disturbance_accel_W_ = Eigen::Vector3d::Zero();  // a_ext [m/s^2]
-  std::optional<perception::ImuSample> last_imu_;
+  // Specific force of the IMU samples since the previous Step (their sum and count) [m/s^2].
+  Eigen::Vector3d specific_force_sum_B_ = Eigen::Vector3d::Zero();
+  int specific_force_count_ = 0;
   double last_collective_thrust_mps2_ = 0.0;  // c_prev; 0 before the first command
   double last_step_t_s_ = 0.0;
   bool stepped_ = false;

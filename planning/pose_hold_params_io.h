@@ -14,6 +14,7 @@
 //     max_position_error_m: 1
 //     max_pose_age_s: 0.5
 //     max_consecutive_rejections: 3
+//     max_process_noise_scale: 100
 #include "control/control_params_io.h"
 #include "perception/estimation/pose_imu_filter_params_io.h"
 #include "planning/pose_hold.h"
@@ -32,6 +33,7 @@ void Serialize(Archive* a, PoseHoldParams* p) {
   a->Visit(APERTURE_NVP(p, max_position_error_m));
   a->Visit(APERTURE_NVP(p, max_pose_age_s));
   a->Visit(APERTURE_NVP(p, max_consecutive_rejections));
+  a->Visit(APERTURE_NVP(p, max_process_noise_scale));
 }
 
 }  // namespace aperture::planning

@@ -124,6 +124,28 @@ TEST_F(PoseHoldTest, DisturbanceObserverMeasuresAnExternalForceFromTheAccelerome
   EXPECT_NEAR(hold.disturbance_accel_W().y(), 0.0, 0.025);
 }
 
+TEST_F(PoseHoldTest, DisturbanceObserverSeesTheMeanSpecificForceOfAStep) {
+  // Five IMU samples per control step of a vibration that sums to zero over each step but ends
+  // every step at +1 m/s^2 along x_B: sampling the last one would read a steady 1 m/s^2 push
+  // (the aliasing that made a noisy IMU shake the whole loop); the step's mean reads none.
+  PoseHold hold(vehicle_, params_, setpoint_);
+  hold.AddImu(RestingImu(0.002));
+  hold.AddPose(PoseOfBodyAt(0.002, setpoint_.p_W, Eigen::Vector3d::Zero()));
+  hold.Step(0.002);
+  const double vibration_mps2[5] = {0.0, 1.0, -1.0, -1.0, 1.0};
+  double t_s = 0.002;
+  while (t_s < 0.002 + 10.0 * params_.disturbance_time_constant_s) {
+    t_s += 0.01;
+    for (int i = 1; i <= 5; ++i) {
+      perception::ImuSample sample = RestingImu(t_s - 0.01 + 0.002 * i);
+      sample.specific_force_B.x() += vibration_mps2[i - 1];
+      hold.AddImu(sample);
+    }
+    hold.Step(t_s);
+  }
+  EXPECT_NEAR(hold.disturbance_accel_W().x(), 0.0, 0.025);
+}
+
 TEST_F(PoseHoldTest, RejectsBadParameters) {
   // One invalid field at a time.
   const std::vector<std::function<void(PoseHoldParams*)>> breakers = {
@@ -133,6 +155,8 @@ TEST_F(PoseHoldTest, RejectsBadParameters) {
       [](PoseHoldParams* p) { p->disturbance_time_constant_s = -0.1; },
       [](PoseHoldParams* p) { p->max_pose_age_s = std::nan(""); },
       [](PoseHoldParams* p) { p->filter.mahalanobis_gate = -1.0; },
+      [](PoseHoldParams* p) { p->max_process_noise_scale = 0.5; },
+      [](PoseHoldParams* p) { p->max_process_noise_scale = INFINITY; },
   };
   for (std::size_t i = 0; i < breakers.size(); ++i) {
     PoseHoldParams params = params_;
