@@ -228,9 +228,9 @@ void GapMission::OnOdometry(const perception::PoseMeasurement& pose_OB) {
     }
     std::vector<Eigen::Quaterniond> q_WO;
     Eigen::Vector3d p_WO = Eigen::Vector3d::Zero();
-    for (const auto& [pose, T_WO] : odometry_alignments_) {
-      q_WO.emplace_back(T_WO.linear());
-      p_WO += T_WO.translation();
+    for (const auto& alignment : odometry_alignments_) {
+      q_WO.emplace_back(alignment.second.linear());
+      p_WO += alignment.second.translation();
     }
     T_WO_ = Eigen::Isometry3d::Identity();
     T_WO_->linear() = control::MeanRotation(q_WO).toRotationMatrix();
