@@ -16,6 +16,12 @@
 namespace aperture::experiments {
 namespace {
 
+// What `aperture sim forest` flies without --duration: the start-to-goal distance at the slowest
+// mean speed `bench mononav` measured (22 m in 55.6 s over 40 layouts: 0.40 m/s, less a margin
+// for denser layouts), plus the take-off and the final approach.
+constexpr double kSlowestMeanSpeedMps = 0.35;
+constexpr double kDurationMarginS = 5.0;
+
 int FrontCameraIndex(const sim::Scenario& scenario) {
   const std::vector<sim::ScenarioCamera>& cameras = scenario.cameras();
   for (int i = 0; i < static_cast<int>(cameras.size()); ++i) {
@@ -52,7 +58,8 @@ nlohmann::json ForestFrameTiming(const planning::ForestMission& mission, bool pl
 
 class ForestFlight final : public MissionFlight {
  public:
-  explicit ForestFlight(const MissionContext& context) : scene_(context.scenario.scene()) {
+  explicit ForestFlight(const MissionContext& context)
+      : scene_(context.scenario.scene()), p_WB_start_(context.sitl.initial_state.p_WB) {
     params_.goal_W = context.scenario.params().forest.goal_m;
     params_.camera_id = FrontCameraIndex(context.scenario);
     static_cast<perception::ImuNoiseParams&>(params_.fusion.filter) = context.sitl.imu;
@@ -72,6 +79,9 @@ class ForestFlight final : public MissionFlight {
   }
 
   perception::Autopilot& autopilot() override { return *adapter_; }
+  double MinimumDurationS() const override {
+    return (params_.goal_W - p_WB_start_).norm() / kSlowestMeanSpeedMps + kDurationMarginS;
+  }
   void DrawOverlay(cv::Mat& onboard_bgr) const override { mission_->DrawOverlay(onboard_bgr); }
 
   MissionEvaluation Evaluate(const sim::SitlResult& result) override {
@@ -127,6 +137,7 @@ class ForestFlight final : public MissionFlight {
 
  private:
   const sim::Scene& scene_;
+  Eigen::Vector3d p_WB_start_;
   planning::ForestMissionParams params_;
   sim::OdometrySensorParams odometry_;
   std::unique_ptr<planning::ForestMission> mission_;

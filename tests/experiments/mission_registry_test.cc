@@ -5,6 +5,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include "config/config_tree.h"
 #include "experiments/missions/builtin_missions.h"
 #include "sim/scenario/scenario_sitl.h"
@@ -88,6 +90,23 @@ TEST_F(BuiltinMissionsTest, EveryScenarioHasAMissionAndTheGapMissionReadsItsSect
     FAIL() << "an unknown mission was created";
   } catch (const std::invalid_argument& e) {
     EXPECT_THAT(e.what(), HasSubstr("led_hover"));  // lists the known ones
+  }
+}
+
+// `aperture sim forest` without --duration flies long enough to reach the goal (the 10 s default
+// ended every forest flight short of it): the distance at no more than bench mononav's slowest
+// mean speed (0.40 m/s), and no absurd cap either.
+TEST_F(BuiltinMissionsTest, ForestFliesLongEnoughToReachItsGoal) {
+  Load("forest");
+  for (const Eigen::Vector3d& goal_W : {Eigen::Vector3d(6.0, 0.0, 1.5),
+                                        Eigen::Vector3d(22.0, 3.0, 1.5)}) {
+    char item[96];
+    std::snprintf(item, sizeof(item), "mission.goal_W=[%g, %g, %g]", goal_W.x(), goal_W.y(),
+                  goal_W.z());
+    const std::unique_ptr<MissionFlight> flight = Create("forest", {item});
+    const double distance_m = (goal_W - sitl_.initial_state.p_WB).norm();
+    EXPECT_GE(flight->MinimumDurationS(), distance_m / 0.40) << item;
+    EXPECT_LE(flight->MinimumDurationS(), distance_m / 0.2 + 10.0) << item;
   }
 }
 
