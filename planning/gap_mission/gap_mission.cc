@@ -104,6 +104,7 @@ GapMission::GapMission(const GapMissionParams& params,
       approach_planner_(params.approach),
       controller_(vehicle, params.controller),
       attitude_controller_(params.controller.attitude),
+      attitude_hold_(params.controller.attitude),
       recovery_(vehicle, params.recovery),
       rig_{Eigen::Isometry3d::Identity(), T_BC, params.detection_covariance_scale},
       fusion_({params.filter, params.max_consecutive_rejections}) {
@@ -129,17 +130,13 @@ void GapMission::StartRecovery(double t_s) {
 }
 
 void GapMission::OnImu(const perception::ImuSample& sample) {
-  if (last_imu_ && !fusion_.started()) {
-    const double dt_s = sample.t_s - last_imu_->t_s;
-    q_B0B_ = (q_B0B_ * control::ExpQuaternion(0.5 * (last_imu_->omega_B + sample.omega_B) * dt_s))
-                 .normalized();
-  }
+  if (!fusion_.started()) attitude_hold_.AddImu(sample.t_s, sample.omega_B);
   last_imu_ = sample;
   fusion_.AddImu(sample);
   if (fusion_.started()) return;
   // Hovering at rest before the filter starts: the specific force is gravity, up in B; kept in
   // B0 so that samples taken while the vehicle turned average in one frame.
-  const Eigen::Vector3d up_B0 = q_B0B_ * sample.specific_force_B.normalized();
+  const Eigen::Vector3d up_B0 = attitude_hold_.q_B0B() * sample.specific_force_B.normalized();
   if (recent_up_B0_.size() < static_cast<std::size_t>(params_.gravity_samples)) {
     recent_up_B0_.push_back(up_B0);
   } else {
@@ -196,7 +193,8 @@ void GapMission::AccumulateUpInGap(const Eigen::Isometry3d& T_CG) {
   if (recent_up_B0_.empty()) return;  // no IMU yet: gravity unknown
   Eigen::Vector3d up_B0 = Eigen::Vector3d::Zero();
   for (const Eigen::Vector3d& u : recent_up_B0_) up_B0 += u;
-  const Eigen::Vector3d up_B = q_B0B_.conjugate() * up_B0;  // in the body of this detection
+  // In the body of this detection:
+  const Eigen::Vector3d up_B = attitude_hold_.q_B0B().conjugate() * up_B0;
   const Eigen::Matrix3d R_GB = T_CG.linear().transpose() * T_BC_.linear().transpose();
   up_G_sum_ += R_GB * up_B.normalized();
 }
@@ -346,9 +344,7 @@ perception::AutopilotCommand GapMission::Track(const control::TrajectoryPoint& r
 perception::AutopilotCommand GapMission::HoverCommand() const {
   perception::AutopilotCommand command;
   command.kind = perception::AutopilotCommand::Kind::kThrustRates;
-  command.thrust_rates.collective_thrust_mps2 = vehicle_.gravity_mps2;
-  command.thrust_rates.omega_des_B =
-      attitude_controller_.Compute(q_B0B_, Eigen::Vector3d::UnitZ(), 0.0).omega_fb_B;
+  command.thrust_rates = attitude_hold_.Command(vehicle_.gravity_mps2);
   return command;
 }
 

@@ -63,6 +63,7 @@
 #include <utility>
 #include <vector>
 
+#include "control/gyro_attitude_hold.h"
 #include "control/position_controller.h"
 #include "control/quad_state.h"
 #include "control/recovery_state_machine.h"
@@ -289,6 +290,9 @@ class GapMission : public perception::Autopilot {
   ApproachPlanner approach_planner_;
   control::PositionController controller_;
   control::AttitudeController attitude_controller_;
+  // Attitude relative to B0 (the body at the first IMU sample), integrated from the gyro until
+  // the filter starts, and the detect phase's hover holding it.
+  control::GyroAttitudeHold attitude_hold_;
   control::RecoveryStateMachine recovery_;
 
   GapMissionPhase phase_ = GapMissionPhase::kDetect;
@@ -298,8 +302,6 @@ class GapMission : public perception::Autopilot {
   // Before the filter: gravity direction (up) from the latest IMU samples, in B0 (the body at the
   // first IMU sample), and the sum of the up directions in G of the detections so far.
   std::vector<Eigen::Vector3d> recent_up_B0_;
-  // Attitude relative to B0, integrated from the gyro until the filter starts (detect).
-  Eigen::Quaterniond q_B0B_ = Eigen::Quaterniond::Identity();
   std::size_t recent_up_next_ = 0;
   Eigen::Vector3d up_G_sum_ = Eigen::Vector3d::Zero();
   std::optional<perception::ImuSample> last_imu_;
