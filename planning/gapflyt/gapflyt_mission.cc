@@ -111,6 +111,7 @@ GapflytMission::GapflytMission(const GapflytMissionParams& params,
       vehicle_(vehicle),
       odometry_(params_.odometry),
       controller_(vehicle, params_.controller),
+      attitude_hold_(params_.controller.attitude),
       servo_(params_.servo, T_BC, vehicle.rotor_drag_D_per_s.x()) {
   phase_changes_.push_back({0.0, phase_});
 }
@@ -128,6 +129,7 @@ void GapflytMission::Abort(const std::string& reason, double t_s) {
 }
 
 void GapflytMission::OnImu(const perception::ImuSample& sample) {
+  if (!odometry_.started()) attitude_hold_.AddImu(sample.t_s, sample.omega_B);
   odometry_.AddImu(sample.t_s, sample.specific_force_B, sample.omega_B);
   last_imu_t_s_ = sample.t_s;
 }
@@ -406,10 +408,11 @@ std::optional<perception::AutopilotCommand> GapflytMission::StepCalibrate(double
     EnterPhase(GapflytPhase::kSettle, t_s);
     return std::nullopt;
   }
-  // At rest on the last command: hover thrust, zero rates (the run starts hovering).
+  // At rest in the attitude the run started hovering in (control/gyro_attitude_hold.h): zero
+  // rates would let a weak rotor tilt the vehicle while the odometry calibrates "at rest".
   perception::AutopilotCommand command;
   command.kind = perception::AutopilotCommand::Kind::kThrustRates;
-  command.thrust_rates.collective_thrust_mps2 = vehicle_.gravity_mps2;
+  command.thrust_rates = attitude_hold_.Command(vehicle_.gravity_mps2);
   return command;
 }
 

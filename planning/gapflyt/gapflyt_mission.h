@@ -52,6 +52,7 @@
 #include <vector>
 
 #include "control/drag_aided_odometry.h"
+#include "control/gyro_attitude_hold.h"
 #include "control/position_controller.h"
 #include "control/quad_state.h"
 #include "control/vehicle_parameters.h"
@@ -238,6 +239,7 @@ class GapflytMission : public perception::Autopilot {
   control::VehicleParameters vehicle_;
   control::DragAidedOdometry odometry_;
   control::PositionController controller_;
+  control::GyroAttitudeHold attitude_hold_;  // calibrate: holds the start attitude on the gyro
   servo::GapServo servo_;
   std::unique_ptr<perception::FrontEndRunner> front_ends_;  // new for every scan
 
