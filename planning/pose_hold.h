@@ -21,9 +21,10 @@
 //    a_ext = R_WB (f_B - b_a) - c_prev z_B with the previous collective-thrust command c_prev and
 //    f_B the mean specific force of the IMU samples since the previous step (one sample would
 //    alias the accelerometer's noise at the IMU rate into the reference: a noisy IMU made the
-//    whole loop jitter at ~0.5 rad/s), low-passed with disturbance_time_constant_s: a disturbance observer that cancels wind gusts
-//    (rotor drag on the airspeed, (F.2)) within ~one time constant instead of letting them push
-//    the vehicle off until the PD law balances them;
+//    whole loop jitter at ~0.5 rad/s), low-passed with disturbance_time_constant_s: a
+//    disturbance observer that cancels wind gusts (rotor drag on the airspeed, (F.2)) within
+//    ~one time constant instead of letting them push the vehicle off until the PD law balances
+//    them;
 //  * the integral removes what is left in steady state (thrust-map and motor-lag errors).
 // The position error seen by the PD law is clamped to max_position_error_m (bounded tilt after
 // a push). Without a pose for longer than max_pose_age_s the hold continues on the IMU alone
