@@ -98,6 +98,9 @@ class GapflytFlight final : public MissionFlight {
       }
       f["detection"] = detection;
     }
+    if (const std::optional<Eigen::Vector3d>& offset_B = m.commit_aim_offset_B()) {
+      f["commit_aim_offset_m"] = offset_B->norm();  // before the cap max_aim_correction_m
+    }
     f["crossed"] = evaluation.crossing.has_value();
     if (!evaluation.passed) f["failure_reason"] = evaluation.failure_reason;
     if (const std::optional<GapflytCrossing>& c = evaluation.crossing) {

@@ -52,6 +52,8 @@ void GapflytMissionParams::Validate() const {
   control::RequirePositive(commit_depth_m, "GapflytMissionParams.commit_depth_m");
   control::RequirePositive(commit_error, "GapflytMissionParams.commit_error");
   control::RequireNonNegative(commit_border_px, "GapflytMissionParams.commit_border_px");
+  control::RequireNonNegative(commit_max_aim_offset_m,
+                              "GapflytMissionParams.commit_max_aim_offset_m");
   control::RequirePositive(max_servo_speed_mps, "GapflytMissionParams.max_servo_speed_mps");
   control::RequirePositive(max_servo_accel_mps2, "GapflytMissionParams.max_servo_accel_mps2");
   control::RequirePositive(go_through_speed_mps, "GapflytMissionParams.go_through_speed_mps");
@@ -241,7 +243,8 @@ void GapflytMission::ServoOnFrame(const perception::OpeningTrack& track) {
   if (!track.valid || track.contour_px.size() < 3) {
     if (++lost_frames_ >= params_.max_lost_frames) {
       // Lost where the opening already filled most of the goal view: close enough to commit.
-      if (last_track_ && last_step_ && TouchesBorder(last_track_->contour_px)) {
+      if (last_track_ && last_step_ && TouchesBorder(last_track_->contour_px) &&
+          AimWithinReach()) {
         Commit("track lost at the border", last_imu_t_s_);
       } else {
         Abort("opening track lost", last_imu_t_s_);
@@ -252,7 +255,7 @@ void GapflytMission::ServoOnFrame(const perception::OpeningTrack& track) {
   lost_frames_ = 0;
   ++frames_tracked_;
   last_track_ = track;
-  if (TouchesBorder(track.contour_px)) {
+  if (TouchesBorder(track.contour_px) && AimWithinReach()) {
     Commit("opening at the image border", last_imu_t_s_);
     return;
   }
@@ -289,9 +292,8 @@ void GapflytMission::ServoOnFrame(const perception::OpeningTrack& track) {
   }
 }
 
-Eigen::Vector3d GapflytMission::AimCorrection() const {
-  const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
-  if (params_.max_aim_correction_m <= 0.0 || !detection_ || !last_track_) return zero;
+std::optional<Eigen::Vector3d> GapflytMission::AimOffsetB() const {
+  if (!detection_ || !last_track_) return std::nullopt;
   // Wall distance at the scan: the stacked mean flow of the wall (F mode) is f |b| / Z_F over the
   // stack's mean baseline, offsets +-stride .. +-(N/2) stride frames at the scan's speed
   // (seed 002 Sec. II: flow magnitude = inverse depth times the baseline).
@@ -299,11 +301,14 @@ Eigen::Vector3d GapflytMission::AimCorrection() const {
   const double mean_baseline_m = params_.scan_speed_mps / params_.camera_rate_hz *
                                  params_.ts2p.stride * 0.5 * (half_stack + 1);
   const double f_px = camera_->intrinsics().x();
-  if (!(detection_->foreground_flow_px > 0.0)) return zero;
   const double wall_at_scan_m = f_px * mean_baseline_m / detection_->foreground_flow_px;
   const Eigen::Vector3d forward_W =
       Eigen::AngleAxisd(heading_rad_, Eigen::Vector3d::UnitZ()) * Eigen::Vector3d::UnitX();
-  const double wall_m = wall_at_scan_m - (estimate().p_WB - detection_p_W_).dot(forward_W);
+  double wall_m = wall_at_scan_m - (estimate().p_WB - detection_p_W_).dot(forward_W);
+  // The odometry's forward travel ran past the wall (a gust: the drag-aided odometry measures the
+  // air-relative velocity, control/drag_aided_odometry.h) or the scan saw no wall flow: the goal
+  // view's nominal depth, near which the opening fills the view.
+  if (!std::isfinite(wall_m) || wall_m <= 0.0) wall_m = params_.commit_depth_m;
   // Image points on the wall, in the level body frame: from the camera's optical centre (its
   // lever arm on the body) along the level-view ray to the wall.
   const auto on_wall_B = [&](const Eigen::Vector2d& n) -> std::optional<Eigen::Vector3d> {
@@ -313,9 +318,9 @@ Eigen::Vector3d GapflytMission::AimCorrection() const {
   };
   const std::optional<std::vector<Eigen::Vector2d>> safe_n =
       LevelNormalized({last_track_->safe_point_px});
-  if (!safe_n || !(wall_m > 0.0)) return zero;
+  if (!safe_n) return std::nullopt;
   const std::optional<Eigen::Vector3d> safe_B = on_wall_B(safe_n->front());
-  if (!safe_B) return zero;
+  if (!safe_B) return std::nullopt;
   Eigen::Vector3d offset_B = *safe_B;
   // The contour on the wall in the plane's (right, down) = (-y_B, -z_B) coordinates.
   std::vector<Eigen::Vector2d> polygon;
@@ -337,16 +342,23 @@ Eigen::Vector3d GapflytMission::AimCorrection() const {
     }
   }
   offset_B.x() = 0.0;  // only sideways and vertically: the line still runs along the heading
-  if (offset_B.norm() > params_.max_aim_correction_m) {
-    offset_B *= params_.max_aim_correction_m / offset_B.norm();
-  }
-  return Eigen::AngleAxisd(heading_rad_, Eigen::Vector3d::UnitZ()) * offset_B;
+  return offset_B;
+}
+
+bool GapflytMission::AimWithinReach() const {
+  const std::optional<Eigen::Vector3d> offset_B = AimOffsetB();
+  return !offset_B || offset_B->norm() <= params_.commit_max_aim_offset_m;
 }
 
 void GapflytMission::Commit(const std::string& reason, double t_s) {
   reason_ = reason;
   commit_t_s_ = t_s;
-  aim_correction_W_ = AimCorrection();
+  commit_aim_offset_B_ = AimOffsetB();
+  Eigen::Vector3d correction_B = commit_aim_offset_B_.value_or(Eigen::Vector3d::Zero());
+  if (correction_B.norm() > params_.max_aim_correction_m) {
+    correction_B *= params_.max_aim_correction_m / correction_B.norm();
+  }
+  aim_correction_W_ = Eigen::AngleAxisd(heading_rad_, Eigen::Vector3d::UnitZ()) * correction_B;
   go_through_start_W_ = estimate().p_WB + aim_correction_W_;
   hold_p_W_ = go_through_start_W_;
   EnterPhase(GapflytPhase::kGoThrough, t_s);

@@ -28,14 +28,16 @@
 //              reference goes to the flatness/position controller (velocity tracking: the
 //              position reference follows the estimate).
 //   go_through (commit) when the tracked contour reaches commit_border_px of the image border (the
-//              opening is about to fill the view), the moment servo's error is below
-//              commit_error, or the track is lost within commit_area_fraction's view: straight
+//              opening is about to fill the view) with the aimed line within
+//              commit_max_aim_offset_m, the moment servo's error is below commit_error, or the
+//              track is lost within commit_area_fraction's view (same aim rule): straight
 //              along the heading at go_through_speed_mps for go_through_distance_m on the
 //              odometry, on a line aimed through the last safe point (max_aim_correction_m).
 //              Blind, as in the paper once the gap fills the view.
 //   stop       position hold where go_through ended for stop_hold_s, then done.
-//   aborted    no opening after max_scans scans, or the track lost before the commit: position
-//              hold where it happened (the run ends on its duration).
+//   aborted    no opening after max_scans scans, or the track lost before the commit (or at the
+//              border with the aimed line out of reach): position hold where it happened (the
+//              run ends on its duration).
 //
 // Front ends: `ts2p` (perception::Ts2pNode) and `gap_tracker` (perception::GapTrackerNode), the
 // nodes `aperture run --frontends ts2p,gap_tracker` runs, hosted in a perception::FrontEndRunner.
@@ -121,6 +123,12 @@ struct GapflytMissionParams {
   // Commit when the tracked contour comes within this many pixels of the image border while it
   // covers at least half the goal view's commit_area_fraction (a nearby opening filling the view).
   double commit_border_px = 4.0;
+  // ... and the aimed line (through the safe point, see max_aim_correction_m) lies within this
+  // distance of the vehicle [m]: a gust that pushed the vehicle aside also brings the opening to
+  // the border, and committing there flew the line from 0.65 m off centre into the wall (SITL,
+  // 2.5 m/s gusts); farther off, the servo goes on centring (or, if the track is lost there, the
+  // mission aborts to a hover). max_aim_correction_m plus ~0.1 m the opening's margin absorbs.
+  double commit_max_aim_offset_m = 0.35;
   // Speed limit of the servo's velocity reference [m/s] (the moment law's first steps are large).
   double max_servo_speed_mps = 1.2;
   // Rate limit of the servo's forward velocity reference [m/s^2]: the PID's forward speed (theta_0)
@@ -204,6 +212,9 @@ class GapflytMission : public perception::Autopilot {
   const std::vector<GapflytServoSample>& servo_trace() const { return servo_trace_; }
   // The aim correction applied at the commit (odometry frame) [m].
   const Eigen::Vector3d& aim_correction_W() const { return aim_correction_W_; }
+  // The aimed line's offset from the vehicle at the commit before the cap (level body frame's
+  // y_B, z_B; x = 0) [m]; nullopt before the commit or when it was unknown.
+  const std::optional<Eigen::Vector3d>& commit_aim_offset_B() const { return commit_aim_offset_B_; }
   // Overlay of the latest processed frame: the front ends' (contour, safe point, F/B corners),
   // the FOE, the body axis's image and the phase.
   void DrawOverlay(cv::Mat& bgr) const;
@@ -272,8 +283,12 @@ class GapflytMission : public perception::Autopilot {
   Eigen::Vector3d go_through_start_W_ = Eigen::Vector3d::Zero();  // on the aimed line
   Eigen::Vector3d detection_p_W_ = Eigen::Vector3d::Zero();       // odometry at the detection
   Eigen::Vector3d aim_correction_W_ = Eigen::Vector3d::Zero();
-  // The line's offset from the commit position towards the safe point (zero when unknown).
-  Eigen::Vector3d AimCorrection() const;
+  std::optional<Eigen::Vector3d> commit_aim_offset_B_;
+  // The line through the last tracked safe point (or where the footprint fits best), relative to
+  // the vehicle in the level body frame (x = 0), uncapped; nullopt when unknown.
+  std::optional<Eigen::Vector3d> AimOffsetB() const;
+  // A commit at the border may fly: the aimed line within commit_max_aim_offset_m (or unknown).
+  bool AimWithinReach() const;
   double last_imu_t_s_ = std::numeric_limits<double>::quiet_NaN();
 };
 

@@ -26,6 +26,7 @@ void LoadParams(config::ParamReader& reader, GapflytMissionParams* params) {
   reader.Read("commit_depth_m", &params->commit_depth_m);
   reader.Read("commit_error", &params->commit_error);
   reader.Read("commit_border_px", &params->commit_border_px);
+  reader.Read("commit_max_aim_offset_m", &params->commit_max_aim_offset_m);
   reader.Read("max_servo_speed_mps", &params->max_servo_speed_mps);
   reader.Read("max_servo_accel_mps2", &params->max_servo_accel_mps2);
   reader.Read("go_through_speed_mps", &params->go_through_speed_mps);

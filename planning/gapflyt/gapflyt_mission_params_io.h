@@ -14,6 +14,7 @@
 //     commit_depth_m: 1.0
 //     commit_error: 0.1
 //     commit_border_px: 4
+//     commit_max_aim_offset_m: 0.35
 //     max_servo_speed_mps: 1.2
 //     max_servo_accel_mps2: 1.0
 //     go_through_speed_mps: 1.0
