@@ -55,9 +55,8 @@ void PoseHoldParams::Validate() const {
     throw std::invalid_argument("PoseHoldParams.max_consecutive_rejections must be >= 1, got " +
                                 std::to_string(max_consecutive_rejections));
   }
-  control::Require(std::isfinite(max_process_noise_scale) && max_process_noise_scale >= 1.0,
-                   "PoseHoldParams.max_process_noise_scale", max_process_noise_scale,
-                   "must be finite and >= 1 (1: off)");
+  perception::RequireProcessNoiseScale(max_process_noise_scale,
+                                       "PoseHoldParams.max_process_noise_scale");
 }
 
 PoseHold::PoseHold(const control::VehicleParameters& vehicle, const PoseHoldParams& params,

@@ -227,11 +227,7 @@ void PoseFusion::StartAt(const PoseImuEstimate& initial) {
 }
 
 void PoseFusion::AdaptProcessNoise(double max_scale) {
-  if (!(std::isfinite(max_scale) && max_scale >= 1.0)) {
-    throw std::invalid_argument(
-        "PoseFusion::AdaptProcessNoise max_scale must be finite and >= 1, got " +
-        std::to_string(max_scale));
-  }
+  RequireProcessNoiseScale(max_scale, "PoseFusion::AdaptProcessNoise max_scale");
   max_process_noise_scale_ = max_scale;
 }
 

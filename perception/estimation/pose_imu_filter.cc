@@ -185,11 +185,13 @@ void PoseImuFilter::PropagateBetween(const Entry& from, const Entry& to, Nominal
   *P = 0.5 * (*P + P->transpose());
 }
 
+void RequireProcessNoiseScale(double scale, const std::string& name) {
+  control::Require(std::isfinite(scale) && scale >= 1.0, name, scale,
+                   "must be finite and >= 1 (1: off)");
+}
+
 void PoseImuFilter::SetProcessNoiseScale(double scale) {
-  if (!(std::isfinite(scale) && scale >= 1.0)) {
-    throw std::invalid_argument("PoseImuFilter process noise scale must be finite and >= 1, got " +
-                                std::to_string(scale));
-  }
+  RequireProcessNoiseScale(scale, "PoseImuFilter process noise scale");
   process_noise_scale_ = scale;
 }
 

@@ -48,6 +48,7 @@
 #include <Eigen/Geometry>
 #include <deque>
 #include <iosfwd>
+#include <string>
 
 #include "control/quad_state.h"
 #include "perception/imu_noise_params.h"
@@ -132,6 +133,11 @@ struct PoseImuEstimate {
 // and the diagonal covariance of the params' initial sigmas. Throws for invalid params.
 PoseImuEstimate InitialEstimate(const PoseImuFilterParams& params,
                                 const control::QuadState& state);
+
+// The one rule for a process-noise scale (SetProcessNoiseScale) or its adaptation's ceiling
+// (PoseFusion::AdaptProcessNoise, the missions' max_process_noise_scale): finite and >= 1
+// (1: off). Throws std::invalid_argument "<name> = <value> must be finite and >= 1 (1: off)".
+void RequireProcessNoiseScale(double scale, const std::string& name);
 
 class PoseImuFilter {
  public:

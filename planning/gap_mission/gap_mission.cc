@@ -48,10 +48,8 @@ void GapMissionParams::Validate() const {
   control::RequireNonNegative(recovered_hold_s, "GapMissionParams.recovered_hold_s");
   control::RequireNonNegative(recovery_odometry_delay_s,
                               "GapMissionParams.recovery_odometry_delay_s");
-  control::Require(
-      std::isfinite(recovery_max_process_noise_scale) && recovery_max_process_noise_scale >= 1.0,
-      "GapMissionParams.recovery_max_process_noise_scale", recovery_max_process_noise_scale,
-      "must be finite and >= 1 (1: off)");
+  perception::RequireProcessNoiseScale(recovery_max_process_noise_scale,
+                                       "GapMissionParams.recovery_max_process_noise_scale");
   control::Require(recovery_odometry_alignment_poses >= 1,
                    "GapMissionParams.recovery_odometry_alignment_poses",
                    recovery_odometry_alignment_poses, "must be >= 1");
