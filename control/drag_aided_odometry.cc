@@ -17,6 +17,11 @@ void DragAidedOdometryParams::Validate() const {
   RequirePositive(velocity_time_constant_s, "DragAidedOdometryParams.velocity_time_constant_s");
   RequirePositive(calibration_s, "DragAidedOdometryParams.calibration_s");
   RequirePositive(max_range_innovation_m, "DragAidedOdometryParams.max_range_innovation_m");
+  RequirePositive(wind_residual_time_constant_s,
+                  "DragAidedOdometryParams.wind_residual_time_constant_s");
+  RequirePositive(wind_gate_mps, "DragAidedOdometryParams.wind_gate_mps");
+  RequireNonNegative(wind_gate_sigmas, "DragAidedOdometryParams.wind_gate_sigmas");
+  RequireNonNegative(max_wind_coast_s, "DragAidedOdometryParams.max_wind_coast_s");
 }
 
 DragAidedOdometry::DragAidedOdometry(const DragAidedOdometryParams& params)
@@ -48,10 +53,22 @@ void DragAidedOdometry::Calibrate(double t_s, const Eigen::Vector3d& f_B,
   if (!first_t_s_) first_t_s_ = t_s;
   omega_sum_B_ += omega_B;
   f_xy_sum_B_ += f_B.head<2>();
+  f_xy_squares_B_ += f_B.head<2>().cwiseAbs2();
   ++calibration_samples_;
   if (t_s - *first_t_s_ < params_.calibration_s) return;
-  gyro_bias_B_ = omega_sum_B_ / calibration_samples_;
-  accel_bias_xy_B_ = f_xy_sum_B_ / calibration_samples_;
+  const double n = calibration_samples_;
+  gyro_bias_B_ = omega_sum_B_ / n;
+  accel_bias_xy_B_ = f_xy_sum_B_ / n;
+  // The wind gate: the accelerometer's per-sample spread at rest, as drag velocity (/ d), through
+  // the residual's low-pass (variance sigma^2 dt / (2 tau) for white noise at sample step dt).
+  const Eigen::Vector2d variance_f =
+      (f_xy_squares_B_ / n - accel_bias_xy_B_.cwiseAbs2()).cwiseMax(0.0);
+  const double sigma_v_mps =
+      variance_f.cwiseSqrt().cwiseQuotient(params_.rotor_drag_xy_per_s).maxCoeff();
+  const double sample_dt_s = n > 1 ? (t_s - *first_t_s_) / (n - 1) : 0.0;
+  const double sigma_lp_mps =
+      sigma_v_mps * std::sqrt(sample_dt_s / (2.0 * params_.wind_residual_time_constant_s));
+  wind_gate_mps_ = std::max(params_.wind_gate_mps, params_.wind_gate_sigmas * sigma_lp_mps);
   ImuAttitudeEstimatorParams attitude = params_.attitude;
   attitude.gyro_bias_B = gyro_bias_B_;
   attitude.accel_bias_B = Eigen::Vector3d(accel_bias_xy_B_.x(), accel_bias_xy_B_.y(), 0.0);
@@ -101,8 +118,16 @@ void DragAidedOdometry::Propagate(double t_s, const Eigen::Vector3d& f_B,
   // Correction (F.2): the horizontal body velocity the rotor drag says.
   Eigen::Vector3d v_B = R_WB.transpose() * v_W_;
   const Eigen::Vector2d v_drag_B = -f_hat_B.head<2>().cwiseQuotient(params_.rotor_drag_xy_per_s);
-  const double k = std::min(1.0, dt_s / params_.velocity_time_constant_s);
-  v_B.head<2>() += k * (v_drag_B - v_B.head<2>());
+  const Eigen::Vector2d residual_B = v_drag_B - v_B.head<2>();
+  residual_lp_B_ += std::min(1.0, dt_s / params_.wind_residual_time_constant_s) *
+                    (residual_B - residual_lp_B_);
+  if (residual_lp_B_.norm() > wind_gate_mps_ && coast_s_ < params_.max_wind_coast_s) {
+    coast_s_ += dt_s;  // wind: the prediction alone
+  } else {
+    if (residual_lp_B_.norm() <= wind_gate_mps_) coast_s_ = 0.0;
+    const double k = std::min(1.0, dt_s / params_.velocity_time_constant_s);
+    v_B.head<2>() += k * residual_B;
+  }
   v_W_ = R_WB * v_B;
   v_W_.z() = height_.estimate().z_dot_mps;
   p_W_.head<2>() += v_W_.head<2>() * dt_s;

@@ -10,6 +10,10 @@ namespace {
 void LoadOdometry(config::ParamReader& reader, control::DragAidedOdometryParams* params) {
   reader.Read("velocity_time_constant_s", &params->velocity_time_constant_s);
   reader.Read("calibration_s", &params->calibration_s);
+  reader.Read("wind_residual_time_constant_s", &params->wind_residual_time_constant_s);
+  reader.Read("wind_gate_mps", &params->wind_gate_mps);
+  reader.Read("wind_gate_sigmas", &params->wind_gate_sigmas);
+  reader.Read("max_wind_coast_s", &params->max_wind_coast_s);
   reader.RejectUnknownKeys();
 }
 

@@ -24,7 +24,8 @@
 //     go_through_distance_m: 1.8
 //     stop_hold_s: 1.0
 //     max_lost_frames: 3
-//     odometry: {velocity_time_constant_s: 0.3, calibration_s: 0.5}
+//     odometry: {velocity_time_constant_s: 0.3, calibration_s: 0.5, wind_gate_mps: 0.4,
+//                wind_gate_sigmas: 5, wind_residual_time_constant_s: 0.1, max_wind_coast_s: 1.5}
 //     ts2p: {...}          # Ts2pNodeParams (perception/ts2p/ts2p_node.h); interval is ignored
 //     gap_tracker: {...}   # LabelTrackerParams (perception/ts2p/label_tracker.h)
 //     servo: {law: moments | pid, moments: {...}, pid: {...}}   # servo/servo_params_io.h

@@ -169,6 +169,8 @@ TEST(GapflytMissionParamsTest, BadParametersAndScenariosAreNamed) {
   expect_error("gapflyt", "mission.scan_speed_mps=-1", "scan_speed_mps");
   expect_error("gapflyt", "mission.servo.law=visual", "visual");
   expect_error("gapflyt", "mission.scan_cruise_s=0.1", "scan_cruise_s");  // < the ts2p window
+  expect_error("gapflyt", "mission.odometry.wind_gate_mps=0", "wind_gate_mps");
+  expect_error("gapflyt", "mission.commit_max_aim_offset_m=-0.1", "commit_max_aim_offset_m");
   expect_error("gap", "mission.settle_s=1", "gapflyt scenario");
 }
 

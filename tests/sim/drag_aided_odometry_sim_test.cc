@@ -4,7 +4,9 @@
 // state at every IMU sample after the calibration.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
 
 #include "control/drag_aided_odometry.h"
 #include "sim/sitl/ground_truth_autopilot.h"
@@ -12,6 +14,54 @@
 
 namespace aperture::control {
 namespace {
+
+// The odometry on a recorded flight's IMU and range readings, compared with the true state at
+// every IMU sample after the calibration (in the odometry's frame: level, heading 0, origin below
+// the start at the ground, so horizontal positions compare relative to the start).
+struct OdometryErrors {
+  double max_velocity_mps = 0.0, rms_velocity_xy_mps = 0.0, max_tilt_rad = 0.0;
+  double max_height_m = 0.0, end_position_xy_m = 0.0, peak_speed_mps = 0.0;
+  int compared = 0;
+  int coasting = 0;  // samples with the velocity coasting through suspected wind
+};
+
+OdometryErrors Replay(const sim::SitlResult& result, const Eigen::Vector3d& start_p_W,
+                      DragAidedOdometry* odometry) {
+  OdometryErrors errors;
+  std::size_t range_index = 0, truth_index = 0;
+  double squared_velocity_error = 0.0;
+  for (const perception::ImuSample& sample : result.imu) {
+    while (range_index < result.range.size() && result.range[range_index].t_s <= sample.t_s) {
+      if (result.range[range_index].valid) odometry->AddRange(result.range[range_index].range_m);
+      ++range_index;
+    }
+    odometry->AddImu(sample.t_s, sample.specific_force_B, sample.omega_B);
+    if (!odometry->started()) continue;
+    while (truth_index + 1 < result.trajectory.size() &&
+           result.trajectory[truth_index + 1].t_s <= sample.t_s) {
+      ++truth_index;
+    }
+    const QuadState& truth = result.trajectory[truth_index];
+    const QuadState estimate = odometry->estimate();
+    errors.max_velocity_mps = std::max(errors.max_velocity_mps, (estimate.v_W - truth.v_W).norm());
+    const Eigen::Vector3d z_true = truth.q_WB * Eigen::Vector3d::UnitZ();
+    const Eigen::Vector3d z_est = estimate.q_WB * Eigen::Vector3d::UnitZ();
+    errors.max_tilt_rad = std::max(errors.max_tilt_rad, std::acos(std::min(1.0, z_true.dot(z_est))));
+    errors.max_height_m =
+        std::max(errors.max_height_m, std::abs(estimate.p_WB.z() - truth.p_WB.z()));
+    errors.peak_speed_mps = std::max(errors.peak_speed_mps, truth.v_W.norm());
+    squared_velocity_error += (estimate.v_W - truth.v_W).head<2>().squaredNorm();
+    errors.coasting += odometry->coasting() ? 1 : 0;
+    ++errors.compared;
+  }
+  if (errors.compared > 0) {
+    errors.rms_velocity_xy_mps = std::sqrt(squared_velocity_error / errors.compared);
+  }
+  const QuadState end = odometry->estimate();
+  errors.end_position_xy_m =
+      (end.p_WB.head<2>() - (result.trajectory.back().p_WB - start_p_W).head<2>()).norm();
+  return errors;
+}
 
 class DragAidedOdometrySimTest : public ::testing::TestWithParam<int> {};
 
@@ -36,61 +86,89 @@ TEST_P(DragAidedOdometrySimTest, TracksTheTrueVelocityAttitudeAndHeight) {
   DragAidedOdometryParams odometry_params;
   odometry_params.rotor_drag_xy_per_s = params.dynamics.vehicle.rotor_drag_D_per_s.head<2>();
   DragAidedOdometry odometry(odometry_params);
-  std::size_t range_index = 0, truth_index = 0;
-  double max_velocity_error = 0.0, max_tilt_error_rad = 0.0, max_height_error = 0.0;
-  double peak_speed = 0.0, squared_velocity_error = 0.0;
-  int compared = 0;
-  for (const perception::ImuSample& sample : result.imu) {
-    while (range_index < result.range.size() && result.range[range_index].t_s <= sample.t_s) {
-      if (result.range[range_index].valid) odometry.AddRange(result.range[range_index].range_m);
-      ++range_index;
-    }
-    odometry.AddImu(sample.t_s, sample.specific_force_B, sample.omega_B);
-    if (!odometry.started()) continue;
-    while (truth_index + 1 < result.trajectory.size() &&
-           result.trajectory[truth_index + 1].t_s <= sample.t_s) {
-      ++truth_index;
-    }
-    const QuadState& truth = result.trajectory[truth_index];
-    const QuadState estimate = odometry.estimate();
-    // After the calibration the estimate's frame is the start's: level, heading 0, origin below
-    // the start at the ground, so positions compare in x, y relative to the start.
-    max_velocity_error = std::max(max_velocity_error, (estimate.v_W - truth.v_W).norm());
-    const Eigen::Vector3d z_true = truth.q_WB * Eigen::Vector3d::UnitZ();
-    const Eigen::Vector3d z_est = estimate.q_WB * Eigen::Vector3d::UnitZ();
-    max_tilt_error_rad = std::max(max_tilt_error_rad, std::acos(std::min(1.0, z_true.dot(z_est))));
-    max_height_error = std::max(max_height_error, std::abs(estimate.p_WB.z() - truth.p_WB.z()));
-    peak_speed = std::max(peak_speed, truth.v_W.norm());
-    squared_velocity_error += (estimate.v_W - truth.v_W).head<2>().squaredNorm();
-    ++compared;
-  }
-  ASSERT_GT(compared, 3000);   // 500 Hz over > 6 s
-  ASSERT_GT(peak_speed, 0.8);  // the dash exercised the drag measurement
+  const OdometryErrors errors = Replay(result, params.initial_state.p_WB, &odometry);
+  ASSERT_GT(errors.compared, 3000);      // 500 Hz over > 6 s
+  ASSERT_GT(errors.peak_speed_mps, 0.8);  // the dash exercised the drag measurement
   // The calibration at "rest": the flight controller's rate loop runs on the biased gyro, so the
   // vehicle turns at -b_gyro and drifts by a few cm/s while the odometry averages f_B, which
   // biases the x_B, y_B accelerometer calibration by d v ~ 0.01 m/s^2 (the noise alone: 0.006).
   EXPECT_NEAR(odometry.accel_bias_xy_B().x(), 0.05, 0.015);
   EXPECT_NEAR(odometry.accel_bias_xy_B().y(), -0.04, 0.015);
   EXPECT_NEAR(odometry.gyro_bias_B().x(), 0.004, 1e-3);
+  // The default IMU's noise keeps the wind gate at its floor.
+  EXPECT_DOUBLE_EQ(odometry.wind_gate_mps(), odometry_params.wind_gate_mps);
   // Horizontal velocity: that calibration error divided by d_y = 0.35 is a ~3-4 cm/s offset; the
   // drag measurement also lags the thrust tilt by the motor lag in the dash's accelerations. RMS 6
   // cm/s and 0.3 m/s at worst fail a wrong drag sign or coefficient (errors of the order of the
   // speed).
-  EXPECT_LT(std::sqrt(squared_velocity_error / compared), 0.06);
-  EXPECT_LT(max_velocity_error, 0.3);
+  EXPECT_LT(errors.rms_velocity_xy_mps, 0.06);
+  EXPECT_LT(errors.max_velocity_mps, 0.3);
   // Attitude: 2 deg; the accelerometer update is gated out in the accelerations.
-  EXPECT_LT(max_tilt_error_rad, 2.0 * M_PI / 180.0);
+  EXPECT_LT(errors.max_tilt_rad, 2.0 * M_PI / 180.0);
   // Height from the 2 cm range sensor: 5 cm.
-  EXPECT_LT(max_height_error, 0.05);
+  EXPECT_LT(errors.max_height_m, 0.05);
   // Position drift: the velocity offset integrated over the 8.5 s after the calibration, 0.35 m
   // (the mission needs ~1 m of it between the scan and the stop beyond the wall).
-  const QuadState end = odometry.estimate();
-  const QuadState& truth_end = result.trajectory.back();
-  EXPECT_LT((end.p_WB.head<2>() - (truth_end.p_WB - params.initial_state.p_WB).head<2>()).norm(),
-            0.35);
+  EXPECT_LT(errors.end_position_xy_m, 0.35);
+}
+
+// A 2.5 m/s gust for 1 s (`aperture bench faults`' default gust) while a ground-truth autopilot
+// holds a hover: the drag measurement reads the airspeed, 2.5 m/s off the true velocity at once.
+// The wind gate coasts through it on the integrated acceleration; without the gate the estimate
+// follows the air (the GapFlyt mission then flew into the wall with the gust).
+TEST(DragAidedOdometryWindTest, CoastsThroughAGustInsteadOfFollowingTheAir) {
+  sim::SitlRunnerParams params;
+  params.duration_s = 6.0;
+  params.initial_state.p_WB = Eigen::Vector3d(0.0, 0.0, 1.5);
+  params.SetSeed(3);
+  params.disturbances.gusts.push_back({2.0, 1.0, Eigen::Vector3d(1.5, -2.0, 0.0)});
+  sim::GroundTruthAutopilotParams autopilot_params;
+  autopilot_params.waypoints = {{{0.0, 0.0, 1.5}, 0.0, 0.0}};
+  sim::GroundTruthAutopilot autopilot(params.dynamics.vehicle, autopilot_params);
+  const sim::SitlResult result = sim::SitlRunner(params, nullptr).Run(autopilot);
+  ASSERT_EQ(result.outcome, sim::SitlResult::Outcome::kDurationReached) << result.reason;
+
+  DragAidedOdometryParams gated;
+  gated.rotor_drag_xy_per_s = params.dynamics.vehicle.rotor_drag_D_per_s.head<2>();
+  DragAidedOdometryParams ungated = gated;
+  ungated.wind_gate_mps = 1e9;
+  DragAidedOdometry with_gate(gated), without_gate(ungated);
+  const OdometryErrors on = Replay(result, params.initial_state.p_WB, &with_gate);
+  const OdometryErrors off = Replay(result, params.initial_state.p_WB, &without_gate);
+  // Coasting for about the gust (1 s = 500 samples, plus the residual's settling at both ends).
+  EXPECT_GT(on.coasting, 400);
+  EXPECT_LT(on.coasting, 700);
+  EXPECT_EQ(off.coasting, 0);
+  EXPECT_GT(off.max_velocity_mps, 1.5);  // follows the 2.5 m/s air
+  EXPECT_LT(on.max_velocity_mps, 0.3);
+  // Position: 0.18 m here (the ~20 ms before the low-passed residual crosses the gate at both of
+  // the gust's ends, and the prediction's drift while coasting) against 2.5 m without the gate.
+  EXPECT_LT(on.end_position_xy_m, 0.3);
+  EXPECT_GT(off.end_position_xy_m, 0.8);
 }
 
 INSTANTIATE_TEST_SUITE_P(Seeds, DragAidedOdometrySimTest, ::testing::Values(1, 2));
+
+// The gate follows the accelerometer's noise measured at rest: sigma / d through the residual's
+// low-pass, times wind_gate_sigmas, once that exceeds the floor.
+TEST(DragAidedOdometryWindTest, TheGateRisesWithTheAccelerometersNoise) {
+  DragAidedOdometryParams params;
+  params.rotor_drag_xy_per_s = Eigen::Vector2d(0.5, 0.35);
+  DragAidedOdometry odometry(params);
+  std::mt19937_64 rng(7);
+  const double sigma_mps2 = 0.6;  // per sample: ~x10 the simulator's default IMU at 500 Hz
+  std::normal_distribution<double> noise(0.0, sigma_mps2);
+  const double dt_s = 0.002;
+  for (int i = 0; odometry.wind_gate_mps() == 0.0 && i < 1000; ++i) {
+    odometry.AddImu(i * dt_s, Eigen::Vector3d(noise(rng), noise(rng), 9.81),
+                    Eigen::Vector3d::Zero());
+  }
+  // y has the smaller drag coefficient: the larger velocity noise.
+  const double expected = params.wind_gate_sigmas * sigma_mps2 / 0.35 *
+                          std::sqrt(dt_s / (2.0 * params.wind_residual_time_constant_s));
+  ASSERT_GT(expected, params.wind_gate_mps);
+  EXPECT_NEAR(odometry.wind_gate_mps(), expected, 0.1 * expected);
+}
 
 TEST(DragAidedOdometryTest, RejectsBadInput) {
   DragAidedOdometryParams params;
