@@ -121,7 +121,8 @@ void DragAidedOdometry::Propagate(double t_s, const Eigen::Vector3d& f_B,
   const Eigen::Vector2d residual_B = v_drag_B - v_B.head<2>();
   residual_lp_B_ += std::min(1.0, dt_s / params_.wind_residual_time_constant_s) *
                     (residual_B - residual_lp_B_);
-  if (residual_lp_B_.norm() > wind_gate_mps_ && coast_s_ < params_.max_wind_coast_s) {
+  coasting_ = residual_lp_B_.norm() > wind_gate_mps_ && coast_s_ < params_.max_wind_coast_s;
+  if (coasting_) {
     coast_s_ += dt_s;  // wind: the prediction alone
   } else {
     if (residual_lp_B_.norm() <= wind_gate_mps_) coast_s_ = 0.0;

@@ -102,9 +102,10 @@ class DragAidedOdometry {
   const Eigen::Vector3d& gyro_bias_B() const { return gyro_bias_B_; }
   const Eigen::Vector2d& accel_bias_xy_B() const { return accel_bias_xy_B_; }
   int ranges_rejected() const { return ranges_rejected_; }
-  // The wind gate in use [m/s] (after the calibration) and whether the velocity coasts now.
+  // The wind gate in use [m/s] (after the calibration) and whether the latest sample's velocity
+  // coasted (false once max_wind_coast_s has run out).
   double wind_gate_mps() const { return wind_gate_mps_; }
-  bool coasting() const { return coast_s_ > 0.0; }
+  bool coasting() const { return coasting_; }
 
  private:
   void Calibrate(double t_s, const Eigen::Vector3d& f_B, const Eigen::Vector3d& omega_B);
@@ -132,6 +133,7 @@ class DragAidedOdometry {
   double wind_gate_mps_ = 0.0;
   Eigen::Vector2d residual_lp_B_ = Eigen::Vector2d::Zero();  // drag velocity - prediction
   double coast_s_ = 0.0;                                     // of the current coast
+  bool coasting_ = false;
 };
 
 }  // namespace aperture::control
