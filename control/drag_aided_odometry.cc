@@ -22,6 +22,7 @@ void DragAidedOdometryParams::Validate() const {
   RequirePositive(wind_gate_mps, "DragAidedOdometryParams.wind_gate_mps");
   RequireNonNegative(wind_gate_sigmas, "DragAidedOdometryParams.wind_gate_sigmas");
   RequireNonNegative(max_wind_coast_s, "DragAidedOdometryParams.max_wind_coast_s");
+  RequirePositive(max_correction_noise, "DragAidedOdometryParams.max_correction_noise");
 }
 
 DragAidedOdometry::DragAidedOdometry(const DragAidedOdometryParams& params)
@@ -69,6 +70,10 @@ void DragAidedOdometry::Calibrate(double t_s, const Eigen::Vector3d& f_B,
   const double sigma_lp_mps =
       sigma_v_mps * std::sqrt(sample_dt_s / (2.0 * params_.wind_residual_time_constant_s));
   wind_gate_mps_ = std::max(params_.wind_gate_mps, params_.wind_gate_sigmas * sigma_lp_mps);
+  // The drag velocity's noise density q_v = sigma_v sqrt(dt); tau = q_v / max_correction_noise.
+  velocity_time_constant_s_ =
+      std::max(params_.velocity_time_constant_s,
+               sigma_v_mps * std::sqrt(sample_dt_s) / params_.max_correction_noise);
   ImuAttitudeEstimatorParams attitude = params_.attitude;
   attitude.gyro_bias_B = gyro_bias_B_;
   attitude.accel_bias_B = Eigen::Vector3d(accel_bias_xy_B_.x(), accel_bias_xy_B_.y(), 0.0);
@@ -126,7 +131,7 @@ void DragAidedOdometry::Propagate(double t_s, const Eigen::Vector3d& f_B,
     coast_s_ += dt_s;  // wind: the prediction alone
   } else {
     if (residual_lp_B_.norm() <= wind_gate_mps_) coast_s_ = 0.0;
-    const double k = std::min(1.0, dt_s / params_.velocity_time_constant_s);
+    const double k = std::min(1.0, dt_s / velocity_time_constant_s_);
     v_B.head<2>() += k * residual_B;
   }
   v_W_ = R_WB * v_B;

@@ -32,6 +32,14 @@
 //             the air; a wind that stays is taken as velocity after that (it then drifts as
 //             without the gate). The innovation gate with a timeout of navigation filters
 //             (e.g. PX4's EKF2).
+//   noise     the correction passes the accelerometer's white noise (density sigma_c) to the
+//             velocity's derivative as white noise of density q_v / tau, q_v = sigma_c / d_y
+//             (the drag velocity's noise), tau the velocity time constant; through a position
+//             controller's velocity gain it becomes tilt-command rate: x10 the default IMU noise
+//             at tau = 0.3 s makes a hover's roll/pitch rate jitter ~0.6 rad/s (x1: ~0.06). The
+//             calibration measures sigma_c and lengthens tau to q_v / max_correction_noise when
+//             that is longer (x10: ~1.5 s). A longer tau costs little: with an accelerometer bias
+//             error b the velocity settles b (tau - 1 / d) off, smaller in size up to tau = 2 / d.
 //
 // Inputs in time order; Step-free: every IMU sample propagates. Throws std::invalid_argument for
 // invalid params or non-finite / out-of-order samples.
@@ -67,6 +75,9 @@ struct DragAidedOdometryParams {
   // 0.3 s smooths to ~1 cm/s; long against the motor lag that makes f_B,xy lag the thrust tilt
   // during fast manoeuvres, short against the drift of the integrated acceleration.
   double velocity_time_constant_s = 0.3;
+  // The largest density of the correction's noise in the velocity's derivative (see above)
+  // [m/s^2/sqrt(Hz)]: 2x the default IMU's (3.9e-3 / 0.35 / 0.3 = 0.037); 1e9 keeps tau fixed.
+  double max_correction_noise = 0.075;
   // Duration of the bias calibration at rest before the estimate starts [s].
   double calibration_s = 0.5;
   // The wind gate (see above). The residual's time constant [s]: 0.1 s keeps the default IMU's
@@ -106,6 +117,8 @@ class DragAidedOdometry {
   // coasted (false once max_wind_coast_s has run out).
   double wind_gate_mps() const { return wind_gate_mps_; }
   bool coasting() const { return coasting_; }
+  // The velocity time constant in use [s] (after the calibration).
+  double velocity_time_constant_s() const { return velocity_time_constant_s_; }
 
  private:
   void Calibrate(double t_s, const Eigen::Vector3d& f_B, const Eigen::Vector3d& omega_B);
@@ -134,6 +147,7 @@ class DragAidedOdometry {
   Eigen::Vector2d residual_lp_B_ = Eigen::Vector2d::Zero();  // drag velocity - prediction
   double coast_s_ = 0.0;                                     // of the current coast
   bool coasting_ = false;
+  double velocity_time_constant_s_ = 0.0;
 };
 
 }  // namespace aperture::control

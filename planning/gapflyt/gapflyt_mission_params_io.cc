@@ -9,6 +9,7 @@ namespace {
 
 void LoadOdometry(config::ParamReader& reader, control::DragAidedOdometryParams* params) {
   reader.Read("velocity_time_constant_s", &params->velocity_time_constant_s);
+  reader.Read("max_correction_noise", &params->max_correction_noise);
   reader.Read("calibration_s", &params->calibration_s);
   reader.Read("wind_residual_time_constant_s", &params->wind_residual_time_constant_s);
   reader.Read("wind_gate_mps", &params->wind_gate_mps);
@@ -31,6 +32,7 @@ void LoadParams(config::ParamReader& reader, GapflytMissionParams* params) {
   reader.Read("commit_error", &params->commit_error);
   reader.Read("commit_border_px", &params->commit_border_px);
   reader.Read("commit_max_aim_offset_m", &params->commit_max_aim_offset_m);
+  reader.Read("max_servo_s", &params->max_servo_s);
   reader.Read("max_servo_speed_mps", &params->max_servo_speed_mps);
   reader.Read("max_servo_accel_mps2", &params->max_servo_accel_mps2);
   reader.Read("go_through_speed_mps", &params->go_through_speed_mps);

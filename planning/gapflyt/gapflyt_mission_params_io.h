@@ -15,6 +15,7 @@
 //     commit_error: 0.1
 //     commit_border_px: 4
 //     commit_max_aim_offset_m: 0.35
+//     max_servo_s: 8.0
 //     max_servo_speed_mps: 1.2
 //     max_servo_accel_mps2: 1.0
 //     go_through_speed_mps: 1.0
@@ -24,7 +25,8 @@
 //     go_through_distance_m: 1.8
 //     stop_hold_s: 1.0
 //     max_lost_frames: 3
-//     odometry: {velocity_time_constant_s: 0.3, calibration_s: 0.5, wind_gate_mps: 0.4,
+//     odometry: {velocity_time_constant_s: 0.3, max_correction_noise: 0.075, calibration_s: 0.5,
+//                wind_gate_mps: 0.4,
 //                wind_gate_sigmas: 5, wind_residual_time_constant_s: 0.1, max_wind_coast_s: 1.5}
 //     ts2p: {...}          # Ts2pNodeParams (perception/ts2p/ts2p_node.h); interval is ignored
 //     gap_tracker: {...}   # LabelTrackerParams (perception/ts2p/label_tracker.h)

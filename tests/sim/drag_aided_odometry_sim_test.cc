@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <random>
 
 #include "control/drag_aided_odometry.h"
@@ -21,6 +22,9 @@ namespace {
 struct OdometryErrors {
   double max_velocity_mps = 0.0, rms_velocity_xy_mps = 0.0, max_tilt_rad = 0.0;
   double max_height_m = 0.0, end_position_xy_m = 0.0, peak_speed_mps = 0.0;
+  // RMS of the horizontal velocity estimate's change per sample: its white-noise derivative,
+  // which a controller's velocity gain turns into tilt-command rate.
+  double rms_velocity_step_mps = 0.0;
   int compared = 0;
   int coasting = 0;  // samples with the velocity coasting through suspected wind
 };
@@ -29,7 +33,8 @@ OdometryErrors Replay(const sim::SitlResult& result, const Eigen::Vector3d& star
                       DragAidedOdometry* odometry) {
   OdometryErrors errors;
   std::size_t range_index = 0, truth_index = 0;
-  double squared_velocity_error = 0.0;
+  double squared_velocity_error = 0.0, squared_steps = 0.0;
+  std::optional<Eigen::Vector2d> last_v_xy;
   for (const perception::ImuSample& sample : result.imu) {
     while (range_index < result.range.size() && result.range[range_index].t_s <= sample.t_s) {
       if (result.range[range_index].valid) odometry->AddRange(result.range[range_index].range_m);
@@ -51,11 +56,14 @@ OdometryErrors Replay(const sim::SitlResult& result, const Eigen::Vector3d& star
         std::max(errors.max_height_m, std::abs(estimate.p_WB.z() - truth.p_WB.z()));
     errors.peak_speed_mps = std::max(errors.peak_speed_mps, truth.v_W.norm());
     squared_velocity_error += (estimate.v_W - truth.v_W).head<2>().squaredNorm();
+    if (last_v_xy) squared_steps += (estimate.v_W.head<2>() - *last_v_xy).squaredNorm();
+    last_v_xy = estimate.v_W.head<2>();
     errors.coasting += odometry->coasting() ? 1 : 0;
     ++errors.compared;
   }
   if (errors.compared > 0) {
     errors.rms_velocity_xy_mps = std::sqrt(squared_velocity_error / errors.compared);
+    errors.rms_velocity_step_mps = std::sqrt(squared_steps / errors.compared);
   }
   const QuadState end = odometry->estimate();
   errors.end_position_xy_m =
@@ -63,15 +71,23 @@ OdometryErrors Replay(const sim::SitlResult& result, const Eigen::Vector3d& star
   return errors;
 }
 
-class DragAidedOdometrySimTest : public ::testing::TestWithParam<int> {};
-
-TEST_P(DragAidedOdometrySimTest, TracksTheTrueVelocityAttitudeAndHeight) {
+// The GapFlyt-like pattern's simulation, with the IMU's noise densities and bias random walks
+// times imu_noise_factor (`aperture bench faults`' imu_noise).
+sim::SitlRunnerParams PatternParams(int seed, double imu_noise_factor) {
   sim::SitlRunnerParams params;
   params.duration_s = 9.0;
   params.initial_state.p_WB = Eigen::Vector3d(0.0, 0.0, 1.5);
-  params.SetSeed(static_cast<std::uint64_t>(GetParam()));
+  params.SetSeed(static_cast<std::uint64_t>(seed));
   params.imu.accel_bias_initial_B = Eigen::Vector3d(0.05, -0.04, 0.03);  // calibrated away
   params.imu.gyro_bias_initial_B = Eigen::Vector3d(0.004, -0.003, 0.002);
+  params.imu.accel_noise_density *= imu_noise_factor;
+  params.imu.gyro_noise_density *= imu_noise_factor;
+  params.imu.accel_bias_random_walk *= imu_noise_factor;
+  params.imu.gyro_bias_random_walk *= imu_noise_factor;
+  return params;
+}
+
+sim::SitlResult FlyPattern(const sim::SitlRunnerParams& params) {
   sim::GroundTruthAutopilotParams autopilot_params;
   autopilot_params.waypoints = {{{0.0, 0.0, 1.5}, 0.0, 1.0},
                                 {{0.0, 0.3, 1.8}, 0.0, 0.5},
@@ -80,7 +96,14 @@ TEST_P(DragAidedOdometrySimTest, TracksTheTrueVelocityAttitudeAndHeight) {
   // ~1 m/s and ~2 m/s^2 at most: the GapFlyt mission's manoeuvres (scan, servo, go through).
   autopilot_params.max_position_error_m = 0.8;
   sim::GroundTruthAutopilot autopilot(params.dynamics.vehicle, autopilot_params);
-  const sim::SitlResult result = sim::SitlRunner(params, nullptr).Run(autopilot);
+  return sim::SitlRunner(params, nullptr).Run(autopilot);
+}
+
+class DragAidedOdometrySimTest : public ::testing::TestWithParam<int> {};
+
+TEST_P(DragAidedOdometrySimTest, TracksTheTrueVelocityAttitudeAndHeight) {
+  const sim::SitlRunnerParams params = PatternParams(GetParam(), 1.0);
+  const sim::SitlResult result = FlyPattern(params);
   ASSERT_EQ(result.outcome, sim::SitlResult::Outcome::kDurationReached) << result.reason;
 
   DragAidedOdometryParams odometry_params;
@@ -97,6 +120,8 @@ TEST_P(DragAidedOdometrySimTest, TracksTheTrueVelocityAttitudeAndHeight) {
   EXPECT_NEAR(odometry.gyro_bias_B().x(), 0.004, 1e-3);
   // The default IMU's noise keeps the wind gate at its floor.
   EXPECT_DOUBLE_EQ(odometry.wind_gate_mps(), odometry_params.wind_gate_mps);
+  // ... and the velocity time constant at its configured value.
+  EXPECT_DOUBLE_EQ(odometry.velocity_time_constant_s(), odometry_params.velocity_time_constant_s);
   // Horizontal velocity: that calibration error divided by d_y = 0.35 is a ~3-4 cm/s offset; the
   // drag measurement also lags the thrust tilt by the motor lag in the dash's accelerations. RMS 6
   // cm/s and 0.3 m/s at worst fail a wrong drag sign or coefficient (errors of the order of the
@@ -147,6 +172,34 @@ TEST(DragAidedOdometryWindTest, CoastsThroughAGustInsteadOfFollowingTheAir) {
   EXPECT_GT(off.end_position_xy_m, 0.8);
 }
 
+// x10 the default IMU noise (`aperture bench faults`' top imu_noise level): at the fixed 0.3 s
+// time constant the drag correction passes the accelerometer's noise / d / tau into the velocity's
+// derivative (a GapFlyt hover on it jittered at ~0.6 rad/s of roll/pitch rate); the calibration
+// lengthens tau to q_v / max_correction_noise, which smooths that derivative ~8x (0.018 ->
+// 0.0022 m/s per sample here) and also lowers the velocity error (RMS 0.20-0.28 -> 0.14-0.20
+// m/s: the bias error's b (tau - 1 / d) shrinks, drag_aided_odometry.h).
+TEST_P(DragAidedOdometrySimTest, ANoisierAccelerometerLengthensTheVelocityTimeConstant) {
+  const sim::SitlRunnerParams params = PatternParams(GetParam(), 10.0);
+  const sim::SitlResult result = FlyPattern(params);
+  ASSERT_EQ(result.outcome, sim::SitlResult::Outcome::kDurationReached) << result.reason;
+  DragAidedOdometryParams adaptive;
+  adaptive.rotor_drag_xy_per_s = params.dynamics.vehicle.rotor_drag_D_per_s.head<2>();
+  DragAidedOdometryParams fixed = adaptive;
+  fixed.max_correction_noise = 1e9;
+  DragAidedOdometry with_adaptive(adaptive), with_fixed(fixed);
+  const OdometryErrors lengthened = Replay(result, params.initial_state.p_WB, &with_adaptive);
+  const OdometryErrors kept = Replay(result, params.initial_state.p_WB, &with_fixed);
+  // q_v = 10 x 3.9e-3 / d_y: tau = 0.111 / 0.075 ~ 1.5 s (the at-rest spread is measured in
+  // hover, a little above the sensor's own).
+  const double expected_s = 10.0 * 3.9e-3 / adaptive.rotor_drag_xy_per_s.y() /
+                            adaptive.max_correction_noise;
+  EXPECT_NEAR(with_adaptive.velocity_time_constant_s(), expected_s, 0.15 * expected_s);
+  EXPECT_DOUBLE_EQ(with_fixed.velocity_time_constant_s(), fixed.velocity_time_constant_s);
+  EXPECT_LT(lengthened.rms_velocity_step_mps, 0.25 * kept.rms_velocity_step_mps);
+  EXPECT_LT(lengthened.rms_velocity_xy_mps, kept.rms_velocity_xy_mps);
+  EXPECT_LT(lengthened.max_velocity_mps, 0.45);
+}
+
 INSTANTIATE_TEST_SUITE_P(Seeds, DragAidedOdometrySimTest, ::testing::Values(1, 2));
 
 // The gate follows the accelerometer's noise measured at rest: sigma / d through the residual's
@@ -170,9 +223,33 @@ TEST(DragAidedOdometryWindTest, TheGateRisesWithTheAccelerometersNoise) {
   EXPECT_NEAR(odometry.wind_gate_mps(), expected, 0.1 * expected);
 }
 
+// The velocity time constant from the noise measured at rest: tau = sigma sqrt(dt) / d_y /
+// max_correction_noise once that exceeds the configured 0.3 s.
+TEST(DragAidedOdometryNoiseTest, TheTimeConstantFollowsTheMeasuredNoise) {
+  DragAidedOdometryParams params;
+  params.rotor_drag_xy_per_s = Eigen::Vector2d(0.5, 0.35);
+  const double dt_s = 0.002;
+  for (const double sigma_mps2 : {0.05, 0.6}) {  // per sample: below and ~x7 the default IMU's
+    DragAidedOdometry odometry(params);
+    std::mt19937_64 rng(11);
+    std::normal_distribution<double> noise(0.0, sigma_mps2);
+    for (int i = 0; odometry.velocity_time_constant_s() == 0.0 && i < 1000; ++i) {
+      odometry.AddImu(i * dt_s, Eigen::Vector3d(noise(rng), noise(rng), 9.81),
+                      Eigen::Vector3d::Zero());
+    }
+    const double expected = std::max(params.velocity_time_constant_s,
+                                     sigma_mps2 * std::sqrt(dt_s) / 0.35 /
+                                         params.max_correction_noise);
+    EXPECT_NEAR(odometry.velocity_time_constant_s(), expected, 0.1 * expected) << sigma_mps2;
+  }
+}
+
 TEST(DragAidedOdometryTest, RejectsBadInput) {
   DragAidedOdometryParams params;
   params.rotor_drag_xy_per_s.y() = 0.0;  // no drag: no velocity measurement
+  EXPECT_THROW(DragAidedOdometry{params}, std::invalid_argument);
+  params = DragAidedOdometryParams{};
+  params.max_correction_noise = 0.0;
   EXPECT_THROW(DragAidedOdometry{params}, std::invalid_argument);
   DragAidedOdometry odometry{DragAidedOdometryParams{}};
   odometry.AddImu(0.0, Eigen::Vector3d(0, 0, 9.81), Eigen::Vector3d::Zero());
