@@ -54,6 +54,7 @@ void GapflytMissionParams::Validate() const {
   control::RequireNonNegative(commit_border_px, "GapflytMissionParams.commit_border_px");
   control::RequireNonNegative(commit_max_aim_offset_m,
                               "GapflytMissionParams.commit_max_aim_offset_m");
+  control::RequirePositive(max_servo_s, "GapflytMissionParams.max_servo_s");
   control::RequirePositive(max_servo_speed_mps, "GapflytMissionParams.max_servo_speed_mps");
   control::RequirePositive(max_servo_accel_mps2, "GapflytMissionParams.max_servo_accel_mps2");
   control::RequirePositive(go_through_speed_mps, "GapflytMissionParams.go_through_speed_mps");
@@ -240,6 +241,12 @@ bool GapflytMission::ReachesBorder(const std::vector<Eigen::Vector2d>& contour_p
 
 void GapflytMission::ServoOnFrame(const perception::OpeningTrack& track) {
   const double t_s = track.t_s;
+  if (last_imu_t_s_ - phase_start_t_s_ > params_.max_servo_s) {
+    char reason[80];
+    std::snprintf(reason, sizeof(reason), "servo did not converge in %.1f s", params_.max_servo_s);
+    Abort(reason, last_imu_t_s_);
+    return;
+  }
   if (!track.valid || track.contour_px.size() < 3) {
     if (++lost_frames_ >= params_.max_lost_frames) {
       // Lost where the opening already filled most of the goal view: close enough to commit.

@@ -129,6 +129,10 @@ struct GapflytMissionParams {
   // 2.5 m/s gusts); farther off, the servo goes on centring (or, if the track is lost there, the
   // mission aborts to a hover). max_aim_correction_m plus ~0.1 m the opening's margin absorbs.
   double commit_max_aim_offset_m = 0.35;
+  // Longest servo phase [s]: it commits within 2-5 s in SITL (`aperture bench gapflyt`); one that
+  // has not after 8 s (x10 IMU noise held the moment error above commit_error for 12 s, and the
+  // commit came as the flight's time ran out) aborts to a hover instead of committing late.
+  double max_servo_s = 8.0;
   // Speed limit of the servo's velocity reference [m/s] (the moment law's first steps are large).
   double max_servo_speed_mps = 1.2;
   // Rate limit of the servo's forward velocity reference [m/s^2]: the PID's forward speed (theta_0)
