@@ -51,6 +51,8 @@ void GapflytMissionParams::Validate() const {
                           "GapflytMissionParams.commit_area_fraction");
   control::RequirePositive(commit_depth_m, "GapflytMissionParams.commit_depth_m");
   control::RequirePositive(commit_error, "GapflytMissionParams.commit_error");
+  control::RequirePositive(commit_max_error_rate, "GapflytMissionParams.commit_max_error_rate");
+  control::RequirePositive(commit_rate_window_s, "GapflytMissionParams.commit_rate_window_s");
   control::RequireNonNegative(commit_border_px, "GapflytMissionParams.commit_border_px");
   control::RequireNonNegative(commit_max_aim_offset_m,
                               "GapflytMissionParams.commit_max_aim_offset_m");
@@ -203,6 +205,7 @@ void GapflytMission::StartServo(const perception::Ts2pOutput& detection) {
   detection_p_W_ = estimate().p_WB;
   desired_set_ = false;
   lost_frames_ = 0;
+  recent_errors_.clear();
   EnterPhase(GapflytPhase::kServo, last_imu_t_s_);
   // The detection's frame is already past: the tracker starts on the next frame.
 }
@@ -241,17 +244,17 @@ bool GapflytMission::ReachesBorder(const std::vector<Eigen::Vector2d>& contour_p
 
 void GapflytMission::ServoOnFrame(const perception::OpeningTrack& track) {
   const double t_s = track.t_s;
-  if (last_imu_t_s_ - phase_start_t_s_ > params_.max_servo_s) {
+  if (!servo_timed_out_ && last_imu_t_s_ - phase_start_t_s_ > params_.max_servo_s) {
+    servo_timed_out_ = true;
     char reason[80];
     std::snprintf(reason, sizeof(reason), "servo did not converge in %.1f s", params_.max_servo_s);
-    Abort(reason, last_imu_t_s_);
-    return;
+    reason_ = reason;
   }
   if (!track.valid || track.contour_px.size() < 3) {
     if (++lost_frames_ >= params_.max_lost_frames) {
       // Lost where the opening already filled most of the goal view: close enough to commit.
-      if (last_track_ && last_step_ && TouchesBorder(last_track_->contour_px) &&
-          AimWithinReach()) {
+      if (CommitAllowed() && last_track_ && last_step_ &&
+          TouchesBorder(last_track_->contour_px) && AimWithinReach()) {
         Commit("track lost at the border", last_imu_t_s_);
       } else {
         Abort("opening track lost", last_imu_t_s_);
@@ -262,7 +265,7 @@ void GapflytMission::ServoOnFrame(const perception::OpeningTrack& track) {
   lost_frames_ = 0;
   ++frames_tracked_;
   last_track_ = track;
-  if (TouchesBorder(track.contour_px) && AimWithinReach()) {
+  if (CommitAllowed() && TouchesBorder(track.contour_px) && AimWithinReach()) {
     Commit("opening at the image border", last_imu_t_s_);
     return;
   }
@@ -294,9 +297,29 @@ void GapflytMission::ServoOnFrame(const perception::OpeningTrack& track) {
   if (v_B.norm() > params_.max_servo_speed_mps) v_B *= params_.max_servo_speed_mps / v_B.norm();
   servo_v_B_ = v_B;
   servo_trace_.push_back({t_s, step.error_norm, v_B});
-  if (servo_.law() == servo::GapServoLaw::kMoments && step.error_norm < params_.commit_error) {
+  if (CommitAllowed() && servo_.law() == servo::GapServoLaw::kMoments &&
+      step.error_norm < params_.commit_error && ErrorAtRest(t_s, step.error)) {
     Commit("moment servo converged", last_imu_t_s_);
   }
+}
+
+bool GapflytMission::CommitAllowed() const {
+  // The blind line runs on the odometry alone: not while it coasts through suspected wind (the
+  // air is then pushing the vehicle and the velocity is integrated acceleration only).
+  return !servo_timed_out_ && !odometry_.coasting();
+}
+
+bool GapflytMission::ErrorAtRest(double t_s, const Eigen::VectorXd& error) {
+  recent_errors_.emplace_back(t_s, error);
+  while (t_s - recent_errors_.front().first > params_.commit_rate_window_s) {
+    recent_errors_.pop_front();
+  }
+  // A window shorter than half its length (the servo just started, frames dropped): not yet.
+  const double span_s = t_s - recent_errors_.front().first;
+  if (span_s < 0.5 * params_.commit_rate_window_s) return false;
+  const Eigen::VectorXd& oldest = recent_errors_.front().second;
+  if (oldest.size() != error.size()) return false;
+  return (error - oldest).norm() / span_s < params_.commit_max_error_rate;
 }
 
 std::optional<Eigen::Vector3d> GapflytMission::AimOffsetB() const {
@@ -526,7 +549,7 @@ std::string GapflytMission::status() const {
     case GapflytPhase::kServo:
       std::snprintf(buffer, sizeof(buffer), "servo (%s) |e| %.3f", servo::ToString(law()),
                     last_step_ ? last_step_->error_norm : 0.0);
-      return buffer;
+      return servo_timed_out_ ? buffer + std::string(", holding: ") + reason_ : buffer;
     case GapflytPhase::kGoThrough:
       return "go_through (" + reason_ + ")";
     case GapflytPhase::kAborted:

@@ -29,7 +29,8 @@
 //              position reference follows the estimate).
 //   go_through (commit) when the tracked contour reaches commit_border_px of the image border (the
 //              opening is about to fill the view) with the aimed line within
-//              commit_max_aim_offset_m, the moment servo's error is below commit_error, or the
+//              commit_max_aim_offset_m, the moment servo's error is below commit_error and
+//              still (commit_max_error_rate), or the
 //              track is lost within commit_area_fraction's view (same aim rule): straight
 //              along the heading at go_through_speed_mps for go_through_distance_m on the
 //              odometry, on a line aimed through the last safe point (max_aim_correction_m).
@@ -47,10 +48,12 @@
 // PoseFusion: GapFlyt measures no pose. Times are on the sensor clock.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <deque>
 #include <limits>
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "control/drag_aided_odometry.h"
@@ -120,6 +123,14 @@ struct GapflytMissionParams {
   // 0.1: the velocity estimate's bias (a few cm/s) holds the error at ~0.06 in SITL, where the
   // servo's reference no longer moves the vehicle.
   double commit_error = 0.1;
+  // ... and the error has changed by less than commit_max_error_rate [1/s] (in the same units per
+  // second: ~the relative velocity in m/s at the nominal depth) over the last commit_rate_window_s
+  // [s]. After a 5 m/s gust the vehicle swung back through the goal view at 0.3-0.4 m/s sideways,
+  // the error passed below commit_error on the way, and the blind line carried that motion into
+  // the wall (`aperture bench faults`); the image, not the odometry (which a gust or a noisy IMU
+  // leaves off by that much), says whether the vehicle is at rest in front of the opening.
+  double commit_max_error_rate = 0.1;
+  double commit_rate_window_s = 0.2;
   // Commit when the tracked contour comes within this many pixels of the image border while it
   // covers at least half the goal view's commit_area_fraction (a nearby opening filling the view).
   double commit_border_px = 4.0;
@@ -129,9 +140,11 @@ struct GapflytMissionParams {
   // 2.5 m/s gusts); farther off, the servo goes on centring (or, if the track is lost there, the
   // mission aborts to a hover). max_aim_correction_m plus ~0.1 m the opening's margin absorbs.
   double commit_max_aim_offset_m = 0.35;
-  // Longest servo phase [s]: it commits within 2-5 s in SITL (`aperture bench gapflyt`); one that
-  // has not after 8 s (x10 IMU noise held the moment error above commit_error for 12 s, and the
-  // commit came as the flight's time ran out) aborts to a hover instead of committing late.
+  // Longest servo phase before a commit [s]: it commits within 2-5 s in SITL (`aperture bench
+  // gapflyt`); one that has not after 8 s (x10 IMU noise held the moment error above
+  // commit_error for 12 s, and the commit came as the flight's time ran out) no longer commits
+  // and holds on the servo: a hover on the image, which the odometry alone (its velocity drifting
+  // at up to ~0.5 m/s with such noise) could not keep. A lost track then aborts to that hover.
   double max_servo_s = 8.0;
   // Speed limit of the servo's velocity reference [m/s] (the moment law's first steps are large).
   double max_servo_speed_mps = 1.2;
@@ -262,6 +275,7 @@ class GapflytMission : public perception::Autopilot {
   double phase_start_t_s_ = 0.0;
   std::vector<GapflytPhaseChange> phase_changes_;
   std::string reason_;
+  bool servo_timed_out_ = false;  // max_servo_s ran out: servoing without a commit
   double heading_rad_ = 0.0;  // held throughout (odometry frame: 0)
   Eigen::Vector3d hold_p_W_ = Eigen::Vector3d::Zero();
   // The scan's ramp up, cruise, ramp down (each starting at its own t = 0).
@@ -281,6 +295,8 @@ class GapflytMission : public perception::Autopilot {
   double last_servo_step_t_s_ = std::numeric_limits<double>::quiet_NaN();
   std::optional<servo::ServoStepResult> last_step_;
   std::vector<GapflytServoSample> servo_trace_;
+  // The moment servo's recent errors (t_s, s - s*) over commit_rate_window_s.
+  std::deque<std::pair<double, Eigen::VectorXd>> recent_errors_;
   std::optional<perception::OpeningTrack> last_track_;
   int lost_frames_ = 0;
   int frames_tracked_ = 0;
@@ -293,6 +309,10 @@ class GapflytMission : public perception::Autopilot {
   std::optional<Eigen::Vector3d> AimOffsetB() const;
   // A commit at the border may fly: the aimed line within commit_max_aim_offset_m (or unknown).
   bool AimWithinReach() const;
+  // No commit once max_servo_s ran out, nor while the odometry coasts through suspected wind.
+  bool CommitAllowed() const;
+  // Records the moment servo's error and says whether it stayed still over commit_rate_window_s.
+  bool ErrorAtRest(double t_s, const Eigen::VectorXd& error);
   double last_imu_t_s_ = std::numeric_limits<double>::quiet_NaN();
 };
 

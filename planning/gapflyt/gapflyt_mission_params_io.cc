@@ -30,6 +30,8 @@ void LoadParams(config::ParamReader& reader, GapflytMissionParams* params) {
   reader.Read("commit_area_fraction", &params->commit_area_fraction);
   reader.Read("commit_depth_m", &params->commit_depth_m);
   reader.Read("commit_error", &params->commit_error);
+  reader.Read("commit_max_error_rate", &params->commit_max_error_rate);
+  reader.Read("commit_rate_window_s", &params->commit_rate_window_s);
   reader.Read("commit_border_px", &params->commit_border_px);
   reader.Read("commit_max_aim_offset_m", &params->commit_max_aim_offset_m);
   reader.Read("max_servo_s", &params->max_servo_s);

@@ -13,6 +13,8 @@
 //     commit_area_fraction: 0.3
 //     commit_depth_m: 1.0
 //     commit_error: 0.1
+//     commit_max_error_rate: 0.1
+//     commit_rate_window_s: 0.2
 //     commit_border_px: 4
 //     commit_max_aim_offset_m: 0.35
 //     max_servo_s: 8.0
