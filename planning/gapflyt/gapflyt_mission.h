@@ -27,11 +27,12 @@
 //              paper's PID on x_s with the forward speed of theta_0 (Sec. III-B). Its body velocity
 //              reference goes to the flatness/position controller (velocity tracking: the
 //              position reference follows the estimate).
+//              No commit after max_servo_s: the servo then holds the view (a hover on the image).
 //   go_through (commit) when the tracked contour reaches commit_border_px of the image border (the
 //              opening is about to fill the view) with the aimed line within
-//              commit_max_aim_offset_m, the moment servo's error is below commit_error and
-//              still (commit_max_error_rate), or the
-//              track is lost within commit_area_fraction's view (same aim rule): straight
+//              commit_max_aim_offset_m, the moment servo's error is below commit_error and still
+//              (commit_max_error_rate), or the track is lost within commit_area_fraction's view
+//              (same aim rule), and the odometry is not coasting through suspected wind: straight
 //              along the heading at go_through_speed_mps for go_through_distance_m on the
 //              odometry, on a line aimed through the last safe point (max_aim_correction_m).
 //              Blind, as in the paper once the gap fills the view.
