@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <optional>
 #include <random>
 
@@ -99,6 +100,28 @@ sim::SitlResult FlyPattern(const sim::SitlRunnerParams& params) {
   return sim::SitlRunner(params, nullptr).Run(autopilot);
 }
 
+// The odometry (the vehicle's drag coefficients, defaults otherwise) with and without a feature,
+// which `turn_off` switches off, on one flight.
+struct Comparison {
+  OdometryErrors with, without;
+  double with_time_constant_s = 0.0, without_time_constant_s = 0.0;
+};
+
+Comparison Compare(const sim::SitlRunnerParams& params, const sim::SitlResult& result,
+                   const std::function<void(DragAidedOdometryParams*)>& turn_off) {
+  DragAidedOdometryParams on;
+  on.rotor_drag_xy_per_s = params.dynamics.vehicle.rotor_drag_D_per_s.head<2>();
+  DragAidedOdometryParams off = on;
+  turn_off(&off);
+  DragAidedOdometry with(on), without(off);
+  Comparison comparison;
+  comparison.with = Replay(result, params.initial_state.p_WB, &with);
+  comparison.without = Replay(result, params.initial_state.p_WB, &without);
+  comparison.with_time_constant_s = with.velocity_time_constant_s();
+  comparison.without_time_constant_s = without.velocity_time_constant_s();
+  return comparison;
+}
+
 class DragAidedOdometrySimTest : public ::testing::TestWithParam<int> {};
 
 TEST_P(DragAidedOdometrySimTest, TracksTheTrueVelocityAttitudeAndHeight) {
@@ -153,13 +176,11 @@ TEST(DragAidedOdometryWindTest, CoastsThroughAGustInsteadOfFollowingTheAir) {
   const sim::SitlResult result = sim::SitlRunner(params, nullptr).Run(autopilot);
   ASSERT_EQ(result.outcome, sim::SitlResult::Outcome::kDurationReached) << result.reason;
 
-  DragAidedOdometryParams gated;
-  gated.rotor_drag_xy_per_s = params.dynamics.vehicle.rotor_drag_D_per_s.head<2>();
-  DragAidedOdometryParams ungated = gated;
-  ungated.wind_gate_mps = 1e9;
-  DragAidedOdometry with_gate(gated), without_gate(ungated);
-  const OdometryErrors on = Replay(result, params.initial_state.p_WB, &with_gate);
-  const OdometryErrors off = Replay(result, params.initial_state.p_WB, &without_gate);
+  const Comparison gate = Compare(params, result, [](DragAidedOdometryParams* p) {
+    p->wind_gate_mps = 1e9;
+  });
+  const OdometryErrors& on = gate.with;
+  const OdometryErrors& off = gate.without;
   // Coasting for about the gust (1 s = 500 samples, plus the residual's settling at both ends).
   EXPECT_GT(on.coasting, 400);
   EXPECT_LT(on.coasting, 700);
@@ -182,19 +203,18 @@ TEST_P(DragAidedOdometrySimTest, ANoisierAccelerometerLengthensTheVelocityTimeCo
   const sim::SitlRunnerParams params = PatternParams(GetParam(), 10.0);
   const sim::SitlResult result = FlyPattern(params);
   ASSERT_EQ(result.outcome, sim::SitlResult::Outcome::kDurationReached) << result.reason;
-  DragAidedOdometryParams adaptive;
-  adaptive.rotor_drag_xy_per_s = params.dynamics.vehicle.rotor_drag_D_per_s.head<2>();
-  DragAidedOdometryParams fixed = adaptive;
-  fixed.max_correction_noise = 1e9;
-  DragAidedOdometry with_adaptive(adaptive), with_fixed(fixed);
-  const OdometryErrors lengthened = Replay(result, params.initial_state.p_WB, &with_adaptive);
-  const OdometryErrors kept = Replay(result, params.initial_state.p_WB, &with_fixed);
+  const Comparison tau = Compare(params, result, [](DragAidedOdometryParams* p) {
+    p->max_correction_noise = 1e9;
+  });
+  const OdometryErrors& lengthened = tau.with;
+  const OdometryErrors& kept = tau.without;
   // q_v = 10 x 3.9e-3 / d_y: tau = 0.111 / 0.075 ~ 1.5 s (the at-rest spread is measured in
   // hover, a little above the sensor's own).
-  const double expected_s = 10.0 * 3.9e-3 / adaptive.rotor_drag_xy_per_s.y() /
-                            adaptive.max_correction_noise;
-  EXPECT_NEAR(with_adaptive.velocity_time_constant_s(), expected_s, 0.15 * expected_s);
-  EXPECT_DOUBLE_EQ(with_fixed.velocity_time_constant_s(), fixed.velocity_time_constant_s);
+  const DragAidedOdometryParams defaults;
+  const double expected_s = 10.0 * 3.9e-3 / params.dynamics.vehicle.rotor_drag_D_per_s.y() /
+                            defaults.max_correction_noise;
+  EXPECT_NEAR(tau.with_time_constant_s, expected_s, 0.15 * expected_s);
+  EXPECT_DOUBLE_EQ(tau.without_time_constant_s, defaults.velocity_time_constant_s);
   EXPECT_LT(lengthened.rms_velocity_step_mps, 0.25 * kept.rms_velocity_step_mps);
   EXPECT_LT(lengthened.rms_velocity_xy_mps, kept.rms_velocity_xy_mps);
   EXPECT_LT(lengthened.max_velocity_mps, 0.45);
