@@ -145,7 +145,8 @@ struct GapflytMissionParams {
   // gapflyt`); one that has not after 8 s (x10 IMU noise held the moment error above
   // commit_error for 12 s, and the commit came as the flight's time ran out) no longer commits
   // and holds on the servo: a hover on the image, which the odometry alone (its velocity drifting
-  // at up to ~0.5 m/s with such noise) could not keep. A lost track then aborts to that hover.
+  // at up to ~0.5 m/s with such noise) could not keep. A lost track then aborts to a position
+  // hold on the odometry, as before.
   double max_servo_s = 8.0;
   // Speed limit of the servo's velocity reference [m/s] (the moment law's first steps are large).
   double max_servo_speed_mps = 1.2;
@@ -313,6 +314,8 @@ class GapflytMission : public perception::Autopilot {
   // No commit once max_servo_s ran out, nor while the odometry coasts through suspected wind.
   bool CommitAllowed() const;
   // Records the moment servo's error and says whether it stayed still over commit_rate_window_s.
+  // Called only on frames whose error is below commit_error (and a commit allowed): the window
+  // holds those frames, so a commit also needs half the window's worth of them.
   bool ErrorAtRest(double t_s, const Eigen::VectorXd& error);
   double last_imu_t_s_ = std::numeric_limits<double>::quiet_NaN();
 };
