@@ -11,4 +11,11 @@ void ImuNoiseParams::ValidateNoise(const std::string& owner) const {
   control::RequireNonNegative(gyro_bias_random_walk, owner + ".gyro_bias_random_walk");
 }
 
+void ImuNoiseParams::ScaleNoise(double factor) {
+  accel_noise_density *= factor;
+  gyro_noise_density *= factor;
+  accel_bias_random_walk *= factor;
+  gyro_bias_random_walk *= factor;
+}
+
 }  // namespace aperture::perception

@@ -22,6 +22,9 @@ struct ImuNoiseParams {
   // Throws std::invalid_argument naming "<owner>.<field>" for a negative or non-finite entry
   // (0 is allowed: a noise-free IMU).
   void ValidateNoise(const std::string& owner) const;
+  // Multiplies both densities and both bias random walks by factor (a noisier IMU of the same
+  // kind: `aperture bench faults`' imu_noise, the gap bench's per-trial IMU noise scale).
+  void ScaleNoise(double factor);
 };
 
 }  // namespace aperture::perception

@@ -113,10 +113,7 @@ void InjectFault(FaultKind kind, double level, const FaultDraw& draw, sim::SitlR
       for (sim::SitlCamera& camera : sitl->cameras) camera.latency_s += level;
       break;
     case FaultKind::kImuNoise:
-      sitl->imu.accel_noise_density *= level;
-      sitl->imu.gyro_noise_density *= level;
-      sitl->imu.accel_bias_random_walk *= level;
-      sitl->imu.gyro_bias_random_walk *= level;
+      sitl->imu.ScaleNoise(level);
       break;
     case FaultKind::kAccelBias:
       sitl->imu.accel_bias_initial_B += level * draw.direction_unit;

@@ -96,10 +96,7 @@ void ApplyGapTrial(const GapTrialConfig& trial, sim::ScenarioParams* params) {
 void ApplyGapTrial(const GapTrialConfig& trial, sim::SitlRunnerParams* params) {
   params->SetSeed(trial.seed);
   sim::ImuSensorParams& imu = params->imu;
-  imu.accel_noise_density *= trial.imu_noise_scale;
-  imu.gyro_noise_density *= trial.imu_noise_scale;
-  imu.accel_bias_random_walk *= trial.imu_noise_scale;
-  imu.gyro_bias_random_walk *= trial.imu_noise_scale;
+  imu.ScaleNoise(trial.imu_noise_scale);
   imu.accel_bias_initial_B = trial.accel_bias_B;
   imu.gyro_bias_initial_B = trial.gyro_bias_B;
   for (sim::SitlCamera& camera : params->cameras) camera.drop_probability = trial.drop_probability;

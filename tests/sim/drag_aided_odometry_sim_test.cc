@@ -81,10 +81,7 @@ sim::SitlRunnerParams PatternParams(int seed, double imu_noise_factor) {
   params.SetSeed(static_cast<std::uint64_t>(seed));
   params.imu.accel_bias_initial_B = Eigen::Vector3d(0.05, -0.04, 0.03);  // calibrated away
   params.imu.gyro_bias_initial_B = Eigen::Vector3d(0.004, -0.003, 0.002);
-  params.imu.accel_noise_density *= imu_noise_factor;
-  params.imu.gyro_noise_density *= imu_noise_factor;
-  params.imu.accel_bias_random_walk *= imu_noise_factor;
-  params.imu.gyro_bias_random_walk *= imu_noise_factor;
+  params.imu.ScaleNoise(imu_noise_factor);
   return params;
 }
 
