@@ -115,6 +115,7 @@ class ForestFlight final : public MissionFlight {
     f["back_offs"] = m.back_offs();
     f["look_asides"] = m.look_asides();
     f["recoveries"] = m.back_offs() + m.look_asides();
+    f["turns_to_goal"] = m.turns_to_goal();
     f["perception_ms"] = ForestFrameTiming(m, false);
     f["planning_ms"] = ForestFrameTiming(m, true);
     f["odometry_fused"] = m.fusion_counts().applied;

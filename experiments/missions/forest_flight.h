@@ -18,8 +18,8 @@
 // Figures (summary.json "mission"): success, reached_goal, collision, failure_reason,
 // time_to_goal_s, path_length_m, min_clearance_m (+ nearest_obstacle), final_distance_m,
 // replans (Table II), frames, frames_without_path, recoveries (back-offs and look-asides),
-// perception_ms / planning_ms (thread CPU per
-// frame: mean, median, max), fusion counts, goal_m, ego_dynamic, waypoint_order.
+// turns_to_goal, perception_ms / planning_ms (thread CPU per frame: mean, median, max), fusion
+// counts, goal_m, ego_dynamic, waypoint_order.
 #include <memory>
 
 #include "experiments/missions/forest_evaluation.h"

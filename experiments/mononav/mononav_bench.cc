@@ -120,7 +120,8 @@ nlohmann::json SuccessRow(const std::vector<const Flight*>& flights) {
           {"success_rate_percent", n > 0 ? 100.0 * success / n : 0.0},
           {"flights_with_recovery", recovered},
           {"back_offs", FiniteOrNull(Total(flights, "back_offs"))},
-          {"look_asides", FiniteOrNull(Total(flights, "look_asides"))}};
+          {"look_asides", FiniteOrNull(Total(flights, "look_asides"))},
+          {"turns_to_goal", FiniteOrNull(Total(flights, "turns_to_goal"))}};
 }
 
 // Table II row. A replan is the paper's (Sec. III-D): a segment whose Bezier path failed its
@@ -173,6 +174,7 @@ void WriteFlightsCsv(const std::vector<Flight>& flights, const std::string& path
                                "frames_without_path",
                                "back_offs",
                                "look_asides",
+                               "turns_to_goal",
                                "perception_median_ms",
                                "planning_median_ms",
                                "sim_time_s",
@@ -199,6 +201,7 @@ void WriteFlightsCsv(const std::vector<Flight>& flights, const std::string& path
                     output::CsvCell(FlightFigure(f, "frames_without_path")),
                     output::CsvCell(FlightFigure(f, "back_offs")),
                     output::CsvCell(FlightFigure(f, "look_asides")),
+                    output::CsvCell(FlightFigure(f, "turns_to_goal")),
                     output::CsvCell(median("perception_ms")),
                     output::CsvCell(median("planning_ms")),
                     output::CsvCell(f.sim_time_s),
@@ -340,7 +343,8 @@ void WriteMononavSections(const MononavBenchOptions& options,
                     {"seed", f.seed},
                     {"outcome", f.evaluation.outcome},
                     {"back_offs", FiniteOrNull(FlightFigure(f, "back_offs"))},
-                    {"look_asides", FiniteOrNull(FlightFigure(f, "look_asides"))}});
+                    {"look_asides", FiniteOrNull(FlightFigure(f, "look_asides"))},
+                    {"turns_to_goal", FiniteOrNull(FlightFigure(f, "turns_to_goal"))}});
   }
   report->AddCollapsedTable(rows, "Every flight");
 }

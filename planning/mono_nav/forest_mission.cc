@@ -106,8 +106,7 @@ void ForestMissionParams::Validate() const {
           "max_travel_off_heading_rad must be in [0, pi] (pi: the goal's bearing in flight too)");
   require(recovery_after_s > 0.0, "recovery_after_s must be > 0 (inf: no recovery)");
   require(rest_speed_mps > 0.0, "rest_speed_mps must be > 0");
-  // FollowPath plans no spline shorter than 0.05 m per spline interval.
-  require(recovery_min_backoff_m > 0.05 * (spline_path_points - 1),
+  require(recovery_min_backoff_m > kMinSplineIntervalM * (spline_path_points - 1),
           "recovery_min_backoff_m must be > 0.05 m x (spline_path_points - 1), the shortest "
           "spline planned");
   require(recovery_backoff_m >= recovery_min_backoff_m,
@@ -178,6 +177,10 @@ int ForestMission::look_asides() const {
   return CountForestFrames(frames_, [](const ForestFrameRecord& r) { return r.looked_aside; });
 }
 
+int ForestMission::turns_to_goal() const {
+  return CountForestFrames(frames_, [](const ForestFrameRecord& r) { return r.turned_to_goal; });
+}
+
 int ForestMission::frames_without_path() const {
   return CountForestFrames(frames_, [](const ForestFrameRecord& r) { return !r.planned; });
 }
@@ -241,6 +244,43 @@ void ForestMission::Recover(double t_s, const control::QuadState& x, ForestFrame
   record->looked_aside = true;
 }
 
+bool ForestMission::TurnToGoal(double t_s, const control::QuadState& x,
+                               ForestFrameRecord* record) {
+  const control::TrajectoryPoint reference = Reference(t_s);
+  if (turning_to_goal_) {
+    const bool flown_out = !spline_ || t_s - spline_start_t_s_ >= spline_->EndParameter();
+    turning_to_goal_ = !flown_out || std::abs(heading_error_rad_) > kHeadingSettledRad;
+    return turning_to_goal_;
+  }
+  const Eigen::Vector2d v = reference.v_W.head<2>();
+  const Eigen::Vector2d to_goal = (params_.goal_W - x.p_WB).head<2>();
+  if (backing_off_ || !(v.norm() > params_.travel_heading_min_speed_mps) ||
+      to_goal.norm() <= kHeadingHoldWithinM) {
+    return false;
+  }
+  const double goal_off_travel_rad = std::abs(std::remainder(
+      std::atan2(to_goal.y(), to_goal.x()) - std::atan2(v.y(), v.x()), 2.0 * M_PI));
+  if (goal_off_travel_rad <=
+      params_.max_travel_off_heading_rad + selector_.params().max_bearing_rad) {
+    return false;
+  }
+  // Stop straight ahead, over the distance of 1 s at the current speed (2 s, 4 s when the spline
+  // solver does not converge on it) and no less than the shortest spline.
+  bool stopping = false;
+  for (const double travel_s : {1.0, 2.0, 4.0}) {
+    const double stop_m = std::max(v.norm() * travel_s,
+                                   kMinSplineIntervalM * (params_.spline_path_points - 1) * 1.2);
+    Eigen::Vector3d stop_W = reference.p_W;
+    stop_W.head<2>() += v.normalized() * stop_m;
+    if ((stopping = FollowPath(t_s, x, {reference.p_W, stop_W}))) break;
+  }
+  if (!stopping) return false;
+  turning_to_goal_ = true;
+  look_aside_rad_.reset();
+  record->turned_to_goal = true;
+  return true;
+}
+
 void ForestMission::OnFrame(const perception::Frame& frame) {
   if (frame.camera_id != params_.camera_id || !hold_ || goal_reached_) return;
   ForestFrameRecord record;
@@ -253,6 +293,11 @@ void ForestMission::OnFrame(const perception::Frame& frame) {
   if (depth == nullptr) return;
   const double t1 = ThreadCpuSeconds();
   const double t_s = estimate()->t_s;
+  if (TurnToGoal(t_s, *estimate(), &record)) {
+    record.planning_s = ThreadCpuSeconds() - t1;
+    frames_.push_back(record);
+    return;
+  }
   Plan(t_s, *depth, &record);
   if (record.planned) {
     still_since_t_s_ = t_s;
@@ -353,7 +398,7 @@ bool ForestMission::FollowPath(double t_s, const control::QuadState& x,
     arc.push_back(arc.back() + (polyline[k] - polyline[k - 1]).norm());
   }
   const int n = params_.spline_path_points - 1;
-  if (!(arc.back() > 0.05 * n)) return false;  // too short to be worth a spline
+  if (!(arc.back() > kMinSplineIntervalM * n)) return false;  // too short to be worth a spline
   std::vector<Eigen::Vector3d> points_W{start.p_W};
   size_t segment = 1;
   for (int k = 1; k <= n; ++k) {

@@ -129,7 +129,12 @@ struct ForestMissionParams {
   // approached; and a heading that turned towards the goal whatever the spline in flight turned
   // the camera away from where the vehicle went (layout 21 flew 75 deg off its camera axis into a
   // trunk). A heading that only followed the travel lost the goal (a single-trunk course flew
-  // off sideways). 0: fixed heading.
+  // off sideways). 0: fixed heading. When the goal's bearing is more than
+  // max_travel_off_heading_rad + the selector's max_bearing_rad from the direction of travel, no
+  // heading the rule allows shows it, no path can reach towards it and each new path only turns
+  // the travel as far as the camera sees: the vehicle stops and turns to face the goal before it
+  // plans again (`turns_to_goal`; with the thesis' rate law, a course round one trunk flew
+  // past its goal this way and never turned back).
   double max_yaw_rate_radps = 0.5;
   double travel_heading_min_speed_mps = 0.3;
   double max_travel_off_heading_rad = 0.5;  // inside the camera's +-45 deg, with a margin
@@ -152,6 +157,12 @@ struct ForestMissionParams {
   void Validate() const;  // std::invalid_argument naming the field
 };
 
+// Within this horizontal distance of the goal its bearing swings with the estimate: the heading
+// is held [m].
+constexpr double kHeadingHoldWithinM = 1.0;
+// ForestMission plans no spline shorter than this per spline interval [m].
+constexpr double kMinSplineIntervalM = 0.05;
+
 // The bearing in W [rad] ForestMission's heading reference turns towards (at up to
 // ForestMissionParams::max_yaw_rate_radps): nullopt (hold it) while backing off or within
 // hold_within_m of the goal horizontally (its bearing swings there). Faster than
@@ -163,7 +174,7 @@ std::optional<double> ForestHeadingTarget(const Eigen::Vector3d& p_W, const Eige
                                           double travel_min_speed_mps,
                                           double max_travel_off_heading_rad,
                                           std::optional<double> look_aside_rad, bool backing_off,
-                                          double hold_within_m = 1.0);
+                                          double hold_within_m = kHeadingHoldWithinM);
 
 // What one frame did (the per-frame figures of `aperture bench mononav`).
 struct ForestFrameRecord {
@@ -177,6 +188,7 @@ struct ForestFrameRecord {
   bool direct = false;        // straight to the goal
   bool backed_off = false;    // a recovery: backing off along the flown path started
   bool looked_aside = false;  // a recovery: the heading started turning aside
+  bool turned_to_goal = false;  // the goal left the view: stopping to turn towards it began
 };
 
 class ForestMission : public perception::Autopilot {
@@ -211,6 +223,7 @@ class ForestMission : public perception::Autopilot {
   int frames_without_path() const;  // frames that found no traversable segment
   int back_offs() const;            // frames that started a back-off along the flown path
   int look_asides() const;          // frames that started a look-aside
+  int turns_to_goal() const;        // frames that started a stop to turn towards the goal
   // The flown path kept for backing off (estimated positions kTrailSpacingM apart; a back-off
   // consumes what it flies back over).
   const FlownTrail& trail() const { return trail_; }
@@ -231,6 +244,9 @@ class ForestMission : public perception::Autopilot {
   // After a frame without a new spline: starts a recovery when the vehicle has stalled (see
   // ForestMissionParams::recovery_after_s).
   void Recover(double t_s, const control::QuadState& x, ForestFrameRecord* record);
+  // Starts a stop and a turn towards the goal when the goal has left what the heading rule can
+  // show (see max_yaw_rate_radps); true while that turn lasts (no planning then).
+  bool TurnToGoal(double t_s, const control::QuadState& x, ForestFrameRecord* record);
   // Spline from the current reference (or estimate) along path_W; false when the solver fails.
   bool FollowPath(double t_s, const control::QuadState& x,
                   const std::vector<Eigen::Vector3d>& path_W);
@@ -253,6 +269,7 @@ class ForestMission : public perception::Autopilot {
   double last_step_t_s_ = 0.0;
   double still_since_t_s_ = 0.0;          // the vehicle has been at rest with no new spline since
   bool backing_off_ = false;              // the current spline backs off along the trail
+  bool turning_to_goal_ = false;          // stopping and turning towards the goal (no planning)
   std::optional<double> look_aside_rad_;  // the heading of a look-aside recovery
   int look_aside_side_ = -1;              // +1 left, -1 right of the goal's bearing
   FlownTrail trail_{kTrailSpacingM};
