@@ -129,8 +129,6 @@ cameras:
     rate_hz: 30
     color: true
 trajectory: {kind: line, frames: 60, end_p_m: [20.0, 0.0, 1.5]}
-# The thesis' rate law, which the forest benches were measured with (docs/results/mononav.md).
-sitl: {torque_observer_time_constant_s: 0}
 forest:
   trees: 40
   boxes: 6
