@@ -90,6 +90,17 @@ std::optional<double> ForestHeadingTarget(const Eigen::Vector3d& p_W, const Eige
   return goal_rad;
 }
 
+bool GoalLeftTheView(const Eigen::Vector3d& p_W, const Eigen::Vector3d& goal_W,
+                     const Eigen::Vector3d& v_reference_W, double travel_min_speed_mps,
+                     double max_travel_off_heading_rad, double max_bearing_rad) {
+  const Eigen::Vector2d to_goal = (goal_W - p_W).head<2>();
+  const Eigen::Vector2d v = v_reference_W.head<2>();
+  if (!(v.norm() > travel_min_speed_mps) || to_goal.norm() <= kHeadingHoldWithinM) return false;
+  const double goal_off_travel_rad = std::abs(std::remainder(
+      std::atan2(to_goal.y(), to_goal.x()) - std::atan2(v.y(), v.x()), 2.0 * M_PI));
+  return goal_off_travel_rad > max_travel_off_heading_rad + max_bearing_rad;
+}
+
 void ForestMissionParams::Validate() const {
   const auto require = [](bool ok, const std::string& what) {
     if (!ok) throw std::invalid_argument("ForestMissionParams: " + what);
@@ -252,18 +263,13 @@ bool ForestMission::TurnToGoal(double t_s, const control::QuadState& x,
     turning_to_goal_ = !flown_out || std::abs(heading_error_rad_) > kHeadingSettledRad;
     return turning_to_goal_;
   }
+  if (backing_off_ ||
+      !GoalLeftTheView(x.p_WB, params_.goal_W, reference.v_W,
+                       params_.travel_heading_min_speed_mps, params_.max_travel_off_heading_rad,
+                       selector_.params().max_bearing_rad)) {
+    return false;
+  }
   const Eigen::Vector2d v = reference.v_W.head<2>();
-  const Eigen::Vector2d to_goal = (params_.goal_W - x.p_WB).head<2>();
-  if (backing_off_ || !(v.norm() > params_.travel_heading_min_speed_mps) ||
-      to_goal.norm() <= kHeadingHoldWithinM) {
-    return false;
-  }
-  const double goal_off_travel_rad = std::abs(std::remainder(
-      std::atan2(to_goal.y(), to_goal.x()) - std::atan2(v.y(), v.x()), 2.0 * M_PI));
-  if (goal_off_travel_rad <=
-      params_.max_travel_off_heading_rad + selector_.params().max_bearing_rad) {
-    return false;
-  }
   // Stop straight ahead, over the distance of 1 s at the current speed (2 s, 4 s when the spline
   // solver does not converge on it) and no less than the shortest spline.
   bool stopping = false;

@@ -176,6 +176,14 @@ std::optional<double> ForestHeadingTarget(const Eigen::Vector3d& p_W, const Eige
                                           std::optional<double> look_aside_rad, bool backing_off,
                                           double hold_within_m = kHeadingHoldWithinM);
 
+// True when the goal has left what ForestHeadingTarget can show: the reference flies faster than
+// travel_min_speed_mps horizontally, the goal is farther than kHeadingHoldWithinM and its bearing
+// is more than max_travel_off_heading_rad + max_bearing_rad (the seen wedge's half angle) from the
+// direction of travel. ForestMission then stops and turns to the goal.
+bool GoalLeftTheView(const Eigen::Vector3d& p_W, const Eigen::Vector3d& goal_W,
+                     const Eigen::Vector3d& v_reference_W, double travel_min_speed_mps,
+                     double max_travel_off_heading_rad, double max_bearing_rad);
+
 // What one frame did (the per-frame figures of `aperture bench mononav`).
 struct ForestFrameRecord {
   double t_s = 0.0;

@@ -112,6 +112,32 @@ TEST(ForestHeadingTarget, TowardsTheGoalButInFlightNoFartherThanTheLimitFromTheT
                                    std::nullopt, false));
 }
 
+TEST(GoalLeftTheView, WhenNoHeadingTheRuleAllowsShowsTheGoal) {
+  // The stall course with the torque observer: passing the trunk wide (y ~ 3 m) at 0.5 m/s
+  // heading ~5 deg, the goal 6 m ahead of the start falls behind. With a 0.5 rad heading limit
+  // and a 45 deg seen wedge, the goal leaves the view beyond 73.6 deg off the travel.
+  const Eigen::Vector3d goal_W(6.0, 0.0, 1.5);
+  const double limit_rad = 0.5;
+  const double wedge_rad = M_PI / 4.0;
+  const auto left = [&](const Eigen::Vector3d& p_W, double travel_deg, double speed_mps) {
+    const double travel_rad = travel_deg * M_PI / 180.0;
+    const Eigen::Vector3d v_W =
+        speed_mps * Eigen::Vector3d(std::cos(travel_rad), std::sin(travel_rad), 0.0);
+    return GoalLeftTheView(p_W, goal_W, v_W, 0.3, limit_rad, wedge_rad);
+  };
+  // The goal 72.2 deg right of the travel (at 12.2 s): still within 28.6 + 45 deg.
+  EXPECT_FALSE(left(Eigen::Vector3d(4.49, 2.87, 1.5), 10.0, 0.5));
+  // 75.9 deg (at 13.2 s): left the view.
+  EXPECT_TRUE(left(Eigen::Vector3d(5.0, 2.93, 1.5), 4.7, 0.5));
+  // The other side, across +-pi: travel at 170 deg, the goal at -100 deg (90 deg to the left).
+  EXPECT_TRUE(left(goal_W + Eigen::Vector3d(0.5, 2.84, 0.0), 170.0, 0.5));
+  EXPECT_FALSE(left(goal_W + Eigen::Vector3d(2.0, 0.35, 0.0), 170.0, 0.5));  // 20 deg off
+  // Slow (a look-aside at rest turns the camera off the goal on purpose) or near the goal (its
+  // bearing swings): never.
+  EXPECT_FALSE(left(Eigen::Vector3d(5.0, 2.93, 1.5), 4.7, 0.25));
+  EXPECT_FALSE(left(goal_W + Eigen::Vector3d(-0.2, 0.9, 0.0), 0.0, 0.5));
+}
+
 // Feeds a mission IMU samples (200 Hz), odometry poses (50 Hz), Step (100 Hz) and black frames
 // (10 Hz: no depth the planner can pass) for a vehicle at p_W(t), level, heading 0, until t_end_s.
 class StalledMission : public ::testing::Test {
