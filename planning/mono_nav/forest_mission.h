@@ -33,7 +33,10 @@
 //     windows (layouts 1 and 4 stalled there for 20-40 s);
 //   * a recovery when the vehicle stalls (recovery_after_s at rest without a new spline): back
 //     off along the flown path (FlownTrail), or at the start look aside (layouts 13, 20, 25, 35
-//     stalled in front of trunks the depth model put too close).
+//     stalled in front of trunks the depth model put too close);
+//   * when the goal has left what the heading rule can show (GoalLeftTheView), a stop and a turn
+//     to face it before planning again (the one-trunk stall course, flown with the flight
+//     controller's torque observer, passed the trunk wide and sailed on past its goal).
 //
 // State: the odometry source's body poses (OnOdometry: a VIO or the paper's optical-flow EKF on
 // hardware; in SITL a simulated one, experiments/missions/forest_flight.h) fused with the IMU by
