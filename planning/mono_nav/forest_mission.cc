@@ -263,10 +263,15 @@ bool ForestMission::TurnToGoal(double t_s, const control::QuadState& x,
     turning_to_goal_ = !flown_out || std::abs(heading_error_rad_) > kHeadingSettledRad;
     return turning_to_goal_;
   }
-  if (backing_off_ ||
-      !GoalLeftTheView(x.p_WB, params_.goal_W, reference.v_W,
-                       params_.travel_heading_min_speed_mps, params_.max_travel_off_heading_rad,
-                       selector_.params().max_bearing_rad)) {
+  // Now and kTravelLookAheadS on: a spline planned from a back-off's backward velocity reverses
+  // within ~0.3 s, its travel only briefly points away from the goal.
+  const auto left_the_view = [&](const Eigen::Vector3d& v_reference_W) {
+    return GoalLeftTheView(x.p_WB, params_.goal_W, v_reference_W,
+                           params_.travel_heading_min_speed_mps,
+                           params_.max_travel_off_heading_rad, selector_.params().max_bearing_rad);
+  };
+  if (backing_off_ || !left_the_view(reference.v_W) ||
+      !left_the_view(Reference(t_s + kTravelLookAheadS).v_W)) {
     return false;
   }
   const Eigen::Vector2d v = reference.v_W.head<2>();

@@ -258,6 +258,7 @@ class ForestMission : public perception::Autopilot {
   // Starts a stop and a turn towards the goal when the goal has left what the heading rule can
   // show (see max_yaw_rate_radps); true while that turn lasts (no planning then).
   bool TurnToGoal(double t_s, const control::QuadState& x, ForestFrameRecord* record);
+  static constexpr double kTravelLookAheadS = 0.5;
   // Spline from the current reference (or estimate) along path_W; false when the solver fails.
   bool FollowPath(double t_s, const control::QuadState& x,
                   const std::vector<Eigen::Vector3d>& path_W);
