@@ -125,8 +125,8 @@ TEST(ScenarioSitlTest, DynamicsImuRangeCollisionSitlAndDropKeysReachTheRunner) {
   EXPECT_LT(AccelZSpread(nominal), 0.5);
 }
 
-// The flight controller's torque observer: on by default, off in the forest scenario (its benches
-// were measured on the thesis' law), and the key reaches the runner.
+// The flight controller's torque observer: on by default in every scenario (the forest too since
+// its turn to the goal), and the key reaches the runner.
 TEST(ScenarioSitlTest, TheTorqueObserverKeyReachesTheFlightController) {
   const auto observer_time_constant_s = [](const std::string& name,
                                            const std::vector<std::string>& set_items) {
@@ -138,7 +138,11 @@ TEST(ScenarioSitlTest, TheTorqueObserverKeyReachesTheFlightController) {
   EXPECT_EQ(observer_time_constant_s("gap", {}), SitlRunnerParams().flight_controller.low_level
                                                      .torque_observer_time_constant_s);
   EXPECT_GT(observer_time_constant_s("gap", {}), 0.0);
-  EXPECT_EQ(observer_time_constant_s("forest", {"forest.trees=0", "forest.boxes=0"}), 0.0);
+  EXPECT_EQ(observer_time_constant_s("forest", {"forest.trees=0", "forest.boxes=0"}),
+            observer_time_constant_s("gap", {}));
+  EXPECT_EQ(observer_time_constant_s("forest", {"forest.trees=0", "forest.boxes=0",
+                                                "sitl.torque_observer_time_constant_s=0"}),
+            0.0);
   EXPECT_EQ(observer_time_constant_s("gap", {"sitl.torque_observer_time_constant_s=0.25"}), 0.25);
 }
 
