@@ -136,8 +136,8 @@ struct ForestMissionParams {
   // max_travel_off_heading_rad + the selector's max_bearing_rad from the direction of travel, no
   // heading the rule allows shows it, no path can reach towards it and each new path only turns
   // the travel as far as the camera sees: the vehicle stops and turns to face the goal before it
-  // plans again (`turns_to_goal`; with the thesis' rate law, a course round one trunk flew
-  // past its goal this way and never turned back).
+  // plans again (`turns_to_goal`; with the flight controller's torque observer, a course round
+  // one trunk flew past its goal this way and never turned back).
   double max_yaw_rate_radps = 0.5;
   double travel_heading_min_speed_mps = 0.3;
   double max_travel_off_heading_rad = 0.5;  // inside the camera's +-45 deg, with a margin
