@@ -95,6 +95,10 @@ void ValidateGapDetectorParams(const GapDetectorParams& p) {
   control::Require(p.approx_epsilon_ratio > 0.0 && p.approx_epsilon_ratio < 0.25,
                    "GapDetectorParams.approx_epsilon_ratio", p.approx_epsilon_ratio,
                    "must be in (0, 0.25)");
+  control::Require(p.approx_epsilon_max_ratio >= p.approx_epsilon_ratio &&
+                       p.approx_epsilon_max_ratio < 0.25,
+                   "GapDetectorParams.approx_epsilon_max_ratio", p.approx_epsilon_max_ratio,
+                   "must be in [approx_epsilon_ratio, 0.25)");
   control::Require(p.min_side_px > 0.0, "GapDetectorParams.min_side_px", p.min_side_px,
                    "must be > 0");
   control::Require(p.area_ratio_tolerance > 1.0, "GapDetectorParams.area_ratio_tolerance",
@@ -226,9 +230,11 @@ class Attempt {
     Vec2 p0, p1;
     if (!camera_.Project(b0, &p0) || !camera_.Project(b1, &p1)) return false;
     const double length_px = (p1 - p0).norm();
-    const int n = std::clamp(static_cast<int>(length_px * (1.0 - 2.0 * p_.corner_exclusion) /
-                                              p_.edge_sample_step_px),
-                             4, p_.max_samples_per_side);
+    // At least 8 (denser than edge_sample_step_px on sides under ~20 px): a far pattern's short
+    // inner sides (~15 px at 5 m) need 4 samples that pass the checks below.
+    const int spaced =
+        static_cast<int>(length_px * (1.0 - 2.0 * p_.corner_exclusion) / p_.edge_sample_step_px);
+    const int n = std::min(std::max(spaced, 8), p_.max_samples_per_side);
     const int r = p_.edge_search_px;
     std::array<double, 35> profile;  // 2 r + 3 samples, edge_search_px <= 16
     side->bearings_C.clear();
@@ -303,6 +309,35 @@ class Attempt {
     }
   }
 
+  // Pixels per radian off the plane through C with normal n, at bearing b (through the camera
+  // model); 0 where b does not project.
+  double PixelsPerRadianOffPlane(const Vec3& n, const Vec3& b) const {
+    const Vec3 u = n - n.dot(b) * b;
+    Vec2 px;
+    Eigen::Matrix<double, 2, 3> J;
+    if (u.norm() < 1e-9 || !camera_.Project(b, &px, &J)) return 0.0;
+    return (J * u.normalized()).norm();
+  }
+
+  // Drops the edge samples farther than 3 pixel_sigma_px from the edges of pose (R, t): samples
+  // that latched onto a neighbouring edge (the far side of a ~2 px white band, the panel's
+  // border) bias a far pattern's pose by degrees. Returns the number dropped.
+  int DropOutlierSamples(const Mat3& R, const Vec3& t, std::array<Side, 8>* sides) const {
+    std::array<Vec3, 8> n;
+    ModelNormals(R, t, &n, nullptr);
+    const double max_px = 3.0 * p_.pixel_sigma_px;
+    int dropped = 0;
+    for (int e = 0; e < 8; ++e) {
+      std::vector<Vec3>& bearings = (*sides)[e].bearings_C;
+      const auto end = std::remove_if(bearings.begin(), bearings.end(), [&](const Vec3& b) {
+        return std::abs(PixelsPerRadianOffPlane(n[e], b) * n[e].dot(b)) > max_px;
+      });
+      dropped += static_cast<int>(bearings.end() - end);
+      bearings.erase(end, bearings.end());
+    }
+    return dropped;
+  }
+
   // Gauss-Newton on SE(3) minimizing the pixel distances of all edge samples to the projected
   // model edges (bearing-to-plane residual scaled to pixels). Returns false on degeneracy.
   bool Refine(const std::array<Side, 8>& sides, Mat3* R, Vec3* t, GapDetection* out) const {
@@ -318,11 +353,8 @@ class Attempt {
     for (int e = 0; e < 8; ++e) {
       M[e].setZero();
       for (const Vec3& b : sides[e].bearings_C) {
-        Vec3 u = n[e] - n[e].dot(b) * b;
-        Vec2 px;
-        Eigen::Matrix<double, 2, 3> J;
-        if (u.norm() < 1e-9 || !camera_.Project(b, &px, &J)) continue;
-        const double f = (J * u.normalized()).norm();
+        const double f = PixelsPerRadianOffPlane(n[e], b);
+        if (f <= 0.0) continue;
         M[e] += f * f * b * b.transpose();
         ++samples;
       }
@@ -453,6 +485,10 @@ class Attempt {
     if (!corner_rms(R, t, &rms) || rms > p_.max_corner_rms_px) return result;
 
     if (!Refine(sides, &R, &t, &result)) return result;
+    // Up to three rounds of dropping the samples off the refined edges and refining again.
+    for (int round = 0; round < 3 && DropOutlierSamples(R, t, &sides) > 0; ++round) {
+      if (!Refine(sides, &R, &t, &result)) return result;
+    }
     if (!corner_rms(R, t, &rms) || rms > p_.max_corner_rms_px) return result;
 
     // Symmetry convention: x_G towards the image's right half-plane. Rz(pi) maps model corner k
@@ -514,6 +550,12 @@ GapDetection GapDetector::DetectIn(const cv::Mat& gray, const cv::Rect& roi) {
     if (!ok) continue;
     const double perimeter = cv::arcLength(im.gnomonic, true);
     cv::approxPolyDP(im.gnomonic, im.polygon, params_.approx_epsilon_ratio * perimeter, true);
+    for (double ratio = params_.approx_epsilon_ratio;
+         im.polygon.size() > 4 && cv::isContourConvex(im.polygon) &&
+         ratio < params_.approx_epsilon_max_ratio;) {
+      ratio = std::min(1.6 * ratio, params_.approx_epsilon_max_ratio);
+      cv::approxPolyDP(im.gnomonic, im.polygon, ratio * perimeter, true);
+    }
     if (im.polygon.size() != 4 || !cv::isContourConvex(im.polygon)) continue;
     std::array<Vec2, 4> g;
     for (int k = 0; k < 4; ++k) g[k] = Vec2(im.polygon[k].x, im.polygon[k].y);

@@ -37,8 +37,13 @@ struct GapDetectorParams : GapPattern {
   double canny_low = 40.0;   // Canny hysteresis thresholds on the 8-bit image
   double canny_high = 120.0;
   double min_perimeter_px = 60.0;  // smaller contours are not looked at
-  // cv::approxPolyDP tolerance as a fraction of the contour perimeter.
+  // cv::approxPolyDP tolerance as a fraction of the contour perimeter. A convex contour that
+  // gives more than four vertices is approximated again with the tolerance grown 1.6 x at a time
+  // up to approx_epsilon_max_ratio: a far pattern's 2 px white band merges the inner edge with
+  // the opening's in the dilated edge map and cuts its corners, so the inner quadrangle comes
+  // out with five or six vertices at the tight tolerance.
   double approx_epsilon_ratio = 0.03;
+  double approx_epsilon_max_ratio = 0.08;
   double min_side_px = 6.0;  // shortest quadrangle side
   // Accepted outer/inner area ratio: expected (from the sizes) times / divided by this factor;
   // perspective changes the ratio, the PnP reprojection check is the final arbiter.

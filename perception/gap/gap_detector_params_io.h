@@ -17,6 +17,7 @@ void Serialize(Archive* a, GapDetectorParams* p) {
   a->Visit(APERTURE_NVP(p, canny_high));
   a->Visit(APERTURE_NVP(p, min_perimeter_px));
   a->Visit(APERTURE_NVP(p, approx_epsilon_ratio));
+  a->Visit(APERTURE_NVP(p, approx_epsilon_max_ratio));
   a->Visit(APERTURE_NVP(p, min_side_px));
   a->Visit(APERTURE_NVP(p, area_ratio_tolerance));
   a->Visit(APERTURE_NVP(p, min_contrast));

@@ -37,4 +37,19 @@ SceneObject MakeGapPatternObject(const perception::GapPattern& pattern,
   return SceneObject(name, panel, material, T_WG);
 }
 
+bool GapPatternInView(const perception::CameraModel& camera, const perception::GapPattern& pattern,
+                      const Eigen::Isometry3d& T_CG, const cv::Mat& object_id, int gap_object_id) {
+  const Eigen::Vector2d half = 0.5 * 1.05 * pattern.outer_size_m;
+  for (const Eigen::Vector2d& sign : {Eigen::Vector2d(-1, -1), Eigen::Vector2d(1, -1),
+                                      Eigen::Vector2d(1, 1), Eigen::Vector2d(-1, 1)}) {
+    const Eigen::Vector3d p_G(sign.x() * half.x(), sign.y() * half.y(), 0.0);
+    Eigen::Vector2d px;
+    if (!camera.Project(T_CG * p_G, &px) || !camera.IsInImage(px, 3.0)) return false;
+    const int row = static_cast<int>(std::lround(px.y()));
+    const int col = static_cast<int>(std::lround(px.x()));
+    if (object_id.empty() || object_id.at<int>(row, col) != gap_object_id) return false;
+  }
+  return true;
+}
+
 }  // namespace aperture::sim

@@ -7,7 +7,9 @@
 // The texture has 1 cm nearest-filtered texels; every pattern edge lies on a texel border when
 // the sizes and the panel margins are multiples of 2 cm.
 #include <Eigen/Geometry>
+#include <opencv2/core/mat.hpp>
 
+#include "perception/camera/camera_model.h"
 #include "perception/gap/gap_pattern.h"
 #include "sim/scene/scene.h"
 
@@ -19,5 +21,11 @@ namespace aperture::sim {
 SceneObject MakeGapPatternObject(const perception::GapPattern& pattern,
                                  const Eigen::Vector2d& panel_size_m, const Eigen::Isometry3d& T_WG,
                                  const std::string& name = "gap");
+
+// True when the whole pattern shows in a rendered frame: each outer corner pushed 5 % outwards
+// (a margin of the white surround) projects in front of the camera, 3 px inside the image, onto
+// a pixel where the renderer saw the gap object (object_id: RenderOutput::object_id, CV_32SC1).
+bool GapPatternInView(const perception::CameraModel& camera, const perception::GapPattern& pattern,
+                      const Eigen::Isometry3d& T_CG, const cv::Mat& object_id, int gap_object_id);
 
 }  // namespace aperture::sim

@@ -95,22 +95,6 @@ Eigen::Isometry3d Canonical(Eigen::Isometry3d T_CG) {
   return T_CG;
 }
 
-// True when the whole pattern (outer corners and 1/4 of the white margin around them) is in the
-// image, in front of the camera and the gap panel is what the camera sees at the corners.
-bool PatternInView(const CameraModel& camera, const GapDetector& detector,
-                   const Eigen::Isometry3d& T_CG, const cv::Mat& object_id, int gap_id) {
-  const std::vector<Eigen::Vector3d> corners = detector.ModelCorners();
-  for (int k = 0; k < 4; ++k) {
-    const Eigen::Vector3d p_G = corners[k] * 1.05;
-    Eigen::Vector2d px;
-    if (!camera.Project(T_CG * p_G, &px) || !camera.IsInImage(px, 3.0)) return false;
-    if (object_id.at<int>(static_cast<int>(std::lround(px.y())),
-                          static_cast<int>(std::lround(px.x()))) != gap_id)
-      return false;
-  }
-  return true;
-}
-
 struct Sample {
   double distance_m;
   double position_error_m;
@@ -180,7 +164,7 @@ TEST_P(GapDetectorRenderTest, PoseAccuracyAndDetectionRate) {
     const RenderOutput out = caster.Render(scene, *camera, T_WC, options);
     const cv::Mat image = CameraEffects(effects).ToImage8U(out.radiance, frame);
     const Eigen::Isometry3d T_CG_true = Canonical(T_WC.inverse() * T_WG);
-    if (!PatternInView(*camera, detector, T_CG_true, out.object_id, gap_id)) continue;
+    if (!GapPatternInView(*camera, params, T_CG_true, out.object_id, gap_id)) continue;
     ++in_view;
     const GapDetection d = detector.Detect(image);
     if (!d.detected()) {
@@ -295,6 +279,75 @@ TEST(GapDetectorCloseUpTest, FisheyeCloseUpWithCurvedSides) {
     EXPECT_LT((d.T_CG.translation() - T_CG_true.translation()).norm(), 0.01 * p_GC.norm());
     EXPECT_LT(RotationErrorDeg(d.T_CG, T_CG_true), 1.0);
   }
+}
+
+// Far and steep on the fisheye (issue 22): at ~5 m the 5 cm white band is ~2 px wide, its two
+// edges merge in the dilated edge map and the inner quadrangle's contour loses a corner, so the
+// tight polygon tolerance gives it five vertices. Views from the bench's misses (gap roll
+// 35-55 deg, pitch 10-28 deg, 25-35 deg off the normal, the camera rolled): every one detected
+// within the accuracy targets, and with the tolerance never widened some are missed (the views
+// exercise the retry). The short inner sides (~15 px) also need the denser edge sampling of
+// short sides. Accuracy: the medians within the 1 % / 1 deg of the render tests (0.24 % and
+// 0.49 deg measured; 0.66 % and 0.99 deg before edge samples off the refined edges were dropped;
+// single views reach 1.6 deg, the bench's 4-6 m band has p90 ~0.5 deg).
+TEST(GapDetectorFarSteepTest, InnerQuadrangleWithACutCornerIsFound) {
+  const auto camera = std::shared_ptr<const CameraModel>(testing::MakeTestFisheye());
+  GapDetectorParams params;
+  params.use_roi = false;
+  GapDetectorParams tight = params;
+  tight.approx_epsilon_max_ratio = tight.approx_epsilon_ratio;
+  GapDetector detector(params, camera);
+  GapDetector tight_detector(tight, camera);
+  RayCaster caster;
+  RenderOptions options;
+  options.supersampling = 2;
+  CameraEffectsParams effects;
+  effects.read_noise_sigma = 0.004;
+  int views = 0, detected = 0, detected_tight = 0;
+  std::vector<double> relative_position, rotation;
+  for (int i = 0; i < 12; ++i) {
+    const double roll = (35.0 + 20.0 * ((i * 5) % 12) / 11.0) * M_PI / 180.0;
+    const double pitch = (10.0 + 18.0 * ((i * 7) % 12) / 11.0) * M_PI / 180.0;
+    // At 4 m height the views from below stay above the ground.
+    const Eigen::Isometry3d T_WG = GapPose(roll, pitch, Eigen::Vector3d(0.0, 0.0, 4.0));
+    Scene scene;
+    const int gap_id = scene.AddObject(MakeGapPanel(params, T_WG));
+    AddClutter(&scene, 7.0);
+    const double distance = 4.6 + 0.1 * i;
+    const double off_normal = (25.0 + 10.0 * ((i * 3) % 4) / 3.0) * M_PI / 180.0;
+    const double azimuth = 2.0 * M_PI * i / 12.0;
+    const Eigen::Vector3d dir_G(std::sin(off_normal) * std::cos(azimuth),
+                                std::sin(off_normal) * std::sin(azimuth), std::cos(off_normal));
+    const Eigen::Vector3d p_WC = T_WG * (-distance * dir_G);
+    Eigen::Isometry3d T_WC = testing::LookAt(p_WC, T_WG.translation() - p_WC);
+    T_WC.linear() = T_WC.linear() *
+                    Eigen::AngleAxisd((i % 5 - 2) * 12.0 * M_PI / 180.0, Eigen::Vector3d::UnitZ());
+    const RenderOutput out = caster.Render(scene, *camera, T_WC, options);
+    const cv::Mat image = CameraEffects(effects).ToImage8U(out.radiance, i);
+    const Eigen::Isometry3d T_CG_true = Canonical(T_WC.inverse() * T_WG);
+    if (!GapPatternInView(*camera, params, T_CG_true, out.object_id, gap_id)) continue;  // clutter
+    ++views;
+    detected_tight += tight_detector.DetectFullImage(image).detected() ? 1 : 0;
+    const GapDetection d = detector.DetectFullImage(image);
+    if (!d.detected()) {
+      ADD_FAILURE() << "view " << i << " at " << distance
+                    << " m: " << GapDetectionStatusName(d.status);
+      continue;
+    }
+    ++detected;
+    relative_position.push_back((d.T_CG.translation() - T_CG_true.translation()).norm() /
+                                distance);
+    rotation.push_back(RotationErrorDeg(d.T_CG, T_CG_true));
+  }
+  std::printf(
+      "far steep views: %d of %d detected, %d without widening the tolerance; median position "
+      "error %.3f %% of the distance, rotation %.3f deg\n",
+      detected, views, detected_tight, 100.0 * Median(relative_position), Median(rotation));
+  EXPECT_LE(Median(relative_position), 0.01);
+  EXPECT_LE(Median(rotation), 1.0);
+  ASSERT_GE(views, 10);
+  EXPECT_EQ(detected, views);
+  EXPECT_LT(detected_tight, views);
 }
 
 // No detection without a gap: a cluttered textured scene, all black, all white, pure noise.
