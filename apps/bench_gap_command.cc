@@ -5,15 +5,17 @@
 //                      [--max-roll-deg R] [--max-pitch-deg P]
 //                      [--max-drop-probability D] [--motion-blur-subframes K]
 //                      [--autopilot mission|ground_truth] [--duration S] [--threads T]
-//                      [--render-ignored-frames]
+//                      [--render-ignored-frames] [--detector-sequences N]
 //                      [--shard K/N] [--config FILE] [--set key=value ...] --out DIR
 //
 // --config/--set override the built-in `gap` scenario (e.g. --set cameras.front.supersampling=1)
 // and the mission's parameters (--set mission.hover_s=1, section `mission`); summary.json "config"
 // holds the full effective configuration, which `--config OUT/summary.json` flies again.
 // Writes DIR/summary.json (success_rate, error_at_gap.*, per_trial), DIR/trials.csv and
-// DIR/report.html (experiments/gap/gap_bench.h), or with --shard K/N the K-th block of the
-// trials for `aperture bench merge` (experiments/bench/monte_carlo_run.h).
+// DIR/report.html (experiments/gap/gap_bench.h); --detector-sequences adds the detector on
+// rendered sequences flown past the gap (summary.json "detector", DIR/detector_frames.csv, a
+// report section; experiments/gap/gap_detector_sequence.h), or with --shard K/N the K-th block
+// of the trials and sequences for `aperture bench merge` (experiments/bench/monte_carlo_run.h).
 #include <memory>
 
 #include "apps/command_support.h"
@@ -63,6 +65,11 @@ void AddBenchGapCommand(CLI::App& bench, int* exit_code) {
   command->add_flag("--render-ignored-frames", options->bench.render_ignored_frames,
                     "Also render the frames the mission ignores (after the planned crossing); "
                     "the same outcome at a higher cost");
+  command
+      ->add_option("--detector-sequences", options->bench.detector_sequences,
+                   "Rendered sequences flown past the gap (roll to 60 deg, 1-6 m, to 3 m/s) on "
+                   "which the gap detector is scored frame by frame after the flights (0 = none)")
+      ->check(IntegerIn(0));
   command->add_option("--duration", options->bench.duration_s, "Simulated time per trial [s]")
       ->check(FiniteNumberIn(0.0, kMaxDurationS, /*min_inclusive=*/false));
   command

@@ -13,6 +13,7 @@
 
 #include "control/constants.h"
 #include "experiments/bench/sitl_profile_json.h"
+#include "experiments/gap/gap_detector_summary.h"
 #include "experiments/gap/gap_mission_factory.h"
 #include "experiments/gap/gap_trial_record_json.h"
 #include "output/interruption.h"
@@ -156,7 +157,12 @@ void GapBenchOptions::Validate() const {
     throw std::invalid_argument("--threads " + std::to_string(threads) +
                                 ": must be >= 0 (0 = all cores)");
   }
+  if (detector_sequences < 0) {
+    throw std::invalid_argument("--detector-sequences " + std::to_string(detector_sequences) +
+                                ": must be >= 0 (0 = no detector section)");
+  }
   ranges.Validate();
+  detector_ranges.Validate();
 }
 
 GapTrialRecord RunGapTrial(const GapBenchOptions& options, const sim::ScenarioParams& base,
@@ -362,6 +368,10 @@ nlohmann::json SummarizeGapBench(const GapBenchResult& result) {
   }
   summary["success_by_inclination"] = by_inclination;
   summary["per_trial"] = per_trial;
+  if (!result.detector_sequences.empty()) {
+    summary["detector"] = SummarizeGapDetectorSequences(result.detector_sequences,
+                                                        result.options.detector_ranges.distance_m);
+  }
   return summary;
 }
 

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "control/quad_state.h"
+#include "experiments/gap/gap_detector_sequence.h"
 #include "experiments/gap/gap_trial_autopilot.h"
 #include "experiments/gap/gap_trial_config.h"
 #include "experiments/gap/gap_trial_evaluation.h"
@@ -49,8 +50,13 @@ struct GapBenchOptions {
   // false: frames the mission would ignore (after the planned crossing) are not rendered
   // (SitlRunnerParams::render_ignored_frames; the same outcome, fewer renders).
   bool render_ignored_frames = false;
-  // Throws std::invalid_argument naming the option (trials < 1, duration <= 0, threads < 0, bad
-  // ranges).
+  // The detector section (gap_detector_sequence.h): rendered sequences flown past the gap, each
+  // scored frame by frame; 0 = none. In a Monte-Carlo run they follow the flights (indices
+  // first_trial + trials ...).
+  int detector_sequences = 0;
+  GapDetectorSequenceRanges detector_ranges;
+  // Throws std::invalid_argument naming the option (trials < 1, duration <= 0, threads < 0,
+  // detector_sequences < 0, bad ranges).
   void Validate() const;
 };
 
@@ -85,6 +91,7 @@ struct GapBenchResult {
   nlohmann::json scenario_config;
   planning::GapMissionParams mission;  // GapTrialSetup::mission of every trial
   std::vector<GapTrialRecord> trials;  // in trial order
+  std::vector<GapDetectorSequenceRecord> detector_sequences;  // in sequence order
 };
 
 // The options as summary.json "inputs" (all but `threads`, which does not change a result) and
@@ -124,12 +131,14 @@ GapBenchResult RunGapBench(const GapBenchOptions& options, const GapBenchSetup& 
 // position_mean/_std [m], velocity_mean/_std [m/s], orientation_mean_deg/_std_deg [roll, pitch]
 // as mean and std of |error| like Table I, plus signed means, norms and the arrival-time error,
 // over every trial that crossed the gap plane with a plan, successful or not, like the paper),
-// failure reasons, success by inclination bins and the per-trial list "per_trial".
+// failure reasons, success by inclination bins and the per-trial list "per_trial"; with detector
+// sequences, "detector" (gap_detector_summary.h).
 nlohmann::json SummarizeGapBench(const GapBenchResult& result);
 
-// summary.json fields (SummarizeGapBench + inputs), trials.csv (one row per trial) and
-// report.html (success by inclination, error histograms, Fig. 6 analogs for up to three
-// trials nearest to the paper's 20/0, 45/0 and 30/30 deg roll/pitch gaps).
+// summary.json fields (SummarizeGapBench + inputs), trials.csv (one row per trial),
+// detector_frames.csv (with detector sequences: one row per rendered frame) and report.html
+// (success by inclination, error histograms, Fig. 6 analogs for up to three trials nearest to
+// the paper's 20/0, 45/0 and 30/30 deg roll/pitch gaps, the detector section).
 void WriteGapBenchOutputs(const GapBenchResult& result, output::OutputFolder& out);
 
 }  // namespace aperture::experiments

@@ -30,6 +30,8 @@ nlohmann::json GapBenchOptionsToJson(const GapBenchOptions& o) {
             {"max_tilt_deg", o.hover.max_tilt_deg},
             {"max_rate_radps", o.hover.max_rate_radps},
             {"min_height_m", o.hover.min_height_m}}},
+          {"detector_sequences", o.detector_sequences},
+          {"detector_ranges", GapDetectorSequenceRangesToJson(o.detector_ranges)},
           {"config_files", o.config_files},
           {"set_items", o.set_items}};
 }
@@ -60,6 +62,8 @@ GapBenchOptions GapBenchOptionsFromJson(const nlohmann::json& json) {
     o.hover.max_tilt_deg = h.at("max_tilt_deg").get<double>();
     o.hover.max_rate_radps = h.at("max_rate_radps").get<double>();
     o.hover.min_height_m = h.at("min_height_m").get<double>();
+    o.detector_sequences = json.at("detector_sequences").get<int>();
+    o.detector_ranges = GapDetectorSequenceRangesFromJson(json.at("detector_ranges"));
     o.config_files = json.at("config_files").get<std::vector<std::string>>();
     o.set_items = json.at("set_items").get<std::vector<std::string>>();
     o.threads = 0;

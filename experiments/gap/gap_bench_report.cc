@@ -10,6 +10,7 @@
 #include "control/constants.h"
 #include "experiments/bench/sitl_profile_json.h"
 #include "experiments/gap/gap_bench.h"
+#include "experiments/gap/gap_detector_summary.h"
 #include "output/csv_writer.h"
 #include "output/html_report.h"
 #include "output/json_eigen.h"
@@ -242,6 +243,10 @@ void WriteReport(const GapBenchResult& result, const nlohmann::json& summary,
                            {"roll", "pitch", "yaw"}));
   }
 
+  if (summary.contains("detector")) {
+    AddGapDetectorReportSection(summary["detector"], result.detector_sequences, &report);
+  }
+
   nlohmann::json failed = nlohmann::json::array();
   for (const GapTrialRecord& r : result.trials) {
     if (r.evaluation.success) continue;
@@ -279,6 +284,10 @@ void WriteGapBenchOutputs(const GapBenchResult& result, output::OutputFolder& ou
   WriteTrialsCsv(result, out.Path("trials.csv"));
   WriteReport(result, figures, out);
   summary["outputs"] = {{"trials", "trials.csv"}, {"report", "report.html"}};
+  if (!result.detector_sequences.empty()) {
+    WriteGapDetectorFramesCsv(result.detector_sequences, out.Path("detector_frames.csv"));
+    summary["outputs"]["detector_frames"] = "detector_frames.csv";
+  }
 }
 
 }  // namespace aperture::experiments

@@ -1,5 +1,7 @@
 #include "experiments/gap/gap_monte_carlo_bench.h"
 
+#include <algorithm>
+#include <cstdio>
 #include <stdexcept>
 
 #include "experiments/gap/gap_mission_trial.h"
@@ -8,6 +10,23 @@
 
 namespace aperture::experiments {
 namespace {
+
+// "; detector: ..." for a run with detector sequences, else "".
+std::string DescribeDetector(const nlohmann::json& summary) {
+  if (!summary.contains("detector")) return "";
+  const nlohmann::json& d = summary["detector"];
+  const auto number = [&](const char* key, double scale, const char* format) {
+    if (!d[key].is_number()) return std::string("n/a");
+    char text[32];
+    std::snprintf(text, sizeof(text), format, scale * d[key].get<double>());
+    return std::string(text);
+  };
+  return "; detector: " + number("detection_rate", 100.0, "%.1f %%") + " of " +
+         std::to_string(d["frames_in_view"].get<int>()) + " frames in view, rotation median " +
+         number("rotation_error_median_deg", 1.0, "%.3f deg") + ", T_GC " +
+         number("T_GC_position_error_median_pct", 1.0, "%.3f %%") + ", T_CG " +
+         number("T_CG_position_error_median_pct", 1.0, "%.3f %%") + " of the distance";
+}
 
 class GapMonteCarloBench : public MonteCarloBench {
  public:
@@ -34,21 +53,46 @@ class GapMonteCarloBench : public MonteCarloBench {
 
   const nlohmann::json& configuration() const override { return configuration_; }
 
-  TrialRange run() const override { return {options_.first_trial, options_.trials}; }
+  // The flights, then the detector sequences.
+  TrialRange run() const override {
+    return {options_.first_trial, options_.trials + options_.detector_sequences};
+  }
 
   std::vector<nlohmann::json> RunTrials(
       const TrialRange& trials, int threads,
       const std::function<void(int)>& on_trial_done) const override {
-    GapBenchOptions options = options_;
-    options.first_trial = trials.first;
-    options.trials = trials.count;
-    options.threads = threads;
-    const GapBenchResult result = RunGapBench(options, setup_, factory_, on_trial_done);
+    const int first_sequence = options_.first_trial + options_.trials;
+    const int end = trials.first + trials.count;
     std::vector<nlohmann::json> records;
-    records.reserve(result.trials.size());
-    for (const GapTrialRecord& record : result.trials) {
-      records.push_back(GapTrialRecordToJson(record));
+    const TrialRange flights{trials.first,
+                             std::max(0, std::min(end, first_sequence) - trials.first)};
+    if (flights.count > 0) {
+      GapBenchOptions options = options_;
+      options.first_trial = flights.first;
+      options.trials = flights.count;
+      options.threads = threads;
+      const GapBenchResult result = RunGapBench(options, setup_, factory_, on_trial_done);
+      for (const GapTrialRecord& record : result.trials) {
+        records.push_back(GapTrialRecordToJson(record));
+      }
+      if (static_cast<int>(records.size()) < flights.count) return records;  // interrupted
     }
+    const int flown = static_cast<int>(records.size());
+    const int sequences_first = std::max(trials.first, first_sequence);
+    const TrialRange sequences{sequences_first, end - sequences_first};
+    if (sequences.count <= 0) return records;
+    std::vector<nlohmann::json> sequence_records = RunTrialsInParallel(
+        sequences, threads,
+        [&](int done) {
+          if (on_trial_done) on_trial_done(flown + done);
+        },
+        [&](int k) {
+          const GapDetectorSequenceConfig config =
+              DrawGapDetectorSequence(options_.detector_ranges, options_.seed, k - first_sequence);
+          return GapDetectorSequenceRecordToJson(
+              RunGapDetectorSequence(config, setup_.base, setup_.mission.detector));
+        });
+    for (nlohmann::json& record : sequence_records) records.push_back(std::move(record));
     return records;
   }
 
@@ -59,6 +103,10 @@ class GapMonteCarloBench : public MonteCarloBench {
     result.mission = setup_.mission;
     result.scenario_config = setup_.scenario_config;
     for (const nlohmann::json& record : records) {
+      if (record.contains("detector_sequence")) {
+        result.detector_sequences.push_back(GapDetectorSequenceRecordFromJson(record));
+        continue;
+      }
       result.trials.push_back(GapTrialRecordFromJson(record));
       // As RunGapBench: the autopilot of the first trial that ran.
       if (result.autopilot_name.empty()) result.autopilot_name = result.trials.back().autopilot_name;
@@ -72,7 +120,8 @@ class GapMonteCarloBench : public MonteCarloBench {
            std::to_string(summary["successes"].get<int>()) + "/" +
            std::to_string(summary["trials"].get<int>()) +
            " successful, mean |position error| at the gap " + error["position_mean"].dump() +
-           " m over " + std::to_string(error["trials"].get<int>()) + " crossings";
+           " m over " + std::to_string(error["trials"].get<int>()) + " crossings" +
+           DescribeDetector(summary);
   }
 
  private:

@@ -1,8 +1,11 @@
-// `aperture bench gap` end to end: the figures of summary.json, trials.csv, report.html, bad flags.
+// `aperture bench gap` end to end: the figures of summary.json, trials.csv, report.html, the
+// detector section, bad flags.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 
 #include "tests/apps/cli_runner.h"
@@ -48,6 +51,42 @@ TEST(BenchGapCommand, TwoGroundTruthTrialsWriteTheTableIKeys) {
   }
   EXPECT_EQ(CountLines(out / "trials.csv"), 1u + 2u);
   EXPECT_TRUE(fs::exists(out / "report.html"));
+  EXPECT_FALSE(summary.contains("detector"));
+  EXPECT_FALSE(fs::exists(out / "detector_frames.csv"));
+}
+
+// --detector-sequences: rendered sequences after the flight, scored frame by frame, in
+// summary.json "detector", detector_frames.csv and the report.
+TEST(BenchGapCommand, DetectorSequencesWriteTheDetectorSection) {
+  TempFolder temp("bench_gap_detector");
+  const fs::path out = fs::path(temp.path()) / "out";
+  const CommandResult result = RunAperture(
+      "bench gap --trials 1 --seed 4 --autopilot ground_truth --duration 1 "
+      "--detector-sequences 2 --out " + out.string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const nlohmann::json summary = ReadJson(out / "summary.json");
+  ASSERT_TRUE(summary.contains("detector")) << summary.dump();
+  const nlohmann::json& d = summary["detector"];
+  EXPECT_EQ(d["sequences"], 2);
+  EXPECT_EQ(d["failed_sequences"], 0);
+  EXPECT_GT(d["frames_in_view"].get<int>(), 10);
+  EXPECT_LE(d["frames_in_view"].get<int>(), d["frames"].get<int>());
+  // The detector finds the pattern in nearly every frame that shows it (bench: >= 99 %).
+  EXPECT_GE(d["detection_rate"].get<double>(), 0.9);
+  EXPECT_LT(d["rotation_error_median_deg"].get<double>(), 1.0);
+  EXPECT_EQ(d["by_distance"].size(), 3u);
+  EXPECT_EQ(summary["inputs"]["detector_sequences"], 2);
+  EXPECT_EQ(CountLines(out / "detector_frames.csv"), 1u + d["frames"].get<std::size_t>());
+  std::ifstream report(out / "report.html");
+  const std::string html((std::istreambuf_iterator<char>(report)),
+                         std::istreambuf_iterator<char>());
+  EXPECT_NE(html.find("Detector on moving sequences"), std::string::npos);
+  EXPECT_NE(result.output.find("detector:"), std::string::npos) << result.output;
+
+  const CommandResult bad = RunAperture("bench gap --trials 1 --detector-sequences -1 --out " +
+                                        (fs::path(temp.path()) / "bad").string());
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("--detector-sequences"), std::string::npos) << bad.output;
 }
 
 // The default autopilot is the vision mission on rendered frames. Two seconds of unblurred 30 Hz
