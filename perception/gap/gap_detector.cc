@@ -392,7 +392,16 @@ class Attempt {
   }
 
   // Full pipeline from a nested pair of rough quads. Corners of both are in positive order.
-  GapDetection Solve(Quad outer, Quad inner) const {
+  // The model's long side (x_G) goes to the pair of opposite sides that looks longer in the
+  // image; seen more than ~53 deg off the normal across its long side (1.3 x 0.78 m: cos < 0.6)
+  // the pattern's short side looks longer, so the other labelling is tried when the first fails
+  // the checks (its corners are then ~10 px off the 8-corner PnP).
+  GapDetection Solve(const Quad& outer, const Quad& inner) const {
+    const GapDetection d = SolveLabelled(outer, inner, /*long_side_looks_shorter=*/false);
+    return d.detected() ? d : SolveLabelled(outer, inner, /*long_side_looks_shorter=*/true);
+  }
+
+  GapDetection SolveLabelled(Quad outer, Quad inner, bool long_side_looks_shorter) const {
     GapDetection result;
     result.status = GapDetectionStatus::kReprojectionRejected;
     // Virtual camera at the pattern; long side first (model side 0 is along x_G).
@@ -405,7 +414,7 @@ class Attempt {
     }
     const double along_first = (uo[1] - uo[0]).norm() + (uo[3] - uo[2]).norm();
     const double along_second = (uo[2] - uo[1]).norm() + (uo[0] - uo[3]).norm();
-    const int shift = along_first >= along_second ? 0 : 1;
+    const int shift = (along_first >= along_second) != long_side_looks_shorter ? 0 : 1;
     std::rotate(outer.bearing_C.begin(), outer.bearing_C.begin() + shift, outer.bearing_C.end());
     std::rotate(outer.px.begin(), outer.px.begin() + shift, outer.px.end());
     std::rotate(uo.begin(), uo.begin() + shift, uo.end());

@@ -350,6 +350,52 @@ TEST(GapDetectorFarSteepTest, InnerQuadrangleWithACutCornerIsFound) {
   EXPECT_LT(detected_tight, views);
 }
 
+// Seen far off its normal across the long side, the pattern's long side looks shorter than its
+// short side (1.3 m x cos 60-68 deg < 0.78 m): the first labelling (long image side = x_G) fails,
+// the other must be found — the gap mission lost the gap this way in its approach at 42-44 deg
+// roll with 18-29 deg pitch.
+TEST(GapDetectorFarSteepTest, LongSideForeshortenedBelowTheShortSide) {
+  const auto camera = std::shared_ptr<const CameraModel>(testing::MakeTestFisheye());
+  GapDetectorParams params;
+  params.use_roi = false;
+  GapDetector detector(params, camera);
+  RayCaster caster;
+  RenderOptions options;
+  options.supersampling = 2;
+  const Eigen::Isometry3d T_WG = GapPose(0.75, 0.3, Eigen::Vector3d(0.0, 0.0, 3.0));
+  Scene scene;
+  const int gap_id = scene.AddObject(MakeGapPanel(params, T_WG));
+  AddClutter(&scene, 7.0);
+  int views = 0;
+  for (const double off_normal_deg : {60.0, 64.0, 68.0}) {
+    for (const double distance : {1.6, 2.5}) {
+      const double a = off_normal_deg * M_PI / 180.0;
+      // Off the normal in the x_G - z_G plane: x_G, the long side, is foreshortened.
+      const Eigen::Vector3d p_WC = T_WG * Eigen::Vector3d(distance * std::sin(a), 0.05,
+                                                          -distance * std::cos(a));
+      const Eigen::Isometry3d T_WC = testing::LookAt(p_WC, T_WG.translation() - p_WC);
+      const RenderOutput out = caster.Render(scene, *camera, T_WC, options);
+      const cv::Mat image = CameraEffects({}).ToImage8U(out.radiance, views);
+      const Eigen::Isometry3d T_CG_true = Canonical(T_WC.inverse() * T_WG);
+      ASSERT_TRUE(GapPatternInView(*camera, params, T_CG_true, out.object_id, gap_id));
+      // The premise: the long side spans fewer pixels than the short one.
+      const std::vector<Eigen::Vector3d> corners = detector.ModelCorners();
+      Eigen::Vector2d c0, c1, c2;
+      ASSERT_TRUE(camera->Project(T_CG_true * corners[0], &c0));
+      ASSERT_TRUE(camera->Project(T_CG_true * corners[1], &c1));
+      ASSERT_TRUE(camera->Project(T_CG_true * corners[2], &c2));
+      ASSERT_LT((c1 - c0).norm(), (c2 - c1).norm()) << off_normal_deg << " deg";
+      ++views;
+      const GapDetection d = detector.DetectFullImage(image);
+      ASSERT_TRUE(d.detected()) << off_normal_deg << " deg, " << distance
+                                << " m: " << GapDetectionStatusName(d.status);
+      EXPECT_LT((d.T_CG.translation() - T_CG_true.translation()).norm(), 0.01 * distance);
+      EXPECT_LT(RotationErrorDeg(d.T_CG, T_CG_true), 1.0) << off_normal_deg << " deg";
+    }
+  }
+  EXPECT_EQ(views, 6);
+}
+
 // No detection without a gap: a cluttered textured scene, all black, all white, pure noise.
 TEST(GapDetectorNegativeTest, NoDetectionWithoutGap) {
   for (const auto& camera : {std::shared_ptr<const CameraModel>(testing::MakeTestPinhole()),
