@@ -20,7 +20,7 @@ namespace {
 // mean speed `bench mononav` measured (22 m in 55.6 s over 40 layouts: 0.40 m/s, less a margin
 // for denser layouts), plus the take-off and the final approach.
 constexpr double kSlowestMeanSpeedMps = 0.35;
-constexpr double kDurationMarginS = 5.0;
+constexpr double kTakeOffAndFinalApproachS = 5.0;
 
 int FrontCameraIndex(const sim::Scenario& scenario) {
   const std::vector<sim::ScenarioCamera>& cameras = scenario.cameras();
@@ -80,7 +80,7 @@ class ForestFlight final : public MissionFlight {
 
   perception::Autopilot& autopilot() override { return *adapter_; }
   double MinimumDurationS() const override {
-    return (params_.goal_W - p_WB_start_).norm() / kSlowestMeanSpeedMps + kDurationMarginS;
+    return (params_.goal_W - p_WB_start_).norm() / kSlowestMeanSpeedMps + kTakeOffAndFinalApproachS;
   }
   void DrawOverlay(cv::Mat& onboard_bgr) const override { mission_->DrawOverlay(onboard_bgr); }
 

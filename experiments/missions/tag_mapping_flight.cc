@@ -24,7 +24,7 @@ namespace {
 // The acceptance: tag position RMS over the field [m].
 constexpr double kMapRmsTargetM = 0.02;
 // Simulated time beyond the planned flight that `aperture sim` gives the mission [s].
-constexpr double kDurationMarginS = 5.0;
+constexpr double kBeyondPlannedFlightS = 5.0;
 
 class TagMappingFlight final : public MissionFlight {
  public:
@@ -42,7 +42,7 @@ class TagMappingFlight final : public MissionFlight {
   perception::Autopilot& autopilot() override { return *adapter_; }
   // The planned flight from the start, and time for the filter to start and the map to solve.
   double MinimumDurationS() const override {
-    return autopilot_->PlannedDurationS(p_WB_start_) + kDurationMarginS;
+    return autopilot_->PlannedDurationS(p_WB_start_) + kBeyondPlannedFlightS;
   }
   YAML::Node EffectiveParams() const override {
     YAML::Node node = config::DumpParams(params_);
