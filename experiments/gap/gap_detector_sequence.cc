@@ -7,7 +7,7 @@
 
 #include "control/constants.h"
 #include "control/require.h"
-#include "output/json_eigen.h"
+#include "output/json_fields.h"
 #include "sim/scenario/scenario.h"
 #include "sim/scene/counter_hash.h"
 #include "sim/scene/gap_pattern_object.h"
@@ -174,7 +174,7 @@ GapDetectorSequenceRecord RunGapDetectorSequence(const GapDetectorSequenceConfig
       f.in_view =
           sim::GapPatternInView(*camera.model, detector, T_CG_true, captured.object_id, gap_id);
       const perception::GapDetection d = gap_detector.Detect(captured.frame.image);
-      f.status = perception::GapDetectionStatusName(d.status);
+      f.status = d.status;
       f.from_roi = d.from_roi;
       f.error = d.detected() ? GapPoseErrorOf(d.T_CG, T_CG_true)
                              : GapPoseError{kNaN, kNaN, kNaN};
@@ -188,101 +188,81 @@ GapDetectorSequenceRecord RunGapDetectorSequence(const GapDetectorSequenceConfig
   return record;
 }
 
-nlohmann::json GapDetectorSequenceRangesToJson(const GapDetectorSequenceRanges& r) {
-  return {{"max_roll_deg", r.max_roll_deg},
-          {"max_pitch_deg", r.max_pitch_deg},
-          {"distance_m", output::EigenToJson(r.distance_m)},
-          {"max_view_angle_deg", r.max_view_angle_deg},
-          {"max_speed_mps", r.max_speed_mps},
-          {"duration_s", r.duration_s},
-          {"max_aim_offset_deg", r.max_aim_offset_deg},
-          {"max_camera_roll_deg", r.max_camera_roll_deg},
-          {"exposure_s", output::EigenToJson(r.exposure_s)},
-          {"motion_blur_subframes", r.motion_blur_subframes}};
+namespace {
+
+// The JSON keys of each record struct (output/json_fields.h).
+constexpr auto kDetectorRangesFields = [](auto& f, auto& r) {
+  f("max_roll_deg", r.max_roll_deg);
+  f("max_pitch_deg", r.max_pitch_deg);
+  f("distance_m", r.distance_m);
+  f("max_view_angle_deg", r.max_view_angle_deg);
+  f("max_speed_mps", r.max_speed_mps);
+  f("duration_s", r.duration_s);
+  f("max_aim_offset_deg", r.max_aim_offset_deg);
+  f("max_camera_roll_deg", r.max_camera_roll_deg);
+  f("exposure_s", r.exposure_s);
+  f("motion_blur_subframes", r.motion_blur_subframes);
+};
+
+constexpr auto kDetectorSequenceFields = [](auto& f, auto& r) {
+  f("detector_sequence", r.config.index);
+  f("seed", r.config.seed);
+  f("roll_deg", r.config.roll_deg);
+  f("pitch_deg", r.config.pitch_deg);
+  f("start_p_GC_m", r.config.start_p_GC_m);
+  f("end_p_GC_m", r.config.end_p_GC_m);
+  f("speed_mps", r.config.speed_mps);
+  f("duration_s", r.config.duration_s);
+  f("aim_offset_deg", r.config.aim_offset_deg);
+  f("camera_roll_deg", r.config.camera_roll_deg);
+  f("exposure_s", r.config.exposure_s);
+  f("motion_blur_subframes", r.config.motion_blur_subframes);
+  f("error", r.error);
+  f("wall_time_s", r.wall_time_s);
+};
+
+constexpr auto kDetectorFrameFields = [](auto& f, auto& r) {
+  f("frame", r.frame);
+  f("t_s", r.t_s);
+  f("distance_m", r.distance_m);
+  f("view_angle_deg", r.view_angle_deg);
+  f("in_view", r.in_view);
+  f("status", r.status, perception::GapDetectionStatusNames());
+  f("from_roi", r.from_roi);
+  f("T_CG_position_error_m", r.error.T_CG_position_m);
+  f("T_GC_position_error_m", r.error.T_GC_position_m);
+  f("rotation_error_deg", r.error.rotation_deg);
+};
+
+}  // namespace
+
+nlohmann::json GapDetectorSequenceRangesToJson(const GapDetectorSequenceRanges& ranges) {
+  return output::FieldsToJson(ranges, kDetectorRangesFields);
 }
 
 GapDetectorSequenceRanges GapDetectorSequenceRangesFromJson(const nlohmann::json& json) {
   try {
-    GapDetectorSequenceRanges r;
-    r.max_roll_deg = json.at("max_roll_deg").get<double>();
-    r.max_pitch_deg = json.at("max_pitch_deg").get<double>();
-    r.distance_m = output::JsonToVector<2>(json.at("distance_m"));
-    r.max_view_angle_deg = json.at("max_view_angle_deg").get<double>();
-    r.max_speed_mps = json.at("max_speed_mps").get<double>();
-    r.duration_s = json.at("duration_s").get<double>();
-    r.max_aim_offset_deg = json.at("max_aim_offset_deg").get<double>();
-    r.max_camera_roll_deg = json.at("max_camera_roll_deg").get<double>();
-    r.exposure_s = output::JsonToVector<2>(json.at("exposure_s"));
-    r.motion_blur_subframes = json.at("motion_blur_subframes").get<int>();
-    return r;
+    return output::FieldsFromJson<GapDetectorSequenceRanges>(json, kDetectorRangesFields);
   } catch (const nlohmann::json::exception& e) {
     throw std::invalid_argument(std::string("bench gap detector ranges: ") + e.what());
   }
 }
 
 nlohmann::json GapDetectorSequenceRecordToJson(const GapDetectorSequenceRecord& record) {
-  const GapDetectorSequenceConfig& c = record.config;
-  nlohmann::json frames = nlohmann::json::array();
-  for (const GapDetectorFrameRecord& f : record.frames) {
-    frames.push_back({{"frame", f.frame},
-                      {"t_s", f.t_s},
-                      {"distance_m", f.distance_m},
-                      {"view_angle_deg", f.view_angle_deg},
-                      {"in_view", f.in_view},
-                      {"status", f.status},
-                      {"from_roi", f.from_roi},
-                      {"T_CG_position_error_m", f.error.T_CG_position_m},
-                      {"T_GC_position_error_m", f.error.T_GC_position_m},
-                      {"rotation_error_deg", f.error.rotation_deg}});
+  nlohmann::json json = output::FieldsToJson(record, kDetectorSequenceFields);
+  json["frames"] = nlohmann::json::array();
+  for (const GapDetectorFrameRecord& frame : record.frames) {
+    json["frames"].push_back(output::FieldsToJson(frame, kDetectorFrameFields));
   }
-  return {{"detector_sequence", c.index},
-          {"seed", c.seed},
-          {"roll_deg", c.roll_deg},
-          {"pitch_deg", c.pitch_deg},
-          {"start_p_GC_m", output::EigenToJson(c.start_p_GC_m)},
-          {"end_p_GC_m", output::EigenToJson(c.end_p_GC_m)},
-          {"speed_mps", c.speed_mps},
-          {"duration_s", c.duration_s},
-          {"aim_offset_deg", output::EigenToJson(c.aim_offset_deg)},
-          {"camera_roll_deg", c.camera_roll_deg},
-          {"exposure_s", c.exposure_s},
-          {"motion_blur_subframes", c.motion_blur_subframes},
-          {"error", record.error},
-          {"wall_time_s", record.wall_time_s},
-          {"frames", frames}};
+  return json;
 }
 
 GapDetectorSequenceRecord GapDetectorSequenceRecordFromJson(const nlohmann::json& json) {
   try {
-    GapDetectorSequenceRecord record;
-    GapDetectorSequenceConfig& c = record.config;
-    c.index = json.at("detector_sequence").get<int>();
-    c.seed = json.at("seed").get<std::uint64_t>();
-    c.roll_deg = json.at("roll_deg").get<double>();
-    c.pitch_deg = json.at("pitch_deg").get<double>();
-    c.start_p_GC_m = output::JsonToVector<3>(json.at("start_p_GC_m"));
-    c.end_p_GC_m = output::JsonToVector<3>(json.at("end_p_GC_m"));
-    c.speed_mps = json.at("speed_mps").get<double>();
-    c.duration_s = json.at("duration_s").get<double>();
-    c.aim_offset_deg = output::JsonToVector<2>(json.at("aim_offset_deg"));
-    c.camera_roll_deg = json.at("camera_roll_deg").get<double>();
-    c.exposure_s = json.at("exposure_s").get<double>();
-    c.motion_blur_subframes = json.at("motion_blur_subframes").get<int>();
-    record.error = json.at("error").get<std::string>();
-    record.wall_time_s = json.at("wall_time_s").get<double>();
-    for (const nlohmann::json& j : json.at("frames")) {
-      GapDetectorFrameRecord f;
-      f.frame = j.at("frame").get<int>();
-      f.t_s = j.at("t_s").get<double>();
-      f.distance_m = j.at("distance_m").get<double>();
-      f.view_angle_deg = j.at("view_angle_deg").get<double>();
-      f.in_view = j.at("in_view").get<bool>();
-      f.status = j.at("status").get<std::string>();
-      f.from_roi = j.at("from_roi").get<bool>();
-      f.error.T_CG_position_m = j.at("T_CG_position_error_m").get<double>();
-      f.error.T_GC_position_m = j.at("T_GC_position_error_m").get<double>();
-      f.error.rotation_deg = j.at("rotation_error_deg").get<double>();
-      record.frames.push_back(f);
+    auto record = output::FieldsFromJson<GapDetectorSequenceRecord>(json, kDetectorSequenceFields);
+    for (const nlohmann::json& frame : json.at("frames")) {
+      record.frames.push_back(
+          output::FieldsFromJson<GapDetectorFrameRecord>(frame, kDetectorFrameFields));
     }
     return record;
   } catch (const nlohmann::json::exception& e) {

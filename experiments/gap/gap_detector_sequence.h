@@ -79,7 +79,7 @@ struct GapDetectorFrameRecord {
   double distance_m = 0.0;   // camera to the opening's centre
   double view_angle_deg = 0.0;  // between the gap's normal and the line of sight to its centre
   bool in_view = false;      // the whole pattern in the image, not hidden (GapPatternInView)
-  std::string status;        // perception::GapDetectionStatusName
+  perception::GapDetectionStatus status = perception::GapDetectionStatus::kNoCandidate;
   bool from_roi = false;
   GapPoseError error;        // NaN without a detection
 };

@@ -16,7 +16,7 @@ namespace {
 struct ScoredFrame {
   const GapDetectorSequenceConfig* sequence;
   const GapDetectorFrameRecord* frame;
-  bool detected() const { return frame->status == "detected"; }
+  bool detected() const { return frame->status == perception::GapDetectionStatus::kDetected; }
 };
 
 struct Bin {
@@ -77,7 +77,7 @@ nlohmann::json SummarizeGapDetectorSequences(const std::vector<GapDetectorSequen
       const bool in_range = f.distance_m >= distance_m.x() && f.distance_m <= distance_m.y();
       if (f.in_view && in_range) {
         scored.push_back(s);
-        if (!s.detected()) ++misses[f.status];
+        if (!s.detected()) ++misses[perception::GapDetectionStatusName(f.status)];
       } else if (s.detected()) {
         ++detections_not_scored;
       }
@@ -147,7 +147,7 @@ void WriteGapDetectorFramesCsv(const std::vector<GapDetectorSequenceRecord>& rec
                        f.view_angle_deg, f.in_view ? 1.0 : 0.0}) {
         row.emplace_back(v);
       }
-      row.emplace_back(f.status);
+      row.emplace_back(perception::GapDetectionStatusName(f.status));
       for (double v : {f.from_roi ? 1.0 : 0.0, f.error.T_CG_position_m, f.error.T_GC_position_m,
                        f.error.rotation_deg}) {
         row.emplace_back(v);
@@ -188,7 +188,7 @@ void AddGapDetectorReportSection(const nlohmann::json& s,
   for (const GapDetectorSequenceRecord& r : records) {
     for (const GapDetectorFrameRecord& f : r.frames) {
       if (!f.in_view) continue;
-      if (f.status == "detected") {
+      if (f.status == perception::GapDetectionStatus::kDetected) {
         distance.push_back(f.distance_m);
         rotation.push_back(f.error.rotation_deg);
         T_GC_pct.push_back(100.0 * f.error.T_GC_position_m / f.distance_m);

@@ -144,6 +144,19 @@ std::string GapDetectionStatusName(GapDetectionStatus status) {
   return "unknown";
 }
 
+const std::vector<std::pair<std::string, GapDetectionStatus>>& GapDetectionStatusNames() {
+  static const std::vector<std::pair<std::string, GapDetectionStatus>> kNames = [] {
+    std::vector<std::pair<std::string, GapDetectionStatus>> names;
+    for (GapDetectionStatus status :
+         {GapDetectionStatus::kDetected, GapDetectionStatus::kNoCandidate,
+          GapDetectionStatus::kReprojectionRejected}) {
+      names.emplace_back(GapDetectionStatusName(status), status);
+    }
+    return names;
+  }();
+  return kNames;
+}
+
 struct GapDetector::Impl {
   cv::Mat bearing_table;  // CV_32FC3, unit bearing of every pixel centre
   cv::Mat gray;

@@ -24,6 +24,7 @@
 #include <memory>
 #include <opencv2/core/mat.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "perception/camera/camera_model.h"
@@ -76,6 +77,8 @@ enum class GapDetectionStatus {
   kReprojectionRejected  // candidates found, but none passed the PnP reprojection check
 };
 std::string GapDetectionStatusName(GapDetectionStatus status);
+// Every status with its name, e.g. for reading a status back from JSON.
+const std::vector<std::pair<std::string, GapDetectionStatus>>& GapDetectionStatusNames();
 
 struct GapDetection {
   GapDetectionStatus status = GapDetectionStatus::kNoCandidate;

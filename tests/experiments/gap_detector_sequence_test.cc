@@ -115,7 +115,7 @@ TEST(GapDetectorSequenceRun, ShortPassDetectedAccurately) {
   for (const GapDetectorFrameRecord& f : r.frames) {
     if (!f.in_view) continue;
     ++in_view;
-    ASSERT_EQ(f.status, "detected") << "frame " << f.frame;
+    ASSERT_EQ(f.status, perception::GapDetectionStatus::kDetected) << "frame " << f.frame;
     EXPECT_LT(f.error.rotation_deg, 0.5) << f.frame;
     EXPECT_LT(f.error.T_CG_position_m, 0.002 * f.distance_m) << f.frame;
     EXPECT_LT(f.error.T_GC_position_m, 0.008 * f.distance_m) << f.frame;
@@ -126,7 +126,7 @@ TEST(GapDetectorSequenceRun, ShortPassDetectedAccurately) {
 
   // The record survives the shards' CBOR, NaN included.
   GapDetectorSequenceRecord with_miss = r;
-  with_miss.frames[0].status = "no_candidate";
+  with_miss.frames[0].status = perception::GapDetectionStatus::kNoCandidate;
   with_miss.frames[0].error = {std::nan(""), std::nan(""), std::nan("")};
   const std::vector<std::uint8_t> cbor =
       nlohmann::json::to_cbor(GapDetectorSequenceRecordToJson(with_miss));
@@ -136,6 +136,8 @@ TEST(GapDetectorSequenceRun, ShortPassDetectedAccurately) {
   EXPECT_TRUE(back.config.end_p_GC_m.isApprox(c.end_p_GC_m, 0.0));
   ASSERT_EQ(back.frames.size(), r.frames.size());
   EXPECT_TRUE(std::isnan(back.frames[0].error.rotation_deg));
+  EXPECT_EQ(back.frames[0].status, perception::GapDetectionStatus::kNoCandidate);
+  EXPECT_EQ(back.frames[1].status, perception::GapDetectionStatus::kDetected);
   EXPECT_EQ(back.frames[5].error.T_GC_position_m, r.frames[5].error.T_GC_position_m);
 }
 
@@ -145,7 +147,8 @@ GapDetectorFrameRecord Frame(double distance_m, bool in_view, bool detected, dou
   f.distance_m = distance_m;
   f.view_angle_deg = 30.0;
   f.in_view = in_view;
-  f.status = detected ? "detected" : "no_candidate";
+  f.status = detected ? perception::GapDetectionStatus::kDetected
+                      : perception::GapDetectionStatus::kNoCandidate;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   f.error = detected ? GapPoseError{0.0005 * distance_m, T_GC_m, rotation_deg}
                      : GapPoseError{nan, nan, nan};

@@ -22,6 +22,7 @@
 #include "output/csv_writer.h"
 #include "output/html_report.h"
 #include "output/json_eigen.h"
+#include "output/json_fields.h"
 #include "output/output_folder.h"
 #include "output/progress_bar.h"
 #include "output/svg_plot.h"
@@ -77,6 +78,59 @@ class OutputTest : public ::testing::Test {
 
   fs::path directory_;
 };
+
+// ---- FieldsToJson / FieldsFromJson -------------------------------------------------------------
+
+enum class Colour { kRed, kGreen };
+struct FieldsRecord {
+  int count = 0;
+  double t_s = 0.0;
+  Eigen::Vector3d p_W_m = Eigen::Vector3d::Zero();
+  Colour colour = Colour::kRed;
+  std::string note;
+};
+const JsonEnumNames<Colour> kColourNames = {{"red", Colour::kRed}, {"green", Colour::kGreen}};
+constexpr auto kFieldsRecordFields = [](auto& f, auto& r) {
+  f("count", r.count);
+  f("t_s", r.t_s);
+  f("p_W_m", r.p_W_m);
+  f("colour", r.colour, kColourNames);
+  f("note", r.note);
+};
+
+TEST(JsonFields, RoundTripEveryFieldKindByKey) {
+  const FieldsRecord record{7, 0.25, Eigen::Vector3d(1.0, -2.0, 3.5), Colour::kGreen, "x"};
+  const nlohmann::json json = FieldsToJson(record, kFieldsRecordFields);
+  EXPECT_EQ(json.at("count"), 7);
+  EXPECT_EQ(json.at("p_W_m"), nlohmann::json({1.0, -2.0, 3.5}));
+  EXPECT_EQ(json.at("colour"), "green");
+  const FieldsRecord back = FieldsFromJson<FieldsRecord>(json, kFieldsRecordFields);
+  EXPECT_EQ(back.count, 7);
+  EXPECT_EQ(back.t_s, 0.25);
+  EXPECT_EQ(back.p_W_m, record.p_W_m);
+  EXPECT_EQ(back.colour, Colour::kGreen);
+  EXPECT_EQ(back.note, "x");
+}
+
+TEST(JsonFields, MissingKeysWrongVectorsAndUnknownNamesThrow) {
+  nlohmann::json json = FieldsToJson(FieldsRecord{}, kFieldsRecordFields);
+  nlohmann::json missing = json;
+  missing.erase("t_s");
+  EXPECT_THROW(FieldsFromJson<FieldsRecord>(missing, kFieldsRecordFields),
+               nlohmann::json::exception);
+  nlohmann::json short_vector = json;
+  short_vector["p_W_m"] = {1.0, 2.0};
+  EXPECT_THROW(FieldsFromJson<FieldsRecord>(short_vector, kFieldsRecordFields),
+               std::invalid_argument);
+  json["colour"] = "blue";
+  try {
+    FieldsFromJson<FieldsRecord>(json, kFieldsRecordFields);
+    ADD_FAILURE() << "an unknown enum name was read";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_THAT(e.what(), HasSubstr("colour"));
+    EXPECT_THAT(e.what(), HasSubstr("blue"));
+  }
+}
 
 // ---- OutputFolder / summary.json ---------------------------------------------------------------
 
