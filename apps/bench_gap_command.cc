@@ -21,7 +21,9 @@
 #include "apps/command_support.h"
 #include "apps/commands.h"
 #include "apps/monte_carlo_command.h"
+#include "config/usage_error.h"
 #include "experiments/gap/gap_monte_carlo_bench.h"
+#include "output/number_format.h"
 
 namespace aperture::apps {
 namespace {
@@ -46,8 +48,13 @@ void AddBenchGapCommand(CLI::App& bench, int* exit_code) {
                    "Index of the first trial (a part of a longer run of the same seed)")
       ->check(IntegerIn(0));
   command
+      ->add_option("--min-roll-deg", options->bench.ranges.min_roll_deg,
+                   "Gap roll drawn uniformly from [min, max] deg (e.g. 45 with --max-roll-deg 60 "
+                   "for the steep range alone)")
+      ->check(FiniteNumberIn(0.0, 89.0));
+  command
       ->add_option("--max-roll-deg", options->bench.ranges.max_roll_deg,
-                   "Gap roll drawn uniformly from [0, max] deg")
+                   "Gap roll drawn uniformly from [min, max] deg")
       ->check(FiniteNumberIn(0.0, 89.0));
   command
       ->add_option("--max-pitch-deg", options->bench.ranges.max_pitch_deg,
@@ -80,6 +87,13 @@ void AddBenchGapCommand(CLI::App& bench, int* exit_code) {
   AddCommonOptions(command, &options->common);
   AddMonteCarloOptions(command, &options->monte_carlo);
   command->callback([options, exit_code] {
+    const experiments::GapTrialRanges& ranges = options->bench.ranges;
+    if (ranges.min_roll_deg > ranges.max_roll_deg) {
+      throw config::UsageError("--min-roll-deg " + output::FormatDouble(ranges.min_roll_deg) +
+                               " is above --max-roll-deg " +
+                               output::FormatDouble(ranges.max_roll_deg) +
+                               " (the default maximum is 45): raise --max-roll-deg");
+    }
     output::OutputFolder out = OpenOutputFolder(options->common);
     output::RunAndWriteSummary(out, [&] {
       experiments::GapBenchOptions bench = options->bench;

@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "control/constants.h"
+#include "experiments/bench/monte_carlo_bench.h"
 #include "experiments/bench/sitl_profile_json.h"
 #include "experiments/gap/gap_detector_summary.h"
 #include "experiments/gap/gap_mission_factory.h"
@@ -290,7 +291,26 @@ GapBenchResult RunGapBench(const GapBenchOptions& options, const GapBenchSetup& 
   for (const GapTrialRecord& record : result.trials) {
     if (result.autopilot_name.empty()) result.autopilot_name = record.autopilot_name;
   }
+  if (done < options.trials || options.detector_sequences == 0) return result;
+  const std::vector<nlohmann::json> sequences = RunTrialsInParallel(
+      {0, options.detector_sequences}, options.threads,
+      [&](int sequences_done) {
+        if (on_trial_done) on_trial_done(done + sequences_done);
+      },
+      [&](int k) {
+        return GapDetectorSequenceRecordToJson(RunGapBenchDetectorSequence(options, setup, k));
+      });
+  for (const nlohmann::json& record : sequences) {
+    result.detector_sequences.push_back(GapDetectorSequenceRecordFromJson(record));
+  }
   return result;
+}
+
+GapDetectorSequenceRecord RunGapBenchDetectorSequence(const GapBenchOptions& options,
+                                                      const GapBenchSetup& setup, int index) {
+  return RunGapDetectorSequence(
+      DrawGapDetectorSequence(options.detector_ranges, options.seed, index), setup.base,
+      setup.mission.detector);
 }
 
 nlohmann::json SummarizeGapBench(const GapBenchResult& result) {

@@ -51,8 +51,8 @@ struct GapBenchOptions {
   // (SitlRunnerParams::render_ignored_frames; the same outcome, fewer renders).
   bool render_ignored_frames = false;
   // The detector section (gap_detector_sequence.h): rendered sequences flown past the gap, each
-  // scored frame by frame; 0 = none. In a Monte-Carlo run they follow the flights (indices
-  // first_trial + trials ...).
+  // scored frame by frame; 0 = none. They run after the flights (in a Monte-Carlo run as the
+  // trial indices first_trial + trials ..., so shards split them too).
   int detector_sequences = 0;
   GapDetectorSequenceRanges detector_ranges;
   // Throws std::invalid_argument naming the option (trials < 1, duration <= 0, threads < 0,
@@ -116,9 +116,10 @@ struct GapBenchSetup {
 // Throws std::invalid_argument for invalid options or scenario overrides.
 GapBenchSetup PrepareGapBench(const GapBenchOptions& options);
 
-// All trials; `on_trial_done(done_count)` is called (serialized) after each trial finishes. Once
-// SIGINT/SIGTERM asked to stop (output::InterruptionRequested()) no further trial starts and
-// `trials` holds the ones flown, in index order.
+// All trials, then options.detector_sequences detector sequences; `on_trial_done(done_count)` is
+// called (serialized) after each trial or sequence finishes. Once SIGINT/SIGTERM asked to stop
+// (output::InterruptionRequested()) nothing further starts and `trials` (and
+// `detector_sequences`) hold the ones that finished, in index order.
 // Throws std::invalid_argument for invalid options or scenario overrides.
 GapBenchResult RunGapBench(const GapBenchOptions& options, const GapTrialAutopilotFactory& factory,
                            const std::function<void(int)>& on_trial_done = {});
@@ -126,6 +127,11 @@ GapBenchResult RunGapBench(const GapBenchOptions& options, const GapTrialAutopil
 GapBenchResult RunGapBench(const GapBenchOptions& options, const GapBenchSetup& setup,
                            const GapTrialAutopilotFactory& factory,
                            const std::function<void(int)>& on_trial_done = {});
+
+// Detector sequence `index` of a run: DrawGapDetectorSequence from the options' detector ranges
+// and seed, rendered in the setup's scenario and scored with the mission's detector parameters.
+GapDetectorSequenceRecord RunGapBenchDetectorSequence(const GapBenchOptions& options,
+                                                      const GapBenchSetup& setup, int index);
 
 // The figures of summary.json: trials, successes, success_rate, error_at_gap (per axis:
 // position_mean/_std [m], velocity_mean/_std [m/s], orientation_mean_deg/_std_deg [roll, pitch]

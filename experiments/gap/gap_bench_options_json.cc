@@ -2,70 +2,62 @@
 #include <stdexcept>
 
 #include "experiments/gap/gap_bench.h"
-#include "output/json_eigen.h"
+#include "output/json_fields.h"
 
 namespace aperture::experiments {
+namespace {
+
+// The JSON keys of the options (output/json_fields.h); `threads` does not change a result.
+constexpr auto kGapTrialRangesFields = [](auto& f, auto& r) {
+  f("min_roll_deg", r.min_roll_deg);
+  f("max_roll_deg", r.max_roll_deg);
+  f("max_pitch_deg", r.max_pitch_deg);
+  f("start_offset_m", r.start_offset_m);
+  f("max_start_yaw_deg", r.max_start_yaw_deg);
+  f("imu_noise_scale", r.imu_noise_scale);
+  f("accel_bias_sigma_mps2", r.accel_bias_sigma_mps2);
+  f("gyro_bias_sigma_radps", r.gyro_bias_sigma_radps);
+  f("max_drop_probability", r.max_drop_probability);
+  f("exposure_s", r.exposure_s);
+  f("motion_blur_subframes", r.motion_blur_subframes);
+};
+
+constexpr auto kHoverCriteriaFields = [](auto& f, auto& h) {
+  f("window_s", h.window_s);
+  f("max_speed_mps", h.max_speed_mps);
+  f("max_tilt_deg", h.max_tilt_deg);
+  f("max_rate_radps", h.max_rate_radps);
+  f("min_height_m", h.min_height_m);
+};
+
+constexpr auto kGapBenchOptionsFields = [](auto& f, auto& o) {
+  f("trials", o.trials);
+  f("seed", o.seed);
+  f("first_trial", o.first_trial);
+  f("duration_s", o.duration_s);
+  f("render_cameras", o.render_cameras);
+  f("render_ignored_frames", o.render_ignored_frames);
+  f("detector_sequences", o.detector_sequences);
+  f("config_files", o.config_files);
+  f("set_items", o.set_items);
+};
+
+}  // namespace
 
 nlohmann::json GapBenchOptionsToJson(const GapBenchOptions& o) {
-  return {{"trials", o.trials},
-          {"seed", o.seed},
-          {"first_trial", o.first_trial},
-          {"duration_s", o.duration_s},
-          {"render_cameras", o.render_cameras},
-          {"render_ignored_frames", o.render_ignored_frames},
-          {"ranges",
-           {{"max_roll_deg", o.ranges.max_roll_deg},
-            {"max_pitch_deg", o.ranges.max_pitch_deg},
-            {"start_offset_m", output::EigenToJson(o.ranges.start_offset_m)},
-            {"max_start_yaw_deg", o.ranges.max_start_yaw_deg},
-            {"imu_noise_scale", output::EigenToJson(o.ranges.imu_noise_scale)},
-            {"accel_bias_sigma_mps2", o.ranges.accel_bias_sigma_mps2},
-            {"gyro_bias_sigma_radps", o.ranges.gyro_bias_sigma_radps},
-            {"max_drop_probability", o.ranges.max_drop_probability},
-            {"exposure_s", output::EigenToJson(o.ranges.exposure_s)},
-            {"motion_blur_subframes", o.ranges.motion_blur_subframes}}},
-          {"hover_criteria",
-           {{"window_s", o.hover.window_s},
-            {"max_speed_mps", o.hover.max_speed_mps},
-            {"max_tilt_deg", o.hover.max_tilt_deg},
-            {"max_rate_radps", o.hover.max_rate_radps},
-            {"min_height_m", o.hover.min_height_m}}},
-          {"detector_sequences", o.detector_sequences},
-          {"detector_ranges", GapDetectorSequenceRangesToJson(o.detector_ranges)},
-          {"config_files", o.config_files},
-          {"set_items", o.set_items}};
+  nlohmann::json json = output::FieldsToJson(o, kGapBenchOptionsFields);
+  json["ranges"] = output::FieldsToJson(o.ranges, kGapTrialRangesFields);
+  json["hover_criteria"] = output::FieldsToJson(o.hover, kHoverCriteriaFields);
+  json["detector_ranges"] = GapDetectorSequenceRangesToJson(o.detector_ranges);
+  return json;
 }
 
 GapBenchOptions GapBenchOptionsFromJson(const nlohmann::json& json) {
   try {
-    GapBenchOptions o;
-    o.trials = json.at("trials").get<int>();
-    o.seed = json.at("seed").get<std::uint64_t>();
-    o.first_trial = json.at("first_trial").get<int>();
-    o.duration_s = json.at("duration_s").get<double>();
-    o.render_cameras = json.at("render_cameras").get<bool>();
-    o.render_ignored_frames = json.at("render_ignored_frames").get<bool>();
-    const nlohmann::json& r = json.at("ranges");
-    o.ranges.max_roll_deg = r.at("max_roll_deg").get<double>();
-    o.ranges.max_pitch_deg = r.at("max_pitch_deg").get<double>();
-    o.ranges.start_offset_m = output::JsonToVector<3>(r.at("start_offset_m"));
-    o.ranges.max_start_yaw_deg = r.at("max_start_yaw_deg").get<double>();
-    o.ranges.imu_noise_scale = output::JsonToVector<2>(r.at("imu_noise_scale"));
-    o.ranges.accel_bias_sigma_mps2 = r.at("accel_bias_sigma_mps2").get<double>();
-    o.ranges.gyro_bias_sigma_radps = r.at("gyro_bias_sigma_radps").get<double>();
-    o.ranges.max_drop_probability = r.at("max_drop_probability").get<double>();
-    o.ranges.exposure_s = output::JsonToVector<2>(r.at("exposure_s"));
-    o.ranges.motion_blur_subframes = r.at("motion_blur_subframes").get<int>();
-    const nlohmann::json& h = json.at("hover_criteria");
-    o.hover.window_s = h.at("window_s").get<double>();
-    o.hover.max_speed_mps = h.at("max_speed_mps").get<double>();
-    o.hover.max_tilt_deg = h.at("max_tilt_deg").get<double>();
-    o.hover.max_rate_radps = h.at("max_rate_radps").get<double>();
-    o.hover.min_height_m = h.at("min_height_m").get<double>();
-    o.detector_sequences = json.at("detector_sequences").get<int>();
+    auto o = output::FieldsFromJson<GapBenchOptions>(json, kGapBenchOptionsFields);
+    o.ranges = output::FieldsFromJson<GapTrialRanges>(json.at("ranges"), kGapTrialRangesFields);
+    o.hover = output::FieldsFromJson<HoverCriteria>(json.at("hover_criteria"), kHoverCriteriaFields);
     o.detector_ranges = GapDetectorSequenceRangesFromJson(json.at("detector_ranges"));
-    o.config_files = json.at("config_files").get<std::vector<std::string>>();
-    o.set_items = json.at("set_items").get<std::vector<std::string>>();
     o.threads = 0;
     return o;
   } catch (const nlohmann::json::exception& e) {

@@ -70,6 +70,7 @@ class GapMonteCarloBench : public MonteCarloBench {
       GapBenchOptions options = options_;
       options.first_trial = flights.first;
       options.trials = flights.count;
+      options.detector_sequences = 0;  // run below, as the trials of this range that follow
       options.threads = threads;
       const GapBenchResult result = RunGapBench(options, setup_, factory_, on_trial_done);
       for (const GapTrialRecord& record : result.trials) {
@@ -87,10 +88,8 @@ class GapMonteCarloBench : public MonteCarloBench {
           if (on_trial_done) on_trial_done(flown + done);
         },
         [&](int k) {
-          const GapDetectorSequenceConfig config =
-              DrawGapDetectorSequence(options_.detector_ranges, options_.seed, k - first_sequence);
           return GapDetectorSequenceRecordToJson(
-              RunGapDetectorSequence(config, setup_.base, setup_.mission.detector));
+              RunGapBenchDetectorSequence(options_, setup_, k - first_sequence));
         });
     for (nlohmann::json& record : sequence_records) records.push_back(std::move(record));
     return records;

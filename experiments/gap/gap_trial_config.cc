@@ -29,6 +29,9 @@ std::uint64_t Mix(std::uint64_t x) {
 void GapTrialRanges::Validate() const {
   control::Require(std::isfinite(max_roll_deg) && max_roll_deg >= 0.0 && max_roll_deg < 90.0,
                    "GapTrialRanges.max_roll_deg", "must be in [0, 90) deg");
+  control::Require(
+      std::isfinite(min_roll_deg) && min_roll_deg >= 0.0 && min_roll_deg <= max_roll_deg,
+      "GapTrialRanges.min_roll_deg", "must be in [0, max_roll_deg] deg");
   control::Require(std::isfinite(max_pitch_deg) && max_pitch_deg >= 0.0 && max_pitch_deg < 90.0,
                    "GapTrialRanges.max_pitch_deg", "must be in [0, 90) deg");
   control::Require(start_offset_m.allFinite() && (start_offset_m.array() >= 0.0).all(),
@@ -65,7 +68,7 @@ GapTrialConfig DrawGapTrial(const GapTrialRanges& ranges, std::uint64_t bench_se
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::normal_distribution<double> normal(0.0, 1.0);
   const auto uniform = [&](double lo, double hi) { return lo + (hi - lo) * unit(rng); };
-  trial.roll_deg = uniform(0.0, ranges.max_roll_deg);
+  trial.roll_deg = uniform(ranges.min_roll_deg, ranges.max_roll_deg);
   trial.pitch_deg = uniform(0.0, ranges.max_pitch_deg);
   for (int i = 0; i < 3; ++i) {
     trial.start_p_W(i) =

@@ -19,7 +19,8 @@ namespace aperture::experiments {
 // Ranges the trials are drawn from (uniform unless noted). Defaults: the inclinations of the
 // paper's 35 flights; the rest is what a real flight varies by.
 struct GapTrialRanges {
-  double max_roll_deg = 45.0;   // gap roll about x_W, uniform in [0, max]
+  double min_roll_deg = 0.0;    // gap roll about x_W, uniform in [min, max]
+  double max_roll_deg = 45.0;
   double max_pitch_deg = 30.0;  // gap pitch about y_W, uniform in [0, max]
   // Start position: the scenario's vehicle.start plus a uniform offset in [-r, r] per axis [m];
   // 0.5 m laterally keeps the gap (5 m ahead) well inside the fisheye's view.
@@ -41,7 +42,8 @@ struct GapTrialRanges {
   int motion_blur_subframes = 3;
 
   // Throws std::invalid_argument naming the field for negative or non-finite values, inverted
-  // ranges, a drop probability outside [0, 1) or motion_blur_subframes < 1.
+  // ranges (min_roll_deg > max_roll_deg too), a drop probability outside [0, 1) or
+  // motion_blur_subframes < 1.
   void Validate() const;
 };
 

@@ -87,6 +87,14 @@ TEST(BenchGapCommand, DetectorSequencesWriteTheDetectorSection) {
                                         (fs::path(temp.path()) / "bad").string());
   EXPECT_EQ(bad.exit_code, 2) << bad.output;
   EXPECT_NE(bad.output.find("--detector-sequences"), std::string::npos) << bad.output;
+
+  const fs::path inverted = fs::path(temp.path()) / "inverted";
+  const CommandResult steep = RunAperture("bench gap --trials 1 --min-roll-deg 50 --out " +
+                                          inverted.string());
+  EXPECT_EQ(steep.exit_code, 2) << steep.output;
+  EXPECT_NE(steep.output.find("--min-roll-deg 50 is above --max-roll-deg 45"), std::string::npos)
+      << steep.output;
+  EXPECT_FALSE(fs::exists(inverted));  // refused before anything was written
 }
 
 // The default autopilot is the vision mission on rendered frames. Two seconds of unblurred 30 Hz

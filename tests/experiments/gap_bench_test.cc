@@ -82,6 +82,63 @@ TEST(GapBench, RecordsABrokenAutopilotAsAFailedTrial) {
   EXPECT_EQ(summary["error_at_gap"]["trials"], 0);
 }
 
+TEST(GapBench, OptionsSurviveTheirJsonForm) {
+  GapBenchOptions o = QuickOptions(2);
+  o.first_trial = 4;
+  o.ranges.min_roll_deg = 45.0;
+  o.ranges.max_roll_deg = 60.0;
+  o.ranges.start_offset_m = Eigen::Vector3d(0.1, 0.2, 0.3);
+  o.ranges.motion_blur_subframes = 2;
+  o.hover.min_height_m = 0.7;
+  o.detector_sequences = 3;
+  o.detector_ranges.distance_m = Eigen::Vector2d(2.0, 4.0);
+  o.set_items = {"mission.lead_in_s=0"};
+  const nlohmann::json json = GapBenchOptionsToJson(o);
+  EXPECT_FALSE(json.contains("threads"));  // does not change a result
+  const GapBenchOptions back = GapBenchOptionsFromJson(json);
+  EXPECT_EQ(GapBenchOptionsToJson(back), json);
+  EXPECT_EQ(back.ranges.min_roll_deg, 45.0);
+  EXPECT_EQ(back.ranges.start_offset_m, o.ranges.start_offset_m);
+  EXPECT_EQ(back.hover.min_height_m, 0.7);
+  EXPECT_EQ(back.detector_ranges.distance_m, o.detector_ranges.distance_m);
+  EXPECT_EQ(back.set_items, o.set_items);
+  EXPECT_EQ(back.threads, 0);
+  nlohmann::json broken = json;
+  broken["ranges"].erase("min_roll_deg");
+  try {
+    GapBenchOptionsFromJson(broken);
+    ADD_FAILURE() << "options without ranges.min_roll_deg were read";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("min_roll_deg"), std::string::npos) << e.what();
+  }
+}
+
+TEST(GapBench, RunsTheDetectorSequencesAfterTheFlights) {
+  GapBenchOptions options = QuickOptions(2);
+  options.trials = 1;
+  options.detector_sequences = 2;
+  options.detector_ranges.duration_s = 0.06;  // 4 frames at 50 Hz
+  options.detector_ranges.motion_blur_subframes = 1;
+  int last_done = 0;
+  const GapBenchResult result = RunGapBench(options, MakeGroundTruthGapAutopilotFactory(),
+                                            [&](int done) { last_done = done; });
+  ASSERT_EQ(result.trials.size(), 1u);
+  ASSERT_EQ(result.detector_sequences.size(), 2u);
+  EXPECT_EQ(last_done, 3);  // the flight and both sequences
+  const GapBenchSetup setup = PrepareGapBench(options);
+  for (int k = 0; k < 2; ++k) {
+    const GapDetectorSequenceRecord& record = result.detector_sequences[k];
+    EXPECT_EQ(record.config.index, k);
+    EXPECT_TRUE(record.error.empty()) << record.error;
+    // The same sequence as drawn and run alone: a pure function of (seed, index).
+    const GapDetectorSequenceRecord alone = RunGapBenchDetectorSequence(options, setup, k);
+    EXPECT_EQ(record.config.seed, alone.config.seed);
+    ASSERT_EQ(record.frames.size(), alone.frames.size());
+    ASSERT_FALSE(record.frames.empty());
+    EXPECT_EQ(record.frames.back().distance_m, alone.frames.back().distance_m);
+  }
+}
+
 TEST(GapBench, WritesSummaryTrialsCsvAndReport) {
   GapBenchOptions options = QuickOptions(0);
   options.trials = 2;

@@ -61,8 +61,33 @@ TEST(DrawGapTrial, StaysInsideTheRangesAndCoversThem) {
   EXPECT_GT(max_pitch, 19.8);
 }
 
+TEST(DrawGapTrial, AMinimumRollDrawsTheSteepRangeAloneAndKeepsTheOtherDraws) {
+  GapTrialRanges steep;
+  steep.min_roll_deg = 45.0;
+  steep.max_roll_deg = 60.0;
+  double lowest = 90.0;
+  for (int i = 0; i < 1000; ++i) {
+    const GapTrialConfig t = DrawGapTrial(steep, 1, i, kNominalStart);
+    ASSERT_GE(t.roll_deg, 45.0);
+    ASSERT_LE(t.roll_deg, 60.0);
+    lowest = std::min(lowest, t.roll_deg);
+    // Only the roll's range moved: the same unit draw, the same everything else.
+    GapTrialRanges full = steep;
+    full.min_roll_deg = 0.0;
+    const GapTrialConfig u = DrawGapTrial(full, 1, i, kNominalStart);
+    ASSERT_NEAR(t.roll_deg, 45.0 + u.roll_deg * 15.0 / 60.0, 1e-9);
+    ASSERT_EQ(t.pitch_deg, u.pitch_deg);
+    ASSERT_EQ(t.accel_bias_B, u.accel_bias_B);
+  }
+  EXPECT_LT(lowest, 45.15);
+}
+
 TEST(DrawGapTrial, RejectsInvalidRanges) {
   GapTrialRanges ranges;
+  ranges.min_roll_deg = 50.0;
+  ranges.max_roll_deg = 40.0;
+  EXPECT_THROW(DrawGapTrial(ranges, 1, 0, kNominalStart), std::invalid_argument);
+  ranges = GapTrialRanges{};
   ranges.max_drop_probability = 1.0;
   EXPECT_THROW(DrawGapTrial(ranges, 1, 0, kNominalStart), std::invalid_argument);
   ranges = GapTrialRanges{};
