@@ -63,6 +63,7 @@ template <typename Archive>
 void Serialize(Archive* a, PositionControllerParams* p) {
   SerializePositionGains(a, p);
   a->Visit(APERTURE_NVP(p, compensate_rotor_drag));
+  a->Visit(APERTURE_NVP(p, compensate_rotor_lag));
 }
 
 template <typename Archive>

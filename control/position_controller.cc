@@ -71,6 +71,12 @@ PositionControllerOutput PositionController::Compute(const QuadState& state,
   const double v_h = state.v_W.dot(R.col(0) + R.col(1));
   out.command.collective_thrust_mps2 =
       out.a_des_W.dot(R.col(2)) - model_.thrust_velocity_coeff_kh * v_h * v_h;
+  if (params_.compensate_rotor_lag) {
+    const double c_dot = out.reference.collective_thrust_rate_mps3;
+    const double tau_s =
+        c_dot > 0.0 ? model_.rotor.time_constant_up_s : model_.rotor.time_constant_down_s;
+    out.command.collective_thrust_mps2 += tau_s * c_dot;
+  }
   out.command.omega_des_B = out.attitude.omega_fb_B + out.reference.omega_B;  // (F.37)
   out.command.omega_dot_des_B = out.reference.omega_dot_B;                    // (F.38)
   return out;

@@ -6,6 +6,7 @@
 //                                                                       (F.31), (F.32)
 //   z_des = a_des / |a_des|, R_des from z_des and psi_ref               (F.33)-(F.35)
 //   c_cmd = a_des^T z_B - k_h (v^T (x_B + y_B))^2, current x_B, y_B, z_B (F.36)
+//           [+ tau c_dot_ref with compensate_rotor_lag]
 //   omega_des = omega_fb + omega_ref, omega_dot_des = omega_dot_ref     (F.37), (F.38)
 // where R_ref, omega_ref, omega_dot_ref come from ComputeFlatnessOutputs on the reference.
 //
@@ -40,6 +41,12 @@ struct PositionControllerParams {
   double d_z_per_s = 6.0;             // vertical velocity gain (Table A.2)
   AttitudeControllerGains attitude;   // p_rp = 16.6, p_yaw = 5 (Table A.2)
   bool compensate_rotor_drag = true;  // false: D and k_h treated as zero (F.7.4 "not cons. drag")
+  // Feed-forward of the rotors' first-order lag (alpha_up/alpha_dwn of G.6.1) on the collective
+  // thrust: c_cmd + tau c_dot_ref (F.29), tau the rising or falling time constant, so that a
+  // lagging rotor delivers c_ref on a thrust ramp instead of c_ref - tau c_dot_ref. Beyond F;
+  // off by default (a ramp of c from 20 to 5 m/s^2 in 0.25 s otherwise leaves ~1.6 m/s^2 of
+  // excess thrust at the 27 ms falling time constant).
+  bool compensate_rotor_lag = false;
   // Throws std::invalid_argument naming the gain when one is negative or not finite.
   void Validate() const;
 };

@@ -91,6 +91,30 @@ TEST(PositionControllerTest, CompensationOffUsesDragFreeModel) {
   EXPECT_GT(std::abs(with_drag.thrust_command_mps2 - without.thrust_command_mps2), 0.1);
 }
 
+TEST(PositionControllerTest, RotorLagCompensationLeadsTheThrustByItsTimeConstant) {
+  const VehicleParameters vehicle = CircleDragVehicle();
+  PositionControllerParams params;
+  params.compensate_rotor_lag = true;
+  const PositionController lagging(vehicle, params);
+  const PositionController plain(vehicle);
+  int rising = 0, falling = 0;
+  for (const TrajectoryPoint& ref : References()) {
+    const FlatnessResult flat = ComputeFlatnessOutputs(ref, vehicle);
+    const double c_dot = flat.collective_thrust_rate_mps3;
+    if (std::abs(c_dot) < 1e-3) continue;
+    const double tau_s =
+        c_dot > 0.0 ? vehicle.rotor.time_constant_up_s : vehicle.rotor.time_constant_down_s;
+    (c_dot > 0.0 ? rising : falling)++;
+    const ThrustRatesCommand with = lagging.Compute(StateOf(ref, flat), ref).command;
+    const ThrustRatesCommand without = plain.Compute(StateOf(ref, flat), ref).command;
+    EXPECT_NEAR(with.collective_thrust_mps2 - without.collective_thrust_mps2, tau_s * c_dot,
+                1e-10);
+    EXPECT_EQ(with.omega_des_B, without.omega_des_B);  // the thrust alone
+  }
+  EXPECT_GT(rising, 5);
+  EXPECT_GT(falling, 5);
+}
+
 TEST(PositionControllerTest, FeedbackUsesTableA2GainsAndThrustProjectionF36) {
   const VehicleParameters vehicle = CircleDragVehicle();
   const PositionController controller(vehicle);

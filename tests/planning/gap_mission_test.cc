@@ -172,6 +172,43 @@ TEST_F(GapMissionTest, DetectsHoversAndPlansInTheGapAnchoredFrame) {
   EXPECT_NEAR(last_command_.thrust_rates.collective_thrust_mps2, kGravity, 1.0);
 }
 
+// Approach limits no candidate meets (as at steep gaps): the fallback limits plan the approach to
+// the traverse start itself, without the lead-in, and the lead-in phase is skipped.
+GapMissionParams UnreachableApproachLimitsParams() {
+  GapMissionParams params;
+  params.approach.limits.max_body_rate_radps = 0.05;
+  return params;
+}
+
+class GapMissionFallbackTest : public GapMissionTest {
+ protected:
+  GapMissionFallbackTest() : GapMissionTest(UnreachableApproachLimitsParams()) {}
+};
+
+TEST_F(GapMissionFallbackTest, PlansTheFallbackApproachToTheTraverseStartWithoutALeadIn) {
+  ASSERT_GT(GapMissionParams{}.lead_in_s, 0.0);
+  Run(5.0, true, [&] {
+    return mission_.phase() != GapMissionPhase::kDetect &&
+           mission_.phase() != GapMissionPhase::kHover;
+  });
+  ASSERT_EQ(mission_.phase(), GapMissionPhase::kTransfer) << mission_.reason();
+  EXPECT_TRUE(mission_.used_fallback_limits());
+  ASSERT_TRUE(mission_.traverse_plan().has_value());
+  ASSERT_TRUE(mission_.approach_plan().has_value());
+  const TraverseTrajectory& traverse = *mission_.traverse_plan();
+  const MotionPrimitive& approach = mission_.approach_plan()->primitive;
+  const double T = approach.duration_s();
+  EXPECT_TRUE(approach.Position(T).isApprox(traverse.start_position_W(), 1e-9));
+  EXPECT_TRUE(approach.Velocity(T).isApprox(traverse.start_velocity_W(), 1e-9));
+  // Flown on (the gap stays in view): the approach's end starts the open-loop traverse at once.
+  Run(15.0, true, [&] { return mission_.phase() == GapMissionPhase::kTraverse; });
+  ASSERT_EQ(mission_.phase(), GapMissionPhase::kTraverse) << mission_.reason();
+  const auto& changes = mission_.phase_changes();
+  ASSERT_GE(changes.size(), 2u);
+  EXPECT_EQ(changes[changes.size() - 2].phase, GapMissionPhase::kLeadIn);
+  EXPECT_EQ(changes.back().t_s, changes[changes.size() - 2].t_s);  // a lead-in of no time
+}
+
 // With a range reading the approach and the transfer to its start stay min_ground_clearance_m
 // above the ground measured while hovering. The range says 1 m, so the floor is 0.5 m below the
 // hover (z_W = 0): without it the cheapest approach through the 30 deg gap dips 1.1 m below the
