@@ -297,10 +297,9 @@ void GapMission::Plan(double t_s) {
     return;
   }
   // The approach ends lead_in_s before the traverse start, on the traverse arc.
-  lead_in_s_ = params_.lead_in_s;
   ApproachTarget target = ApproachTarget::FromTraverse(*traverse.trajectory);
-  target.p_W = traverse.trajectory->Position(-lead_in_s_);
-  target.v_W = traverse.trajectory->Velocity(-lead_in_s_);
+  target.p_W = traverse.trajectory->Position(-params_.lead_in_s);
+  target.v_W = traverse.trajectory->Velocity(-params_.lead_in_s);
   // Floor in W from the range reading while hovering level: the ground is range_m below B.
   ApproachPlannerParameters approach_params = params_.approach;
   if (last_range_m_) {
@@ -316,12 +315,11 @@ void GapMission::Plan(double t_s) {
     // candidate then passed even these limits, and below, the approach's last rotation still
     // ringing through the lead-in left the crossings 4 cm off where without it they were 1.5 cm
     // (SITL, 45-60 deg roll, 20 trials each).
-    lead_in_s_ = 0.0;
+    used_fallback_limits_ = true;
     target = ApproachTarget::FromTraverse(*traverse.trajectory);
     approach_params.limits = params_.fallback_limits;
     approach_planner_ = ApproachPlanner(approach_params);
     plan = approach_planner_.Plan(target);
-    used_fallback_limits_ = true;
   }
   if (!plan.best) {
     Abort("no feasible approach candidate", t_s);
@@ -479,8 +477,8 @@ std::optional<perception::AutopilotCommand> GapMission::StepApproach(double t_s)
 }
 
 std::optional<perception::AutopilotCommand> GapMission::StepLeadIn(double t_s) {
-  // Traverse time runs from -lead_in_s_ at the approach end.
-  const double t_traverse = t_s - approach_end_t_s_ - lead_in_s_;
+  // Traverse time runs from -LeadInS() at the approach end.
+  const double t_traverse = t_s - approach_end_t_s_ - LeadInS();
   if (t_traverse >= 0.0) {
     EnterPhase(GapMissionPhase::kTraverse, t_s);
     traverse_start_t_s_ = t_s;

@@ -288,6 +288,8 @@ class GapMission : public perception::Autopilot {
   void StartRecovery(double t_s);  // the recovery state machine, and the odometry's clock
   void StartFilter();
   void Plan(double t_s);
+  // Lead-in of the planned approach: params_.lead_in_s, none with the fallback limits.
+  double LeadInS() const { return used_fallback_limits_ ? 0.0 : params_.lead_in_s; }
   perception::AutopilotCommand Track(const control::TrajectoryPoint& reference) const;
   perception::AutopilotCommand HoverCommand() const;
   control::RecoveryInputs RecoveryInputsAt(double t_s) const;
@@ -328,7 +330,6 @@ class GapMission : public perception::Autopilot {
   int replans_accepted_ = 0;
   int replans_rejected_ = 0;
   bool used_fallback_limits_ = false;
-  double lead_in_s_ = 0.0;  // of the planned approach: params_.lead_in_s, or 0 with the fallback
   std::optional<double> last_range_m_;
   double recovery_start_t_s_ = std::numeric_limits<double>::quiet_NaN();
   std::optional<Eigen::Isometry3d> T_WO_;  // the visual odometry's frame O in W, once aligned
