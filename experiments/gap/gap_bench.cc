@@ -129,6 +129,74 @@ nlohmann::json MeanStd(const std::vector<double>& values) {
   return {{"mean", mean}, {"std", std::sqrt(ss / std::max<double>(1.0, values.size() - 1.0))}};
 }
 
+// The statistics of a set of errors at the gap: mean and std of |error| per axis (Table I) and of
+// the signed error, of the norms, and of the arrival time (over the finite ones).
+nlohmann::json ErrorFigures(const std::vector<GapStateError>& errors) {
+  std::vector<Eigen::VectorXd> position, velocity, orientation;
+  std::vector<double> position_norm, velocity_norm, time_error;
+  for (const GapStateError& e : errors) {
+    position.push_back(e.position_m);
+    velocity.push_back(e.velocity_mps);
+    orientation.push_back(e.orientation_deg);
+    position_norm.push_back(e.position_m.norm());
+    velocity_norm.push_back(e.velocity_mps.norm());
+    if (std::isfinite(e.time_s)) time_error.push_back(e.time_s);
+  }
+  const AxisStatistics p = ComputeAxisStatistics(position, 3);
+  const AxisStatistics v = ComputeAxisStatistics(velocity, 3);
+  const AxisStatistics o = ComputeAxisStatistics(orientation, 2);
+  return {
+      {"trials", static_cast<int>(errors.size())},
+      {"position_mean", output::EigenToJson(p.abs_mean)},
+      {"position_std", output::EigenToJson(p.abs_std)},
+      {"position_signed_mean", output::EigenToJson(p.signed_mean)},
+      {"position_signed_std", output::EigenToJson(p.signed_std)},
+      {"velocity_mean", output::EigenToJson(v.abs_mean)},
+      {"velocity_std", output::EigenToJson(v.abs_std)},
+      {"velocity_signed_mean", output::EigenToJson(v.signed_mean)},
+      {"velocity_signed_std", output::EigenToJson(v.signed_std)},
+      {"orientation_mean_deg", output::EigenToJson(o.abs_mean)},
+      {"orientation_std_deg", output::EigenToJson(o.abs_std)},
+      {"orientation_signed_mean_deg", output::EigenToJson(o.signed_mean)},
+      {"orientation_signed_std_deg", output::EigenToJson(o.signed_std)},
+      {"position_norm_m", MeanStd(position_norm)},
+      {"velocity_norm_mps", MeanStd(velocity_norm)},
+      {"arrival_time_error_s", MeanStd(time_error)},
+  };
+}
+
+// Failure reasons grouped by their text before the first digit-bearing detail.
+std::map<std::string, int> CountFailures(const std::vector<GapTrialRecord>& trials) {
+  std::map<std::string, int> failures;
+  for (const GapTrialRecord& record : trials) {
+    if (record.evaluation.success) continue;
+    const std::string& reason = record.evaluation.failure_reason;
+    const std::size_t cut = reason.find_first_of(":0123456789");
+    failures[reason.substr(0, cut == std::string::npos ? reason.size() : cut)]++;
+  }
+  return failures;
+}
+
+// Table I by the paper's definitions (SummarizeGapBench's "table_i") over `trials`.
+nlohmann::json TableIFigures(const std::vector<GapTrialRecord>& trials) {
+  std::vector<GapStateError> errors;
+  int successes = 0;
+  for (const GapTrialRecord& record : trials) {
+    if (record.evaluation.success) ++successes;
+    if (record.evaluation.error_at_planned_tc) errors.push_back(*record.evaluation.error_at_planned_tc);
+  }
+  const int n = static_cast<int>(trials.size());
+  nlohmann::json figures = ErrorFigures(errors);
+  figures.erase("trials");
+  figures["trials"] = n;
+  figures["trials_with_plan"] = static_cast<int>(errors.size());
+  figures["trials_without_plan"] = n - static_cast<int>(errors.size());
+  figures["successes"] = successes;
+  figures["success_rate"] = n > 0 ? static_cast<double>(successes) / n : kNaN;
+  figures["failures"] = CountFailures(trials);
+  return figures;
+}
+
 // The mission parameters every trial flies: the base scenario's camera and pattern sizes and the
 // nominal IMU of its SITL configuration (GapMissionParamsFor; the trials change none of these),
 // then the `mission` section.
@@ -186,9 +254,7 @@ GapTrialRecord RunGapTrial(const GapBenchOptions& options, const sim::ScenarioPa
     params.render_ignored_frames = options.render_ignored_frames;
     const sim::ImuSensorParams nominal_imu = params.imu;
     ApplyGapTrial(trial, &params);
-    GapGeometry gap;
-    gap.T_WG = scenario.scene().object("gap").T_WO;
-    gap.opening_m = scenario_params.gap.opening_m;
+    const GapGeometry gap = GapGeometryOf(scenario);
 
     GapTrialSetup setup;
     setup.scenario = &scenario;
@@ -205,7 +271,8 @@ GapTrialRecord RunGapTrial(const GapBenchOptions& options, const sim::ScenarioPa
     record.plan = autopilot->traverse_plan();
     record.traverse_start_time_s = autopilot->traverse_start_time_s();
     record.evaluation =
-        EvaluateGapTrial(result, gap, record.plan, record.traverse_start_time_s, options.hover);
+        EvaluateGapTrial(result, gap, VehicleFootprintOf(params.dynamics.vehicle, params.collision),
+                         record.plan, record.traverse_start_time_s, options.hover);
     record.outcome = sim::ToString(result.outcome);
     record.sim_time_s = result.sim_time_s;
     record.cpu_profile = SitlCpuProfileToJson(result.timing.cpu, result.sim_time_s);
@@ -228,6 +295,12 @@ GapTrialRecord RunGapTrial(const GapBenchOptions& options, const sim::ScenarioPa
   return record;
 }
 
+planning::GapMissionParams PaperGapMissionParams(const planning::GapMissionParams& ours) {
+  planning::GapMissionParams paper = ours;
+  paper.lead_in_s = 0.0;
+  return paper;
+}
+
 GapBenchSetup PrepareGapBench(const GapBenchOptions& options) {
   options.Validate();
   config::ConfigTree tree = sim::ScenarioConfig("gap", options.config_files, options.set_items);
@@ -241,6 +314,7 @@ GapBenchSetup PrepareGapBench(const GapBenchOptions& options) {
                                 setup.base.scenario + "; only the gap scenario can be benchmarked");
   }
   setup.mission = BaseMissionParams(setup.base, mission_config);
+  setup.paper_mission = PaperGapMissionParams(setup.mission);
   sim::PutEffectiveSitlBlocks(setup.base, &tree);
   tree.PutParams("mission", setup.mission);
   setup.scenario_config = nlohmann::json::parse(tree.ToJson());
@@ -267,6 +341,7 @@ GapBenchResult RunGapBench(const GapBenchOptions& options, const GapBenchSetup& 
                                    base.vehicle_start.p_m));
   }
   result.trials.resize(configs.size());
+  if (options.paper_configuration) result.paper_trials.resize(configs.size());
   std::vector<char> flown(configs.size(), 0);
   std::mutex mutex;
   int done = 0;
@@ -275,6 +350,9 @@ GapBenchResult RunGapBench(const GapBenchOptions& options, const GapBenchSetup& 
     tbb::parallel_for(0, options.trials, [&](int i) {
       if (output::InterruptionRequested()) return;  // Ctrl-C: start no further trial
       result.trials[i] = RunGapTrial(options, base, result.mission, configs[i], factory);
+      if (options.paper_configuration) {
+        result.paper_trials[i] = RunGapTrial(options, base, setup.paper_mission, configs[i], factory);
+      }
       flown[i] = 1;
       const std::lock_guard<std::mutex> lock(mutex);
       ++done;
@@ -282,11 +360,15 @@ GapBenchResult RunGapBench(const GapBenchOptions& options, const GapBenchSetup& 
     });
   });
   if (done < options.trials) {  // interrupted: keep the trials that were flown, in index order
-    std::vector<GapTrialRecord> flown_trials;
-    for (std::size_t i = 0; i < flown.size(); ++i) {
-      if (flown[i]) flown_trials.push_back(std::move(result.trials[i]));
-    }
-    result.trials = std::move(flown_trials);
+    const auto keep_flown = [&flown](std::vector<GapTrialRecord>* records) {
+      std::vector<GapTrialRecord> kept;
+      for (std::size_t i = 0; i < records->size(); ++i) {
+        if (flown[i]) kept.push_back(std::move((*records)[i]));
+      }
+      *records = std::move(kept);
+    };
+    keep_flown(&result.trials);
+    keep_flown(&result.paper_trials);
   }
   for (const GapTrialRecord& record : result.trials) {
     if (result.autopilot_name.empty()) result.autopilot_name = record.autopilot_name;
@@ -317,59 +399,43 @@ nlohmann::json SummarizeGapBench(const GapBenchResult& result) {
   nlohmann::json summary;
   const int trials = static_cast<int>(result.trials.size());
   int successes = 0;
-  std::vector<Eigen::VectorXd> position, velocity, orientation;
-  std::vector<double> position_norm, velocity_norm, time_error;
-  std::map<std::string, int> failures;
+  std::vector<GapStateError> errors_at_crossing;
   nlohmann::json per_trial = nlohmann::json::array();
   for (const GapTrialRecord& record : result.trials) {
-    if (record.evaluation.success) {
-      ++successes;
-    } else {
-      // Group reasons by their text before the first digit-bearing detail.
-      const std::string& reason = record.evaluation.failure_reason;
-      const std::size_t cut = reason.find_first_of(":0123456789");
-      failures[reason.substr(0, cut == std::string::npos ? reason.size() : cut)]++;
-    }
-    if (const std::optional<GapStateError>& e = record.evaluation.error) {
-      position.push_back(e->position_m);
-      velocity.push_back(e->velocity_mps);
-      orientation.push_back(e->orientation_deg);
-      position_norm.push_back(e->position_m.norm());
-      velocity_norm.push_back(e->velocity_mps.norm());
-      if (std::isfinite(e->time_s)) time_error.push_back(e->time_s);
-    }
+    if (record.evaluation.success) ++successes;
+    if (record.evaluation.error) errors_at_crossing.push_back(*record.evaluation.error);
     per_trial.push_back(GapTrialSummaryJson(record));
   }
   summary["trials"] = trials;
   summary["successes"] = successes;
   summary["success_rate"] = trials > 0 ? static_cast<double>(successes) / trials : kNaN;
-  const AxisStatistics p = ComputeAxisStatistics(position, 3);
-  const AxisStatistics v = ComputeAxisStatistics(velocity, 3);
-  const AxisStatistics o = ComputeAxisStatistics(orientation, 2);
-  summary["error_at_gap"] = {
+  summary["error_at_gap"] = ErrorFigures(errors_at_crossing);
+  summary["error_at_gap"]["definition"] =
+      "at the crossing (ground truth crossing the gap plane): actual (ground truth relative to "
+      "the true gap) minus desired (traverse plan at its t_c relative to the plan's gap "
+      "estimate), world axes; *_mean/*_std = mean/std of |error| per axis, *_signed_* of the "
+      "signed error; every trial that crossed with a plan, successful or not. The along-track "
+      "and timing error are removed (see table_i for the paper's definition)";
+  summary["table_i"] = {
       {"definition",
-       "Table I analog at t_c (ground truth crossing the gap plane): actual (ground truth relative "
-       "to the true gap) minus desired (traverse plan at its t_c relative to the plan's gap "
-       "estimate), world axes; *_mean/*_std = mean/std of |error| per axis, *_signed_* of the "
-       "signed error; every trial that crossed with a plan, successful or not"},
-      {"trials", static_cast<int>(position.size())},
-      {"position_mean", output::EigenToJson(p.abs_mean)},
-      {"position_std", output::EigenToJson(p.abs_std)},
-      {"position_signed_mean", output::EigenToJson(p.signed_mean)},
-      {"position_signed_std", output::EigenToJson(p.signed_std)},
-      {"velocity_mean", output::EigenToJson(v.abs_mean)},
-      {"velocity_std", output::EigenToJson(v.abs_std)},
-      {"velocity_signed_mean", output::EigenToJson(v.signed_mean)},
-      {"velocity_signed_std", output::EigenToJson(v.signed_std)},
-      {"orientation_mean_deg", output::EigenToJson(o.abs_mean)},
-      {"orientation_std_deg", output::EigenToJson(o.abs_std)},
-      {"orientation_signed_mean_deg", output::EigenToJson(o.signed_mean)},
-      {"orientation_signed_std_deg", output::EigenToJson(o.signed_std)},
-      {"position_norm_m", MeanStd(position_norm)},
-      {"velocity_norm_mps", MeanStd(velocity_norm)},
-      {"arrival_time_error_s", MeanStd(time_error)},
-  };
-  summary["failures"] = failures;
+       "seed 000 Table I: the ground truth at the planned t_c (traverse start + plan t_c) minus "
+       "the plan there, each relative to its gap, world axes; mean/std of |error| per axis over "
+       "every trial with a traverse plan, successful or not (trials_without_plan aborted before "
+       "planning); success needs the vehicle's footprint (body sphere, propeller disks, arms) "
+       "clear of the panel and a hover after the gap; arrival_time_error_s = crossing - planned "
+       "t_c over the trials that crossed"},
+      {"ours", TableIFigures(result.trials)}};
+  if (!result.paper_trials.empty()) {
+    summary["table_i"]["paper"] = TableIFigures(result.paper_trials);
+    nlohmann::json paper_per_trial = nlohmann::json::array();
+    for (const GapTrialRecord& record : result.paper_trials) {
+      paper_per_trial.push_back(GapTrialSummaryJson(record));
+    }
+    summary["paper_configuration"] = {
+        {"mission_changes", {{"lead_in_s", PaperGapMissionParams(result.mission).lead_in_s}}},
+        {"per_trial", paper_per_trial}};
+  }
+  summary["failures"] = CountFailures(result.trials);
   // Success by inclination: 15 deg roll bins x 15 deg pitch bins.
   std::map<std::pair<int, int>, std::pair<int, int>> bins;  // (roll, pitch) bin -> (ok, all)
   for (const GapTrialRecord& record : result.trials) {

@@ -38,6 +38,7 @@ constexpr auto kGapBenchOptionsFields = [](auto& f, auto& o) {
   f("render_cameras", o.render_cameras);
   f("render_ignored_frames", o.render_ignored_frames);
   f("detector_sequences", o.detector_sequences);
+  f("paper_configuration", o.paper_configuration);
   f("config_files", o.config_files);
   f("set_items", o.set_items);
 };

@@ -28,6 +28,21 @@ std::string DescribeDetector(const nlohmann::json& summary) {
          number("T_CG_position_error_median_pct", 1.0, "%.3f %%") + " of the distance";
 }
 
+// A trial's record holds the paper configuration's flight of the same draws under this key.
+constexpr const char* kPaperFlightKey = "paper_configuration";
+
+// "; Table I (planned t_c, all trials): ours mean |position error| [...] m, paper ..." .
+std::string DescribeTableI(const nlohmann::json& summary) {
+  std::string text = "; Table I (planned t_c, all trials): mean |position error|";
+  for (const auto& [name, figures] : summary["table_i"].items()) {
+    if (!figures.is_object()) continue;
+    text += " " + name + " " + figures["position_mean"].dump() + " m (" +
+            std::to_string(figures["successes"].get<int>()) + "/" +
+            std::to_string(figures["trials"].get<int>()) + " successful)";
+  }
+  return text;
+}
+
 class GapMonteCarloBench : public MonteCarloBench {
  public:
   explicit GapMonteCarloBench(const nlohmann::json& configuration) {
@@ -73,12 +88,16 @@ class GapMonteCarloBench : public MonteCarloBench {
       options.detector_sequences = 0;  // run below, as the trials of this range that follow
       options.threads = threads;
       const GapBenchResult result = RunGapBench(options, setup_, factory_, on_trial_done);
-      for (const GapTrialRecord& record : result.trials) {
-        records.push_back(GapTrialRecordToJson(record));
+      // One record per trial (the run counts them): the paper configuration's flight inside it.
+      for (std::size_t i = 0; i < result.trials.size(); ++i) {
+        records.push_back(GapTrialRecordToJson(result.trials[i]));
+        if (i < result.paper_trials.size()) {
+          records.back()[kPaperFlightKey] = GapTrialRecordToJson(result.paper_trials[i]);
+        }
       }
-      if (static_cast<int>(records.size()) < flights.count) return records;  // interrupted
+      if (static_cast<int>(result.trials.size()) < flights.count) return records;  // interrupted
     }
-    const int flown = static_cast<int>(records.size());
+    const int flown = flights.count;
     const int sequences_first = std::max(trials.first, first_sequence);
     const TrialRange sequences{sequences_first, end - sequences_first};
     if (sequences.count <= 0) return records;
@@ -107,6 +126,9 @@ class GapMonteCarloBench : public MonteCarloBench {
         continue;
       }
       result.trials.push_back(GapTrialRecordFromJson(record));
+      if (record.contains(kPaperFlightKey)) {
+        result.paper_trials.push_back(GapTrialRecordFromJson(record[kPaperFlightKey]));
+      }
       // As RunGapBench: the autopilot of the first trial that ran.
       if (result.autopilot_name.empty()) result.autopilot_name = result.trials.back().autopilot_name;
     }
@@ -120,7 +142,7 @@ class GapMonteCarloBench : public MonteCarloBench {
            std::to_string(summary["trials"].get<int>()) +
            " successful, mean |position error| at the gap " + error["position_mean"].dump() +
            " m over " + std::to_string(error["trials"].get<int>()) + " crossings" +
-           DescribeDetector(summary);
+           DescribeTableI(summary) + DescribeDetector(summary);
   }
 
  private:
@@ -136,6 +158,8 @@ class GapMonteCarloBench : public MonteCarloBench {
 nlohmann::json GapBenchConfiguration(const GapBenchOptions& options, const std::string& autopilot) {
   GapBenchOptions effective = options;
   effective.render_cameras = autopilot != "ground_truth";  // ground truth needs no camera
+  // The ground-truth autopilot has no lead-in: the paper's configuration would fly the same.
+  effective.paper_configuration = options.paper_configuration && autopilot != "ground_truth";
   return {{"autopilot", autopilot}, {"options", GapBenchOptionsToJson(effective)}};
 }
 

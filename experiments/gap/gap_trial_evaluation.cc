@@ -12,6 +12,7 @@
 namespace aperture::experiments {
 namespace {
 
+using control::kNaN;
 using control::kRadToDeg;
 
 double WrapDeg(double angle_deg) {
@@ -126,7 +127,8 @@ Eigen::Vector2d RollPitchDeg(const Eigen::Matrix3d& R_WB) {
   return Eigen::Vector2d(roll, pitch) * kRadToDeg;
 }
 
-GapStateError ComputeErrorAtGap(const GapCrossing& crossing, const GapGeometry& gap,
+GapStateError ComputeErrorAtGap(const control::QuadState& actual,
+                                const std::optional<GapCrossing>& crossing, const GapGeometry& gap,
                                 const planning::TraverseTrajectory& plan,
                                 double traverse_start_time_s) {
   // Estimated gap -> true gap: desired relative states keep their pose relative to the gap.
@@ -140,23 +142,32 @@ GapStateError ComputeErrorAtGap(const GapCrossing& crossing, const GapGeometry& 
       control::ComputeDesiredAttitude(plan.thrust_direction_W(), plan.heading_rad());
 
   GapStateError error;
-  error.position_m = crossing.state.p_WB - T_true_est * plan.Position(t_c);
-  error.velocity_mps = crossing.state.v_W - T_true_est.linear() * plan.Velocity(t_c);
-  const Eigen::Vector2d actual = RollPitchDeg(crossing.state.q_WB.toRotationMatrix());
+  error.position_m = actual.p_WB - T_true_est * plan.Position(t_c);
+  error.velocity_mps = actual.v_W - T_true_est.linear() * plan.Velocity(t_c);
+  const Eigen::Vector2d roll_pitch = RollPitchDeg(actual.q_WB.toRotationMatrix());
   const Eigen::Vector2d desired = RollPitchDeg(T_true_est.linear() * R_WB_plan);
-  error.orientation_deg =
-      Eigen::Vector2d(WrapDeg(actual.x() - desired.x()), WrapDeg(actual.y() - desired.y()));
-  error.time_s = crossing.t_s - (traverse_start_time_s + t_c);
+  error.orientation_deg = Eigen::Vector2d(WrapDeg(roll_pitch.x() - desired.x()),
+                                          WrapDeg(roll_pitch.y() - desired.y()));
+  error.time_s = crossing ? crossing->t_s - (traverse_start_time_s + t_c) : kNaN;
   return error;
 }
 
 GapTrialEvaluation EvaluateGapTrial(const sim::SitlResult& result, const GapGeometry& gap,
+                                    const VehicleFootprint& footprint,
                                     const std::optional<planning::TraverseTrajectory>& plan,
                                     double traverse_start_time_s, const HoverCriteria& hover) {
   GapTrialEvaluation evaluation;
   evaluation.crossing = FindGapCrossing(result.trajectory, gap);
+  evaluation.footprint_contact = FindFootprintContact(result.trajectory, gap, footprint);
   if (evaluation.crossing && plan) {
-    evaluation.error = ComputeErrorAtGap(*evaluation.crossing, gap, *plan, traverse_start_time_s);
+    evaluation.error = ComputeErrorAtGap(evaluation.crossing->state, evaluation.crossing, gap,
+                                         *plan, traverse_start_time_s);
+  }
+  if (plan && std::isfinite(traverse_start_time_s) && !result.trajectory.empty()) {
+    const double t_planned_s = traverse_start_time_s + plan->time_to_gap_s();
+    evaluation.error_at_planned_tc =
+        ComputeErrorAtGap(GroundTruthAt(result.trajectory, t_planned_s), evaluation.crossing, gap,
+                          *plan, traverse_start_time_s);
   }
   // The first failed criterion, in the order things happen in a flight. A plan is needed for
   // the errors, not for success.
@@ -166,6 +177,11 @@ GapTrialEvaluation EvaluateGapTrial(const sim::SitlResult& result, const GapGeom
     evaluation.failure_reason =
         Format("crossed the gap plane outside the opening at x_G = %.3f m, y_G = %.3f m",
                evaluation.crossing->p_G_m.x(), evaluation.crossing->p_G_m.y());
+  } else if (const std::optional<FootprintContact>& contact = evaluation.footprint_contact) {
+    evaluation.failure_reason = "footprint: " + contact->part + " meets the gap panel at x_G = " +
+                                Format("%.3f m, y_G = %.3f m", contact->p_G_m.x(),
+                                       contact->p_G_m.y()) +
+                                Format(" (t = %.3f s)", contact->t_s);
   } else if (!evaluation.crossing) {
     evaluation.failure_reason =
         plan ? "never crossed the gap plane" : "never crossed the gap plane (no traverse plan)";

@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "control/constants.h"
 #include "output/json_eigen.h"
 
 namespace aperture::experiments {
@@ -46,6 +47,22 @@ std::vector<control::QuadState> TraceFromJson(const nlohmann::json& json) {
 
 }  // namespace
 
+nlohmann::json GapStateErrorToJson(const GapStateError& error) {
+  return {{"position_m", output::EigenToJson(error.position_m)},
+          {"velocity_mps", output::EigenToJson(error.velocity_mps)},
+          {"orientation_deg", output::EigenToJson(error.orientation_deg)},
+          {"time_s", error.time_s}};
+}
+
+GapStateError GapStateErrorFromJson(const nlohmann::json& j) {
+  GapStateError error;
+  error.position_m = output::JsonToVector<3>(j.at("position_m"));
+  error.velocity_mps = output::JsonToVector<3>(j.at("velocity_mps"));
+  error.orientation_deg = output::JsonToVector<2>(j.at("orientation_deg"));
+  error.time_s = j.at("time_s").is_null() ? control::kNaN : j.at("time_s").get<double>();
+  return error;
+}
+
 nlohmann::json GapTrialSummaryJson(const GapTrialRecord& record) {
   const GapTrialConfig& c = record.config;
   nlohmann::json trial = {
@@ -76,11 +93,15 @@ nlohmann::json GapTrialSummaryJson(const GapTrialRecord& record) {
                          {"p_G_m", output::EigenToJson(crossing->p_G_m)},
                          {"inside_opening", crossing->inside_opening}};
   }
-  if (const std::optional<GapStateError>& error = record.evaluation.error) {
-    trial["error_at_gap"] = {{"position_m", output::EigenToJson(error->position_m)},
-                             {"velocity_mps", output::EigenToJson(error->velocity_mps)},
-                             {"orientation_deg", output::EigenToJson(error->orientation_deg)},
-                             {"time_s", error->time_s}};
+  const GapTrialEvaluation& evaluation = record.evaluation;
+  if (evaluation.error) trial["error_at_gap"] = GapStateErrorToJson(*evaluation.error);
+  if (evaluation.error_at_planned_tc) {
+    trial["error_at_planned_tc"] = GapStateErrorToJson(*evaluation.error_at_planned_tc);
+  }
+  if (const std::optional<FootprintContact>& contact = evaluation.footprint_contact) {
+    trial["footprint_contact"] = {{"t_s", contact->t_s},
+                                  {"part", contact->part},
+                                  {"p_G_m", output::EigenToJson(contact->p_G_m)}};
   }
   return trial;
 }
@@ -135,13 +156,16 @@ GapTrialRecord GapTrialRecordFromJson(const nlohmann::json& json) {
       r.evaluation.crossing = crossing;
     }
     if (json.contains("error_at_gap")) {
-      const nlohmann::json& j = json["error_at_gap"];
-      GapStateError error;
-      error.position_m = output::JsonToVector<3>(j.at("position_m"));
-      error.velocity_mps = output::JsonToVector<3>(j.at("velocity_mps"));
-      error.orientation_deg = output::JsonToVector<2>(j.at("orientation_deg"));
-      error.time_s = j.at("time_s").get<double>();
-      r.evaluation.error = error;
+      r.evaluation.error = GapStateErrorFromJson(json["error_at_gap"]);
+    }
+    if (json.contains("error_at_planned_tc")) {
+      r.evaluation.error_at_planned_tc = GapStateErrorFromJson(json["error_at_planned_tc"]);
+    }
+    if (json.contains("footprint_contact")) {
+      const nlohmann::json& j = json["footprint_contact"];
+      r.evaluation.footprint_contact = FootprintContact{
+          j.at("t_s").get<double>(), j.at("part").get<std::string>(),
+          output::JsonToVector<2>(j.at("p_G_m"))};
     }
     r.estimate_trace = TraceFromJson(json.at("estimate_trace"));
     r.truth_trace = TraceFromJson(json.at("truth_trace"));

@@ -12,6 +12,11 @@
 
 namespace aperture::experiments {
 
+// A GapStateError as {position_m, velocity_mps, orientation_deg, time_s} and back (a null time_s,
+// NaN in JSON text, reads as NaN); std::out_of_range/nlohmann errors for a missing key.
+nlohmann::json GapStateErrorToJson(const GapStateError& error);
+GapStateError GapStateErrorFromJson(const nlohmann::json& json);
+
 // summary.json "per_trial" entry: the trial's draws, outcome, crossing and error at the gap.
 nlohmann::json GapTrialSummaryJson(const GapTrialRecord& record);
 

@@ -7,6 +7,7 @@
 #include "config/yaml_write_archive.h"
 #include "experiments/gap/gap_mission_factory.h"
 #include "experiments/gap/gap_trial_evaluation.h"
+#include "experiments/gap/gap_trial_record_json.h"
 #include "experiments/missions/odometry_adapter.h"
 #include "output/json_eigen.h"
 #include "planning/gap_mission/gap_mission_params_io.h"
@@ -19,7 +20,8 @@ class GapMissionFlight final : public MissionFlight {
   explicit GapMissionFlight(const MissionContext& context)
       : scenario_(context.scenario),
         params_(GapMissionParamsFor(context.scenario, context.sitl.imu)),
-        odometry_(LoadOdometryParams(context, kGapOdometrySalt)) {
+        odometry_(LoadOdometryParams(context, kGapOdometrySalt)),
+        footprint_(VehicleFootprintOf(context.sitl.dynamics.vehicle, context.sitl.collision)) {
     LoadParams(context.params, &params_);  // config::LoadParams: reads, rejects, validates
     mission_ = MakeGapMission(context.scenario, context.sitl.dynamics.vehicle, params_);
     adapter_ = MakeOdometryAdapter(mission_.get(), odometry_);
@@ -35,11 +37,9 @@ class GapMissionFlight final : public MissionFlight {
 
   MissionEvaluation Evaluate(const sim::SitlResult& result) override {
     const planning::GapMission& m = *mission_;
-    GapGeometry gap;
-    gap.T_WG = scenario_.scene().object("gap").T_WO;
-    gap.opening_m = scenario_.params().gap.opening_m;
-    const GapTrialEvaluation evaluation =
-        EvaluateGapTrial(result, gap, m.traverse_plan(), m.traverse_start_time_s());
+    const GapGeometry gap = GapGeometryOf(scenario_);
+    const GapTrialEvaluation evaluation = EvaluateGapTrial(
+        result, gap, footprint_, m.traverse_plan(), m.traverse_start_time_s());
 
     MissionEvaluation out;
     out.passed = evaluation.success;
@@ -69,11 +69,9 @@ class GapMissionFlight final : public MissionFlight {
                              {"inside_opening", crossing->inside_opening},
                              {"speed_mps", crossing->state.v_W.norm()}};
     }
-    if (const std::optional<GapStateError>& error = evaluation.error) {
-      figures["error_at_gap"] = {{"position_m", output::EigenToJson(error->position_m)},
-                                 {"velocity_mps", output::EigenToJson(error->velocity_mps)},
-                                 {"orientation_deg", output::EigenToJson(error->orientation_deg)},
-                                 {"time_s", error->time_s}};
+    if (evaluation.error) figures["error_at_gap"] = GapStateErrorToJson(*evaluation.error);
+    if (evaluation.error_at_planned_tc) {
+      figures["error_at_planned_tc"] = GapStateErrorToJson(*evaluation.error_at_planned_tc);
     }
     if (const std::optional<planning::TraverseTrajectory>& plan = m.traverse_plan()) {
       figures["traverse"] = {{"start_time_s", m.traverse_start_time_s()},
@@ -126,6 +124,7 @@ class GapMissionFlight final : public MissionFlight {
   const sim::Scenario& scenario_;
   planning::GapMissionParams params_;
   sim::OdometrySensorParams odometry_;  // the recovery's visual odometry (SVO in [12])
+  VehicleFootprint footprint_;  // the SITL collision geometry, for the footprint check
   std::unique_ptr<planning::GapMission> mission_;
   std::unique_ptr<OdometryAdapter> adapter_;
 };

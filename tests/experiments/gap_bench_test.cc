@@ -9,7 +9,12 @@
 #include <fstream>
 #include <stdexcept>
 
+#include <mutex>
+#include <set>
+
+#include "config/yaml_write_archive.h"
 #include "experiments/gap/ground_truth_gap_autopilot.h"
+#include "planning/gap_mission/gap_mission_params_io.h"
 
 namespace aperture::experiments {
 namespace {
@@ -21,6 +26,7 @@ GapBenchOptions QuickOptions(int threads) {
   options.duration_s = 6.0;  // approach <= 2.5 s + traverse + 1.5 s braking + hover window
   options.threads = threads;
   options.render_cameras = false;
+  options.paper_configuration = false;  // on in its own test below
   return options;
 }
 
@@ -80,6 +86,7 @@ TEST(GapBench, RecordsABrokenAutopilotAsAFailedTrial) {
   const nlohmann::json summary = SummarizeGapBench(result);
   EXPECT_EQ(summary["successes"], 0);
   EXPECT_EQ(summary["error_at_gap"]["trials"], 0);
+  EXPECT_EQ(summary["table_i"]["ours"]["trials_without_plan"], 1);  // counted, not hidden
 }
 
 TEST(GapBench, OptionsSurviveTheirJsonForm) {
@@ -137,6 +144,64 @@ TEST(GapBench, RunsTheDetectorSequencesAfterTheFlights) {
     ASSERT_FALSE(record.frames.empty());
     EXPECT_EQ(record.frames.back().distance_m, alone.frames.back().distance_m);
   }
+}
+
+TEST(GapBench, PaperConfigurationDropsOnlyTheLeadIn) {
+  planning::GapMissionParams ours;
+  ours.lead_in_s = 0.2;
+  planning::GapMissionParams paper = PaperGapMissionParams(ours);
+  EXPECT_EQ(paper.lead_in_s, 0.0);
+  paper.lead_in_s = ours.lead_in_s;
+  EXPECT_EQ(YAML::Dump(config::DumpParams(paper)), YAML::Dump(config::DumpParams(ours)))
+      << "only lead_in_s differs";
+}
+
+// Each trial is flown twice, with the same draws: once with our mission, once with the paper's
+// configuration; both reach summary.json's Table I and their own CSV.
+TEST(GapBench, FliesEveryTrialAgainWithThePapersConfiguration) {
+  GapBenchOptions options = QuickOptions(2);
+  options.trials = 2;
+  options.paper_configuration = true;
+  std::mutex mutex;
+  std::multiset<double> lead_ins;
+  const GapTrialAutopilotFactory ground_truth = MakeGroundTruthGapAutopilotFactory();
+  const GapBenchResult result = RunGapBench(options, [&](const GapTrialSetup& setup) {
+    {
+      const std::lock_guard<std::mutex> lock(mutex);
+      lead_ins.insert(setup.mission.lead_in_s);
+    }
+    return ground_truth(setup);
+  });
+  const double ours = PrepareGapBench(options).mission.lead_in_s;
+  ASSERT_GT(ours, 0.0);
+  EXPECT_EQ(lead_ins, (std::multiset<double>{0.0, 0.0, ours, ours}));
+  ASSERT_EQ(result.paper_trials.size(), 2u);
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_EQ(result.paper_trials[i].config.seed, result.trials[i].config.seed);
+    EXPECT_EQ(result.paper_trials[i].config.roll_deg, result.trials[i].config.roll_deg);
+  }
+
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "aperture_gap_bench_paper_test";
+  std::filesystem::remove_all(dir);
+  output::OutputFolder out(dir.string());
+  WriteGapBenchOutputs(result, out);
+  const nlohmann::json& summary = out.summary();
+  for (const char* configuration : {"ours", "paper"}) {
+    const nlohmann::json& table = summary["table_i"][configuration];
+    EXPECT_EQ(table["trials"], 2) << configuration;
+    EXPECT_EQ(table["trials_with_plan"], 2) << configuration;
+    EXPECT_EQ(table["successes"], 2) << configuration;
+  }
+  // Table I's mean |error| is the mean over the per-trial errors at the planned t_c.
+  const nlohmann::json& per_trial = summary["paper_configuration"]["per_trial"];
+  ASSERT_EQ(per_trial.size(), 2u);
+  const double z0 = per_trial[0]["error_at_planned_tc"]["position_m"][2].get<double>();
+  const double z1 = per_trial[1]["error_at_planned_tc"]["position_m"][2].get<double>();
+  EXPECT_NEAR(summary["table_i"]["paper"]["position_mean"][2].get<double>(),
+              0.5 * (std::abs(z0) + std::abs(z1)), 1e-12);
+  EXPECT_TRUE(std::filesystem::exists(dir / "paper_trials.csv"));
+  std::filesystem::remove_all(dir);
 }
 
 TEST(GapBench, WritesSummaryTrialsCsvAndReport) {

@@ -15,6 +15,10 @@ namespace {
 
 using control::kDegToRad;
 
+// The SITL's default collision geometry (0.08 m body sphere, 5 inch propellers, 0.178 m arms).
+const VehicleFootprint kFootprint =
+    VehicleFootprintOf(control::VehicleParameters{}, sim::CollisionParams{});
+
 // The scenario's gap frame at roll/pitch (sim/scenario/scenario_params.h): x_G = -y_W,
 // y_G = -z_W, z_G = x_W at zero angles, then rotated about y_W (pitch) and x_W (roll).
 Eigen::Isometry3d GapPoseW(double roll_deg, double pitch_deg, const Eigen::Vector3d& p_WG) {
@@ -115,7 +119,7 @@ TEST(ComputeErrorAtGap, MapsTheDesiredStateFromTheEstimatedOntoTheTrueGap) {
   const std::optional<GapCrossing> crossing = FindGapCrossing(trajectory, gap);
   ASSERT_TRUE(crossing.has_value());
   const GapStateError error =
-      ComputeErrorAtGap(*crossing, gap, plan, 2.0 - plan.time_to_gap_s() - 0.02);
+      ComputeErrorAtGap(crossing->state, crossing, gap, plan, 2.0 - plan.time_to_gap_s() - 0.02);
 
   const Eigen::Vector3d expected_p = gap.T_WG.linear() * Eigen::Vector3d(0.03, -0.02, 0.0);
   const Eigen::Vector3d expected_v = gap.T_WG.linear() * Eigen::Vector3d(0.1, 0.0, 0.2);
@@ -139,7 +143,8 @@ TEST(ComputeErrorAtGap, OrientationErrorIsRollAndPitchOfTheDifference) {
   const Eigen::Quaterniond q(Eigen::AngleAxisd(-3.0 * kDegToRad, Eigen::Vector3d::UnitY()) *
                              Eigen::AngleAxisd(5.0 * kDegToRad, Eigen::Vector3d::UnitX()));
   const auto trajectory = Line(gap.T_WG.translation(), Eigen::Vector3d(3.0, 0, 0), 1.0, 2.0, q);
-  const GapStateError error = ComputeErrorAtGap(*FindGapCrossing(trajectory, gap), gap, plan, 0.5);
+  const std::optional<GapCrossing> crossing = FindGapCrossing(trajectory, gap);
+  const GapStateError error = ComputeErrorAtGap(crossing->state, crossing, gap, plan, 0.5);
   EXPECT_NEAR(error.orientation_deg.x(), 5.0, 1e-9);
   EXPECT_NEAR(error.orientation_deg.y(), -3.0, 1e-9);
 }
@@ -169,7 +174,7 @@ TEST(EvaluateGapTrial, SucceedsThroughTheOpeningIntoAHover) {
   GapGeometry gap;
   gap.T_WG = GapPoseW(20.0, 5.0, Eigen::Vector3d(5.0, 0.0, 1.5));
   const planning::TraverseTrajectory plan(ToGapPose(gap.T_WG), 1.0, 0.5, 9.81);
-  const GapTrialEvaluation evaluation = EvaluateGapTrial(ThroughAndHover(gap, 0.0), gap, plan, 0.5);
+  const GapTrialEvaluation evaluation = EvaluateGapTrial(ThroughAndHover(gap, 0.0), gap, kFootprint, plan, 0.5);
   EXPECT_TRUE(evaluation.success) << evaluation.failure_reason;
   EXPECT_TRUE(evaluation.failure_reason.empty());
   ASSERT_TRUE(evaluation.crossing.has_value());
@@ -186,11 +191,11 @@ TEST(EvaluateGapTrial, NamesTheFirstFailedCriterion) {
   // Rocking about x_B at 0.6 rad/s at the end (criterion: 0.5 rad/s roll/pitch rate).
   sim::SitlResult rocking = ThroughAndHover(gap, 0.0);
   rocking.trajectory.back().omega_B.x() = 0.6;
-  EXPECT_EQ(EvaluateGapTrial(rocking, gap, plan, 0.5).failure_reason,
+  EXPECT_EQ(EvaluateGapTrial(rocking, gap, kFootprint, plan, 0.5).failure_reason,
             "not hovering at the end: roll/pitch rate 0.60 rad/s at t = 4.00 s");
 
   // Still moving at 0.5 m/s at the end (criterion: 0.3 m/s).
-  GapTrialEvaluation drifting = EvaluateGapTrial(ThroughAndHover(gap, 0.5), gap, plan, 0.5);
+  GapTrialEvaluation drifting = EvaluateGapTrial(ThroughAndHover(gap, 0.5), gap, kFootprint, plan, 0.5);
   EXPECT_FALSE(drifting.success);
   EXPECT_NE(drifting.failure_reason.find("not hovering at the end: speed 0.50 m/s"),
             std::string::npos)
@@ -199,14 +204,14 @@ TEST(EvaluateGapTrial, NamesTheFirstFailedCriterion) {
   sim::SitlResult crashed = ThroughAndHover(gap, 0.0);
   crashed.outcome = sim::SitlResult::Outcome::kCollision;
   crashed.reason = "collision: propeller 2 with 'gap'";
-  const GapTrialEvaluation collision = EvaluateGapTrial(crashed, gap, plan, 0.5);
+  const GapTrialEvaluation collision = EvaluateGapTrial(crashed, gap, kFootprint, plan, 0.5);
   EXPECT_FALSE(collision.success);
   EXPECT_EQ(collision.failure_reason, "collision: propeller 2 with 'gap'");
   EXPECT_TRUE(collision.error.has_value());  // errors count for failed trials too (Table I)
 
   sim::SitlResult beside = ThroughAndHover(gap, 0.0);
   for (control::QuadState& s : beside.trajectory) s.p_WB += gap.T_WG.linear().col(0) * 0.5;
-  const GapTrialEvaluation outside = EvaluateGapTrial(beside, gap, plan, 0.5);
+  const GapTrialEvaluation outside = EvaluateGapTrial(beside, gap, kFootprint, plan, 0.5);
   EXPECT_EQ(
       outside.failure_reason.rfind("crossed the gap plane outside the opening at x_G = 0.500 m", 0),
       0u)
@@ -215,9 +220,58 @@ TEST(EvaluateGapTrial, NamesTheFirstFailedCriterion) {
   sim::SitlResult short_of_gap = ThroughAndHover(gap, 0.0);
   short_of_gap.trajectory.resize(900);  // ends before t = 1 s
   const GapTrialEvaluation never =
-      EvaluateGapTrial(short_of_gap, gap, std::nullopt, std::numeric_limits<double>::quiet_NaN());
+      EvaluateGapTrial(short_of_gap, gap, kFootprint, std::nullopt, std::numeric_limits<double>::quiet_NaN());
   EXPECT_EQ(never.failure_reason, "never crossed the gap plane (no traverse plan)");
   EXPECT_FALSE(never.error.has_value());
+}
+
+// Table I by the paper's definition takes the state at the planned t_c: a flight through the gap
+// centre 20 ms late has no error at its crossing but is 2 m/s * 20 ms short of the gap at t_c.
+TEST(EvaluateGapTrial, TableIErrorIsTakenAtThePlannedTimeOfTheCrossing) {
+  GapGeometry gap;
+  gap.T_WG = GapPoseW(20.0, 5.0, Eigen::Vector3d(5.0, 0.0, 1.5));
+  const planning::TraverseTrajectory plan(ToGapPose(gap.T_WG), 1.0, 0.5, 9.81);
+  const double traverse_start_s = 1.0 - plan.time_to_gap_s() - 0.02;  // crossing at t = 1 s
+  const GapTrialEvaluation evaluation =
+      EvaluateGapTrial(ThroughAndHover(gap, 0.0), gap, kFootprint, plan, traverse_start_s);
+  ASSERT_TRUE(evaluation.error.has_value() && evaluation.error_at_planned_tc.has_value());
+  EXPECT_LT(evaluation.error->position_m.norm(), 1e-9);
+  const Eigen::Vector3d expected = -0.04 * gap.T_WG.linear().col(2);  // 2 m/s * 0.02 s short
+  EXPECT_LT((evaluation.error_at_planned_tc->position_m - expected).norm(), 1e-9);
+  EXPECT_NEAR(evaluation.error_at_planned_tc->time_s, 0.02, 1e-9);
+  // The velocity of both is the same flight's (constant speed around the crossing).
+  EXPECT_LT((evaluation.error_at_planned_tc->velocity_mps - evaluation.error->velocity_mps).norm(),
+            1e-9);
+
+  // A flight that never reached the gap still has its Table I error (the paper counts every
+  // flight), with no arrival time.
+  sim::SitlResult short_of_gap = ThroughAndHover(gap, 0.0);
+  short_of_gap.trajectory.resize(900);
+  const GapTrialEvaluation never =
+      EvaluateGapTrial(short_of_gap, gap, kFootprint, plan, traverse_start_s);
+  EXPECT_FALSE(never.error.has_value());
+  ASSERT_TRUE(never.error_at_planned_tc.has_value());
+  EXPECT_TRUE(std::isnan(never.error_at_planned_tc->time_s));
+  EXPECT_NEAR(never.error_at_planned_tc->position_m.norm(), 2.0 * (1.0 - 0.899), 1e-9);  // its last state
+}
+
+// The origin of B inside the opening is not enough: the body sphere (0.08 m) must clear the
+// short side (half 0.14 m).
+TEST(EvaluateGapTrial, FailsWhenTheFootprintMeetsThePanel) {
+  GapGeometry gap;
+  gap.T_WG = GapPoseW(0.0, 0.0, Eigen::Vector3d(5.0, 0.0, 1.5));
+  const planning::TraverseTrajectory plan(ToGapPose(gap.T_WG), 1.0, 0.5, 9.81);
+  sim::SitlResult low = ThroughAndHover(gap, 0.0);
+  for (control::QuadState& s : low.trajectory) s.p_WB += gap.T_WG.linear().col(1) * 0.1;
+  const GapTrialEvaluation evaluation = EvaluateGapTrial(low, gap, kFootprint, plan, 0.5);
+  ASSERT_TRUE(evaluation.crossing.has_value());
+  EXPECT_TRUE(evaluation.crossing->inside_opening);
+  EXPECT_FALSE(evaluation.success);
+  EXPECT_EQ(evaluation.failure_reason.rfind("footprint: body meets the gap panel at x_G = ", 0), 0u)
+      << evaluation.failure_reason;
+  ASSERT_TRUE(evaluation.footprint_contact.has_value());
+  EXPECT_NEAR(evaluation.footprint_contact->t_s, 1.0 - std::sqrt(0.08 * 0.08 - 0.04 * 0.04) / 2.0,
+              2e-3);
 }
 
 // The pattern looks the same turned by 180 deg about z_G: a mission whose estimate picked the
@@ -234,8 +288,8 @@ TEST(ComputeErrorAtGap, UsesTheLookAlikeGapFrameTheEstimateRefersTo) {
   ASSERT_TRUE(plan.Velocity(plan.time_to_gap_s())
                   .isApprox(plan_turned.Velocity(plan_turned.time_to_gap_s()), 1e-9));
   const sim::SitlResult flight = ThroughAndHover(gap, 0.0);
-  const GapTrialEvaluation evaluation = EvaluateGapTrial(flight, gap, plan, 0.5);
-  const GapTrialEvaluation turned = EvaluateGapTrial(flight, gap, plan_turned, 0.5);
+  const GapTrialEvaluation evaluation = EvaluateGapTrial(flight, gap, kFootprint, plan, 0.5);
+  const GapTrialEvaluation turned = EvaluateGapTrial(flight, gap, kFootprint, plan_turned, 0.5);
   ASSERT_TRUE(evaluation.error.has_value() && turned.error.has_value());
   EXPECT_LT((turned.error->position_m - evaluation.error->position_m).norm(), 1e-9);
   EXPECT_LT((turned.error->velocity_mps - evaluation.error->velocity_mps).norm(), 1e-9);
