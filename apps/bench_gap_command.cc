@@ -6,7 +6,7 @@
 //                      [--max-drop-probability D] [--motion-blur-subframes K]
 //                      [--autopilot mission|ground_truth] [--duration S] [--threads T]
 //                      [--render-ignored-frames] [--detector-sequences N]
-//                      [--no-paper-configuration]
+//                      [--no-paper-configuration] [--vehicle-mismatch on|off]
 //                      [--shard K/N] [--config FILE] [--set key=value ...] --out DIR
 //
 // --config/--set override the built-in `gap` scenario (e.g. --set cameras.front.supersampling=1)
@@ -37,6 +37,7 @@ struct BenchGapOptions {
   experiments::GapBenchOptions bench;
   std::string autopilot = "mission";
   bool no_paper_configuration = false;
+  std::string vehicle_mismatch = "on";
 };
 
 }  // namespace
@@ -84,6 +85,12 @@ void AddBenchGapCommand(CLI::App& bench, int* exit_code) {
   command->add_flag("--no-paper-configuration", options->no_paper_configuration,
                     "Fly only our configuration; by default every trial is flown again with the "
                     "paper's (mission.lead_in_s=0) and both are reported (summary.json table_i)");
+  command
+      ->add_option("--vehicle-mismatch", options->vehicle_mismatch,
+                   "on: each trial's simulated vehicle departs from the controllers' model "
+                   "(drag, rotors, latencies; sim/sitl/vehicle_mismatch.h); off: vehicle = model")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
   command->add_option("--duration", options->bench.duration_s, "Simulated time per trial [s]")
       ->check(FiniteNumberIn(0.0, kMaxDurationS, /*min_inclusive=*/false));
   command
@@ -105,6 +112,7 @@ void AddBenchGapCommand(CLI::App& bench, int* exit_code) {
     output::RunAndWriteSummary(out, [&] {
       experiments::GapBenchOptions bench = options->bench;
       bench.paper_configuration = !options->no_paper_configuration;
+      bench.vehicle.mismatch = options->vehicle_mismatch == "on";
       bench.config_files = options->common.config_files;
       bench.set_items = options->common.set_items;
       RunMonteCarloCommand(experiments::kGapBenchName,

@@ -232,6 +232,7 @@ void GapBenchOptions::Validate() const {
   }
   ranges.Validate();
   detector_ranges.Validate();
+  vehicle.Validate();
 }
 
 GapTrialRecord RunGapTrial(const GapBenchOptions& options, const sim::ScenarioParams& base,
@@ -253,12 +254,14 @@ GapTrialRecord RunGapTrial(const GapBenchOptions& options, const sim::ScenarioPa
     for (sim::SitlCamera& camera : params.cameras) camera.render.ground_truth = false;
     params.render_ignored_frames = options.render_ignored_frames;
     const sim::ImuSensorParams nominal_imu = params.imu;
+    const control::VehicleParameters nominal_vehicle = params.dynamics.vehicle;
     ApplyGapTrial(trial, &params);
+    sim::ApplyVehicleMismatch(options.vehicle, trial.seed, &params);
     const GapGeometry gap = GapGeometryOf(scenario);
 
     GapTrialSetup setup;
     setup.scenario = &scenario;
-    setup.vehicle = params.dynamics.vehicle;
+    setup.vehicle = nominal_vehicle;  // the controllers' model, also with a mismatched vehicle
     setup.initial_state = params.initial_state;
     setup.control_rate_hz = params.control_rate_hz;
     setup.imu = nominal_imu;

@@ -39,6 +39,7 @@ constexpr auto kGapBenchOptionsFields = [](auto& f, auto& o) {
   f("render_ignored_frames", o.render_ignored_frames);
   f("detector_sequences", o.detector_sequences);
   f("paper_configuration", o.paper_configuration);
+  f("vehicle_mismatch", o.vehicle.mismatch);  // the bounds: VehicleMismatchBounds' defaults
   f("config_files", o.config_files);
   f("set_items", o.set_items);
 };

@@ -27,6 +27,7 @@ GapBenchOptions QuickOptions(int threads) {
   options.threads = threads;
   options.render_cameras = false;
   options.paper_configuration = false;  // on in its own test below
+  options.vehicle.mismatch = false;      // vehicle = model; on in its own test below
   return options;
 }
 
@@ -202,6 +203,37 @@ TEST(GapBench, FliesEveryTrialAgainWithThePapersConfiguration) {
               0.5 * (std::abs(z0) + std::abs(z1)), 1e-12);
   EXPECT_TRUE(std::filesystem::exists(dir / "paper_trials.csv"));
   std::filesystem::remove_all(dir);
+}
+
+// vehicle.mismatch: the simulated vehicle is drawn per trial while the autopilot keeps the
+// nominal model, so the same trial flies a different path.
+TEST(GapBench, FliesAVehicleThatIsNotTheAutopilotsModel) {
+  GapBenchOptions options = QuickOptions(2);
+  options.trials = 2;
+  const GapBenchResult model = RunGapBench(options, MakeGroundTruthGapAutopilotFactory());
+  options.vehicle.mismatch = true;
+  std::mutex mutex;
+  std::vector<control::VehicleParameters> given;
+  const GapTrialAutopilotFactory ground_truth = MakeGroundTruthGapAutopilotFactory();
+  const GapBenchResult mismatched = RunGapBench(options, [&](const GapTrialSetup& setup) {
+    {
+      const std::lock_guard<std::mutex> lock(mutex);
+      given.push_back(setup.vehicle);
+    }
+    return ground_truth(setup);
+  });
+  const control::VehicleParameters nominal;
+  ASSERT_EQ(given.size(), 2u);
+  for (const control::VehicleParameters& vehicle : given) {
+    EXPECT_EQ(vehicle.rotor.thrust_coeffs_N, nominal.rotor.thrust_coeffs_N);
+    EXPECT_EQ(vehicle.rotor_drag_D_per_s, nominal.rotor_drag_D_per_s);
+  }
+  for (int i = 0; i < 2; ++i) {
+    const std::vector<control::QuadState>& a = model.trials[i].truth_trace;
+    const std::vector<control::QuadState>& b = mismatched.trials[i].truth_trace;
+    ASSERT_GT(std::min(a.size(), b.size()), 100u) << "trial " << i;
+    EXPECT_NE(a[100].p_WB, b[100].p_WB) << "trial " << i;  // 1 s in: another vehicle
+  }
 }
 
 TEST(GapBench, WritesSummaryTrialsCsvAndReport) {
