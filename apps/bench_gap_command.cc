@@ -7,6 +7,7 @@
 //                      [--autopilot mission|ground_truth] [--duration S] [--threads T]
 //                      [--render-ignored-frames] [--detector-sequences N]
 //                      [--no-paper-configuration] [--vehicle-mismatch on|off]
+//                      [--vehicle ours|paper]
 //                      [--shard K/N] [--config FILE] [--set key=value ...] --out DIR
 //
 // --config/--set override the built-in `gap` scenario (e.g. --set cameras.front.supersampling=1)
@@ -38,6 +39,7 @@ struct BenchGapOptions {
   std::string autopilot = "mission";
   bool no_paper_configuration = false;
   std::string vehicle_mismatch = "on";
+  std::string vehicle = "ours";
 };
 
 }  // namespace
@@ -91,6 +93,12 @@ void AddBenchGapCommand(CLI::App& bench, int* exit_code) {
                    "(drag, rotors, latencies; sim/sitl/vehicle_mismatch.h); off: vehicle = model")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
+  command
+      ->add_option("--vehicle", options->vehicle,
+                   "ours: the scenario's vehicle (0.45 kg, 48 x 16 cm); paper: seed 000's (830 g, "
+                   "55 x 12 cm between propeller tips; experiments/gap/paper_gap_vehicle.h)")
+      ->check(CLI::IsMember({"ours", "paper"}))
+      ->capture_default_str();
   command->add_option("--duration", options->bench.duration_s, "Simulated time per trial [s]")
       ->check(FiniteNumberIn(0.0, kMaxDurationS, /*min_inclusive=*/false));
   command
@@ -113,6 +121,7 @@ void AddBenchGapCommand(CLI::App& bench, int* exit_code) {
       experiments::GapBenchOptions bench = options->bench;
       bench.paper_configuration = !options->no_paper_configuration;
       bench.vehicle.mismatch = options->vehicle_mismatch == "on";
+      bench.paper_vehicle = options->vehicle == "paper";
       bench.config_files = options->common.config_files;
       bench.set_items = options->common.set_items;
       RunMonteCarloCommand(experiments::kGapBenchName,

@@ -17,6 +17,7 @@
 #include "experiments/gap/gap_detector_summary.h"
 #include "experiments/gap/gap_mission_factory.h"
 #include "experiments/gap/gap_trial_record_json.h"
+#include "experiments/gap/paper_gap_vehicle.h"
 #include "output/interruption.h"
 #include "output/json_eigen.h"
 #include "planning/gap_mission/gap_mission_params_io.h"
@@ -310,6 +311,7 @@ GapBenchSetup PrepareGapBench(const GapBenchOptions& options) {
   config::ParamReader root = tree.Reader();
   GapBenchSetup setup;
   LoadParams(root, &setup.base);
+  if (options.paper_vehicle) UsePaperGapVehicle(&setup.base);
   config::ParamReader mission_config = root.Section("mission");
   root.RejectUnknownKeys();
   if (setup.base.scenario != "gap") {

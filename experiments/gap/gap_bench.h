@@ -63,6 +63,8 @@ struct GapBenchOptions {
   // vehicle departs from the controllers' model by a draw from the trial's seed within the
   // default VehicleMismatchBounds, with the hover thrust calibrated; false: vehicle = model.
   sim::VehicleMismatchParams vehicle{true, {}};
+  // true: the paper's vehicle (830 g, 55 x 12 cm; paper_gap_vehicle.h) instead of the scenario's.
+  bool paper_vehicle = false;
   // Throws std::invalid_argument naming the option (trials < 1, duration <= 0, threads < 0,
   // detector_sequences < 0, bad ranges).
   void Validate() const;

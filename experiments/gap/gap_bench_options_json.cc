@@ -40,6 +40,7 @@ constexpr auto kGapBenchOptionsFields = [](auto& f, auto& o) {
   f("detector_sequences", o.detector_sequences);
   f("paper_configuration", o.paper_configuration);
   f("vehicle_mismatch", o.vehicle.mismatch);  // the bounds: VehicleMismatchBounds' defaults
+  f("paper_vehicle", o.paper_vehicle);
   f("config_files", o.config_files);
   f("set_items", o.set_items);
 };

@@ -35,7 +35,7 @@ void DrawGroundMissionInset(const planning::GroundMissionScene& scene,
   const auto box = [&](const planning::GroundBox& b, const cv::Scalar& colour, bool filled) {
     const Eigen::Rotation2Dd R(b.yaw_rad);
     std::vector<cv::Point> corners;
-    for (const Eigen::Vector2d c : {Eigen::Vector2d(-0.5, -0.5), Eigen::Vector2d(0.5, -0.5),
+    for (const Eigen::Vector2d& c : {Eigen::Vector2d(-0.5, -0.5), Eigen::Vector2d(0.5, -0.5),
                                     Eigen::Vector2d(0.5, 0.5), Eigen::Vector2d(-0.5, 0.5)}) {
       corners.push_back(pixel(b.p_W + R * b.size_m.cwiseProduct(c)));
     }
