@@ -16,10 +16,11 @@
 // Every trial is flown with our mission and again with the paper's configuration (no lead-in)
 // unless --no-paper-configuration; summary.json "table_i" reports Table I by the paper's
 // definitions for both. Writes DIR/summary.json (success_rate, table_i, error_at_gap.*,
-// per_trial), DIR/trials.csv (and paper_trials.csv) and DIR/report.html (experiments/gap/gap_bench.h); --detector-sequences adds the detector on
-// rendered sequences flown past the gap (summary.json "detector", DIR/detector_frames.csv, a
-// report section; experiments/gap/gap_detector_sequence.h), or with --shard K/N the K-th block
-// of the trials and sequences for `aperture bench merge` (experiments/bench/monte_carlo_run.h).
+// per_trial), DIR/trials.csv (and paper_trials.csv) and DIR/report.html
+// (experiments/gap/gap_bench.h); --detector-sequences adds the detector on rendered sequences flown
+// past the gap (summary.json "detector", DIR/detector_frames.csv, a report section;
+// experiments/gap/gap_detector_sequence.h), or with --shard K/N the K-th block of the trials and
+// sequences for `aperture bench merge` (experiments/bench/monte_carlo_run.h).
 #include <memory>
 
 #include "apps/command_support.h"

@@ -135,8 +135,8 @@ GapBenchSetup PrepareGapBench(const GapBenchOptions& options);
 
 // All trials (each with our and, with options.paper_configuration, the paper's mission), then
 // options.detector_sequences detector sequences; `on_trial_done(done_count)` is called
-// (serialized) after each trial (both flights) or sequence finishes. Once SIGINT/SIGTERM asked to stop
-// (output::InterruptionRequested()) nothing further starts and `trials` (and
+// (serialized) after each trial (both flights) or sequence finishes. Once SIGINT/SIGTERM asked to
+// stop (output::InterruptionRequested()) nothing further starts and `trials` (and
 // `detector_sequences`) hold the ones that finished, in index order.
 // Throws std::invalid_argument for invalid options or scenario overrides.
 GapBenchResult RunGapBench(const GapBenchOptions& options, const GapTrialAutopilotFactory& factory,

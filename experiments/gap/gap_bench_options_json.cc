@@ -59,7 +59,8 @@ GapBenchOptions GapBenchOptionsFromJson(const nlohmann::json& json) {
   try {
     auto o = output::FieldsFromJson<GapBenchOptions>(json, kGapBenchOptionsFields);
     o.ranges = output::FieldsFromJson<GapTrialRanges>(json.at("ranges"), kGapTrialRangesFields);
-    o.hover = output::FieldsFromJson<HoverCriteria>(json.at("hover_criteria"), kHoverCriteriaFields);
+    o.hover =
+        output::FieldsFromJson<HoverCriteria>(json.at("hover_criteria"), kHoverCriteriaFields);
     o.detector_ranges = GapDetectorSequenceRangesFromJson(json.at("detector_ranges"));
     o.threads = 0;
     return o;

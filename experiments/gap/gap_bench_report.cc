@@ -101,9 +101,8 @@ void WriteTrialsCsv(const std::vector<GapTrialRecord>& trials, const std::string
     errors(r.evaluation.error_at_planned_tc);
     const std::optional<FootprintContact>& contact = r.evaluation.footprint_contact;
     row.emplace_back(contact ? contact->part : std::string());
-    numbers({static_cast<double>(r.frames_delivered),
-             static_cast<double>(r.frames_dropped), static_cast<double>(r.frames_skipped),
-             r.sim_time_s, r.wall_time_s});
+    numbers({static_cast<double>(r.frames_delivered), static_cast<double>(r.frames_dropped),
+             static_cast<double>(r.frames_skipped), r.sim_time_s, r.wall_time_s});
     row.emplace_back(r.autopilot_status);
     csv.WriteCells(row);
   }
@@ -234,13 +233,15 @@ nlohmann::json TableIRows(const nlohmann::json& table_i) {
          {"successes", std::to_string(f["successes"].get<int>()) + " / " +
                            std::to_string(f["trials"].get<int>())},
          {"with plan", f["trials_with_plan"]},
-         {"position [cm]", MeanStdText(f["position_mean"], f["position_std"], 100.0, "%.1f +- %.1f")},
-         {"velocity [m/s]", MeanStdText(f["velocity_mean"], f["velocity_std"], 1.0, "%.2f +- %.2f")},
+         {"position [cm]",
+          MeanStdText(f["position_mean"], f["position_std"], 100.0, "%.1f +- %.1f")},
+         {"velocity [m/s]",
+          MeanStdText(f["velocity_mean"], f["velocity_std"], 1.0, "%.2f +- %.2f")},
          {"roll, pitch [deg]",
           MeanStdText(f["orientation_mean_deg"], f["orientation_std_deg"], 1.0, "%.1f +- %.1f")},
-         {"arrival [ms]", MeanStdText(nlohmann::json::array({time["mean"]}),
-                                      nlohmann::json::array({time["std"]}), 1000.0,
-                                      "%.1f +- %.1f")}});
+         {"arrival [ms]",
+          MeanStdText(nlohmann::json::array({time["mean"]}), nlohmann::json::array({time["std"]}),
+                      1000.0, "%.1f +- %.1f")}});
   }
   return rows;
 }

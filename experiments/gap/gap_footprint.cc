@@ -72,7 +72,9 @@ std::optional<Eigen::Vector2d> SegmentOnPanel(const PanelRectangles& r, const Ei
   return std::nullopt;  // both clipped ends inside the (convex) opening: all of it is inside
 }
 
-std::string Numbered(const char* part, int i) { return std::string(part) + " " + std::to_string(i + 1); }
+std::string Numbered(const char* part, int i) {
+  return std::string(part) + " " + std::to_string(i + 1);
+}
 
 }  // namespace
 
@@ -128,7 +130,8 @@ std::optional<FootprintContact> FootprintContactAt(const control::QuadState& sta
     if (slope * R < max_step_m) {
       // Nearly parallel to the panel: within one step of it, the whole disk is its section.
       if (std::abs(c.z()) <= max_step_m) {
-        if (auto p = CircleOnPanel(panel, c.head<2>(), R)) return contact(Numbered("propeller", i), *p);
+        if (auto p = CircleOnPanel(panel, c.head<2>(), R))
+          return contact(Numbered("propeller", i), *p);
       }
       continue;
     }
@@ -148,7 +151,8 @@ std::optional<FootprintContact> FootprintContactAt(const control::QuadState& sta
     if ((c_G.z() < 0.0) == (end.z() < 0.0)) continue;
     const double s = c_G.z() / (c_G.z() - end.z());
     const Eigen::Vector2d p = (c_G + s * (end - c_G)).head<2>();
-    if (!InsideOpening(panel, p) && OnPanelRectangle(panel, p)) return contact(Numbered("arm", i), p);
+    if (!InsideOpening(panel, p) && OnPanelRectangle(panel, p))
+      return contact(Numbered("arm", i), p);
   }
   return std::nullopt;
 }
@@ -158,7 +162,8 @@ std::optional<FootprintContact> FindFootprintContact(
     const VehicleFootprint& footprint, double max_step_m) {
   footprint.Validate();
   control::RequirePositive(max_step_m, "FindFootprintContact: max_step_m");
-  if (!(gap.opening_m.array() > 0.0).all() || !(gap.panel_m.array() >= gap.opening_m.array()).all()) {
+  if (!(gap.opening_m.array() > 0.0).all() ||
+      !(gap.panel_m.array() >= gap.opening_m.array()).all()) {
     throw std::invalid_argument(
         "GapGeometry: opening_m must be positive and panel_m must contain it");
   }

@@ -24,8 +24,8 @@
 namespace aperture::experiments {
 
 struct VehicleFootprint {
-  double body_radius_m = 0.08;         // sphere about the origin of B
-  double propeller_radius_m = 0.0635;  // disks in the rotor plane z_B = 0
+  double body_radius_m = 0.08;                 // sphere about the origin of B
+  double propeller_radius_m = 0.0635;          // disks in the rotor plane z_B = 0
   std::array<Eigen::Vector3d, 4> rotor_p_B{};  // disk centres = arm ends [m]
   // Largest distance of a footprint point from the origin of B [m].
   double ReachM() const;

@@ -130,15 +130,16 @@ class GapMonteCarloBench : public MonteCarloBench {
         result.paper_trials.push_back(GapTrialRecordFromJson(record[kPaperFlightKey]));
       }
       // As RunGapBench: the autopilot of the first trial that ran.
-      if (result.autopilot_name.empty()) result.autopilot_name = result.trials.back().autopilot_name;
+      if (result.autopilot_name.empty())
+        result.autopilot_name = result.trials.back().autopilot_name;
     }
     WriteGapBenchOutputs(result, out);
   }
 
   std::string DescribeOutcome(const nlohmann::json& summary) const override {
     const nlohmann::json& error = summary["error_at_gap"];
-    return "aperture bench gap (" + summary["inputs"]["autopilot"].get<std::string>() + "): " +
-           std::to_string(summary["successes"].get<int>()) + "/" +
+    return "aperture bench gap (" + summary["inputs"]["autopilot"].get<std::string>() +
+           "): " + std::to_string(summary["successes"].get<int>()) + "/" +
            std::to_string(summary["trials"].get<int>()) +
            " successful, mean |position error| at the gap " + error["position_mean"].dump() +
            " m over " + std::to_string(error["trials"].get<int>()) + " crossings" +

@@ -146,8 +146,8 @@ GapStateError ComputeErrorAtGap(const control::QuadState& actual,
   error.velocity_mps = actual.v_W - T_true_est.linear() * plan.Velocity(t_c);
   const Eigen::Vector2d roll_pitch = RollPitchDeg(actual.q_WB.toRotationMatrix());
   const Eigen::Vector2d desired = RollPitchDeg(T_true_est.linear() * R_WB_plan);
-  error.orientation_deg = Eigen::Vector2d(WrapDeg(roll_pitch.x() - desired.x()),
-                                          WrapDeg(roll_pitch.y() - desired.y()));
+  error.orientation_deg =
+      Eigen::Vector2d(WrapDeg(roll_pitch.x() - desired.x()), WrapDeg(roll_pitch.y() - desired.y()));
   error.time_s = crossing ? crossing->t_s - (traverse_start_time_s + t_c) : kNaN;
   return error;
 }
@@ -178,10 +178,10 @@ GapTrialEvaluation EvaluateGapTrial(const sim::SitlResult& result, const GapGeom
         Format("crossed the gap plane outside the opening at x_G = %.3f m, y_G = %.3f m",
                evaluation.crossing->p_G_m.x(), evaluation.crossing->p_G_m.y());
   } else if (const std::optional<FootprintContact>& contact = evaluation.footprint_contact) {
-    evaluation.failure_reason = "footprint: " + contact->part + " meets the gap panel at x_G = " +
-                                Format("%.3f m, y_G = %.3f m", contact->p_G_m.x(),
-                                       contact->p_G_m.y()) +
-                                Format(" (t = %.3f s)", contact->t_s);
+    evaluation.failure_reason =
+        "footprint: " + contact->part + " meets the gap panel at x_G = " +
+        Format("%.3f m, y_G = %.3f m", contact->p_G_m.x(), contact->p_G_m.y()) +
+        Format(" (t = %.3f s)", contact->t_s);
   } else if (!evaluation.crossing) {
     evaluation.failure_reason =
         plan ? "never crossed the gap plane" : "never crossed the gap plane (no traverse plan)";

@@ -83,13 +83,13 @@ Eigen::Vector2d RollPitchDeg(const Eigen::Matrix3d& R_WB);
 
 // A stable hover at the end of the run.
 struct HoverCriteria {
-  double window_s = 0.5;         // the final part of the run that must hover [s]
-  double max_speed_mps = 0.3;    // |v| in the window
-  double max_tilt_deg = 10.0;    // angle between z_B and z_W in the window
+  double window_s = 0.5;       // the final part of the run that must hover [s]
+  double max_speed_mps = 0.3;  // |v| in the window
+  double max_tilt_deg = 10.0;  // angle between z_B and z_W in the window
   // Roll/pitch rate |omega_xy| in the window: a hover may turn about z_B (a heading hold does)
   // without losing its stability.
   double max_rate_radps = 0.5;
-  double min_height_m = 0.2;     // z_W of B in the window (not sitting on the ground)
+  double min_height_m = 0.2;  // z_W of B in the window (not sitting on the ground)
 };
 
 struct GapTrialEvaluation {
@@ -111,7 +111,6 @@ struct GapTrialEvaluation {
 GapTrialEvaluation EvaluateGapTrial(const sim::SitlResult& result, const GapGeometry& gap,
                                     const VehicleFootprint& footprint,
                                     const std::optional<planning::TraverseTrajectory>& plan,
-                                    double traverse_start_time_s,
-                                    const HoverCriteria& hover = {});
+                                    double traverse_start_time_s, const HoverCriteria& hover = {});
 
 }  // namespace aperture::experiments

@@ -163,9 +163,9 @@ GapTrialRecord GapTrialRecordFromJson(const nlohmann::json& json) {
     }
     if (json.contains("footprint_contact")) {
       const nlohmann::json& j = json["footprint_contact"];
-      r.evaluation.footprint_contact = FootprintContact{
-          j.at("t_s").get<double>(), j.at("part").get<std::string>(),
-          output::JsonToVector<2>(j.at("p_G_m"))};
+      r.evaluation.footprint_contact =
+          FootprintContact{j.at("t_s").get<double>(), j.at("part").get<std::string>(),
+                           output::JsonToVector<2>(j.at("p_G_m"))};
     }
     r.estimate_trace = TraceFromJson(json.at("estimate_trace"));
     r.truth_trace = TraceFromJson(json.at("truth_trace"));

@@ -12,8 +12,8 @@
 
 namespace aperture::experiments {
 
-constexpr double kPaperVehicleMassKg = 0.83;        // seed 000 Sec. III
-constexpr double kPaperVehicleTipToTipM = 0.55;     // largest length between propeller tips
+constexpr double kPaperVehicleMassKg = 0.83;     // seed 000 Sec. III
+constexpr double kPaperVehicleTipToTipM = 0.55;  // largest length between propeller tips
 constexpr double kPaperVehicleHeightM = 0.12;
 
 // Replaces the scenario's vehicle (dynamics.vehicle) and its collision geometry (collision

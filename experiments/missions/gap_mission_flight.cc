@@ -38,8 +38,8 @@ class GapMissionFlight final : public MissionFlight {
   MissionEvaluation Evaluate(const sim::SitlResult& result) override {
     const planning::GapMission& m = *mission_;
     const GapGeometry gap = GapGeometryOf(scenario_);
-    const GapTrialEvaluation evaluation = EvaluateGapTrial(
-        result, gap, footprint_, m.traverse_plan(), m.traverse_start_time_s());
+    const GapTrialEvaluation evaluation =
+        EvaluateGapTrial(result, gap, footprint_, m.traverse_plan(), m.traverse_start_time_s());
 
     MissionEvaluation out;
     out.passed = evaluation.success;
@@ -124,7 +124,7 @@ class GapMissionFlight final : public MissionFlight {
   const sim::Scenario& scenario_;
   planning::GapMissionParams params_;
   sim::OdometrySensorParams odometry_;  // the recovery's visual odometry (SVO in [12])
-  VehicleFootprint footprint_;  // the SITL collision geometry, for the footprint check
+  VehicleFootprint footprint_;          // the SITL collision geometry, for the footprint check
   std::unique_ptr<planning::GapMission> mission_;
   std::unique_ptr<OdometryAdapter> adapter_;
 };

@@ -7,10 +7,9 @@
 
 #include <filesystem>
 #include <fstream>
-#include <stdexcept>
-
 #include <mutex>
 #include <set>
+#include <stdexcept>
 
 #include "config/yaml_write_archive.h"
 #include "experiments/gap/ground_truth_gap_autopilot.h"
@@ -27,7 +26,7 @@ GapBenchOptions QuickOptions(int threads) {
   options.threads = threads;
   options.render_cameras = false;
   options.paper_configuration = false;  // on in its own test below
-  options.vehicle.mismatch = false;      // vehicle = model; on in its own test below
+  options.vehicle.mismatch = false;     // vehicle = model; on in its own test below
   return options;
 }
 
@@ -39,8 +38,7 @@ std::filesystem::path TempDir(const std::string& name) {
 }
 
 TEST(GapBench, GroundTruthFlightsPassTheGapAndDoNotDependOnTheThreadCount) {
-  const GapBenchResult serial =
-      RunGapBench(QuickOptions(1), MakeGroundTruthGapAutopilotFactory());
+  const GapBenchResult serial = RunGapBench(QuickOptions(1), MakeGroundTruthGapAutopilotFactory());
   const GapBenchResult parallel =
       RunGapBench(QuickOptions(2), MakeGroundTruthGapAutopilotFactory());
   ASSERT_EQ(serial.trials.size(), 3u);

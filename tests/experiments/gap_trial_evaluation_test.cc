@@ -174,7 +174,8 @@ TEST(EvaluateGapTrial, SucceedsThroughTheOpeningIntoAHover) {
   GapGeometry gap;
   gap.T_WG = GapPoseW(20.0, 5.0, Eigen::Vector3d(5.0, 0.0, 1.5));
   const planning::TraverseTrajectory plan(ToGapPose(gap.T_WG), 1.0, 0.5, 9.81);
-  const GapTrialEvaluation evaluation = EvaluateGapTrial(ThroughAndHover(gap, 0.0), gap, kFootprint, plan, 0.5);
+  const GapTrialEvaluation evaluation =
+      EvaluateGapTrial(ThroughAndHover(gap, 0.0), gap, kFootprint, plan, 0.5);
   EXPECT_TRUE(evaluation.success) << evaluation.failure_reason;
   EXPECT_TRUE(evaluation.failure_reason.empty());
   ASSERT_TRUE(evaluation.crossing.has_value());
@@ -195,7 +196,8 @@ TEST(EvaluateGapTrial, NamesTheFirstFailedCriterion) {
             "not hovering at the end: roll/pitch rate 0.60 rad/s at t = 4.00 s");
 
   // Still moving at 0.5 m/s at the end (criterion: 0.3 m/s).
-  GapTrialEvaluation drifting = EvaluateGapTrial(ThroughAndHover(gap, 0.5), gap, kFootprint, plan, 0.5);
+  GapTrialEvaluation drifting =
+      EvaluateGapTrial(ThroughAndHover(gap, 0.5), gap, kFootprint, plan, 0.5);
   EXPECT_FALSE(drifting.success);
   EXPECT_NE(drifting.failure_reason.find("not hovering at the end: speed 0.50 m/s"),
             std::string::npos)
@@ -219,8 +221,8 @@ TEST(EvaluateGapTrial, NamesTheFirstFailedCriterion) {
 
   sim::SitlResult short_of_gap = ThroughAndHover(gap, 0.0);
   short_of_gap.trajectory.resize(900);  // ends before t = 1 s
-  const GapTrialEvaluation never =
-      EvaluateGapTrial(short_of_gap, gap, kFootprint, std::nullopt, std::numeric_limits<double>::quiet_NaN());
+  const GapTrialEvaluation never = EvaluateGapTrial(short_of_gap, gap, kFootprint, std::nullopt,
+                                                    std::numeric_limits<double>::quiet_NaN());
   EXPECT_EQ(never.failure_reason, "never crossed the gap plane (no traverse plan)");
   EXPECT_FALSE(never.error.has_value());
 }
@@ -252,7 +254,8 @@ TEST(EvaluateGapTrial, TableIErrorIsTakenAtThePlannedTimeOfTheCrossing) {
   EXPECT_FALSE(never.error.has_value());
   ASSERT_TRUE(never.error_at_planned_tc.has_value());
   EXPECT_TRUE(std::isnan(never.error_at_planned_tc->time_s));
-  EXPECT_NEAR(never.error_at_planned_tc->position_m.norm(), 2.0 * (1.0 - 0.899), 1e-9);  // its last state
+  EXPECT_NEAR(never.error_at_planned_tc->position_m.norm(), 2.0 * (1.0 - 0.899),
+              1e-9);  // its last state
 }
 
 // The origin of B inside the opening is not enough: the body sphere (0.08 m) must clear the

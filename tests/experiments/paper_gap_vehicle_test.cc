@@ -27,8 +27,7 @@ TEST(PaperGapVehicle, HasThePapersMassAndDimensionsAndOurHoverCommand) {
     return v.rotor.CommandFromThrust(v.mass_kg * v.gravity_mps2 / 4.0);
   };
   EXPECT_NEAR(hover_command(paper), hover_command(ours), 1e-9);
-  EXPECT_NEAR(paper.rotor.MaxThrust() / paper.mass_kg, ours.rotor.MaxThrust() / ours.mass_kg,
-              1e-9);
+  EXPECT_NEAR(paper.rotor.MaxThrust() / paper.mass_kg, ours.rotor.MaxThrust() / ours.mass_kg, 1e-9);
   sim::CollisionChecker::Validate(*params.dynamics, *params.collision);
 }
 
@@ -45,8 +44,7 @@ TEST(PaperGapVehicle, TheBenchFliesItThroughTheGap) {
   ASSERT_TRUE(setup.base.dynamics.has_value());
   EXPECT_DOUBLE_EQ(setup.base.dynamics->vehicle.mass_kg, 0.83);
   EXPECT_DOUBLE_EQ(setup.scenario_config["collision"]["body_radius_m"].get<double>(), 0.06);
-  const GapBenchResult result =
-      RunGapBench(options, setup, MakeGroundTruthGapAutopilotFactory());
+  const GapBenchResult result = RunGapBench(options, setup, MakeGroundTruthGapAutopilotFactory());
   ASSERT_EQ(result.trials.size(), 1u);
   EXPECT_TRUE(result.trials[0].evaluation.success) << result.trials[0].evaluation.failure_reason;
 }
