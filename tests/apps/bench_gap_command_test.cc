@@ -19,13 +19,20 @@ TEST(BenchGapCommand, TwoGroundTruthTrialsWriteTheTableIKeys) {
   TempFolder temp("bench_gap");
   const fs::path out = fs::path(temp.path()) / "out";
   const CommandResult result = RunAperture(
-      "bench gap --trials 2 --seed 4 --autopilot ground_truth --duration 6 --out " + out.string());
+      "bench gap --trials 2 --seed 4 --autopilot ground_truth --duration 6 "
+      "--vehicle-mismatch off --out " +
+      out.string());
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const nlohmann::json summary = ReadJson(out / "summary.json");
   EXPECT_EQ(summary["status"], "ok");
   EXPECT_EQ(summary["trials"], 2);
   EXPECT_EQ(summary["inputs"]["seed"], 4);
-  // Ground truth flies the planned traverse: both pass.
+  EXPECT_EQ(summary["inputs"]["vehicle_mismatch"], false);
+  // The ground-truth autopilot has no lead-in: the paper's configuration is not flown again.
+  EXPECT_EQ(summary["inputs"]["paper_configuration"], false);
+  EXPECT_FALSE(summary["table_i"].contains("paper"));
+  EXPECT_EQ(summary["table_i"]["ours"]["trials_with_plan"], 2);
+  // Ground truth on the vehicle = model flies the planned traverse: both pass.
   EXPECT_EQ(summary["successes"], 2);
   EXPECT_DOUBLE_EQ(summary["success_rate"].get<double>(), 1.0);
   const nlohmann::json& error = summary["error_at_gap"];
@@ -62,7 +69,8 @@ TEST(BenchGapCommand, DetectorSequencesWriteTheDetectorSection) {
   const fs::path out = fs::path(temp.path()) / "out";
   const CommandResult result = RunAperture(
       "bench gap --trials 1 --seed 4 --autopilot ground_truth --duration 1 "
-      "--detector-sequences 2 --out " + out.string());
+      "--detector-sequences 2 --out " +
+      out.string());
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const nlohmann::json summary = ReadJson(out / "summary.json");
   ASSERT_TRUE(summary.contains("detector")) << summary.dump();
@@ -89,8 +97,8 @@ TEST(BenchGapCommand, DetectorSequencesWriteTheDetectorSection) {
   EXPECT_NE(bad.output.find("--detector-sequences"), std::string::npos) << bad.output;
 
   const fs::path inverted = fs::path(temp.path()) / "inverted";
-  const CommandResult steep = RunAperture("bench gap --trials 1 --min-roll-deg 50 --out " +
-                                          inverted.string());
+  const CommandResult steep =
+      RunAperture("bench gap --trials 1 --min-roll-deg 50 --out " + inverted.string());
   EXPECT_EQ(steep.exit_code, 2) << steep.output;
   EXPECT_NE(steep.output.find("--min-roll-deg 50 is above --max-roll-deg 45"), std::string::npos)
       << steep.output;
@@ -111,9 +119,14 @@ TEST(BenchGapCommand, MissionTrialsRunOnRenderedFrames) {
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const nlohmann::json summary = ReadJson(out / "summary.json");
   EXPECT_EQ(summary["inputs"]["autopilot"], "gap_mission");
+  EXPECT_EQ(summary["inputs"]["vehicle_mismatch"], true);  // the default
   EXPECT_EQ(summary["trials"], 2);
   EXPECT_EQ(summary["successes"], 0);
   EXPECT_EQ(summary["error_at_gap"]["trials"], 0);
+  // Every trial flown again with the paper's configuration; no plan in 2 s, counted as such.
+  EXPECT_EQ(summary["table_i"]["paper"]["trials"], 2);
+  EXPECT_EQ(summary["table_i"]["paper"]["trials_without_plan"], 2);
+  EXPECT_EQ(CountLines(out / "paper_trials.csv"), 1u + 2u);
   for (const nlohmann::json& trial : summary["per_trial"]) {
     EXPECT_EQ(trial["outcome"], "duration_reached");
     EXPECT_EQ(trial["failure_reason"].get<std::string>().rfind("never crossed", 0), 0u);
@@ -133,6 +146,15 @@ TEST(BenchGapCommand, RejectsAnInclinationRangeOutOfBounds) {
       RunAperture("bench gap --max-roll-deg 95 --out " + (fs::path(temp.path()) / "out").string());
   EXPECT_EQ(result.exit_code, 2) << result.output;
   EXPECT_NE(result.output.find("--max-roll-deg"), std::string::npos) << result.output;
+  for (const char* bad : {"--vehicle-mismatch maybe", "--vehicle big"}) {
+    const CommandResult choice = RunAperture(std::string("bench gap ") + bad + " --out " +
+                                             (fs::path(temp.path()) / "choice").string());
+    EXPECT_EQ(choice.exit_code, 2) << bad << ": " << choice.output;
+    EXPECT_NE(choice.output.find(std::string(bad).substr(0, std::string(bad).find(' '))),
+              std::string::npos)
+        << choice.output;
+    EXPECT_FALSE(fs::exists(fs::path(temp.path()) / "choice" / "summary.json"));
+  }
 }
 
 // Every mission parameter is settable in the bench (`mission` section) and reaches each trial's
