@@ -31,7 +31,7 @@ GapBenchOptions QuickOptions(int threads) {
 }
 
 // A fresh (emptied) folder of that name in the temporary directory.
-std::filesystem::path TempDir(const std::string& name) {
+std::filesystem::path FreshGapBenchDir(const std::string& name) {
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / name;
   std::filesystem::remove_all(dir);
   return dir;
@@ -187,7 +187,7 @@ TEST(GapBench, FliesEveryTrialAgainWithThePapersConfiguration) {
     EXPECT_EQ(result.paper_trials[i].config.roll_deg, result.trials[i].config.roll_deg);
   }
 
-  const std::filesystem::path dir = TempDir("aperture_gap_bench_paper_test");
+  const std::filesystem::path dir = FreshGapBenchDir("aperture_gap_bench_paper_test");
   output::OutputFolder out(dir.string());
   WriteGapBenchOutputs(result, out);
   const nlohmann::json& summary = out.summary();
@@ -243,7 +243,7 @@ TEST(GapBench, WritesSummaryTrialsCsvAndReport) {
   GapBenchOptions options = QuickOptions(0);
   options.trials = 2;
   const GapBenchResult result = RunGapBench(options, MakeGroundTruthGapAutopilotFactory());
-  const std::filesystem::path dir = TempDir("aperture_gap_bench_test");
+  const std::filesystem::path dir = FreshGapBenchDir("aperture_gap_bench_test");
   output::OutputFolder out(dir.string());
   WriteGapBenchOutputs(result, out);
   const nlohmann::json& summary = out.summary();

@@ -15,7 +15,7 @@ using control::kDegToRad;
 
 // The upright gap of the scenario at (5, 0, 1.5): x_G = -y_W (long side, 0.8 m), y_G = -z_W
 // (short side, 0.28 m), z_G = x_W (the flight direction).
-GapGeometry UprightGap() {
+GapGeometry UprightGapGeometry() {
   GapGeometry gap;
   Eigen::Matrix3d R_WG;
   R_WG << 0, 0, 1, -1, 0, 0, 0, -1, 0;
@@ -26,8 +26,10 @@ GapGeometry UprightGap() {
 
 // Level flight along x_W at 2 m/s through the gap plane, offset by (x_G, y_G), at a constant
 // attitude; 1 kHz samples from 0.5 m before to 0.5 m after the plane (or only those two ends).
-std::vector<control::QuadState> Pass(const GapGeometry& gap, const Eigen::Vector2d& offset_G,
-                                     const Eigen::Quaterniond& q_WB, bool only_ends = false) {
+std::vector<control::QuadState> LevelPassThroughGap(const GapGeometry& gap,
+                                                    const Eigen::Vector2d& offset_G,
+                                                    const Eigen::Quaterniond& q_WB,
+                                                    bool only_ends = false) {
   std::vector<control::QuadState> trajectory;
   const int samples = only_ends ? 1 : 500;
   for (int k = 0; k <= samples; ++k) {
@@ -41,68 +43,76 @@ std::vector<control::QuadState> Pass(const GapGeometry& gap, const Eigen::Vector
   return trajectory;
 }
 
-const VehicleFootprint kFootprint =
+const VehicleFootprint kDefaultVehicleFootprint =
     VehicleFootprintOf(control::VehicleParameters{}, sim::CollisionParams{});
 
 TEST(VehicleFootprint, TakesTheSitlCollisionGeometry) {
-  EXPECT_DOUBLE_EQ(kFootprint.body_radius_m, 0.08);
-  EXPECT_DOUBLE_EQ(kFootprint.propeller_radius_m, 0.0635);
-  EXPECT_NEAR(kFootprint.rotor_p_B[0].norm(), 0.178, 1e-12);
-  EXPECT_NEAR(kFootprint.ReachM(), 0.178 + 0.0635, 1e-12);
+  EXPECT_DOUBLE_EQ(kDefaultVehicleFootprint.body_radius_m, 0.08);
+  EXPECT_DOUBLE_EQ(kDefaultVehicleFootprint.propeller_radius_m, 0.0635);
+  EXPECT_NEAR(kDefaultVehicleFootprint.rotor_p_B[0].norm(), 0.178, 1e-12);
+  EXPECT_NEAR(kDefaultVehicleFootprint.ReachM(), 0.178 + 0.0635, 1e-12);
 }
 
 TEST(FindFootprintContact, TheBodySphereClearsTheShortSideByItsRadius) {
-  const GapGeometry gap = UprightGap();
+  const GapGeometry gap = UprightGapGeometry();
   const Eigen::Quaterniond level = Eigen::Quaterniond::Identity();
   // Short side half 0.14 m, sphere 0.08 m: 6 cm of clearance up and down.
-  EXPECT_FALSE(FindFootprintContact(Pass(gap, {0.0, 0.059}, level), gap, kFootprint));
-  EXPECT_FALSE(FindFootprintContact(Pass(gap, {0.0, -0.059}, level), gap, kFootprint));
-  const auto contact = FindFootprintContact(Pass(gap, {0.0, 0.061}, level), gap, kFootprint);
+  EXPECT_FALSE(FindFootprintContact(LevelPassThroughGap(gap, {0.0, 0.059}, level), gap,
+                                    kDefaultVehicleFootprint));
+  EXPECT_FALSE(FindFootprintContact(LevelPassThroughGap(gap, {0.0, -0.059}, level), gap,
+                                    kDefaultVehicleFootprint));
+  const auto contact = FindFootprintContact(LevelPassThroughGap(gap, {0.0, 0.061}, level), gap,
+                                            kDefaultVehicleFootprint);
   ASSERT_TRUE(contact.has_value());
   EXPECT_EQ(contact->part, "body");
   EXPECT_GE(std::abs(contact->p_G_m.y()), 0.14);  // on the panel, below the opening
 }
 
 TEST(FindFootprintContact, APropellerDiskClearsTheLongSideByArmPlusRadius) {
-  const GapGeometry gap = UprightGap();
+  const GapGeometry gap = UprightGapGeometry();
   // Yawed 45 deg: rotors 1 and 3 lie on the flight direction, 2 and 4 sideways at 0.178 m, their
   // disks reaching 0.178 + 0.0635 = 0.2415 m out; the long side's half is 0.4 m.
   const Eigen::Quaterniond yawed(Eigen::AngleAxisd(45.0 * kDegToRad, Eigen::Vector3d::UnitZ()));
   const double limit = 0.4 - 0.2415;
-  EXPECT_FALSE(FindFootprintContact(Pass(gap, {limit - 0.001, 0.0}, yawed), gap, kFootprint));
-  const auto contact =
-      FindFootprintContact(Pass(gap, {limit + 0.001, 0.0}, yawed), gap, kFootprint);
+  EXPECT_FALSE(FindFootprintContact(LevelPassThroughGap(gap, {limit - 0.001, 0.0}, yawed), gap,
+                                    kDefaultVehicleFootprint));
+  const auto contact = FindFootprintContact(LevelPassThroughGap(gap, {limit + 0.001, 0.0}, yawed),
+                                            gap, kDefaultVehicleFootprint);
   ASSERT_TRUE(contact.has_value());
   EXPECT_EQ(contact->part.rfind("propeller", 0), 0u) << contact->part;
   EXPECT_GE(contact->p_G_m.x(), 0.4);
 }
 
 TEST(FindFootprintContact, TestsBetweenSamplesSoNothingPassesBetweenThem) {
-  const GapGeometry gap = UprightGap();
+  const GapGeometry gap = UprightGapGeometry();
   const Eigen::Quaterniond level = Eigen::Quaterniond::Identity();
   // Two samples 0.5 m either side of the plane: the sphere's passage lies between them.
   const auto contact =
-      FindFootprintContact(Pass(gap, {0.0, 0.1}, level, /*only_ends=*/true), gap, kFootprint);
+      FindFootprintContact(LevelPassThroughGap(gap, {0.0, 0.1}, level, /*only_ends=*/true), gap,
+                           kDefaultVehicleFootprint);
   ASSERT_TRUE(contact.has_value());
   EXPECT_EQ(contact->part, "body");
   EXPECT_GT(contact->t_s, 0.2);
   EXPECT_LT(contact->t_s, 0.3);
   EXPECT_FALSE(
-      FindFootprintContact(Pass(gap, {0.0, 0.03}, level, /*only_ends=*/true), gap, kFootprint));
+      FindFootprintContact(LevelPassThroughGap(gap, {0.0, 0.03}, level, /*only_ends=*/true), gap,
+                           kDefaultVehicleFootprint));
 }
 
 TEST(FindFootprintContact, NothingToHitBeyondThePanel) {
-  const GapGeometry gap = UprightGap();  // panel 1.7 x 1.2 m
+  const GapGeometry gap = UprightGapGeometry();  // panel 1.7 x 1.2 m
   const Eigen::Quaterniond level = Eigen::Quaterniond::Identity();
-  EXPECT_FALSE(FindFootprintContact(Pass(gap, {1.2, 0.0}, level), gap, kFootprint));
+  EXPECT_FALSE(FindFootprintContact(LevelPassThroughGap(gap, {1.2, 0.0}, level), gap,
+                                    kDefaultVehicleFootprint));
   // Overlapping the panel's outer edge (at 0.85 m) by 1 cm or more is a contact.
-  const auto edge = FindFootprintContact(Pass(gap, {0.85 + 0.07, 0.0}, level), gap, kFootprint);
+  const auto edge = FindFootprintContact(LevelPassThroughGap(gap, {0.85 + 0.07, 0.0}, level), gap,
+                                         kDefaultVehicleFootprint);
   ASSERT_TRUE(edge.has_value());
   EXPECT_LE(edge->p_G_m.x(), 0.85);
 }
 
 TEST(FindFootprintContact, ATiltedDiskIsCutAlongItsChord) {
-  const GapGeometry gap = UprightGap();
+  const GapGeometry gap = UprightGapGeometry();
   // Rolled 90 deg about the flight direction: the rotor plane is vertical (x_W, z_W) and the
   // disks' chords in the panel plane run along y_G (the short side). Yawed 45 deg first, rotors
   // 2 and 4 stand 0.178 m above and below B: the disks reach 0.2415 m, beyond the 0.14 m half
@@ -110,7 +120,8 @@ TEST(FindFootprintContact, ATiltedDiskIsCutAlongItsChord) {
   // long side (roll 0) it can.
   const Eigen::Quaterniond rolled(Eigen::AngleAxisd(90.0 * kDegToRad, Eigen::Vector3d::UnitX()) *
                                   Eigen::AngleAxisd(45.0 * kDegToRad, Eigen::Vector3d::UnitZ()));
-  const auto contact = FindFootprintContact(Pass(gap, {0.0, 0.0}, rolled), gap, kFootprint);
+  const auto contact = FindFootprintContact(LevelPassThroughGap(gap, {0.0, 0.0}, rolled), gap,
+                                            kDefaultVehicleFootprint);
   ASSERT_TRUE(contact.has_value());
   EXPECT_EQ(contact->part.rfind("propeller", 0), 0u) << contact->part;
   EXPECT_GE(std::abs(contact->p_G_m.y()), 0.14);
@@ -118,14 +129,15 @@ TEST(FindFootprintContact, ATiltedDiskIsCutAlongItsChord) {
 }
 
 TEST(FindFootprintContact, RejectsInvalidInput) {
-  GapGeometry gap = UprightGap();
-  const auto pass = Pass(gap, {0.0, 0.0}, Eigen::Quaterniond::Identity());
-  EXPECT_THROW(FindFootprintContact(pass, gap, kFootprint, 0.0), std::invalid_argument);
-  VehicleFootprint no_body = kFootprint;
+  GapGeometry gap = UprightGapGeometry();
+  const auto pass = LevelPassThroughGap(gap, {0.0, 0.0}, Eigen::Quaterniond::Identity());
+  EXPECT_THROW(FindFootprintContact(pass, gap, kDefaultVehicleFootprint, 0.0),
+               std::invalid_argument);
+  VehicleFootprint no_body = kDefaultVehicleFootprint;
   no_body.body_radius_m = 0.0;
   EXPECT_THROW(FindFootprintContact(pass, gap, no_body), std::invalid_argument);
   gap.panel_m = Eigen::Vector2d(0.5, 1.2);  // narrower than the 0.8 m opening
-  EXPECT_THROW(FindFootprintContact(pass, gap, kFootprint), std::invalid_argument);
+  EXPECT_THROW(FindFootprintContact(pass, gap, kDefaultVehicleFootprint), std::invalid_argument);
 }
 
 }  // namespace

@@ -16,7 +16,7 @@ namespace {
 using control::kDegToRad;
 
 // The SITL's default collision geometry (0.08 m body sphere, 5 inch propellers, 0.178 m arms).
-const VehicleFootprint kFootprint =
+const VehicleFootprint kSitlFootprint =
     VehicleFootprintOf(control::VehicleParameters{}, sim::CollisionParams{});
 
 // The scenario's gap frame at roll/pitch (sim/scenario/scenario_params.h): x_G = -y_W,
@@ -175,7 +175,7 @@ TEST(EvaluateGapTrial, SucceedsThroughTheOpeningIntoAHover) {
   gap.T_WG = GapPoseW(20.0, 5.0, Eigen::Vector3d(5.0, 0.0, 1.5));
   const planning::TraverseTrajectory plan(ToGapPose(gap.T_WG), 1.0, 0.5, 9.81);
   const GapTrialEvaluation evaluation =
-      EvaluateGapTrial(ThroughAndHover(gap, 0.0), gap, kFootprint, plan, 0.5);
+      EvaluateGapTrial(ThroughAndHover(gap, 0.0), gap, kSitlFootprint, plan, 0.5);
   EXPECT_TRUE(evaluation.success) << evaluation.failure_reason;
   EXPECT_TRUE(evaluation.failure_reason.empty());
   ASSERT_TRUE(evaluation.crossing.has_value());
@@ -192,12 +192,12 @@ TEST(EvaluateGapTrial, NamesTheFirstFailedCriterion) {
   // Rocking about x_B at 0.6 rad/s at the end (criterion: 0.5 rad/s roll/pitch rate).
   sim::SitlResult rocking = ThroughAndHover(gap, 0.0);
   rocking.trajectory.back().omega_B.x() = 0.6;
-  EXPECT_EQ(EvaluateGapTrial(rocking, gap, kFootprint, plan, 0.5).failure_reason,
+  EXPECT_EQ(EvaluateGapTrial(rocking, gap, kSitlFootprint, plan, 0.5).failure_reason,
             "not hovering at the end: roll/pitch rate 0.60 rad/s at t = 4.00 s");
 
   // Still moving at 0.5 m/s at the end (criterion: 0.3 m/s).
   GapTrialEvaluation drifting =
-      EvaluateGapTrial(ThroughAndHover(gap, 0.5), gap, kFootprint, plan, 0.5);
+      EvaluateGapTrial(ThroughAndHover(gap, 0.5), gap, kSitlFootprint, plan, 0.5);
   EXPECT_FALSE(drifting.success);
   EXPECT_NE(drifting.failure_reason.find("not hovering at the end: speed 0.50 m/s"),
             std::string::npos)
@@ -206,14 +206,14 @@ TEST(EvaluateGapTrial, NamesTheFirstFailedCriterion) {
   sim::SitlResult crashed = ThroughAndHover(gap, 0.0);
   crashed.outcome = sim::SitlResult::Outcome::kCollision;
   crashed.reason = "collision: propeller 2 with 'gap'";
-  const GapTrialEvaluation collision = EvaluateGapTrial(crashed, gap, kFootprint, plan, 0.5);
+  const GapTrialEvaluation collision = EvaluateGapTrial(crashed, gap, kSitlFootprint, plan, 0.5);
   EXPECT_FALSE(collision.success);
   EXPECT_EQ(collision.failure_reason, "collision: propeller 2 with 'gap'");
   EXPECT_TRUE(collision.error.has_value());  // errors count for failed trials too (Table I)
 
   sim::SitlResult beside = ThroughAndHover(gap, 0.0);
   for (control::QuadState& s : beside.trajectory) s.p_WB += gap.T_WG.linear().col(0) * 0.5;
-  const GapTrialEvaluation outside = EvaluateGapTrial(beside, gap, kFootprint, plan, 0.5);
+  const GapTrialEvaluation outside = EvaluateGapTrial(beside, gap, kSitlFootprint, plan, 0.5);
   EXPECT_EQ(
       outside.failure_reason.rfind("crossed the gap plane outside the opening at x_G = 0.500 m", 0),
       0u)
@@ -221,7 +221,7 @@ TEST(EvaluateGapTrial, NamesTheFirstFailedCriterion) {
 
   sim::SitlResult short_of_gap = ThroughAndHover(gap, 0.0);
   short_of_gap.trajectory.resize(900);  // ends before t = 1 s
-  const GapTrialEvaluation never = EvaluateGapTrial(short_of_gap, gap, kFootprint, std::nullopt,
+  const GapTrialEvaluation never = EvaluateGapTrial(short_of_gap, gap, kSitlFootprint, std::nullopt,
                                                     std::numeric_limits<double>::quiet_NaN());
   EXPECT_EQ(never.failure_reason, "never crossed the gap plane (no traverse plan)");
   EXPECT_FALSE(never.error.has_value());
@@ -235,7 +235,7 @@ TEST(EvaluateGapTrial, TableIErrorIsTakenAtThePlannedTimeOfTheCrossing) {
   const planning::TraverseTrajectory plan(ToGapPose(gap.T_WG), 1.0, 0.5, 9.81);
   const double traverse_start_s = 1.0 - plan.time_to_gap_s() - 0.02;  // crossing at t = 1 s
   const GapTrialEvaluation evaluation =
-      EvaluateGapTrial(ThroughAndHover(gap, 0.0), gap, kFootprint, plan, traverse_start_s);
+      EvaluateGapTrial(ThroughAndHover(gap, 0.0), gap, kSitlFootprint, plan, traverse_start_s);
   ASSERT_TRUE(evaluation.error.has_value() && evaluation.error_at_planned_tc.has_value());
   EXPECT_LT(evaluation.error->position_m.norm(), 1e-9);
   const Eigen::Vector3d expected = -0.04 * gap.T_WG.linear().col(2);  // 2 m/s * 0.02 s short
@@ -250,7 +250,7 @@ TEST(EvaluateGapTrial, TableIErrorIsTakenAtThePlannedTimeOfTheCrossing) {
   sim::SitlResult short_of_gap = ThroughAndHover(gap, 0.0);
   short_of_gap.trajectory.resize(900);
   const GapTrialEvaluation never =
-      EvaluateGapTrial(short_of_gap, gap, kFootprint, plan, traverse_start_s);
+      EvaluateGapTrial(short_of_gap, gap, kSitlFootprint, plan, traverse_start_s);
   EXPECT_FALSE(never.error.has_value());
   ASSERT_TRUE(never.error_at_planned_tc.has_value());
   EXPECT_TRUE(std::isnan(never.error_at_planned_tc->time_s));
@@ -266,7 +266,7 @@ TEST(EvaluateGapTrial, FailsWhenTheFootprintMeetsThePanel) {
   const planning::TraverseTrajectory plan(ToGapPose(gap.T_WG), 1.0, 0.5, 9.81);
   sim::SitlResult low = ThroughAndHover(gap, 0.0);
   for (control::QuadState& s : low.trajectory) s.p_WB += gap.T_WG.linear().col(1) * 0.1;
-  const GapTrialEvaluation evaluation = EvaluateGapTrial(low, gap, kFootprint, plan, 0.5);
+  const GapTrialEvaluation evaluation = EvaluateGapTrial(low, gap, kSitlFootprint, plan, 0.5);
   ASSERT_TRUE(evaluation.crossing.has_value());
   EXPECT_TRUE(evaluation.crossing->inside_opening);
   EXPECT_FALSE(evaluation.success);
@@ -291,8 +291,8 @@ TEST(ComputeErrorAtGap, UsesTheLookAlikeGapFrameTheEstimateRefersTo) {
   ASSERT_TRUE(plan.Velocity(plan.time_to_gap_s())
                   .isApprox(plan_turned.Velocity(plan_turned.time_to_gap_s()), 1e-9));
   const sim::SitlResult flight = ThroughAndHover(gap, 0.0);
-  const GapTrialEvaluation evaluation = EvaluateGapTrial(flight, gap, kFootprint, plan, 0.5);
-  const GapTrialEvaluation turned = EvaluateGapTrial(flight, gap, kFootprint, plan_turned, 0.5);
+  const GapTrialEvaluation evaluation = EvaluateGapTrial(flight, gap, kSitlFootprint, plan, 0.5);
+  const GapTrialEvaluation turned = EvaluateGapTrial(flight, gap, kSitlFootprint, plan_turned, 0.5);
   ASSERT_TRUE(evaluation.error.has_value() && turned.error.has_value());
   EXPECT_LT((turned.error->position_m - evaluation.error->position_m).norm(), 1e-9);
   EXPECT_LT((turned.error->velocity_mps - evaluation.error->velocity_mps).norm(), 1e-9);
