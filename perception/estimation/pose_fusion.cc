@@ -23,7 +23,8 @@ void RequireRigid(const Eigen::Isometry3d& T, const std::string& name) {
   }
   const double orthonormality = (R.transpose() * R - Eigen::Matrix3d::Identity()).norm();
   if (orthonormality > kRotationTolerance || R.determinant() < 0.0) {
-    throw std::invalid_argument(name + " is not a rigid transform (rotation part not orthonormal "
+    throw std::invalid_argument(name +
+                                " is not a rigid transform (rotation part not orthonormal "
                                 "with determinant +1, |R^T R - I| = " +
                                 std::to_string(orthonormality) + "): give a proper rotation");
   }
@@ -57,7 +58,8 @@ PoseMeasurement ToPoseMeasurement(const PoseObservation& observation, const Pose
     T_WM = rig.T_W_fixed * observation.T_CX;
     covariance = *observation.covariance_CX;
     J.topLeftCorner<3, 3>() = rig.T_W_fixed.linear();
-    J.topRightCorner<3, 3>() = -rig.T_W_fixed.linear() * control::Skew(observation.T_CX.translation());
+    J.topRightCorner<3, 3>() =
+        -rig.T_W_fixed.linear() * control::Skew(observation.T_CX.translation());
     J.bottomRightCorner<3, 3>() = observation.T_CX.linear().transpose();  // R_XC
   }
   PoseMeasurement z;
@@ -215,6 +217,18 @@ std::optional<std::pair<Eigen::Vector3d, double>> PoseFusion::RejectedRunVelocit
   return std::make_pair(Eigen::Vector3d(s_tp / s_tt), std::sqrt(variance_m2 / s_tt));
 }
 
+void PoseFusion::Start(const PoseImuEstimate& initial) {
+  if (!imu_buffer_.empty() &&
+      initial.state.t_s < imu_buffer_.back().t_s - params_.filter.history_duration_s) {
+    throw std::invalid_argument(
+        "PoseFusion::Start: the initial estimate at t = " + std::to_string(initial.state.t_s) +
+        " s is older than the buffered IMU (from " +
+        std::to_string(imu_buffer_.back().t_s - params_.filter.history_duration_s) +
+        " s); start from a later estimate or raise filter.history_duration_s");
+  }
+  StartAt(initial);
+}
+
 void PoseFusion::StartAt(const PoseImuEstimate& initial) {
   rejected_p_WB_.clear();
   consecutive_rejections_ = 0;
@@ -232,9 +246,8 @@ void PoseFusion::AdaptProcessNoise(double max_scale) {
 }
 
 void PoseFusion::AdaptToResidual(const PoseUpdateResult& update) {
-  if (max_process_noise_scale_ <= 1.0 ||
-      (update.status != PoseUpdateStatus::kApplied &&
-       update.status != PoseUpdateStatus::kRejectedOutlier)) {
+  if (max_process_noise_scale_ <= 1.0 || (update.status != PoseUpdateStatus::kApplied &&
+                                          update.status != PoseUpdateStatus::kRejectedOutlier)) {
     return;
   }
   constexpr double kWeight = 1.0 / 20.0;  // running mean over ~20 measurements

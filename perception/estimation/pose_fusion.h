@@ -101,9 +101,9 @@ struct PoseFusionParams {
 
 // What became of one pose measurement.
 struct PoseFusionOutcome {
-  double t_s = 0.0;                  // the measurement's time
-  bool started_filter = false;       // it started (or restarted) the filter
-  PoseUpdateResult update;           // the filter's result when it did not start it
+  double t_s = 0.0;             // the measurement's time
+  bool started_filter = false;  // it started (or restarted) the filter
+  PoseUpdateResult update;      // the filter's result when it did not start it
 };
 
 struct PoseFusionCounts {
@@ -125,6 +125,12 @@ class PoseFusion {
   std::vector<PoseFusionOutcome> AddPose(const PoseMeasurement& measurement);
   // Starts the filter at `state` (its t_s), replaying the buffered IMU samples after it.
   void Start(const control::QuadState& state);
+  // Starts (or starts again) at `initial`, biases and covariance included, replaying the buffered
+  // IMU samples after its time; the buffer reaches filter.history_duration_s back from the latest
+  // sample, so `initial` must not be older (throws std::invalid_argument, as for an invalid
+  // estimate). Measurements older than `initial` are not applied. Process-noise scale and counts
+  // are kept.
+  void Start(const PoseImuEstimate& initial);
 
   bool started() const { return filter_ != nullptr; }
   // The filter's estimate at its latest IMU sample; none before the start.
@@ -141,7 +147,7 @@ class PoseFusion {
 
  private:
   void Restart(const PoseMeasurement& measurement);
-  void StartAt(const PoseImuEstimate& initial);
+  void StartAt(const PoseImuEstimate& initial);  // Start without the age check
   // Least-squares velocity of the rejected run and its standard error per axis [m/s] (the
   // positions' mean variance over the spread of their times); nullopt for fewer than two times.
   std::optional<std::pair<Eigen::Vector3d, double>> RejectedRunVelocity() const;
@@ -151,8 +157,8 @@ class PoseFusion {
 
   PoseFusionParams params_;
   std::unique_ptr<PoseImuFilter> filter_;
-  std::deque<ImuSample> imu_buffer_;         // last filter.history_duration_s of IMU
-  std::deque<PoseMeasurement> pending_;      // waiting for the IMU, in arrival order
+  std::deque<ImuSample> imu_buffer_;     // last filter.history_duration_s of IMU
+  std::deque<PoseMeasurement> pending_;  // waiting for the IMU, in arrival order
   // The current run of rejected measurements: body positions and their position variances.
   struct RejectedPosition {
     double t_s = 0.0;
@@ -163,9 +169,9 @@ class PoseFusion {
   int consecutive_rejections_ = 0;
   double last_pose_t_s_ = -1.0;
   PoseFusionCounts counts_;
-  double max_process_noise_scale_ = 1.0;      // 1: no adaptation
+  double max_process_noise_scale_ = 1.0;  // 1: no adaptation
   double process_noise_scale_ = 1.0;
-  double mean_normalized_innovation_ = 1.0;   // running mean of min(d^2, gate) / 6
+  double mean_normalized_innovation_ = 1.0;  // running mean of min(d^2, gate) / 6
 };
 
 }  // namespace aperture::perception

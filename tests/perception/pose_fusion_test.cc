@@ -193,7 +193,8 @@ std::vector<PoseFusionOutcome> AdvanceAtRest(PoseFusion& fusion, double* t_s, Po
   return fusion.AddPose(pose_at(*t_s));
 }
 
-// Ten poses of a body resting at p_WB, 24 ms apart: the filter started and fusing. Returns the time.
+// Ten poses of a body resting at p_WB, 24 ms apart: the filter started and fusing. Returns the
+// time.
 double RestAt(PoseFusion& fusion, const Eigen::Vector3d& p_WB) {
   double t_s = 0.0;
   for (int k = 0; k < 10; ++k) {
@@ -322,8 +323,8 @@ int RejectionsWithAnImuNoisierThanSpecified(PoseFusion& fusion, double noise_fac
       fusion.AddImu(sample);
     }
     t_s += 12 / rate_hz;
-    PoseMeasurement z = PoseOfBodyAt(t_s, Eigen::Vector3d(0.01 * normal(rng), 0.01 * normal(rng),
-                                                          2.0 + 0.01 * normal(rng)));
+    PoseMeasurement z = PoseOfBodyAt(
+        t_s, Eigen::Vector3d(0.01 * normal(rng), 0.01 * normal(rng), 2.0 + 0.01 * normal(rng)));
     z.q_WX = control::ExpQuaternion(0.01 * Eigen::Vector3d(normal(rng), normal(rng), normal(rng)));
     z.covariance = Matrix6d::Identity() * 1e-4;
     fusion.AddPose(z);
@@ -367,6 +368,43 @@ TEST(PoseFusionTest, ExplicitStartReplaysTheBufferedImu) {
   EXPECT_NEAR(fusion.estimate()->state.t_s, 0.1, 1e-12);  // replayed to the latest sample
   EXPECT_LT((fusion.estimate()->state.p_WB - state.p_WB).norm(), 1e-9);  // at rest
   EXPECT_THROW(PoseFusion(PoseFusionParams{{}, 0}), std::invalid_argument);
+}
+
+// Starting again from an estimate of the past (the gap mission's odometry alignment): its
+// biases, velocity and widened covariance are the filter's, the IMU since is replayed, and the
+// fused poses after it correct the velocity. An estimate older than the IMU buffer is refused.
+TEST(PoseFusionTest, StartsAgainFromAnEstimateWithItsCovariance) {
+  PoseFusion fusion(PoseFusionParams{});
+  const Eigen::Vector3d p_WB(1.0, 2.0, 3.0);
+  double t_s = RestAt(fusion, p_WB);
+  PoseImuEstimate past = *fusion.estimate();
+  AdvanceAtRest(fusion, &t_s, [&](double t) { return PoseOfBodyAt(t, p_WB); });
+  const int starts = fusion.counts().starts;
+  past.state.v_W = Eigen::Vector3d(0.3, 0.0, 0.0);  // wrong, and known to be uncertain
+  past.accel_bias_B = Eigen::Vector3d(0.0, 0.0, 0.01);
+  past.covariance.block<3, 3>(ErrorStateIndex::kVelocity, ErrorStateIndex::kVelocity) +=
+      0.25 * Eigen::Matrix3d::Identity();
+  fusion.Start(past);
+  EXPECT_EQ(fusion.counts().starts, starts + 1);
+  EXPECT_DOUBLE_EQ(fusion.estimate()->state.t_s, t_s);  // replayed to the latest IMU sample
+  EXPECT_EQ(fusion.estimate()->accel_bias_B, past.accel_bias_B);
+  EXPECT_GT(fusion.estimate()->covariance(ErrorStateIndex::kVelocity, ErrorStateIndex::kVelocity),
+            0.25);
+  // 24 ms of replay at 0.3 m/s (the bias, 0.01 m/s^2 along gravity, adds < 0.01 mm).
+  EXPECT_NEAR(fusion.estimate()->state.p_WB.x() - past.state.p_WB.x(), 0.3 * 0.024, 1e-4);
+  for (int k = 0; k < 10; ++k) {
+    AdvanceAtRest(fusion, &t_s, [&](double t) { return PoseOfBodyAt(t, p_WB); });
+  }
+  EXPECT_EQ(fusion.counts().restarts, 0);  // the poses were fused, not gated out
+  EXPECT_LT(fusion.estimate()->state.v_W.norm(), 0.03) << fusion.estimate()->state.v_W;
+
+  for (int k = 1; k <= 300; ++k) fusion.AddImu(RestingImu(t_s + 0.002 * k));  // 0.6 s more
+  try {
+    fusion.Start(past);
+    FAIL() << "expected std::invalid_argument";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_THAT(e.what(), HasSubstr("history_duration_s"));
+  }
 }
 
 }  // namespace
