@@ -53,6 +53,8 @@ void GapMissionParams::Validate() const {
   control::Require(recovery_odometry_alignment_poses >= 1,
                    "GapMissionParams.recovery_odometry_alignment_poses",
                    recovery_odometry_alignment_poses, "must be >= 1");
+  control::RequirePositive(recovery_odometry_velocity_sigma_mps,
+                           "GapMissionParams.recovery_odometry_velocity_sigma_mps");
 }
 
 const char* ToString(GapMissionPhase phase) {
@@ -180,8 +182,8 @@ void GapMission::OnFrame(const perception::Frame& frame) {
     }
     // The gap is fixed in W: its labelling follows the estimate, not the image's convention.
     const Eigen::Matrix3d R_WC = estimate().q_WB.toRotationMatrix() * T_BC_.linear();
-    observation.T_CX = perception::NearestGapLabelling(
-        observation.T_CX, R_WC.transpose() * rig_.T_W_fixed.linear());
+    observation.T_CX = perception::NearestGapLabelling(observation.T_CX,
+                                                       R_WC.transpose() * rig_.T_W_fixed.linear());
     // A frame stamped after the latest IMU sample (IMU latency) waits for the IMU to catch up.
     fusion_.AddPose(perception::ToPoseMeasurement(observation, rig_));
   }
@@ -217,9 +219,9 @@ void GapMission::OnOdometry(const perception::PoseMeasurement& pose_OB) {
     Eigen::Isometry3d T_OB = Eigen::Isometry3d::Identity();
     T_OB.linear() = perception::BodyOrientation(pose_OB).toRotationMatrix();
     T_OB.translation() = perception::BodyPosition(pose_OB);
+    if (odometry_alignments_.empty()) odometry_alignment_start_ = fusion_.estimate();
     odometry_alignments_.emplace_back(pose_OB, T_WB * T_OB.inverse());
-    if (static_cast<int>(odometry_alignments_.size()) <
-        params_.recovery_odometry_alignment_poses) {
+    if (static_cast<int>(odometry_alignments_.size()) < params_.recovery_odometry_alignment_poses) {
       return;
     }
     std::vector<Eigen::Quaterniond> q_WO;
@@ -233,14 +235,25 @@ void GapMission::OnOdometry(const perception::PoseMeasurement& pose_OB) {
     T_WO_->translation() = p_WO / static_cast<double>(odometry_alignments_.size());
     // The hold before done counts on the vision-based estimate ("locks to a hover position").
     if (!std::isnan(position_stage_since_t_s_)) position_stage_since_t_s_ = pose_OB.t_s;
-    // The earlier averaged poses are fused too, oldest first (within the filter's history);
-    // the last is pose_OB, fused below.
+    // Start again where the first averaged pose arrived (the IMU buffer permitting), the
+    // velocity widened (recovery_odometry_velocity_sigma_mps), and fuse the averaged poses after
+    // that start, oldest first; the last is pose_OB, fused below.
+    perception::PoseImuEstimate start = *odometry_alignment_start_;
+    const perception::PoseImuEstimate now = *fusion_.estimate();
+    if (start.state.t_s < now.state.t_s - params_.filter.history_duration_s) start = now;
+    const double sigma_v = params_.recovery_odometry_velocity_sigma_mps;
+    start.covariance.block<3, 3>(perception::ErrorStateIndex::kVelocity,
+                                 perception::ErrorStateIndex::kVelocity) +=
+        sigma_v * sigma_v * Eigen::Matrix3d::Identity();
+    fusion_.Start(start);
     odometry_alignments_.pop_back();
     for (const auto& alignment : odometry_alignments_) {
+      if (alignment.first.t_s <= start.state.t_s) continue;
       fusion_.AddPose(perception::InWorldFrame(*T_WO_, alignment.first));
       ++odometry_poses_fused_;
     }
     odometry_alignments_.clear();
+    odometry_alignment_start_.reset();
     fusion_.AdaptProcessNoise(params_.recovery_max_process_noise_scale);
   }
   fusion_.AddPose(perception::InWorldFrame(*T_WO_, pose_OB));

@@ -36,7 +36,9 @@
 //             solely in the recovery. Its poses, in its own frame O, are aligned
 //             to the estimate over the first recovery_odometry_alignment_poses (T_WO = mean of
 //             T_WB_est T_OB^-1: one pose would fix its own noise, 0.5 deg and 2 cm, into every
-//             later residual, which the filter's gate then rejects) and fused from then on.
+//             later residual, which the filter's gate then rejects) and fused from then on, the
+//             filter started again at the first of them with its velocity sigma widened
+//             (recovery_odometry_velocity_sigma_mps).
 //   aborted   (from hover/transfer/approach when the gap is not detected for
 //             detection_timeout_s, except in the approach's last approach_commit_s, or when
 //             planning fails): straight to the recovery stages.
@@ -116,7 +118,7 @@ struct GapMissionParams {
     p.compensate_rotor_lag = true;
     return p;
   }();
-  control::RecoveryParams recovery;              // after the gap
+  control::RecoveryParams recovery;  // after the gap
   int camera_id = 0;  // Frame::camera_id of the forward camera; other cameras are ignored
 
   // Detections whose gravity direction is averaged to fix the mission frame (detection noise of
@@ -171,6 +173,12 @@ struct GapMissionParams {
   // Odometry poses whose alignments T_WB_est T_OB^-1 are averaged into T_WO (>= 1): the mean of
   // N has 1/sqrt(N) of one pose's noise; 10 poses are 0.2 s of a 50 Hz odometry.
   int recovery_odometry_alignment_poses = 10;
+  // At the alignment the filter starts again from its estimate at the first averaged pose with the
+  // velocity sigma widened by this [m/s] (> 0; added in quadrature), and fuses the averaged poses:
+  // the IMU-only recovery leaves it far surer of its velocity than it should be (SITL: sigma
+  // ~1 cm/s against errors of 0.1-0.2 m/s with a vehicle that is not the model), so it gated the
+  // odometry out as the position error grew, restarted, and the hold turned the jump into a jolt.
+  double recovery_odometry_velocity_sigma_mps = 0.2;
   // Once the odometry is aligned, the filter's process noise adapts to its residuals up to this
   // factor (>= 1; 1: off; perception::PoseFusion::AdaptProcessNoise): the mission is not told
   // when its IMU is noisier than specified, and an overconfident filter gates good poses out,
@@ -333,8 +341,10 @@ class GapMission : public perception::Autopilot {
   std::optional<double> last_range_m_;
   double recovery_start_t_s_ = std::numeric_limits<double>::quiet_NaN();
   std::optional<Eigen::Isometry3d> T_WO_;  // the visual odometry's frame O in W, once aligned
-  // Until then: the odometry poses received and the alignment T_WB_est T_OB^-1 each implies.
+  // Until then: the odometry poses received and the alignment T_WB_est T_OB^-1 each implies, and
+  // the estimate when the first of them arrived.
   std::vector<std::pair<perception::PoseMeasurement, Eigen::Isometry3d>> odometry_alignments_;
+  std::optional<perception::PoseImuEstimate> odometry_alignment_start_;
   int odometry_poses_fused_ = 0;
 
   double phase_start_t_s_ = 0.0;
