@@ -126,7 +126,26 @@ std::vector<PoseFusionOutcome> PoseFusion::AddPose(const PoseMeasurement& measur
   return ApplyPending();
 }
 
+void PoseFusion::AddHeight(const HeightMeasurement& measurement) {
+  if (!std::isfinite(measurement.t_s) || !std::isfinite(measurement.z_W_m) ||
+      !(measurement.variance_m2 > 0.0 && std::isfinite(measurement.variance_m2))) {
+    throw std::invalid_argument(
+        "HeightMeasurement (t_s, z_W_m, variance_m2) must be finite with variance_m2 > 0");
+  }
+  if (!filter_) return;
+  pending_heights_.push_back(measurement);
+  ApplyPending();
+}
+
 std::vector<PoseFusionOutcome> PoseFusion::ApplyPending() {
+  while (!pending_heights_.empty() && pending_heights_.front().t_s <= filter_->time_s()) {
+    if (filter_->Update(pending_heights_.front()).applied()) {
+      ++counts_.heights_applied;
+    } else {
+      ++counts_.heights_rejected;
+    }
+    pending_heights_.pop_front();
+  }
   std::vector<PoseFusionOutcome> outcomes;
   while (!pending_.empty() && pending_.front().t_s <= filter_->time_s()) {
     const PoseMeasurement z = pending_.front();

@@ -113,6 +113,8 @@ struct PoseFusionCounts {
   int starts = 0;            // first start + restarts
   int restarts = 0;          // restarts after max_consecutive_rejections outliers
   int restarts_refused = 0;  // runs whose restart would have turned the body too far
+  int heights_applied = 0;   // height measurements fused (AddHeight)
+  int heights_rejected = 0;  // height measurements gated out or older than the history
 };
 
 class PoseFusion {
@@ -123,6 +125,10 @@ class PoseFusion {
   // Fuses `measurement` once the IMU has reached its time (now, if it has). Returns the outcomes
   // of the measurements processed by this call (this one and any that waited), in time order.
   std::vector<PoseFusionOutcome> AddPose(const PoseMeasurement& measurement);
+  // A height measurement (e.g. a downward range sensor), fused once the IMU has reached its
+  // time. It never starts or restarts the filter: before the start it is dropped, and a gated
+  // one is only counted (heights_rejected).
+  void AddHeight(const HeightMeasurement& measurement);
   // Starts the filter at `state` (its t_s), replaying the buffered IMU samples after it.
   void Start(const control::QuadState& state);
   // Starts (or starts again) at `initial`, biases and covariance included, replaying the buffered
@@ -157,8 +163,9 @@ class PoseFusion {
 
   PoseFusionParams params_;
   std::unique_ptr<PoseImuFilter> filter_;
-  std::deque<ImuSample> imu_buffer_;     // last filter.history_duration_s of IMU
-  std::deque<PoseMeasurement> pending_;  // waiting for the IMU, in arrival order
+  std::deque<ImuSample> imu_buffer_;               // last filter.history_duration_s of IMU
+  std::deque<PoseMeasurement> pending_;            // waiting for the IMU, in arrival order
+  std::deque<HeightMeasurement> pending_heights_;  // the same for heights
   // The current run of rejected measurements: body positions and their position variances.
   struct RejectedPosition {
     double t_s = 0.0;

@@ -6,6 +6,9 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <utility>
+#include <variant>
 
 #include "control/require.h"
 #include "control/so3.h"
@@ -56,10 +59,13 @@ void PoseImuFilterParams::Validate() const {
   control::RequirePositive(initial_gyro_bias_sigma_radps,
                            "PoseImuFilterParams.initial_gyro_bias_sigma_radps");
   control::RequirePositive(history_duration_s, "PoseImuFilterParams.history_duration_s");
-  if (!(mahalanobis_gate > 0.0)) {  // +inf allowed (no gating)
-    throw std::invalid_argument(
-        "PoseImuFilterParams.mahalanobis_gate = " + std::to_string(mahalanobis_gate) +
-        " must be > 0 (+infinity disables gating)");
+  for (const auto& [gate, name] : {std::pair{mahalanobis_gate, "mahalanobis_gate"},
+                                   std::pair{height_mahalanobis_gate, "height_mahalanobis_gate"}}) {
+    if (!(gate > 0.0)) {  // +inf allowed (no gating)
+      throw std::invalid_argument(std::string("PoseImuFilterParams.") + name + " = " +
+                                  std::to_string(gate) +
+                                  " must be > 0 (+infinity disables gating)");
+    }
   }
 }
 
@@ -197,32 +203,53 @@ void PoseImuFilter::SetProcessNoiseScale(double scale) {
 
 PoseUpdateResult PoseImuFilter::ApplyMeasurement(const PoseMeasurement& z, Nominal* x,
                                                  Matrix15d* P) const {
-  PoseUpdateResult result;
-  result.gate = params_.mahalanobis_gate;
   const Eigen::Matrix3d R_WB = x->q_WB.toRotationMatrix();
   const Eigen::Matrix3d R_BX = z.q_BX.toRotationMatrix();
   const Eigen::Vector3d p_WX_pred = x->p_WB + R_WB * z.p_BX;
   const Eigen::Quaterniond q_WX_pred = x->q_WB * z.q_BX;
-  result.residual.head<3>() = z.p_WX - p_WX_pred;
-  result.residual.tail<3>() = LogQuaternion(q_WX_pred.conjugate() * z.q_WX);
+  Vector6d r;
+  r.head<3>() = z.p_WX - p_WX_pred;
+  r.tail<3>() = LogQuaternion(q_WX_pred.conjugate() * z.q_WX);
 
   Eigen::Matrix<double, 6, 15> H = Eigen::Matrix<double, 6, 15>::Zero();
   H.block<3, 3>(0, Index::kPosition).setIdentity();
   H.block<3, 3>(0, Index::kAttitude) = -R_WB * Skew(z.p_BX);
   H.block<3, 3>(3, Index::kAttitude) = R_BX.transpose();
+  PoseUpdateResult result = ApplyLinearized<6>(r, H, z.covariance, params_.mahalanobis_gate, x, P);
+  result.residual = r;
+  return result;
+}
 
-  const Eigen::Matrix<double, 15, 6> PHt = (*P) * H.transpose();
-  const Matrix6d S = H * PHt + z.covariance;
-  const Eigen::LDLT<Matrix6d> S_ldlt(S);
-  result.mahalanobis_sq = result.residual.dot(S_ldlt.solve(result.residual));
-  if (!(result.mahalanobis_sq <= params_.mahalanobis_gate)) {
+PoseUpdateResult PoseImuFilter::ApplyMeasurement(const HeightMeasurement& z, Nominal* x,
+                                                 Matrix15d* P) const {
+  const Eigen::Matrix<double, 1, 1> r(z.z_W_m - x->p_WB.z());
+  Eigen::Matrix<double, 1, 15> H = Eigen::Matrix<double, 1, 15>::Zero();
+  H(0, Index::kPosition + 2) = 1.0;
+  PoseUpdateResult result = ApplyLinearized<1>(r, H, Eigen::Matrix<double, 1, 1>(z.variance_m2),
+                                               params_.height_mahalanobis_gate, x, P);
+  result.residual(2) = r(0);
+  return result;
+}
+
+template <int M>
+PoseUpdateResult PoseImuFilter::ApplyLinearized(const Eigen::Matrix<double, M, 1>& r,
+                                                const Eigen::Matrix<double, M, 15>& H,
+                                                const Eigen::Matrix<double, M, M>& R, double gate,
+                                                Nominal* x, Matrix15d* P) const {
+  PoseUpdateResult result;
+  result.gate = gate;
+  const Eigen::Matrix<double, 15, M> PHt = (*P) * H.transpose();
+  const Eigen::Matrix<double, M, M> S = H * PHt + R;
+  const Eigen::LDLT<Eigen::Matrix<double, M, M>> S_ldlt(S);
+  result.mahalanobis_sq = r.dot(S_ldlt.solve(r));
+  if (!(result.mahalanobis_sq <= gate)) {
     result.status = PoseUpdateStatus::kRejectedOutlier;
     return result;
   }
-  const Eigen::Matrix<double, 15, 6> K = S_ldlt.solve(PHt.transpose()).transpose();
-  const Vector15d dx = K * result.residual;
+  const Eigen::Matrix<double, 15, M> K = S_ldlt.solve(PHt.transpose()).transpose();
+  const Vector15d dx = K * r;
   const Matrix15d I_KH = Matrix15d::Identity() - K * H;
-  *P = I_KH * (*P) * I_KH.transpose() + K * z.covariance * K.transpose();  // Joseph form
+  *P = I_KH * (*P) * I_KH.transpose() + K * R * K.transpose();  // Joseph form
 
   const Eigen::Vector3d dtheta = dx.segment<3>(Index::kAttitude);
   x->p_WB += dx.segment<3>(Index::kPosition);
@@ -278,9 +305,21 @@ PoseUpdateResult PoseImuFilter::Update(const PoseMeasurement& z) {
   control::RequireFinite(z.p_BX, "PoseImuFilter: PoseMeasurement.p_BX");
   RequireUnitQuaternion(z.q_BX, "PoseMeasurement.q_BX");
   RequireCovariance(z.covariance, "PoseMeasurement.covariance");
+  return Insert(z);
+}
 
+PoseUpdateResult PoseImuFilter::Update(const HeightMeasurement& z) {
+  control::RequireFinite(z.t_s, "PoseImuFilter: HeightMeasurement.t_s");
+  control::RequireFinite(z.z_W_m, "PoseImuFilter: HeightMeasurement.z_W_m");
+  control::RequirePositive(z.variance_m2, "PoseImuFilter: HeightMeasurement.variance_m2");
+  return Insert(z);
+}
+
+template <typename Measurement>
+PoseUpdateResult PoseImuFilter::Insert(const Measurement& z) {
   PoseUpdateResult result;
-  result.gate = params_.mahalanobis_gate;
+  result.gate = std::is_same_v<Measurement, HeightMeasurement> ? params_.height_mahalanobis_gate
+                                                               : params_.mahalanobis_gate;
   if (z.t_s > history_.back().t_s) {
     result.status = PoseUpdateStatus::kAheadOfImu;
     return result;
@@ -296,7 +335,6 @@ PoseUpdateResult PoseImuFilter::Update(const PoseMeasurement& z) {
 
   Entry entry;
   entry.t_s = z.t_s;
-  entry.has_measurement = true;
   entry.measurement = z;
   if (next < history_.size() && before.has_imu) {
     const Entry& after = history_[next];
@@ -326,7 +364,13 @@ PoseUpdateResult PoseImuFilter::Update(const PoseMeasurement& z) {
     current.x = history_[k - 1].x;
     current.P = history_[k - 1].P;
     PropagateBetween(history_[k - 1], current, &current.x, &current.P);
-    if (current.has_measurement) ApplyMeasurement(current.measurement, &current.x, &current.P);
+    std::visit(
+        [&](const auto& m) {
+          if constexpr (!std::is_same_v<std::decay_t<decltype(m)>, std::monostate>) {
+            ApplyMeasurement(m, &current.x, &current.P);
+          }
+        },
+        current.measurement);
     ++result.replayed_steps;
   }
   return result;

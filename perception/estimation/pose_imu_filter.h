@@ -33,6 +33,9 @@
 // and not applied. Update in Joseph form, then the error is injected into the nominal state and
 // the covariance is reset with G = blkdiag(I, I, I - [dtheta/2]x, I, I) (Sola 2017, (287)).
 //
+// Height update (HeightMeasurement, e.g. a downward range sensor): the scalar residual
+// z_W - p_WB.z with H = e_z^T on dp, gated by chi-square(1), the same Joseph-form update.
+//
 // Latency: the filter keeps a history of every IMU sample and applied pose measurement with the
 // posterior at its time, covering the last history_duration_s (bounded, oldest dropped as new IMU
 // samples arrive). A measurement stamped t_m in the past is inserted at t_m (the IMU input there
@@ -49,6 +52,7 @@
 #include <deque>
 #include <iosfwd>
 #include <string>
+#include <variant>
 
 #include "control/quad_state.h"
 #include "perception/imu_noise_params.h"
@@ -73,7 +77,7 @@ struct ErrorStateIndex {
 // IMU noise (accel/gyro noise densities, bias random walks): perception::ImuNoiseParams, whose
 // defaults are the simulated IMU's (sim::ImuSensorParams derives from it too).
 struct PoseImuFilterParams : ImuNoiseParams {
-  double gravity_mps2 = 9.81;                                    // [m/s^2], along -z_W
+  double gravity_mps2 = 9.81;  // [m/s^2], along -z_W
   // Initial 1-sigma uncertainties used by the constructor that takes no covariance. Biases: a
   // MEMS accelerometer is within ~0.1 m/s^2 and a gyro within ~0.5 deg/s after start-up.
   double initial_position_sigma_m = 0.5;
@@ -87,6 +91,9 @@ struct PoseImuFilterParams : ImuNoiseParams {
   // chi-square(6) threshold on the Mahalanobis distance d^2 of a pose residual; 22.46 is the
   // 99.9 % quantile, so a consistent filter rejects 1 in 1000 inliers. +infinity disables gating.
   double mahalanobis_gate = 22.46;
+  // chi-square(1) threshold of a height residual (HeightMeasurement); 10.83 is the 99.9 %
+  // quantile. +infinity disables gating.
+  double height_mahalanobis_gate = 10.83;
 
   // Throws std::invalid_argument naming the field: negative or non-finite densities, gravity,
   // sigmas <= 0, history_duration_s <= 0, gate <= 0 or NaN.
@@ -103,6 +110,16 @@ struct PoseMeasurement {
   Eigen::Quaterniond q_BX = Eigen::Quaterniond::Identity();  // rotation X -> B
 };
 
+// A measured height of the body origin in W, e.g. from a downward range sensor at the body
+// origin over a flat floor at z_floor_W: z_W = z_floor_W + range (z_B . z_W). Residual
+// z_W - p_WB.z, Jacobian d r / d dp = e_z^T (the attitude enters only through the caller's
+// projection of the range, a second-order term at the tilts a range sensor is used at).
+struct HeightMeasurement {
+  double t_s = 0.0;          // on the IMU clock [s]
+  double z_W_m = 0.0;        // [m]
+  double variance_m2 = 0.0;  // > 0 [m^2]
+};
+
 enum class PoseUpdateStatus {
   kApplied,          // fused
   kRejectedOutlier,  // d^2 above the gate, not fused
@@ -115,7 +132,7 @@ struct PoseUpdateResult {
   PoseUpdateStatus status = PoseUpdateStatus::kApplied;
   double mahalanobis_sq = 0.0;           // r^T S^-1 r (0 for kTooOld / kAheadOfImu)
   double gate = 0.0;                     // threshold it was compared with
-  Vector6d residual = Vector6d::Zero();  // [m; rad] before the update
+  Vector6d residual = Vector6d::Zero();  // [m; rad] before the update (height: element 2 only)
   int replayed_steps = 0;                // history entries re-propagated after t_m
   bool applied() const { return status == PoseUpdateStatus::kApplied; }
 };
@@ -131,8 +148,7 @@ struct PoseImuEstimate {
 
 // The estimate a filter starts from given only a state: `state` (t_s = filter time), zero biases
 // and the diagonal covariance of the params' initial sigmas. Throws for invalid params.
-PoseImuEstimate InitialEstimate(const PoseImuFilterParams& params,
-                                const control::QuadState& state);
+PoseImuEstimate InitialEstimate(const PoseImuFilterParams& params, const control::QuadState& state);
 
 // The one rule for a process-noise scale (SetProcessNoiseScale) or its adaptation's ceiling
 // (PoseFusion::AdaptProcessNoise, the missions' max_process_noise_scale): finite and >= 1
@@ -157,6 +173,9 @@ class PoseImuFilter {
   // non-finite fields, non-unit quaternions or a covariance that is not symmetric positive
   // definite.
   PoseUpdateResult Update(const PoseMeasurement& measurement);
+  // Fuses a height measurement the same way (history, latency, gate height_mahalanobis_gate).
+  // Throws std::invalid_argument for non-finite fields or a variance that is not > 0.
+  PoseUpdateResult Update(const HeightMeasurement& measurement);
 
   // Estimate at the latest IMU sample.
   PoseImuEstimate Estimate() const;
@@ -180,8 +199,7 @@ class PoseImuFilter {
     double t_s = 0.0;
     bool has_imu = false;  // false only for the initial entry until the first sample
     ImuSample imu;         // input at t_s (interpolated for measurement entries)
-    bool has_measurement = false;
-    PoseMeasurement measurement;
+    std::variant<std::monostate, PoseMeasurement, HeightMeasurement> measurement;
     Nominal x;
     Matrix15d P;  // posterior at t_s
   };
@@ -189,12 +207,23 @@ class PoseImuFilter {
   // Propagates `x`, `P` from entry `from` to the time and input of `to`.
   void PropagateBetween(const Entry& from, const Entry& to, Nominal* x, Matrix15d* P) const;
   PoseUpdateResult ApplyMeasurement(const PoseMeasurement& z, Nominal* x, Matrix15d* P) const;
+  PoseUpdateResult ApplyMeasurement(const HeightMeasurement& z, Nominal* x, Matrix15d* P) const;
+  // Gate and EKF update of an M-dim residual r = z - h(x) with Jacobian H and noise R; the
+  // result's status, d^2 and gate are set (not its residual).
+  template <int M>
+  PoseUpdateResult ApplyLinearized(const Eigen::Matrix<double, M, 1>& r,
+                                   const Eigen::Matrix<double, M, 15>& H,
+                                   const Eigen::Matrix<double, M, M>& R, double gate, Nominal* x,
+                                   Matrix15d* P) const;
+  // Inserts a validated measurement at its time and re-propagates the history after it.
+  template <typename Measurement>
+  PoseUpdateResult Insert(const Measurement& z);
   void TrimHistory();
 
   PoseImuFilterParams params_;
-  Matrix15d Q_c_;              // continuous noise G Q_c G^T in error-state coordinates
+  Matrix15d Q_c_;                     // continuous noise G Q_c G^T in error-state coordinates
   double process_noise_scale_ = 1.0;  // multiplies Q_c_ (SetProcessNoiseScale)
-  std::deque<Entry> history_;  // sorted by t_s; front() is the oldest kept posterior
+  std::deque<Entry> history_;         // sorted by t_s; front() is the oldest kept posterior
 };
 
 }  // namespace aperture::perception

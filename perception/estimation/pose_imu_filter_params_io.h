@@ -18,6 +18,7 @@
 //     initial_gyro_bias_sigma_radps: 0.01
 //     history_duration_s: 0.5
 //     mahalanobis_gate: 22.46           # .inf disables gating
+//     height_mahalanobis_gate: 10.83    # chi-square(1); .inf disables gating
 #include "config/yaml_read_archive.h"
 #include "perception/estimation/pose_imu_filter.h"
 
@@ -37,6 +38,7 @@ void Serialize(Archive* a, PoseImuFilterParams* p) {
   a->Visit(APERTURE_NVP(p, initial_gyro_bias_sigma_radps));
   a->Visit(APERTURE_NVP(p, history_duration_s));
   a->VisitLimit(APERTURE_NVP(p, mahalanobis_gate));
+  a->VisitLimit(APERTURE_NVP(p, height_mahalanobis_gate));
 }
 
 }  // namespace aperture::perception

@@ -370,6 +370,29 @@ TEST(PoseFusionTest, ExplicitStartReplaysTheBufferedImu) {
   EXPECT_THROW(PoseFusion(PoseFusionParams{{}, 0}), std::invalid_argument);
 }
 
+// Heights: dropped before the start, held until the IMU reaches their time, fused without
+// touching x, y; one far off is gated and counted, and never restarts the filter.
+TEST(PoseFusionTest, FusesHeightsOnceTheImuHasReachedThem) {
+  PoseFusion fusion(PoseFusionParams{});
+  fusion.AddHeight({0.0, 1.0, 4e-4});  // before the start: dropped
+  const Eigen::Vector3d p_WB(1.0, 2.0, 3.0);
+  double t_s = RestAt(fusion, p_WB);
+  EXPECT_EQ(fusion.counts().heights_applied, 0);
+  fusion.AddHeight({t_s + 0.004, 3.02, 4e-4});  // 2 cm above the poses, ahead of the IMU
+  EXPECT_EQ(fusion.counts().heights_applied, 0);
+  fusion.AddImu(RestingImu(t_s + 0.002));
+  EXPECT_EQ(fusion.counts().heights_applied, 0);
+  fusion.AddImu(RestingImu(t_s + 0.004));
+  EXPECT_EQ(fusion.counts().heights_applied, 1);
+  EXPECT_GT(fusion.estimate()->state.p_WB.z(), 3.0);  // pulled up
+  EXPECT_LT((fusion.estimate()->state.p_WB.head<2>() - p_WB.head<2>()).norm(), 1e-6);
+  fusion.AddHeight({t_s + 0.004, 4.0, 4e-4});  // 1 m off
+  EXPECT_EQ(fusion.counts().heights_rejected, 1);
+  EXPECT_EQ(fusion.counts().restarts, 0);
+  EXPECT_THROW(fusion.AddHeight({t_s, std::nan(""), 4e-4}), std::invalid_argument);
+  EXPECT_THROW(fusion.AddHeight({t_s, 3.0, 0.0}), std::invalid_argument);
+}
+
 // Starting again from an estimate of the past (the gap mission's odometry alignment): its
 // biases, velocity and widened covariance are the filter's, the IMU since is replayed, and the
 // fused poses after it correct the velocity. An estimate older than the IMU buffer is refused.

@@ -478,6 +478,43 @@ TEST(PoseImuFilterTest, OutlierIsGatedAndReported) {
   EXPECT_LT(inlier.mahalanobis_sq, 1e-6);  // noise-free measurement of the true pose
 }
 
+// A vehicle at rest 1 m up whose accelerometer reads 0.2 m/s^2 too much along z_B: on the IMU
+// alone its height drifts by 0.1 t^2 (0.4 m in 2 s); a 100 Hz height measurement (2 cm, 20 ms
+// late) holds it within a few cm, the filter learns the bias, and x, y are not touched. A height
+// 1 m off is gated out by chi-square(1) and reported in residual element 2.
+TEST(PoseImuFilterTest, HeightMeasurementsHoldTheHeightAndLearnTheVerticalBias) {
+  control::QuadState rest;
+  rest.p_WB = Eigen::Vector3d(0.3, -0.2, 1.0);
+  PoseImuFilterParams params;
+  PoseImuFilter with_height(params, rest);
+  PoseImuFilter imu_only(params, rest);
+  ImuSample sample;
+  sample.specific_force_B = Eigen::Vector3d(0.0, 0.0, params.gravity_mps2 + 0.2);
+  for (int k = 1; k <= 1000; ++k) {  // 2 s at 500 Hz
+    sample.t_s = k * kImuDt;
+    with_height.Propagate(sample);
+    imu_only.Propagate(sample);
+    if (k % 5 == 0 && k >= 10) {
+      const PoseUpdateResult r =
+          with_height.Update(HeightMeasurement{sample.t_s - 0.02, 1.0, 4e-4});
+      ASSERT_TRUE(r.applied()) << "t = " << sample.t_s << " " << r;
+    }
+  }
+  EXPECT_NEAR(imu_only.Estimate().state.p_WB.z(), 1.4, 0.01);
+  const PoseImuEstimate e = with_height.Estimate();
+  EXPECT_NEAR(e.state.p_WB.z(), 1.0, 0.03);
+  EXPECT_NEAR(e.state.v_W.z(), 0.0, 0.05);
+  EXPECT_NEAR(e.accel_bias_B.z(), 0.2, 0.05);
+  EXPECT_EQ(e.state.p_WB.head<2>(), rest.p_WB.head<2>());
+
+  const PoseUpdateResult outlier = with_height.Update(HeightMeasurement{sample.t_s, 2.0, 4e-4});
+  EXPECT_EQ(outlier.status, PoseUpdateStatus::kRejectedOutlier) << outlier;
+  EXPECT_DOUBLE_EQ(outlier.gate, params.height_mahalanobis_gate);
+  EXPECT_NEAR(outlier.residual(2), 1.0 - (e.state.p_WB.z() - 1.0), 1e-9);
+  EXPECT_EQ(outlier.residual.norm(), std::abs(outlier.residual(2)));
+  EXPECT_THROW(with_height.Update(HeightMeasurement{sample.t_s, 1.0, 0.0}), std::invalid_argument);
+}
+
 TEST(PoseImuFilterTest, RejectsNonFiniteInputsNamingThem) {
   PoseImuFilter filter(PoseImuFilterParams{}, control::QuadState{});
   auto expect_throw_naming = [](const auto& call, const std::string& name) {
