@@ -59,6 +59,8 @@ class GapMissionFlight final : public MissionFlight {
     figures["filter_restarts"] = m.filter_restarts();
     figures["filter_restarts_refused"] = m.filter_restarts_refused();
     figures["recovery_odometry_fused"] = m.odometry_poses_fused();
+    figures["recovery_range_heights_fused"] = m.fusion_counts().heights_applied;
+    figures["recovery_range_heights_rejected"] = m.fusion_counts().heights_rejected;
     figures["approach_fallback_limits"] = m.used_fallback_limits();
     figures["replans_accepted"] = m.replans_accepted();
     figures["replans_kept_previous"] = m.replans_rejected();

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "control/height_filter.h"
 #include "control/require.h"
 #include "control/so3.h"
 #include "perception/gap/gap_node.h"
@@ -55,6 +56,11 @@ void GapMissionParams::Validate() const {
                    recovery_odometry_alignment_poses, "must be >= 1");
   control::RequirePositive(recovery_odometry_velocity_sigma_mps,
                            "GapMissionParams.recovery_odometry_velocity_sigma_mps");
+  if (!(recovery_range_sigma_m > 0.0)) {  // +inf allowed (range not fused)
+    throw std::invalid_argument(
+        "GapMissionParams.recovery_range_sigma_m = " + std::to_string(recovery_range_sigma_m) +
+        " must be > 0 (+infinity: the range is not fused)");
+  }
 }
 
 const char* ToString(GapMissionPhase phase) {
@@ -124,7 +130,14 @@ void GapMission::Abort(const std::string& reason, double t_s) {
   StartRecovery(t_s);
 }
 
+void GapMission::FixFloor() {
+  if (!floor_z_W_ && last_range_m_ && fusion_.started()) {
+    floor_z_W_ = estimate().p_WB.z() - *last_range_m_;
+  }
+}
+
 void GapMission::StartRecovery(double t_s) {
+  FixFloor();
   recovery_.StartWithoutLaunch(t_s);
   recovery_start_t_s_ = t_s;
 }
@@ -200,7 +213,20 @@ void GapMission::AccumulateUpInGap(const Eigen::Isometry3d& T_CG) {
 }
 
 void GapMission::OnRange(const perception::RangeReading& reading) {
-  if (reading.valid) last_range_m_ = reading.range_m;
+  if (!reading.valid) return;
+  last_range_m_ = reading.range_m;
+  if (std::isnan(recovery_start_t_s_) || !floor_z_W_ || !fusion_.started() ||
+      std::isinf(params_.recovery_range_sigma_m)) {
+    return;
+  }
+  const Eigen::Quaterniond q_WB = estimate().q_WB;
+  const double cos_tilt = (q_WB * Eigen::Vector3d::UnitZ()).z();
+  if (cos_tilt < std::cos(params_.recovery.max_tilt_for_height_rad)) return;
+  const std::optional<double> height_m =
+      control::HeightFilter::HeightFromRange(reading.range_m, q_WB);
+  if (!height_m) return;
+  const double sigma_m = params_.recovery_range_sigma_m;
+  fusion_.AddHeight({reading.t_s, *floor_z_W_ + *height_m, sigma_m * sigma_m});
 }
 
 void GapMission::OnOdometry(const perception::PoseMeasurement& pose_OB) {
@@ -313,12 +339,9 @@ void GapMission::Plan(double t_s) {
   ApproachTarget target = ApproachTarget::FromTraverse(*traverse.trajectory);
   target.p_W = traverse.trajectory->Position(-params_.lead_in_s);
   target.v_W = traverse.trajectory->Velocity(-params_.lead_in_s);
-  // Floor in W from the range reading while hovering level: the ground is range_m below B.
   ApproachPlannerParameters approach_params = params_.approach;
-  if (last_range_m_) {
-    approach_params.min_height_m =
-        estimate().p_WB.z() - *last_range_m_ + params_.min_ground_clearance_m;
-  }
+  FixFloor();
+  if (floor_z_W_) approach_params.min_height_m = *floor_z_W_ + params_.min_ground_clearance_m;
   approach_planner_ = ApproachPlanner(approach_params);
   ApproachPlan plan = approach_planner_.Plan(target);
   if (!plan.best) {

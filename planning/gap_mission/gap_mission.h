@@ -39,6 +39,8 @@
 //             later residual, which the filter's gate then rejects) and fused from then on, the
 //             filter started again at the first of them with its velocity sigma widened
 //             (recovery_odometry_velocity_sigma_mps).
+//             The range sensor's readings are fused as heights above the floor throughout the
+//             recovery (recovery_range_sigma_m).
 //   aborted   (from hover/transfer/approach when the gap is not detected for
 //             detection_timeout_s, except in the approach's last approach_commit_s, or when
 //             planning fails): straight to the recovery stages.
@@ -179,6 +181,12 @@ struct GapMissionParams {
   // ~1 cm/s against errors of 0.1-0.2 m/s with a vehicle that is not the model), so it gated the
   // odometry out as the position error grew, restarted, and the hold turned the jump into a jolt.
   double recovery_odometry_velocity_sigma_mps = 0.2;
+  // In the recovery, each valid downward range reading taken within
+  // recovery.max_tilt_for_height_rad of level is fused as the height above the floor measured
+  // while hovering (Sec. II-F: the range sensor is used in the recovery), with this sigma [m]
+  // (> 0; the simulated sensor's noise; +infinity: not fused). It bounds the IMU-only vertical
+  // drift until the odometry is aligned.
+  double recovery_range_sigma_m = 0.02;
   // Once the odometry is aligned, the filter's process noise adapts to its residuals up to this
   // factor (>= 1; 1: off; perception::PoseFusion::AdaptProcessNoise): the mission is not told
   // when its IMU is noisier than specified, and an overconfident filter gates good poses out,
@@ -271,6 +279,8 @@ class GapMission : public perception::Autopilot {
   }
   int filter_restarts() const { return fusion_.counts().restarts; }
   int filter_restarts_refused() const { return fusion_.counts().restarts_refused; }
+  // The filter's counts (poses and the recovery's range heights fused, gated, restarts).
+  const perception::PoseFusionCounts& fusion_counts() const { return fusion_.counts(); }
   // Visual-odometry poses handed to the filter in the recovery.
   int odometry_poses_fused() const { return odometry_poses_fused_; }
   // True when the approach was planned with fallback_limits (and then without a lead-in).
@@ -294,6 +304,9 @@ class GapMission : public perception::Autopilot {
   void EnterPhase(GapMissionPhase phase, double t_s);
   void Abort(const std::string& reason, double t_s);
   void StartRecovery(double t_s);  // the recovery state machine, and the odometry's clock
+  // Fixes floor_z_W_ once, from the latest range reading while hovering level (the ground is
+  // range_m below B): at planning, or at the recovery's start after an earlier abort.
+  void FixFloor();
   void StartFilter();
   void Plan(double t_s);
   // Lead-in of the planned approach: params_.lead_in_s, none with the fallback limits.
@@ -339,6 +352,7 @@ class GapMission : public perception::Autopilot {
   int replans_rejected_ = 0;
   bool used_fallback_limits_ = false;
   std::optional<double> last_range_m_;
+  std::optional<double> floor_z_W_;  // the floor in W (FixFloor)
   double recovery_start_t_s_ = std::numeric_limits<double>::quiet_NaN();
   std::optional<Eigen::Isometry3d> T_WO_;  // the visual odometry's frame O in W, once aligned
   // Until then: the odometry poses received and the alignment T_WB_est T_OB^-1 each implies, and

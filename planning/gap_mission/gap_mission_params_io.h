@@ -47,6 +47,7 @@ void Serialize(Archive* a, GapMissionParams* p) {
   a->Visit(APERTURE_NVP(p, recovery_odometry_delay_s));
   a->Visit(APERTURE_NVP(p, recovery_odometry_alignment_poses));
   a->Visit(APERTURE_NVP(p, recovery_odometry_velocity_sigma_mps));
+  a->VisitLimit(APERTURE_NVP(p, recovery_range_sigma_m));
   a->Visit(APERTURE_NVP(p, recovery_max_process_noise_scale));
   a->Visit(APERTURE_NVP(p, detector));
   a->Visit(APERTURE_NVP(p, filter));

@@ -73,7 +73,8 @@ class GapMissionTest : public ::testing::Test {
         frame.image = gap_visible ? gap_image_ : blank_image_;
         mission_.OnFrame(frame);
       }
-      if (step_ % 20 == 0 && odometry_) mission_.OnOdometry(odometry_(t));  // 50 Hz
+      if (step_ % 20 == 0 && odometry_) mission_.OnOdometry(odometry_(t));    // 50 Hz
+      if (step_ % 10 == 0 && range_) mission_.OnRange({t, range_(t), true});  // 100 Hz
       if (step_ % 10 == 0) {
         last_command_ = mission_.Step(t);
         if (stop()) {
@@ -90,6 +91,8 @@ class GapMissionTest : public ::testing::Test {
   perception::AutopilotCommand last_command_;
   // The body pose the visual odometry reports at t (none when empty).
   std::function<perception::PoseMeasurement(double t)> odometry_;
+  // The downward range sensor's reading at t [m] (none when empty).
+  std::function<double(double t)> range_;
   int step_ = 0;
   int frame_index_ = 0;
 };
@@ -420,6 +423,24 @@ TEST_F(GapMissionTest, DoneOnlyAfterHoldingOnTheRecoveryOdometry) {
   EXPECT_GT(mission_.odometry_poses_fused(), 0);
 }
 
+// The range sensor in the recovery: after the abort the range shrinks at 5 cm/s (the vehicle
+// sinks, the IMU at rest does not see it). Its readings, heights above the floor fixed while
+// hovering, carry the estimate down with it; before the recovery they are not fused.
+TEST_F(GapMissionTest, TheRecoveryFusesTheRangeAsHeightAboveTheFloor) {
+  const double hover_range_m = 1.5;
+  double sink_from_s = std::numeric_limits<double>::infinity();
+  range_ = [&](double t) { return hover_range_m - 0.05 * std::max(0.0, t - sink_from_s); };
+  Run(5.0, true, [&] { return mission_.phase() == GapMissionPhase::kHover; });
+  Run(5.0, false, [&] { return mission_.phase() == GapMissionPhase::kAborted; });
+  ASSERT_EQ(mission_.phase(), GapMissionPhase::kAborted);
+  const double z_at_abort_m = mission_.estimate().p_WB.z();
+  sink_from_s = mission_.phase_changes().back().t_s + 0.2;
+  Run(sink_from_s + 2.0, false, [] { return false; });
+  // 10 cm down in 2 s.
+  EXPECT_NEAR(mission_.estimate().p_WB.z(), z_at_abort_m - 0.1, 0.02);
+  EXPECT_NEAR(mission_.estimate().v_W.z(), -0.05, 0.03);
+}
+
 TEST(GapMissionParamsTest, RejectsInvalidValuesAndInputs) {
   GapMissionParams params;
   params.init_detections = 0;
@@ -439,6 +460,11 @@ TEST(GapMissionParamsTest, RejectsInvalidValuesAndInputs) {
   EXPECT_NO_THROW(params.Validate());
   params.recovery_odometry_velocity_sigma_mps = 0.0;
   EXPECT_THROW(params.Validate(), std::invalid_argument);
+  params = GapMissionParams{};
+  params.recovery_range_sigma_m = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(params.Validate(), std::invalid_argument);
+  params.recovery_range_sigma_m = std::numeric_limits<double>::infinity();  // not fused
+  EXPECT_NO_THROW(params.Validate());
   EXPECT_THROW(
       GapMission(GapMissionParams{}, nullptr, ForwardCameraMount(), control::VehicleParameters{}),
       std::invalid_argument);
