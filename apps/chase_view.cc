@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "perception/camera/optical_axes.h"
 #include "sim/render/camera_effects.h"
 
 namespace aperture::apps {
@@ -36,8 +37,7 @@ Eigen::Isometry3d ChaseCameraPose(const control::QuadState& state) {
   const double yaw = std::atan2(x_B.y(), x_B.x());
   const Eigen::Matrix3d R_WH = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   // C (x right, y down, z forward) in the heading frame H (x forward, y left, z up), pitched down.
-  Eigen::Matrix3d R_HC;
-  R_HC << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  Eigen::Matrix3d R_HC = perception::OpticalAxesAlongX();
   const double pitch = 15.0 * M_PI / 180.0;
   R_HC = Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()).toRotationMatrix() * R_HC;
   Eigen::Isometry3d T_WC = Eigen::Isometry3d::Identity();

@@ -6,6 +6,7 @@
 
 #include "control/constants.h"
 #include "perception/camera/camera_factory.h"
+#include "perception/camera/optical_axes.h"
 #include "sim/scene/apriltag_object.h"
 #include "sim/scene/counter_hash.h"
 #include "sim/scene/gap_pattern_object.h"
@@ -46,13 +47,9 @@ Eigen::Isometry3d MakePose(const Eigen::Vector3d& p_m, const Eigen::Vector3d& rp
   return PoseParams{p_m, rpy_deg}.ToIsometry();
 }
 
-// Rectangle standing in a plane x_W = const, facing a viewer looking along +x_W: z_O = x_W,
-// x_O = -y_W, y_O = -z_W (texture unmirrored from that side).
-Eigen::Matrix3d FacingPlusX() {
-  Eigen::Matrix3d R;
-  R << 0, 0, 1, -1, 0, 0, 0, -1, 0;
-  return R;
-}
+// Rectangle standing in a plane x_W = const, facing a viewer looking along +x_W (texture
+// unmirrored from that side).
+Eigen::Matrix3d FacingPlusX() { return perception::OpticalAxesAlongX(); }
 
 Eigen::Isometry3d Facing(const Eigen::Matrix3d& R_WO, const Eigen::Vector3d& p_W) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
