@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "perception/camera/calibration_io.h"
+#include "perception/camera/optical_axes.h"
 #include "sim/scenario/kinematic_trajectory.h"
 #include "sim/scenario/scenario.h"
 #include "tests/apps/cli_runner.h"
@@ -149,8 +150,7 @@ TEST_F(RenderTrajectory, HoverKeepsTheStartPoseAndTheGapSitsWhereConfigured) {
   }
   // scenario_params.h GapParams: G at the opening centre, z_G = x_W, x_G = -y_W, y_G = -z_W at
   // zero angles, roll about x_W.
-  Eigen::Matrix3d R_W_G0;
-  R_W_G0 << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  const Eigen::Matrix3d R_W_G0 = perception::OpticalAxesAlongX();
   Eigen::Isometry3d T_WG = Eigen::Isometry3d::Identity();
   T_WG.linear() = Eigen::AngleAxisd(20.0 * M_PI / 180.0, Eigen::Vector3d::UnitX()) * R_W_G0;
   T_WG.translation() = Eigen::Vector3d(4.5, 0.2, 1.4);
@@ -294,8 +294,8 @@ TEST_F(RenderCommand, DatasetReplaysThroughRun) {
 
   const fs::path out = fs::path(temp_->path()) / "run";
   // The dataset folder itself is a source: its frames are found in images/.
-  const CommandResult run = RunAperture("run --source " + dataset_.string() +
-                                        " --calib " + (dataset_ / "calib.yaml").string() +
+  const CommandResult run = RunAperture("run --source " + dataset_.string() + " --calib " +
+                                        (dataset_ / "calib.yaml").string() +
                                         " --frontends image_quality --out " + out.string());
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const nlohmann::json run_summary = ReadJson(out / "summary.json");

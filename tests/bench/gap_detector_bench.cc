@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "perception/camera/equidistant_camera.h"
+#include "perception/camera/optical_axes.h"
 #include "perception/camera/pinhole_camera.h"
 #include "perception/gap/canny_edge_detector.h"
 #include "perception/gap/gap_detector.h"
@@ -25,24 +26,28 @@ std::shared_ptr<const perception::CameraModel> Camera(bool fisheye) {
         752, 480, perception::PinholeIntrinsics{215.0, 215.0, 375.5, 239.5},
         perception::EquidistantDistortion{-0.02, 0.003, 0.0, 0.0});
   }
-  return std::make_shared<perception::PinholeCamera>(752, 480, perception::PinholeIntrinsics{420.0, 420.0, 375.5, 239.5});
+  return std::make_shared<perception::PinholeCamera>(
+      752, 480, perception::PinholeIntrinsics{420.0, 420.0, 375.5, 239.5});
 }
 
 // A gap (roll 0.4 rad) 3 m in front of the camera, a noise-textured wall behind, grass below.
 cv::Mat RenderGapFrame(const perception::CameraModel& camera) {
   Scene scene;
   ProceduralTextureParams tex;
-  scene.AddObject({"ground", GroundPlane{}, {MakeGrassTexture(tex)}, Eigen::Isometry3d::Identity()});
+  scene.AddObject(
+      {"ground", GroundPlane{}, {MakeGrassTexture(tex)}, Eigen::Isometry3d::Identity()});
   Eigen::Isometry3d T_WG = Eigen::Isometry3d::Identity();
-  T_WG.linear() = (Eigen::Matrix3d() << 0, 0, 1, -1, 0, 0, 0, -1, 0).finished() *
+  T_WG.linear() = perception::OpticalAxesAlongX() *
                   Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   T_WG.translation() = Eigen::Vector3d(3.0, 0.2, 1.6);
-  scene.AddObject(MakeGapPatternObject(perception::GapDetectorParams{}, Eigen::Vector2d(1.8, 1.2), T_WG));
+  scene.AddObject(
+      MakeGapPatternObject(perception::GapDetectorParams{}, Eigen::Vector2d(1.8, 1.2), T_WG));
   Eigen::Isometry3d T_WBack = T_WG;
   T_WBack.translation() = Eigen::Vector3d(8.0, 0.0, 2.0);
-  scene.AddObject({"background", Rectangle{{20.0, 5.0}, {}, {}}, {MakeValueNoiseTexture(tex)}, T_WBack});
+  scene.AddObject(
+      {"background", Rectangle{{20.0, 5.0}, {}, {}}, {MakeValueNoiseTexture(tex)}, T_WBack});
   Eigen::Isometry3d T_WC = Eigen::Isometry3d::Identity();
-  T_WC.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;  // looking along +x_W, image down = -z_W
+  T_WC.linear() = perception::OpticalAxesAlongX();  // looking along +x_W, image down = -z_W
   T_WC.translation() = Eigen::Vector3d(0.0, 0.0, 1.5);
   RayCaster caster;
   RenderOptions options;
@@ -63,7 +68,8 @@ void BM_GapDetector(benchmark::State& state) {
   }
   int found = 0;
   for (auto _ : state) {
-    const perception::GapDetection d = roi ? detector.Detect(image) : detector.DetectFullImage(image);
+    const perception::GapDetection d =
+        roi ? detector.Detect(image) : detector.DetectFullImage(image);
     found += d.detected() && d.from_roi == roi ? 1 : 0;
     benchmark::DoNotOptimize(d.T_CG);
   }
@@ -89,11 +95,13 @@ void BM_GapEdgeStage(benchmark::State& state) {
       cv::Canny(gray, edges, params.canny_low, params.canny_high);
       cv::dilate(edges, edges, cv::Mat());
     } else {
-      canny.Detect(gray, cv::Rect(0, 0, gray.cols, gray.rows), params.canny_low, params.canny_high, true, &edges);
+      canny.Detect(gray, cv::Rect(0, 0, gray.cols, gray.rows), params.canny_low, params.canny_high,
+                   true, &edges);
     }
     benchmark::DoNotOptimize(edges.data);
   }
-  state.SetLabel(std::string(fisheye ? "fisheye" : "pinhole") + (opencv ? " cv::Canny+dilate" : " CannyEdgeDetector"));
+  state.SetLabel(std::string(fisheye ? "fisheye" : "pinhole") +
+                 (opencv ? " cv::Canny+dilate" : " CannyEdgeDetector"));
 }
 BENCHMARK(BM_GapEdgeStage)->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMicrosecond);
 

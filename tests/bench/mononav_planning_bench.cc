@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "perception/camera/optical_axes.h"
 #include "perception/camera/pinhole_camera.h"
 #include "planning/mono_nav/ego_dynamic_space.h"
 #include "planning/mono_nav/min_time_bspline.h"
@@ -31,7 +32,7 @@ void BM_WaypointSelection40x30(benchmark::State& state) {
   const perception::PinholeCamera camera(640, 480,
                                          perception::PinholeIntrinsics{320, 320, 319.5, 239.5});
   Eigen::Isometry3d T_BC = Eigen::Isometry3d::Identity();
-  T_BC.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  T_BC.linear() = perception::OpticalAxesAlongX();
   const EgoDynamicParams ego;
   const WaypointSelector selector;
   for (auto _ : state) {

@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "perception/camera/equidistant_camera.h"
+#include "perception/camera/optical_axes.h"
 #include "perception/camera/pinhole_camera.h"
 #include "sim/render/embree_scene.h"
 #include "sim/render/ray_caster.h"
@@ -35,7 +36,7 @@ Scene GapScene() {
       {"ground", GroundPlane{}, {MakeGrassTexture(params)}, Eigen::Isometry3d::Identity()});
   // Walls stand in planes x_W = const: z_O along +x_W, x_O along -y_W, y_O down (-z_W).
   Eigen::Isometry3d T_WG = Eigen::Isometry3d::Identity();
-  T_WG.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  T_WG.linear() = perception::OpticalAxesAlongX();
   T_WG.translation() = Eigen::Vector3d(3.0, 0.0, 1.5);
   Rectangle wall{{4.0, 3.0}, {{{-0.4, -0.3}, {0.4, -0.3}, {0.4, 0.3}, {-0.4, 0.3}}}, {}};
   scene.AddObject({"gap", wall, {MakeNewspaperTexture(params)}, T_WG});

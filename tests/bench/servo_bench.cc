@@ -8,6 +8,7 @@
 #include <cmath>
 #include <vector>
 
+#include "perception/camera/optical_axes.h"
 #include "servo/moment_servo.h"
 #include "servo/pid_servo.h"
 #include "servo/point_servo.h"
@@ -17,7 +18,7 @@ namespace {
 
 Eigen::Isometry3d ForwardMount() {
   Eigen::Isometry3d T_BC = Eigen::Isometry3d::Identity();
-  T_BC.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  T_BC.linear() = perception::OpticalAxesAlongX();
   return T_BC;
 }
 

@@ -8,6 +8,7 @@
 
 #include <memory>
 
+#include "perception/camera/optical_axes.h"
 #include "perception/camera/pinhole_camera.h"
 #include "sim/scene/textures.h"
 #include "sim/sitl/ground_truth_autopilot.h"
@@ -41,7 +42,7 @@ void Hover(benchmark::State& state) {
     SitlCamera camera;
     camera.model = std::make_shared<perception::PinholeCamera>(
         752, 480, perception::PinholeIntrinsics{420.0, 420.0, 375.5, 239.5});
-    camera.T_BC.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;  // looking along x_B
+    camera.T_BC.linear() = perception::OpticalAxesAlongX();  // looking along x_B
     camera.rate_hz = 30.0;
     camera.effects.full_well_electrons = 5000.0;
     camera.effects.read_noise_sigma = 0.005;

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "control/constants.h"
+#include "perception/camera/optical_axes.h"
 
 namespace aperture::experiments {
 namespace {
@@ -17,9 +18,7 @@ using control::kDegToRad;
 // (short side, 0.28 m), z_G = x_W (the flight direction).
 GapGeometry UprightGapGeometry() {
   GapGeometry gap;
-  Eigen::Matrix3d R_WG;
-  R_WG << 0, 0, 1, -1, 0, 0, 0, -1, 0;
-  gap.T_WG.linear() = R_WG;
+  gap.T_WG.linear() = perception::OpticalAxesAlongX();
   gap.T_WG.translation() = Eigen::Vector3d(5.0, 0.0, 1.5);
   return gap;
 }

@@ -9,6 +9,7 @@
 
 #include "control/attitude_controller.h"
 #include "control/constants.h"
+#include "perception/camera/optical_axes.h"
 
 namespace aperture::experiments {
 namespace {
@@ -22,8 +23,7 @@ const VehicleFootprint kSitlFootprint =
 // The scenario's gap frame at roll/pitch (sim/scenario/scenario_params.h): x_G = -y_W,
 // y_G = -z_W, z_G = x_W at zero angles, then rotated about y_W (pitch) and x_W (roll).
 Eigen::Isometry3d GapPoseW(double roll_deg, double pitch_deg, const Eigen::Vector3d& p_WG) {
-  Eigen::Matrix3d R_facing;
-  R_facing << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  const Eigen::Matrix3d R_facing = perception::OpticalAxesAlongX();
   Eigen::Isometry3d T_WG = Eigen::Isometry3d::Identity();
   T_WG.linear() = (Eigen::AngleAxisd(pitch_deg * kDegToRad, Eigen::Vector3d::UnitY()) *
                    Eigen::AngleAxisd(roll_deg * kDegToRad, Eigen::Vector3d::UnitX()))

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
+#include "perception/camera/optical_axes.h"
 #include "perception/camera/pinhole_camera.h"
 #include "sim/scenario/scenario.h"
 
@@ -18,8 +19,7 @@ namespace {
 // +x_W as the scenario's walls do (x_O = -y_W right, y_O = -z_W down, z_O = +x_W).
 GapflytOpening Box() {
   GapflytOpening opening;
-  Eigen::Matrix3d R_WO;
-  R_WO << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  const Eigen::Matrix3d R_WO = perception::OpticalAxesAlongX();
   opening.T_WO.linear() = R_WO;
   opening.T_WO.translation() = Eigen::Vector3d(2.6, 0.0, 1.5);
   opening.polygon_O = {{-0.5, -0.4}, {0.5, -0.4}, {0.5, 0.4}, {-0.5, 0.4}};

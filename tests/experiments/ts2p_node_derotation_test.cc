@@ -9,6 +9,7 @@
 #include "config/config_tree.h"
 #include "control/so3.h"
 #include "experiments/ts2p/ts2p_scan.h"
+#include "perception/camera/optical_axes.h"
 #include "perception/graph/builtin_front_ends.h"
 #include "perception/graph/front_end_registry.h"
 #include "perception/graph/serial_executor.h"
@@ -24,7 +25,7 @@ constexpr double kImuRateHz = 200.0;
 // Forward-looking camera: z_C = x_B, x_C = -y_B, y_C = -z_B.
 Eigen::Isometry3d ForwardCamera_T_BC() {
   Eigen::Isometry3d T_BC = Eigen::Isometry3d::Identity();
-  T_BC.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  T_BC.linear() = perception::OpticalAxesAlongX();
   T_BC.translation() = Eigen::Vector3d(0.1, 0.0, 0.02);
   return T_BC;
 }

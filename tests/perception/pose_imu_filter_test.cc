@@ -14,6 +14,7 @@
 
 #include "control/flatness.h"
 #include "control/reference_trajectories.h"
+#include "perception/camera/optical_axes.h"
 
 namespace aperture::perception {
 namespace {
@@ -95,8 +96,8 @@ double AttitudeError(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
 PoseMeasurement CameraExtrinsics() {
   PoseMeasurement z;
   z.p_BX = Eigen::Vector3d(0.1, 0.0, 0.02);
-  Eigen::Matrix3d R_BC;
-  R_BC << 0, 0, 1, -1, 0, 0, 0, -1, 0;  // z_C = x_B, x_C = -y_B, y_C = -z_B
+  const Eigen::Matrix3d R_BC =
+      perception::OpticalAxesAlongX();  // z_C = x_B, x_C = -y_B, y_C = -z_B
   z.q_BX = Eigen::Quaterniond(R_BC);
   return z;
 }

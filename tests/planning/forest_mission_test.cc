@@ -11,6 +11,7 @@
 #include <memory>
 #include <opencv2/core.hpp>
 
+#include "perception/camera/optical_axes.h"
 #include "perception/camera/pinhole_camera.h"
 
 namespace aperture::planning {
@@ -19,7 +20,7 @@ namespace {
 // A 90 deg, 640 x 480 pinhole looking along x_B (z_C = x_B, x_C = -y_B, y_C = -z_B).
 Eigen::Isometry3d ForwardMount() {
   Eigen::Isometry3d T_BC = Eigen::Isometry3d::Identity();
-  T_BC.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  T_BC.linear() = perception::OpticalAxesAlongX();
   return T_BC;
 }
 

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "config/config_tree.h"
+#include "perception/camera/optical_axes.h"
 #include "perception/camera/pinhole_camera.h"
 #include "planning/gap_mission/gap_mission_params_io.h"
 #include "planning/primitive_feasibility.h"
@@ -27,7 +28,7 @@ constexpr double kRollRad = 30.0 * M_PI / 180.0;
 // Forward camera 10 cm ahead of the centre of mass: z_C = x_B, x_C = -y_B, y_C = -z_B.
 Eigen::Isometry3d ForwardCameraMount() {
   Eigen::Isometry3d T_BC = Eigen::Isometry3d::Identity();
-  T_BC.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  T_BC.linear() = perception::OpticalAxesAlongX();
   T_BC.translation() = Eigen::Vector3d(0.1, 0.0, 0.0);
   return T_BC;
 }
@@ -35,8 +36,7 @@ Eigen::Isometry3d ForwardCameraMount() {
 // The gap 4 m ahead of the level vehicle at (0, 0, 1.5), facing it (z_G = x_W), rolled by 30 deg
 // about x_W; x_G points to the image's right (-y_W), the detector's convention.
 Eigen::Isometry3d TrueGap() {
-  Eigen::Matrix3d R_facing;
-  R_facing << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  const Eigen::Matrix3d R_facing = perception::OpticalAxesAlongX();
   Eigen::Isometry3d T_WG = Eigen::Isometry3d::Identity();
   T_WG.linear() =
       Eigen::AngleAxisd(kRollRad, Eigen::Vector3d::UnitX()).toRotationMatrix() * R_facing;

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <set>
 
+#include "perception/camera/optical_axes.h"
 #include "perception/camera/pinhole_camera.h"
 
 namespace aperture::planning {
@@ -170,7 +171,7 @@ TEST(WaypointSelector, PathsRunOnlyThroughSeenSpace) {
   const double bearing_55 = -55.0 * M_PI / 180.0, bearing_20 = 20.0 * M_PI / 180.0;
   const Eigen::Vector3d at_55(3.0 * std::cos(bearing_55), 3.0 * std::sin(bearing_55), 0.0);
   const Eigen::Vector3d at_20(3.0 * std::cos(bearing_20), 3.0 * std::sin(bearing_20), 0.0);
-  EXPECT_FALSE(selector.PathIsFree(StraightPath(at_55), no_points));  // beside the view
+  EXPECT_FALSE(selector.PathIsFree(StraightPath(at_55), no_points));           // beside the view
   EXPECT_TRUE(WaypointSelector().PathIsFree(StraightPath(at_55), no_points));  // no check
   EXPECT_TRUE(selector.PathIsFree(StraightPath(at_20), no_points));
   // The vehicle's half width counts: a sample 4 m ahead is seen up to |y| = 4 - 0.25 m.
@@ -183,8 +184,8 @@ TEST(WaypointSelector, PathsRunOnlyThroughSeenSpace) {
   // Select only returns paths through seen space: a segment 60 deg to the side is not taken.
   std::vector<Eigen::Vector3d> side;
   AddWall(3.0, -6.0, -4.5, -1.0, 1.0, &side);
-  EXPECT_TRUE(WaypointSelector().Select(side, Eigen::Vector3d::Zero(), kGoalAhead)
-                  .chosen.has_value());
+  EXPECT_TRUE(
+      WaypointSelector().Select(side, Eigen::Vector3d::Zero(), kGoalAhead).chosen.has_value());
   EXPECT_FALSE(selector.Select(side, Eigen::Vector3d::Zero(), kGoalAhead).chosen.has_value());
   EXPECT_THROW(
       [] {
@@ -224,8 +225,7 @@ TEST(WaypointSelector, ExtensionTowardsTheGoalStandsOffFromTheFirstObstacle) {
   WaypointSelectorParams narrow;
   narrow.max_bearing_rad = M_PI / 4.0;
   path = start;
-  WaypointSelector(narrow).ExtendTowardsGoal(Eigen::Vector3d(1.0, -20.0, 0.0), {}, 4.0, 1.5,
-                                             &path);
+  WaypointSelector(narrow).ExtendTowardsGoal(Eigen::Vector3d(1.0, -20.0, 0.0), {}, 4.0, 1.5, &path);
   EXPECT_NEAR(path.back().y(), -0.6, 1e-9);
 }
 
@@ -234,8 +234,7 @@ TEST(WaypointSelector, BackProjectionPutsPatchesAlongTheirRays) {
   // x_C = -y_B, y_C = -z_B).
   const perception::PinholeCamera camera(64, 48,
                                          perception::PinholeIntrinsics{32.0, 32.0, 31.5, 23.5});
-  Eigen::Matrix3d R_BC;
-  R_BC << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  const Eigen::Matrix3d R_BC = perception::OpticalAxesAlongX();
   Eigen::Isometry3d T_BC = Eigen::Isometry3d::Identity();
   T_BC.linear() = R_BC;
   cv::Mat d_eff(6, 8, CV_32F, cv::Scalar(4.0f));

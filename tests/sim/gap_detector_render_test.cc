@@ -10,6 +10,7 @@
 #include <random>
 #include <vector>
 
+#include "perception/camera/optical_axes.h"
 #include "perception/gap/gap_detector.h"
 #include "render_test_util.h"
 #include "sim/render/camera_effects.h"
@@ -59,7 +60,7 @@ void AddClutter(Scene* scene, double wall_x_m) {
   scene->AddObject(
       {"ground", GroundPlane{}, {tex.grass, Rgb::Ones(), 1.0}, Eigen::Isometry3d::Identity()});
   Eigen::Isometry3d T_wall = Eigen::Isometry3d::Identity();
-  T_wall.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;  // faces -x_W
+  T_wall.linear() = perception::OpticalAxesAlongX();  // faces -x_W
   T_wall.translation() = Eigen::Vector3d(wall_x_m, 0.0, 3.0);
   scene->AddObject({"wall", Rectangle{{30.0, 6.0}, {}, {}}, {tex.noise, Rgb::Ones(), 1.0}, T_wall});
   for (int i = 0; i < 6; ++i) {
@@ -79,8 +80,7 @@ void AddClutter(Scene* scene, double wall_x_m) {
 // Gap at p_W with the given roll (about z_G) and pitch (about x_G); with zero angles it stands
 // vertically, facing -x_W (z_G = +x_W), x_G = -y_W, y_G = -z_W.
 Eigen::Isometry3d GapPose(double roll, double pitch, const Eigen::Vector3d& p_W) {
-  Eigen::Matrix3d R0;
-  R0 << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  const Eigen::Matrix3d R0 = perception::OpticalAxesAlongX();
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.linear() = R0 * Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitZ()) *
                Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitX());
@@ -335,8 +335,7 @@ TEST(GapDetectorFarSteepTest, InnerQuadrangleWithACutCornerIsFound) {
       continue;
     }
     ++detected;
-    relative_position.push_back((d.T_CG.translation() - T_CG_true.translation()).norm() /
-                                distance);
+    relative_position.push_back((d.T_CG.translation() - T_CG_true.translation()).norm() / distance);
     rotation.push_back(RotationErrorDeg(d.T_CG, T_CG_true));
   }
   std::printf(
@@ -371,8 +370,8 @@ TEST(GapDetectorFarSteepTest, LongSideForeshortenedBelowTheShortSide) {
     for (const double distance : {1.6, 2.5}) {
       const double a = off_normal_deg * M_PI / 180.0;
       // Off the normal in the x_G - z_G plane: x_G, the long side, is foreshortened.
-      const Eigen::Vector3d p_WC = T_WG * Eigen::Vector3d(distance * std::sin(a), 0.05,
-                                                          -distance * std::cos(a));
+      const Eigen::Vector3d p_WC =
+          T_WG * Eigen::Vector3d(distance * std::sin(a), 0.05, -distance * std::cos(a));
       const Eigen::Isometry3d T_WC = testing::LookAt(p_WC, T_WG.translation() - p_WC);
       const RenderOutput out = caster.Render(scene, *camera, T_WC, options);
       const cv::Mat image = CameraEffects({}).ToImage8U(out.radiance, views);

@@ -15,6 +15,7 @@
 #include "control/mixer.h"
 #include "control/position_controller.h"
 #include "control/reference_trajectories.h"
+#include "perception/camera/optical_axes.h"
 #include "perception/estimation/pose_imu_filter.h"
 #include "sim/sensors/imu_sensor.h"
 #include "sim/vehicle/quadrotor_dynamics.h"
@@ -131,8 +132,7 @@ RunRecord RunFilter(const std::vector<TruthStep>& truth, std::uint64_t seed, int
   perception::PoseImuFilter filter(params, initial);
 
   // Camera 10 cm ahead of B looking forward (OpenCV axes).
-  Eigen::Matrix3d R_BC;
-  R_BC << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  const Eigen::Matrix3d R_BC = perception::OpticalAxesAlongX();
   const Eigen::Quaterniond q_BC(R_BC);
   const Eigen::Vector3d p_BC(0.1, 0.0, 0.02);
 

@@ -5,6 +5,7 @@
 #include <memory>
 #include <vector>
 
+#include "perception/camera/optical_axes.h"
 #include "perception/camera/pinhole_camera.h"
 #include "sim/render/ray_caster.h"
 #include "sim/render/render_profile.h"
@@ -26,7 +27,7 @@ SitlCamera ProfiledCamera() {
   camera.model = std::make_shared<perception::PinholeCamera>(
       160, 120, perception::PinholeIntrinsics{80.0, 80.0, 79.5, 59.5});
   camera.rate_hz = 30.0;
-  camera.T_BC.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;  // C (x right, y down, z forward) in B
+  camera.T_BC.linear() = perception::OpticalAxesAlongX();
   camera.effects.full_well_electrons = 2000.0;
   camera.effects.read_noise_sigma = 0.01;
   camera.effects.exposure_s = 4e-3;

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "perception/camera/optical_axes.h"
 #include "perception/camera/pinhole_camera.h"
 #include "sim/scene/textures.h"
 #include "sim/sitl/ground_truth_autopilot.h"
@@ -38,7 +39,7 @@ SitlCamera ForwardCamera(double rate_hz) {
       160, 120, perception::PinholeIntrinsics{80.0, 80.0, 79.5, 59.5});
   camera.rate_hz = rate_hz;
   // C (x right, y down, z forward) in B (x forward, y left, z up).
-  camera.T_BC.linear() << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  camera.T_BC.linear() = perception::OpticalAxesAlongX();
   camera.effects.full_well_electrons = 2000.0;
   camera.effects.read_noise_sigma = 0.01;
   camera.render.ground_truth = false;
@@ -249,7 +250,8 @@ TEST(SitlRunner, OutageLosesTheFramesInsideItsWindowOnly) {
     RecordingAutopilot autopilot(params.dynamics.vehicle, HoverAt(params.initial_state.p_WB));
     const SitlResult result = SitlRunner(params, &scene).Run(autopilot);
     std::vector<int> indices;
-    for (const RecordingAutopilot::Arrival& frame : autopilot.frames) indices.push_back(frame.index);
+    for (const RecordingAutopilot::Arrival& frame : autopilot.frames)
+      indices.push_back(frame.index);
     return std::make_pair(result.cameras.at(0), indices);
   };
   const auto [stats_free, indices_free] = run({});
