@@ -34,7 +34,8 @@
 // the covariance is reset with G = blkdiag(I, I, I - [dtheta/2]x, I, I) (Sola 2017, (287)).
 //
 // Height update (HeightMeasurement, e.g. a downward range sensor): the scalar residual
-// z_W - p_WB.z with H = e_z^T on dp, gated by chi-square(1), the same Joseph-form update.
+// z_W - p_WB.z with H = e_z^T on dp, gated by chi-square(1), the same Joseph-form update with a
+// gain restricted to the vertical channel (p_z, v_z, b_a,z).
 //
 // Latency: the filter keeps a history of every IMU sample and applied pose measurement with the
 // posterior at its time, covering the last history_duration_s (bounded, oldest dropped as new IMU
@@ -208,13 +209,15 @@ class PoseImuFilter {
   void PropagateBetween(const Entry& from, const Entry& to, Nominal* x, Matrix15d* P) const;
   PoseUpdateResult ApplyMeasurement(const PoseMeasurement& z, Nominal* x, Matrix15d* P) const;
   PoseUpdateResult ApplyMeasurement(const HeightMeasurement& z, Nominal* x, Matrix15d* P) const;
-  // Gate and EKF update of an M-dim residual r = z - h(x) with Jacobian H and noise R; the
-  // result's status, d^2 and gate are set (not its residual).
+  // Gate and EKF update of an M-dim residual r = z - h(x) with Jacobian H and noise R, the
+  // Kalman gain's rows multiplied by gain_mask (1: the error-state component is corrected, 0: it
+  // is not); the result's status, d^2 and gate are set (not its residual).
   template <int M>
   PoseUpdateResult ApplyLinearized(const Eigen::Matrix<double, M, 1>& r,
                                    const Eigen::Matrix<double, M, 15>& H,
                                    const Eigen::Matrix<double, M, M>& R, double gate, Nominal* x,
-                                   Matrix15d* P) const;
+                                   Matrix15d* P,
+                                   const Vector15d& gain_mask = Vector15d::Ones()) const;
   // Inserts a validated measurement at its time and re-propagates the history after it.
   template <typename Measurement>
   PoseUpdateResult Insert(const Measurement& z);

@@ -130,14 +130,7 @@ void GapMission::Abort(const std::string& reason, double t_s) {
   StartRecovery(t_s);
 }
 
-void GapMission::FixFloor() {
-  if (!floor_z_W_ && last_range_m_ && fusion_.started()) {
-    floor_z_W_ = estimate().p_WB.z() - *last_range_m_;
-  }
-}
-
 void GapMission::StartRecovery(double t_s) {
-  FixFloor();
   recovery_.StartWithoutLaunch(t_s);
   recovery_start_t_s_ = t_s;
 }
@@ -213,18 +206,27 @@ void GapMission::AccumulateUpInGap(const Eigen::Isometry3d& T_CG) {
 }
 
 void GapMission::OnRange(const perception::RangeReading& reading) {
-  if (!reading.valid) return;
-  last_range_m_ = reading.range_m;
-  if (std::isnan(recovery_start_t_s_) || !floor_z_W_ || !fusion_.started() ||
-      std::isinf(params_.recovery_range_sigma_m)) {
-    return;
-  }
-  const Eigen::Quaterniond q_WB = estimate().q_WB;
-  const double cos_tilt = (q_WB * Eigen::Vector3d::UnitZ()).z();
+  if (!reading.valid || !fusion_.started()) return;
+  const control::QuadState x = estimate();
+  const double cos_tilt = (x.q_WB * Eigen::Vector3d::UnitZ()).z();
   if (cos_tilt < std::cos(params_.recovery.max_tilt_for_height_rad)) return;
   const std::optional<double> height_m =
-      control::HeightFilter::HeightFromRange(reading.range_m, q_WB);
+      control::HeightFilter::HeightFromRange(reading.range_m, x.q_WB);
   if (!height_m) return;
+  if (std::isnan(recovery_start_t_s_)) {
+    // Floor samples while the gap is tracked; the estimate sharpens on the way in, so the mean
+    // forgets (kFloorWeight ~ the last 20 readings): a floor fixed far from the gap carried the
+    // hover's height error (~9 cm in SITL) into every recovery height.
+    if (phase_ == GapMissionPhase::kDetect || phase_ == GapMissionPhase::kTraverse) return;
+    constexpr double kFloorWeight = 0.05;
+    const double floor_sample_m = x.p_WB.z() - *height_m;
+    ++floor_samples_;
+    const double weight = std::max(kFloorWeight, 1.0 / floor_samples_);
+    floor_z_W_ =
+        floor_z_W_ ? *floor_z_W_ + weight * (floor_sample_m - *floor_z_W_) : floor_sample_m;
+    return;
+  }
+  if (!floor_z_W_ || std::isinf(params_.recovery_range_sigma_m)) return;
   const double sigma_m = params_.recovery_range_sigma_m;
   fusion_.AddHeight({reading.t_s, *floor_z_W_ + *height_m, sigma_m * sigma_m});
 }
@@ -340,7 +342,6 @@ void GapMission::Plan(double t_s) {
   target.p_W = traverse.trajectory->Position(-params_.lead_in_s);
   target.v_W = traverse.trajectory->Velocity(-params_.lead_in_s);
   ApproachPlannerParameters approach_params = params_.approach;
-  FixFloor();
   if (floor_z_W_) approach_params.min_height_m = *floor_z_W_ + params_.min_ground_clearance_m;
   approach_planner_ = ApproachPlanner(approach_params);
   ApproachPlan plan = approach_planner_.Plan(target);

@@ -134,7 +134,7 @@ struct GapMissionParams {
   // (perception::PoseFusion's policy: biases kept, velocity from the rejected run; a diverged
   // filter otherwise rejects every later update).
   int max_consecutive_rejections = 5;
-  // The approach stays this high above the ground [m], the ground being measured once by the
+  // The approach stays this high above the ground [m], the ground being measured by the
   // downward range sensor while hovering (OnRange); without a range reading there is no floor.
   double min_ground_clearance_m = 0.5;
   // IMU samples averaged for the gravity direction while hovering before the first detection.
@@ -183,7 +183,8 @@ struct GapMissionParams {
   double recovery_odometry_velocity_sigma_mps = 0.2;
   // In the recovery, each valid downward range reading taken within
   // recovery.max_tilt_for_height_rad of level is fused as the height above the floor measured
-  // while hovering (Sec. II-F: the range sensor is used in the recovery), with this sigma [m]
+  // on the way to the gap (Sec. II-F: the range sensor is used in the recovery), with this sigma
+  // [m]
   // (> 0; the simulated sensor's noise; +infinity: not fused). It bounds the IMU-only vertical
   // drift until the odometry is aligned.
   double recovery_range_sigma_m = 0.02;
@@ -304,9 +305,6 @@ class GapMission : public perception::Autopilot {
   void EnterPhase(GapMissionPhase phase, double t_s);
   void Abort(const std::string& reason, double t_s);
   void StartRecovery(double t_s);  // the recovery state machine, and the odometry's clock
-  // Fixes floor_z_W_ once, from the latest range reading while hovering level (the ground is
-  // range_m below B): at planning, or at the recovery's start after an earlier abort.
-  void FixFloor();
   void StartFilter();
   void Plan(double t_s);
   // Lead-in of the planned approach: params_.lead_in_s, none with the fallback limits.
@@ -351,8 +349,10 @@ class GapMission : public perception::Autopilot {
   int replans_accepted_ = 0;
   int replans_rejected_ = 0;
   bool used_fallback_limits_ = false;
-  std::optional<double> last_range_m_;
-  std::optional<double> floor_z_W_;  // the floor in W (FixFloor)
+  // The floor in W: a forgetting mean of (estimated height - range height) over the range
+  // readings from the hover to the traverse (OnRange); the planner's floor and the recovery's.
+  std::optional<double> floor_z_W_;
+  int floor_samples_ = 0;
   double recovery_start_t_s_ = std::numeric_limits<double>::quiet_NaN();
   std::optional<Eigen::Isometry3d> T_WO_;  // the visual odometry's frame O in W, once aligned
   // Until then: the odometry poses received and the alignment T_WB_est T_OB^-1 each implies, and

@@ -426,7 +426,18 @@ TEST_F(GapMissionTest, DoneOnlyAfterHoldingOnTheRecoveryOdometry) {
 // The range sensor in the recovery: after the abort the range shrinks at 5 cm/s (the vehicle
 // sinks, the IMU at rest does not see it). Its readings, heights above the floor fixed while
 // hovering, carry the estimate down with it; before the recovery they are not fused.
-TEST_F(GapMissionTest, TheRecoveryFusesTheRangeAsHeightAboveTheFloor) {
+GapMissionParams RangeInTheRecoveryParams() {
+  GapMissionParams params;
+  params.recovery_range_sigma_m = 0.02;
+  return params;
+}
+
+class GapMissionRangeTest : public GapMissionTest {
+ protected:
+  GapMissionRangeTest() : GapMissionTest(RangeInTheRecoveryParams()) {}
+};
+
+TEST_F(GapMissionRangeTest, TheRecoveryFusesTheRangeAsHeightAboveTheFloor) {
   const double hover_range_m = 1.5;
   double sink_from_s = std::numeric_limits<double>::infinity();
   range_ = [&](double t) { return hover_range_m - 0.05 * std::max(0.0, t - sink_from_s); };
