@@ -516,6 +516,25 @@ TEST(PoseImuFilterTest, HeightMeasurementsHoldTheHeightAndLearnTheVerticalBias) 
   EXPECT_THROW(with_height.Update(HeightMeasurement{sample.t_s, 1.0, 0.0}), std::invalid_argument);
 }
 
+// A height corrects the vertical channel only: with x and z strongly correlated (as after an
+// open-loop manoeuvre), a 5 cm height residual moves z, not x, and leaves a covariance that is
+// still symmetric positive definite with a smaller z variance.
+TEST(PoseImuFilterTest, AHeightLeavesTheHorizontalStateAloneDespiteCorrelations) {
+  PoseImuEstimate initial;
+  initial.state.p_WB = Eigen::Vector3d(1.0, 0.0, 1.0);
+  initial.covariance = Matrix15d::Identity() * 1e-2;
+  initial.covariance(0, 2) = initial.covariance(2, 0) = 0.9e-2;  // x, z correlated 0.9
+  PoseImuFilter filter(PoseImuFilterParams{}, initial);
+  const PoseUpdateResult r = filter.Update(HeightMeasurement{0.0, 1.05, 4e-4});
+  ASSERT_TRUE(r.applied()) << r;
+  const PoseImuEstimate e = filter.Estimate();
+  EXPECT_NEAR(e.state.p_WB.z(), 1.0 + 0.05 * 1e-2 / (1e-2 + 4e-4), 1e-9);
+  EXPECT_EQ(e.state.p_WB.x(), 1.0);
+  EXPECT_LT(e.covariance(2, 2), 1e-3);
+  EXPECT_TRUE(e.covariance.isApprox(e.covariance.transpose(), 1e-12));
+  EXPECT_EQ(Eigen::LLT<Matrix15d>(e.covariance).info(), Eigen::Success);
+}
+
 TEST(PoseImuFilterTest, RejectsNonFiniteInputsNamingThem) {
   PoseImuFilter filter(PoseImuFilterParams{}, control::QuadState{});
   auto expect_throw_naming = [](const auto& call, const std::string& name) {
