@@ -11,8 +11,8 @@ namespace aperture::experiments {
 
 std::vector<ControlBenchSection> ControlBenchSections() {
   return {
-      MakeDragSection(),  MakeDragIdSection(),     MakeBodyRateSection(),
-      MakeMixerSection(), MakeSaturationSection(), MakeRecoverySection(),
+      MakeDragSection(),       MakeBodyRateSection(), MakeMixerSection(),
+      MakeSaturationSection(), MakeRecoverySection(),
   };
 }
 

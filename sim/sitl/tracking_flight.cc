@@ -22,10 +22,12 @@ TrackingError ComputeTrackingError(const std::vector<control::QuadState>& trajec
                                    double end_s) {
   TrackingError error;
   Eigen::Vector3d sum_squared_W = Eigen::Vector3d::Zero();
+  double sum_norm_m = 0.0;
   for (const control::QuadState& state : trajectory) {
     if (state.t_s < begin_s || state.t_s > end_s) continue;
     const Eigen::Vector3d e_W = state.p_WB - reference.Evaluate(state.t_s).p_W;
     sum_squared_W += e_W.cwiseAbs2();
+    sum_norm_m += e_W.norm();
     error.max_m = std::max(error.max_m, e_W.norm());
     ++error.samples;
   }
@@ -36,6 +38,9 @@ TrackingError ComputeTrackingError(const std::vector<control::QuadState>& trajec
   }
   error.rmse_W_m = (sum_squared_W / error.samples).cwiseSqrt();
   error.E_a_m = std::sqrt(sum_squared_W.sum() / error.samples);
+  // Var|E_p| = mean |E_p|^2 - (mean |E_p|)^2, both over the window's samples.
+  const double mean_norm_m = sum_norm_m / error.samples;
+  error.std_m = std::sqrt(std::max(0.0, error.E_a_m * error.E_a_m - mean_norm_m * mean_norm_m));
   return error;
 }
 

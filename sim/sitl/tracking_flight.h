@@ -28,8 +28,9 @@ namespace aperture::sim {
 // Position error statistics of a flown trajectory against its reference, E_p^k = p^k - p_ref^k.
 struct TrackingError {
   int samples = 0;
-  double E_a_m = 0.0;                                  // sqrt(mean |E_p|^2), Faessler thesis (F.39)
-  double max_m = 0.0;                                  // max |E_p|
+  double E_a_m = 0.0;  // sqrt(mean |E_p|^2), Faessler thesis (F.39)
+  double max_m = 0.0;  // max |E_p|
+  double std_m = 0.0;  // standard deviation of |E_p| (Table F.1's sigma(||E_p||))
   Eigen::Vector3d rmse_W_m = Eigen::Vector3d::Zero();  // per-axis RMSE [m]
 };
 

@@ -1,4 +1,4 @@
-// `aperture bench control --quick` end to end: the summary keys of the drag sections, the report.
+// `aperture bench control --quick` end to end: the summary keys of the drag section, the report.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -15,14 +15,15 @@ TEST(BenchControlCommand, QuickRunWritesTheDragKeysAndReport) {
   TempFolder temp("bench_control");
   const fs::path out = fs::path(temp.path()) / "out";
   const CommandResult result = RunAperture(
-      "bench control --quick --only drag,drag_id --seed 2 --set vehicle.mismatch=false --out " +
+      "bench control --quick --only drag,mixer --seed 2 --set vehicle.mismatch=false --out " +
       out.string());
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const nlohmann::json summary = ReadJson(out / "summary.json");
   EXPECT_EQ(summary["status"], "ok");
   EXPECT_EQ(summary["inputs"]["seed"], 2);
-  EXPECT_EQ(summary["inputs"]["sections"], nlohmann::json::array({"drag", "drag_id"}));
-  EXPECT_TRUE(summary["timing"].contains("drag_id_s"));
+  EXPECT_EQ(summary["inputs"]["sections"], nlohmann::json::array({"drag", "mixer"}));
+  EXPECT_TRUE(summary["timing"].contains("drag_s"));
+  EXPECT_TRUE(summary["timing"].contains("mixer_s"));
   EXPECT_EQ(summary["cost"]["trials"], 2);  // a trial is a section
   // Drag compensation (F.6-F.30) cuts the average tracking error (F.39) on both trajectories:
   // the simulated vehicle has rotor drag, so flying without it leaves a drag-sized error.
@@ -32,12 +33,16 @@ TEST(BenchControlCommand, QuickRunWritesTheDragKeysAndReport) {
     EXPECT_GT(on, 0.0) << trajectory;
     EXPECT_LT(on, 0.5 * off) << trajectory;
   }
-  // The identification (Nelder-Mead from d = 0) lands within 10 % of the vehicle's true drag.
+  // The identification on the circle (Nelder-Mead from d = 0) lands within 10 % of the vehicle's
+  // true drag.
+  const nlohmann::json& identified = summary["drag"]["identified"];
   for (const char* key : {"dx", "dy"}) {
-    const double truth = summary["drag_id"]["true"][key].get<double>();
+    const double truth = identified["true"][key].get<double>();
     EXPECT_GT(truth, 0.0) << key;
-    EXPECT_NEAR(summary["drag_id"]["estimated"][key].get<double>(), truth, 0.1 * truth) << key;
+    EXPECT_NEAR(identified["circle"][key].get<double>(), truth, 0.1 * truth) << key;
   }
+  // Table F.1's six rows (and the nominal model's) in the summary, beside the thesis' values.
+  EXPECT_EQ(summary["drag"]["table_f1"].size(), 8u);
   EXPECT_TRUE(fs::exists(out / "report.html"));
 }
 
@@ -47,15 +52,16 @@ TEST(BenchControlCommand, ConfiguredVehicleIsTheOneTheSectionsFly) {
   TempFolder temp("bench_control_config");
   const fs::path out = fs::path(temp.path()) / "out";
   const CommandResult result = RunAperture(
-      "bench control --quick --only drag_id --set 'dynamics.vehicle.rotor_drag_D_per_s=[0.3, "
+      "bench control --quick --only drag --set 'dynamics.vehicle.rotor_drag_D_per_s=[0.3, "
       "0.2, 0]' --set control.mixer=one_shot --set vehicle.mismatch=false --out " +
       out.string());
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const nlohmann::json summary = ReadJson(out / "summary.json");
-  EXPECT_DOUBLE_EQ(summary["drag_id"]["true"]["dx"].get<double>(), 0.3);
-  EXPECT_DOUBLE_EQ(summary["drag_id"]["true"]["dy"].get<double>(), 0.2);
-  EXPECT_NEAR(summary["drag_id"]["estimated"]["dx"].get<double>(), 0.3, 0.03);
-  EXPECT_NEAR(summary["drag_id"]["estimated"]["dy"].get<double>(), 0.2, 0.02);
+  const nlohmann::json& identified = summary["drag"]["identified"];
+  EXPECT_DOUBLE_EQ(identified["true"]["dx"].get<double>(), 0.3);
+  EXPECT_DOUBLE_EQ(identified["true"]["dy"].get<double>(), 0.2);
+  EXPECT_NEAR(identified["circle"]["dx"].get<double>(), 0.3, 0.03);
+  EXPECT_NEAR(identified["circle"]["dy"].get<double>(), 0.2, 0.02);
   const nlohmann::json& config = summary["config"];
   EXPECT_EQ(config["control"]["mixer"], "one_shot");
   EXPECT_EQ(config["dynamics"]["vehicle"]["rotor_drag_D_per_s"],
@@ -66,9 +72,8 @@ TEST(BenchControlCommand, ConfiguredVehicleIsTheOneTheSectionsFly) {
   EXPECT_EQ(config["vehicle"]["mismatch"], false);
   EXPECT_TRUE(config["vehicle"].contains("mismatch_bounds"));
 
-  const CommandResult typo =
-      RunAperture("bench control --only drag_id --set control.mixr=x --out " +
-                  (fs::path(temp.path()) / "typo").string());
+  const CommandResult typo = RunAperture("bench control --only drag --set control.mixr=x --out " +
+                                         (fs::path(temp.path()) / "typo").string());
   EXPECT_NE(typo.exit_code, 0);
   // Named by its source, the --set item (the bench rebuilds from JSON, but the command reads
   // the options first).
