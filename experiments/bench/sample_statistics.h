@@ -16,6 +16,15 @@ inline double Mean(const std::vector<double>& values) {
   return std::accumulate(values.begin(), values.end(), 0.0) / static_cast<double>(values.size());
 }
 
+// Population standard deviation (divides by n: the spread of the sample itself, as the papers'
+// tables report it); NaN for no samples.
+inline double StandardDeviation(const std::vector<double>& values) {
+  const double mean = Mean(values);
+  double sum = 0.0;
+  for (double v : values) sum += (v - mean) * (v - mean);
+  return values.empty() ? mean : std::sqrt(sum / static_cast<double>(values.size()));
+}
+
 // The sorted sample's element n/2 (for an even n the upper of the two middle ones, not their
 // mean); NaN for no samples.
 inline double UpperMedian(std::vector<double> values) {

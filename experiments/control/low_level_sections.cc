@@ -13,6 +13,7 @@
 #include "control/position_controller.h"
 #include "control/quad_state.h"
 #include "control/reference_trajectories.h"
+#include "experiments/bench/sample_statistics.h"
 #include "output/svg_plot.h"
 #include "sim/sitl/ground_truth_autopilot.h"
 #include "sim/sitl/sitl_runner.h"
@@ -188,11 +189,26 @@ HitResponse FlyHits(const BodyRateController& controller, const ControlBenchOpti
 
 struct TrackingResponse {
   double rate_rmse_radps = 0.0;        // RMS of |omega_des - omega| at the control steps
-  double pitch_rate_rmse_radps = 0.0;  // RMS of e_omega_y (Table G.1)
+  double pitch_rate_rmse_radps = 0.0;  // RMS of e_omega_y
   double position_rmse_m = 0.0;        // E_a (F.39)
-  double x_rmse_m = 0.0;               // e_x of Table G.1
+  double x_rmse_m = 0.0;               // RMS of e_x
+  // Table G.1's statistics over the back-and-forth motions: mean and standard deviation of |e_x|
+  // [m], of the thrust-direction error angle theta [rad] and of |e_omega_y| [rad/s].
+  double x_error_mean_m = 0.0, x_error_std_m = 0.0;
+  double thrust_angle_mean_rad = 0.0, thrust_angle_std_rad = 0.0;
+  double pitch_rate_error_mean_radps = 0.0, pitch_rate_error_std_radps = 0.0;
   std::vector<double> t_s, pitch_rate_error_radps, x_error_m;
 };
+
+// Table G.1's theta: the angle between the thrust direction the position controller demands for
+// the vehicle's true state and reference, z_des (the third column of R_des), and the body's z_B.
+double ThrustDirectionError(const control::PositionController& controller,
+                            const control::QuadState& state,
+                            const control::TrajectoryPoint& reference) {
+  const Eigen::Vector3d z_des_W = controller.Compute(state, reference).attitude.R_des_WB.col(2);
+  const Eigen::Vector3d z_B_W = state.q_WB * Eigen::Vector3d::UnitZ();
+  return std::acos(std::clamp(z_des_W.dot(z_B_W), -1.0, 1.0));
+}
 
 // Back-and-forth flight of G.6.2 (Fig. G.6); the rate error compares each command's omega_des
 // with the true rates at the time it is issued (both at the 100 Hz control steps).
@@ -212,22 +228,72 @@ TrackingResponse FlyBackAndForth(const BodyRateController& controller,
   response.position_rmse_m = flight.error.E_a_m;
   response.x_rmse_m = flight.error.rmse_W_m.x();
   const std::vector<control::QuadState>& truth = flight.sitl.trajectory;
-  std::vector<double> rate_errors, pitch_errors;
+  const control::PositionController controller_W(params.dynamics.vehicle, params.control.position);
+  std::vector<double> rate_errors, pitch_errors, abs_pitch_errors, abs_x_errors, thrust_angles;
   size_t k = 0;
   for (const sim::SitlCommandRecord& record : flight.sitl.commands) {
     if (record.t_s > params.error_end_s) break;
     while (k + 1 < truth.size() && truth[k + 1].t_s <= record.t_s + 1e-9) ++k;
     if (std::abs(truth[k].t_s - record.t_s) > 1e-6) continue;  // no ground truth at this step
     const Eigen::Vector3d e_B = record.command.thrust_rates.omega_des_B - truth[k].omega_B;
+    const double e_x = truth[k].p_WB.x() - flight.reference[k].p_W.x();
     rate_errors.push_back(e_B.norm());
     pitch_errors.push_back(e_B.y());
+    abs_pitch_errors.push_back(std::abs(e_B.y()));
+    abs_x_errors.push_back(std::abs(e_x));
+    thrust_angles.push_back(ThrustDirectionError(controller_W, truth[k], flight.reference[k]));
     response.t_s.push_back(record.t_s);
     response.pitch_rate_error_radps.push_back(e_B.y());
-    response.x_error_m.push_back(truth[k].p_WB.x() - flight.reference[k].p_W.x());
+    response.x_error_m.push_back(e_x);
   }
   response.rate_rmse_radps = Rms(rate_errors);
   response.pitch_rate_rmse_radps = Rms(pitch_errors);
+  response.x_error_mean_m = MeanOrZero(abs_x_errors);
+  response.x_error_std_m = StandardDeviation(abs_x_errors);
+  response.thrust_angle_mean_rad = MeanOrZero(thrust_angles);
+  response.thrust_angle_std_rad = StandardDeviation(thrust_angles);
+  response.pitch_rate_error_mean_radps = MeanOrZero(abs_pitch_errors);
+  response.pitch_rate_error_std_radps = StandardDeviation(abs_pitch_errors);
   return response;
+}
+
+// Table G.1 of the thesis, per law (a) P low gain, (b) P high gain, (c) LQR, in its units.
+struct ThesisG1Row {
+  const char* statistic;  // as printed in the thesis
+  const char* key;        // the body_rate figure
+  double to_thesis_unit;  // SI -> the thesis' unit
+  double a, b, c;
+};
+constexpr double kCm = 100.0;
+constexpr double kDeg = 180.0 / kPi;
+constexpr ThesisG1Row kTableG1[] = {
+    {"mu(e_x) [cm]", "x_error_mean", kCm, 14.50, 9.39, 10.35},
+    {"sigma(e_x) [cm]", "x_error_std", kCm, 23.05, 15.60, 17.19},
+    {"mu(theta) [deg]", "thrust_angle_mean", kDeg, 5.55, 3.84, 4.14},
+    {"sigma(theta) [deg]", "thrust_angle_std", kDeg, 7.33, 5.00, 5.22},
+    {"mu(e_omega_y) [deg/s]", "pitch_rate_error_mean", kDeg, 42.28, 14.88, 21.52},
+    {"sigma(e_omega_y) [deg/s]", "pitch_rate_error_std", kDeg, 72.38, 23.65, 32.41},
+    {"mu(t_settle) [s]", "settling_time", 1.0, 0.42, 0.79, 0.41},
+    {"sigma(t_settle) [s]", "settling_time_std", 1.0, 0.05, 0.09, 0.08},
+};
+
+// Rows of Table G.1 with this bench's values beside the thesis' (mean and standard deviation of
+// |e_x|, theta, |e_omega_y| over every control step of the motions; of the settling times).
+nlohmann::json TableG1(const nlohmann::json& body_rate) {
+  nlohmann::json table = nlohmann::json::array();
+  for (const ThesisG1Row& row : kTableG1) {
+    nlohmann::json line = {{"statistic", row.statistic}};
+    const std::pair<const char*, double> laws[] = {
+        {"p_low", row.a}, {"p_high", row.b}, {"lqr", row.c}};
+    const char* labels[] = {"(a)", "(b)", "(c)"};
+    for (int i = 0; i < 3; ++i) {
+      const auto& [law, thesis] = laws[i];
+      line[std::string(labels[i])] = row.to_thesis_unit * body_rate[law][row.key].get<double>();
+      line[std::string(labels[i]) + " thesis"] = thesis;
+    }
+    table.push_back(line);
+  }
+  return table;
 }
 
 void RunBodyRate(const ControlBenchOptions& options, nlohmann::json* summary,
@@ -246,16 +312,27 @@ void RunBodyRate(const ControlBenchOptions& options, nlohmann::json* summary,
     out[controller.key]["pitch_rate_rmse"] = tracking.pitch_rate_rmse_radps;
     out[controller.key]["position_rmse"] = tracking.position_rmse_m;
     out[controller.key]["x_rmse"] = tracking.x_rmse_m;
+    out[controller.key]["x_error_mean"] = tracking.x_error_mean_m;
+    out[controller.key]["x_error_std"] = tracking.x_error_std_m;
+    out[controller.key]["thrust_angle_mean"] = tracking.thrust_angle_mean_rad;
+    out[controller.key]["thrust_angle_std"] = tracking.thrust_angle_std_rad;
+    out[controller.key]["pitch_rate_error_mean"] = tracking.pitch_rate_error_mean_radps;
+    out[controller.key]["pitch_rate_error_std"] = tracking.pitch_rate_error_std_radps;
     rate_errors.AddLine(controller.label, tracking.t_s, tracking.pitch_rate_error_radps);
     x_errors.AddLine(controller.label, tracking.t_s, tracking.x_error_m);
     const HitResponse hits = FlyHits(controller, options);
     out[controller.key]["settling_time"] = MeanOrZero(hits.settling_times_s);
+    out[controller.key]["settling_time_std"] = StandardDeviation(hits.settling_times_s);
     out[controller.key]["settling_time_max"] =
         *std::max_element(hits.settling_times_s.begin(), hits.settling_times_s.end());
     hit_rates.AddLine(controller.label, hits.t_s, hits.rate_radps);
     hit_tilts.AddLine(controller.label, hits.t_s, hits.tilt_deg);
   }
-  report->AddTable(out, "body_rate figures (SI units)");
+  const nlohmann::json table = TableG1(out);
+  report->AddTable(table,
+                   "Table G.1 analog: (a) P low gain, (b) P high gain, (c) LQR; thesis beside");
+  out["table_g1"] = table;
+  report->AddCollapsedTable(out, "body_rate figures (SI units)");
   report->AddSvg(rate_errors.Render(), "Pitch-rate error on the back-and-forth trajectory");
   report->AddSvg(x_errors.Render(), "Position error in x on the back-and-forth trajectory");
   report->AddSvg(hit_rates.Render(), "Body-rate magnitude after the first hit");
@@ -337,6 +414,7 @@ void RunMixer(const ControlBenchOptions& options, nlohmann::json* summary,
 
 constexpr double kStepTime_s = 3.0;  // after the imbalance transient (as kMixerSettle_s)
 constexpr double kStepStartHeight_m = 1.0;
+constexpr double kAssuredYawTorque_Nm = 0.01;  // eta_z,assured of Fig. G.9
 
 struct SaturationFlight {
   double xy_max_dev_m = 0.0;
@@ -365,6 +443,7 @@ SaturationFlight FlySaturationStep(control::MixerParameters::Saturation saturati
     vehicle->rotor.command_max = max_command;
   }
   params.flight_controller.low_level.mixer.saturation = saturation;
+  params.flight_controller.low_level.mixer.assured_yaw_torque_Nm = kAssuredYawTorque_Nm;
   // The same imbalance as in the mixer hover: holding attitude needs roll and pitch torques,
   // which clipping gives up while saturated.
   params.disturbances.torque_B_Nm = CentreOfMassOffsetTorque(model);
@@ -410,6 +489,7 @@ void RunSaturation(const ControlBenchOptions& options, nlohmann::json* summary,
   output::SvgPlot height({"Height", "t [s]", "z [m]"});
   output::SvgPlot yaw({"Yaw", "t [s]", "yaw [deg]"});
   nlohmann::json& out = (*summary)["saturation"];
+  out["assured_yaw_torque"] = kAssuredYawTorque_Nm;
   for (const auto& [key, saturation] :
        {std::pair{"prioritized", Saturation::kPrioritized}, {"clipping", Saturation::kClip}}) {
     const SaturationFlight flight = FlySaturationStep(saturation, options);

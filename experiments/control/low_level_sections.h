@@ -10,11 +10,15 @@
 //    body-rate controllers, each
 //      - tracking the back-and-forth trajectory of G.6.2 (12 m/s^2, 5.7 m/s, twelve round trips;
 //        quick: one): body_rate.<c>.rate_rmse = RMS of |omega_des - omega| [rad/s] at the control
-//        steps, body_rate.<c>.position_rmse = E_a (F.39) [m], plus .pitch_rate_rmse (e_omega_y of
-//        Table G.1) and .x_rmse (e_x);
+//        steps, body_rate.<c>.position_rmse = E_a (F.39) [m], .pitch_rate_rmse, .x_rmse, and
+//        Table G.1's statistics over every control step of the motions: .x_error_mean/_std
+//        (|e_x| [m]), .thrust_angle_mean/_std (theta [rad], the angle between the thrust direction
+//        the position controller demands for the true state and z_B), .pitch_rate_error_mean/_std
+//        (|e_omega_y| [rad/s]); body_rate.table_g1 the rows in the thesis' units beside its values;
 //      - rejecting ten upward hits on one arm during hover (quick: two), each an impulse at the
 //        rotor position (linear and angular momentum change): body_rate.<c>.settling_time [s] =
-//        mean time until the body rates stay below 0.35 rad/s and the tilt below 2 deg.
+//        mean (and .settling_time_std) time until the body rates stay below 0.35 rad/s and the
+//        tilt below 2 deg.
 //  * "mixer" (Table G.2, Fig. G.8): three minutes of hover (quick: 20 s; statistics after a 5 s
 //    settle) with the iterative and with the one-shot mixer: mixer.yaw_rmse_iterative,
 //    mixer.yaw_rmse_one_shot [rad] (and max), the heading error as the attitude controller
@@ -24,7 +28,8 @@
 //    its yaw torque is wrong whenever the thrusts differ (G.6.3).
 //  * "saturation" (G.6.4, Fig. G.9): after 3 s of hover, a simultaneous 1 m climb and 90 deg yaw
 //    step with the rotor thrust range narrowed around hover as in the thesis (0.8 / 1.6 N around
-//    1.25 N hover, i.e. 0.64 and 1.28 times hover thrust) and the same centre-of-mass offset, with
+//    1.25 N hover, i.e. 0.64 and 1.28 times hover thrust), the assured yaw torque of Fig. G.9
+//    (eta_z,assured = 0.01 N m) and the same centre-of-mass offset, with
 //    prioritized saturation (Algorithm 4) and with plain clipping: saturation.<s>.xy_max_dev [m]
 //    (largest horizontal distance from the hover point at the step), saturation.<s>.crashed
 //    (ground contact, boolean), saturation.<s>.yaw_settling_time [s] (|yaw - 90 deg| < 5 deg).
