@@ -3,11 +3,11 @@
 //   aperture bench led --out DIR [--seed S] [--quick] [--only body_occlusion,merged]
 //                      [--calibration-errors] [--threads T] [--shard K/N]
 //
-// Writes DIR/summary.json (sections accuracy, sweep, occlusion, merged, body_occlusion, timing,
-// acceptance; see experiments/led/led_bench.h; --only runs the sections named), DIR/frames.csv
-// (every tracked frame with its errors) and DIR/report.html (error plots, box plots per distance),
-// or with --shard K/N the K-th block of the sections (a trial is a section,
-// experiments/led/led_monte_carlo_bench.h) for `aperture bench merge`.
+// Writes DIR/summary.json (sections accuracy, sweep, occlusion, merged, brute_force_timing,
+// body_occlusion, timing, acceptance; see experiments/led/led_bench.h; --only runs the sections
+// named), DIR/frames.csv (every tracked frame with its errors) and DIR/report.html (error plots,
+// box plots per distance), or with --shard K/N the K-th block of the sections (a trial is a
+// section, experiments/led/led_monte_carlo_bench.h) for `aperture bench merge`.
 #include <memory>
 #include <string>
 #include <vector>

@@ -10,6 +10,8 @@
 //   occlusion  C.4.2 / Fig. C.10 analog: one LED of five hidden mid-sequence; also a fresh start
 //              (no prior pose) during the occlusion
 //   merged     C.4.2 / Fig. C.11 analog: two LEDs sweep through alignment (merged blobs)
+//   brute_force_timing  Table C.2 as the thesis timed it: brute force on the full image in every
+//              frame (n_L = 4 and 5), mean, sigma and max per step beside the thesis' values
 //   body_occlusion  issue 22: a held-out five-LED layout on a body that hides one or two LEDs in
 //              about a third of the frames, 1.8-2.5 m; frames with a pose by visible LEDs, errors
 //              by the LEDs a pose rests on, rotation accuracy at 2 m, blob centroid errors

@@ -84,7 +84,7 @@ LedTrackResult LedTracker::Track(const cv::Mat& image, double t_s) {
   Clock::time_point start = Clock::now();
   const std::optional<Eigen::Isometry3d> prediction = Predict(t_s);
   times.prediction_s = SecondsSince(start);
-  if (prediction) {
+  if (prediction && !params_.force_brute_force) {
     std::vector<cv::Rect> rois;
     for (const Eigen::Vector3d& p_T : configuration_.p_T()) {
       Eigen::Vector2d px;
@@ -143,7 +143,7 @@ LedTrackResult LedTracker::Track(const cv::Mat& image, double t_s) {
   result.used_roi = false;
   result.correspondences.clear();  // of a failed attempt near the prediction
   result.merged_detections = 0;
-  history_.clear();
+  if (!params_.force_brute_force) history_.clear();
   if (result.detections.size() < 3) {
     result.status = LedTrackStatus::kNoDetections;
     return result;

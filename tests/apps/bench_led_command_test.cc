@@ -65,7 +65,24 @@ TEST(BenchLedCommand, QuickRunWritesTheIssueKeys) {
   // Merged LEDs: frames where they merge exist, and none gives a confident wrong pose.
   EXPECT_GT(summary["merged"]["frames_merged"].get<int>(), 0);
   EXPECT_EQ(summary["merged"]["confident_wrong_poses"], 0);
-  // frames.csv: header + one row per tracked frame of the five sections.
+  // Table C.2's protocol: brute force in every frame, still a pose in (nearly) every frame;
+  // mean <= max per step, the runs' frames all detected and labelled.
+  for (const char* leds : {"n_L_4", "n_L_5"}) {
+    const nlohmann::json& timing = summary["brute_force_timing"][leds];
+    EXPECT_GE(timing["frames_with_pose"].get<double>(), 0.95 * timing["frames"].get<double>())
+        << leds;
+    EXPECT_EQ(timing["led_detection"]["samples"], timing["frames"]) << leds;
+    EXPECT_EQ(timing["correspondence_search"]["samples"], timing["frames"]) << leds;
+    for (const char* step :
+         {"led_detection", "correspondence_search", "prediction", "pose_optimization"}) {
+      EXPECT_GT(timing[step]["mean"].get<double>(), 0.0) << leds << " " << step;
+      EXPECT_LE(timing[step]["mean"].get<double>(), timing[step]["max"].get<double>())
+          << leds << " " << step;
+    }
+  }
+  EXPECT_EQ(summary["brute_force_timing"]["table_c2"].size(), 8u);
+  // frames.csv: header + one row per tracked frame of the five tracking sections (the timing
+  // protocol's frames are not in it).
   const int frames = accuracy["frames"].get<int>() + summary["sweep"]["frames"].get<int>() +
                      occlusion["frames"].get<int>() + summary["merged"]["frames"].get<int>() +
                      summary["body_occlusion"]["frames"].get<int>();

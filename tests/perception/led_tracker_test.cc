@@ -190,6 +190,29 @@ TEST_F(LedTrackerTest, ReportsStageTimes) {
   EXPECT_EQ(second.brute_force_s, 0.0);  // tracked: no brute force
 }
 
+// Table C.2's timing protocol: brute force on the full image in every frame, the prediction still
+// computed from the poses before (and timed), the poses as good as tracking's.
+TEST_F(LedTrackerTest, ForcedBruteForceLabelsEveryFrameAndStillPredicts) {
+  LedTrackerParams params;
+  params.force_brute_force = true;
+  LedTracker tracker(configuration_, camera_, params);
+  for (int k = 0; k < 5; ++k) {
+    const double t_s = 0.02 * k;
+    const LedTrackResult result =
+        tracker.Track(test_support::BlobImage(752, 480, Projections(PoseAt(t_s)), 2.0), t_s);
+    ASSERT_TRUE(result.has_pose()) << "frame " << k << " " << LedTrackStatusName(result.status);
+    EXPECT_EQ(result.status, LedTrackStatus::kReinitialized) << k;
+    EXPECT_TRUE(result.used_brute_force) << k;
+    EXPECT_FALSE(result.used_roi) << k;
+    EXPECT_GT(result.stage_times.brute_force_s, 0.0) << k;
+    EXPECT_LT((result.T_CT->translation() - PoseAt(t_s).translation()).norm(), 0.003) << k;
+  }
+  // The history of poses is kept: (C.6) extrapolates the last two brute-force poses.
+  const auto predicted = tracker.Predict(0.1);
+  ASSERT_TRUE(predicted.has_value());
+  EXPECT_LT((predicted->translation() - PoseAt(0.1).translation()).norm(), 0.006);
+}
+
 TEST_F(LedTrackerTest, PredictionFollowsEquationC6) {
   LedTracker tracker(configuration_, camera_);
   EXPECT_FALSE(tracker.Predict(0.0).has_value());
@@ -226,7 +249,6 @@ TEST_F(LedTrackerTest, FiftyFalseBlobsAreCappedWithAWarning) {
   EXPECT_THAT(result.warning, ::testing::HasSubstr("50 bright blobs"));
   EXPECT_FALSE(result.has_pose());
 }
-
 
 // Issue 21, Fig. C.7's outliers: a fresh start accepts a pose only when the second-best labelling
 // fits clearly worse than the best (LedTrackerParams::labelling_margin_ratio). The target is 17 mm
@@ -275,11 +297,9 @@ class LedTrackerLabellingMarginTest : public ::testing::Test {
 
   std::shared_ptr<const CameraModel> camera_ =
       std::make_shared<PinholeCamera>(752, 480, PinholeIntrinsics{420.0, 420.0, 375.5, 239.5});
-  LedConfiguration configuration_{{{0.095, 0.0, 0.0},
-                                   {-0.06, 0.0, 0.0},
-                                   {0.0, 0.045, 0.03},
-                                   {0.0, -0.045, 0.03}},
-                                  "near-symmetric test target"};
+  LedConfiguration configuration_{
+      {{0.095, 0.0, 0.0}, {-0.06, 0.0, 0.0}, {0.0, 0.045, 0.03}, {0.0, -0.045, 0.03}},
+      "near-symmetric test target"};
 };
 
 TEST_F(LedTrackerLabellingMarginTest, TwoLabellingsFittingAlikeGiveNoPose) {
