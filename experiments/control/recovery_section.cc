@@ -10,6 +10,7 @@
 
 #include "control/constants.h"
 #include "control/recovery_state_machine.h"
+#include "experiments/bench/sample_statistics.h"
 #include "output/svg_plot.h"
 #include "sim/sitl/recovery_flight.h"
 
@@ -38,6 +39,7 @@ struct ThrowOutcome {
   bool crashed = false;
   double held_tilt_rad = 0.0;
   std::optional<double> recovery_time_s;  // release -> position stage
+  std::optional<double> vision_s;         // release -> vision initialized
   double min_height_m = 0.0;
   double end_time_s = 0.0;  // crash or end of the flight
 };
@@ -58,6 +60,7 @@ ThrowOutcome FlyThrow(std::uint64_t seed, const ControlBenchOptions& options) {
       outcome.recovery_time_s = transition.t_s;  // the release is at t = 0
     }
   }
+  if (flight.vision_available_s >= 0.0) outcome.vision_s = flight.vision_available_s;
   outcome.min_height_m = flight.min_height_m;
   outcome.end_time_s = flight.sitl.sim_time_s;
   return outcome;
@@ -74,12 +77,14 @@ void RunRecovery(const ControlBenchOptions& options, nlohmann::json* summary,
     }
   });
 
-  int successes = 0, crashes = 0;
+  int successes = 0, crashes = 0, vision_failures = 0;
   double min_height_m = 1e9;
-  std::vector<double> times_s, ok_tilt_deg, ok_time_s, failed_tilt_deg, failed_time_s;
+  std::vector<double> times_s, vision_s, ok_tilt_deg, ok_time_s, failed_tilt_deg, failed_time_s;
   for (const ThrowOutcome& o : outcomes) {
     successes += o.success ? 1 : 0;
     crashes += o.crashed ? 1 : 0;
+    vision_failures += !o.success && !o.crashed && !o.vision_s ? 1 : 0;
+    if (o.vision_s) vision_s.push_back(*o.vision_s);
     min_height_m = std::min(min_height_m, o.min_height_m);
     const double tilt_deg = o.held_tilt_rad * 180.0 / kPi;
     if (o.success) {
@@ -100,13 +105,23 @@ void RunRecovery(const ControlBenchOptions& options, nlohmann::json* summary,
   out["time_mean"] = times_s.empty() ? 0.0 : sum_s / static_cast<double>(times_s.size());
   out["time_max"] = times_s.empty() ? 0.0 : *std::max_element(times_s.begin(), times_s.end());
   out["min_height"] = trials > 0 ? min_height_m : 0.0;
+  // Failures of the thesis' kind (B.4.2): the vision pipeline never initialized in the time limit.
+  out["vision_not_initialized"] = vision_failures;
+  out["vision_time_mean"] = FiniteOrNull(Mean(vision_s));
+  out["success_rate"] = trials > 0 ? static_cast<double>(successes) / trials : 0.0;
 
   report->AddSection("Throw recovery (paper B, B.4)");
   report->AddParagraph(
-      "Random hand throws: tilt up to upside-down in the hand, 0-4 m/s horizontal, -1 to +4 m/s "
-      "vertical at release, body rates up to 14 rad/s; recovered from the IMU and range sensor "
-      "alone (vision emulated 1 s after the height stage starts). Success: no ground contact and "
-      "the position stage held for 4 s within 10 s of the release.");
+      "Random hand throws: held still, then thrown by the hand in 0.25 s (its acceleration and "
+      "rotation on the IMU; the launch detector must wait for the release); tilt up to "
+      "upside-down, 0-4 m/s horizontal, -1 to +4 m/s vertical at release, body rates up to "
+      "14 rad/s. Recovered from the IMU and range sensor alone until the vision pipeline "
+      "initializes in the height stage: emulated from ground truth, it needs the ground in view "
+      "(tilt < 20 deg, height > 0.3 m), image flow below 3 rad/s and a baseline of 10 % of the "
+      "height, takes its scale from the height estimate (+-3 %) and arrives 30 ms late with "
+      "noise (sim/sitl/visual_initialization.h). Success: no ground contact and the position "
+      "stage held for 4 s within 10 s of the release (B.4.2: > 85 %; its failures: the vision "
+      "pipeline did not initialize, near the ground at speed).");
   report->AddTable(out, "recovery figures (SI units)");
   report->AddSvg(output::SvgPlot::Histogram(
                      {"Time from release to position hold (successful)", "t [s]", "throws"},

@@ -1,6 +1,7 @@
 #include "sim/sitl/recovery_autopilot.h"
 
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 namespace aperture::sim {
@@ -15,20 +16,17 @@ double HeadingRad(const Eigen::Quaterniond& q_WB) {
 }  // namespace
 
 void RecoveryAutopilotParams::Validate() const {
-  if (!std::isfinite(vision_delay_s) || vision_delay_s < 0.0) {
-    throw std::invalid_argument("RecoveryAutopilotParams.vision_delay_s must be finite and >= 0");
-  }
   if (!std::isfinite(hold_s) || hold_s < 0.0) {
     throw std::invalid_argument("RecoveryAutopilotParams.hold_s must be finite and >= 0");
   }
-  if (!vision_offset_W.allFinite()) {
-    throw std::invalid_argument("RecoveryAutopilotParams.vision_offset_W must be finite");
-  }
+  vision.Validate();
 }
 
 RecoveryAutopilot::RecoveryAutopilot(const control::VehicleParameters& vehicle,
                                      const RecoveryAutopilotParams& params)
-    : params_(params), pipeline_(vehicle, params.pipeline) {
+    : params_(params),
+      pipeline_(vehicle, params.pipeline),
+      vision_(params.vision, params.vision_seed) {
   params_.Validate();
 }
 
@@ -42,20 +40,22 @@ void RecoveryAutopilot::OnRange(const perception::RangeReading& reading) {
 
 perception::AutopilotCommand RecoveryAutopilot::Step(double t_s) {
   const control::RecoveryStateMachine& machine = pipeline_.state_machine();
-  if (vision_available_s_ < 0.0 && machine.stage() == control::RecoveryStage::kHeight &&
-      t_s - machine.stage_entry_time_s() >= params_.vision_delay_s - 1e-9) {
-    vision_available_s_ = t_s;
+  // The vision pipeline initializes from the height stage (3) on (B.3.2), scaled by its height.
+  const bool attempt =
+      static_cast<int>(machine.stage()) >= static_cast<int>(control::RecoveryStage::kHeight) &&
+      pipeline_.height_filter().initialized();
+  control::QuadState truth = truth_;
+  truth.t_s = t_s;
+  const double estimated_height_m =
+      attempt ? pipeline_.height_filter().estimate().z_m : truth.p_WB.z();
+  if (vision_.Update(truth, attempt, estimated_height_m)) {
     const double heading_offset_rad =
         HeadingRad(pipeline_.attitude().q_WB()) - HeadingRad(truth_.q_WB);
-    R_VW_ = Eigen::AngleAxisd(heading_offset_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    vision_.SetVisionRotation(
+        Eigen::AngleAxisd(heading_offset_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix());
   }
-  if (vision_available_s_ >= 0.0) {
-    control::QuadState vision = truth_;
-    vision.p_WB = R_VW_ * truth_.p_WB + params_.vision_offset_W;
-    vision.v_W = R_VW_ * truth_.v_W;
-    vision.q_WB = Eigen::Quaterniond(R_VW_) * truth_.q_WB;
-    pipeline_.SetVisionState(vision);
-  }
+  const std::optional<control::QuadState> vision = vision_.Estimate();
+  if (vision) pipeline_.SetVisionState(*vision);
   const control::RecoveryOutput out = pipeline_.Step(t_s);
   perception::AutopilotCommand command;
   if (out.stage != control::RecoveryStage::kWaitingForLaunch) {

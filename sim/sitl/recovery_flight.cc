@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <stdexcept>
 
@@ -37,6 +38,28 @@ HandThrow SampleHandThrow(std::uint64_t seed, const HandThrowRanges& ranges) {
   return hand_throw;
 }
 
+HandMotion HandMotionAt(const HandThrow& hand_throw, double throw_s, double t_s) {
+  HandMotion motion;
+  if (throw_s <= 0.0) {
+    motion.q_WB = hand_throw.q_WB;
+    return motion;
+  }
+  const double u = std::clamp((t_s + throw_s) / throw_s, 0.0, 1.0);
+  // Minimum-jerk velocity v(u) = v_release (10u^3 - 15u^4 + 6u^5): a = v_release 30 u^2 (1-u)^2 /
+  // T.
+  motion.a_W = hand_throw.v_W * 30.0 * u * u * (1.0 - u) * (1.0 - u) / throw_s;
+  // omega_B = u omega_release about the fixed body axis: the rotation left until the release is
+  // |omega| T (1 - u^2) / 2.
+  const double rate_radps = hand_throw.omega_B.norm();
+  motion.omega_B = u * hand_throw.omega_B;
+  motion.q_WB = hand_throw.q_WB;
+  if (rate_radps > 0.0) {
+    motion.q_WB = hand_throw.q_WB * Eigen::AngleAxisd(-rate_radps * throw_s * (1.0 - u * u) / 2.0,
+                                                      hand_throw.omega_B / rate_radps);
+  }
+  return motion;
+}
+
 void RecoveryFlightParams::Validate() const {
   if (!p_release_W.allFinite() || !hand_throw.v_W.allFinite() || !hand_throw.omega_B.allFinite() ||
       !hand_throw.q_WB.coeffs().allFinite()) {
@@ -44,6 +67,9 @@ void RecoveryFlightParams::Validate() const {
   }
   if (!std::isfinite(held_s) || held_s < 0.0) {
     throw std::invalid_argument("RecoveryFlightParams.held_s must be finite and >= 0");
+  }
+  if (!std::isfinite(throw_s) || throw_s < 0.0) {
+    throw std::invalid_argument("RecoveryFlightParams.throw_s must be finite and >= 0");
   }
   if (!std::isfinite(duration_s) || duration_s <= 0.0) {
     throw std::invalid_argument("RecoveryFlightParams.duration_s must be positive");
@@ -70,19 +96,24 @@ RecoveryFlightResult FlyRecoveryFlight(const RecoveryFlightParams& params) {
   sitl.SetSeed(params.seed);
   ApplyVehicleMismatch(params.vehicle, params.seed, &sitl);
 
-  RecoveryAutopilot autopilot(params.dynamics.vehicle, params.autopilot);
-  // In the hand, t in [-held_s, 0): still, the accelerometer measures the reaction to gravity.
-  // A separate noise stream (seed + 1), the same sensor model and rate as the SITL's IMU.
+  RecoveryAutopilotParams autopilot_params = params.autopilot;
+  autopilot_params.vision_seed = params.seed * 7919 + 3;
+  RecoveryAutopilot autopilot(params.dynamics.vehicle, autopilot_params);
+  // In the hand, t in [-held_s - throw_s, 0): held still, then thrown (HandMotionAt); the
+  // accelerometer measures the hand's acceleration and the reaction to gravity. A separate noise
+  // stream (seed + 1), the same sensor model and rate as the SITL's IMU.
   ImuSensorParams held_imu = sitl.imu;
   held_imu.seed = sitl.imu.seed + 1;
   held_imu.gyro_noise_density = params.imu.gyro_noise_density;  // motors off: no vibration
   ImuSensor hand_imu(held_imu);
-  const Eigen::Vector3d f_held_B = sitl.initial_state.q_WB.conjugate() *
-                                   Eigen::Vector3d(0.0, 0.0, params.dynamics.vehicle.gravity_mps2);
+  const Eigen::Vector3d g_W(0.0, 0.0, params.dynamics.vehicle.gravity_mps2);
   const double dt_s = 1.0 / sitl.dynamics_rate_hz;
-  for (int k = static_cast<int>(std::ceil(params.held_s / dt_s)); k >= 1; --k) {
+  const HandThrow release{sitl.initial_state.q_WB, params.hand_throw.v_W,
+                          params.hand_throw.omega_B};
+  for (int k = static_cast<int>(std::ceil((params.held_s + params.throw_s) / dt_s)); k >= 1; --k) {
+    const HandMotion hand = HandMotionAt(release, params.throw_s, -k * dt_s);
     for (const perception::ImuSample& sample :
-         hand_imu.Update(-k * dt_s, f_held_B, Eigen::Vector3d::Zero())) {
+         hand_imu.Update(-k * dt_s, hand.q_WB.conjugate() * (hand.a_W + g_W), hand.omega_B)) {
       autopilot.OnImu(sample);
     }
   }
@@ -91,6 +122,9 @@ RecoveryFlightResult FlyRecoveryFlight(const RecoveryFlightParams& params) {
   result.sitl = runner.Run(autopilot);
   result.transitions = autopilot.pipeline().state_machine().transitions();
   result.vision_available_s = autopilot.vision_available_s();
+  const control::LaunchDetector& launch = autopilot.pipeline().launch_detector();
+  result.launch_detected_s =
+      launch.launched() ? launch.launch_time_s() : std::numeric_limits<double>::quiet_NaN();
   result.outcome = result.sitl.outcome == SitlResult::Outcome::kCollision       ? "crashed"
                    : result.sitl.outcome == SitlResult::Outcome::kAutopilotDone ? "recovered"
                                                                                 : "timeout";
