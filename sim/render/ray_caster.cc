@@ -384,7 +384,8 @@ RayHit NearestHit(const FrameContext& frame, const Eigen::Vector3d& d_C,
 }
 
 // Render step 5: LEDs as exact pixel integrals of an isotropic Gaussian around the projected
-// centre, added to the radiance (and the ground truth within kLedMaskSigmas), unless occluded.
+// centre, with the emitter's radiation pattern, added to the radiance (and the ground truth within
+// kLedMaskSigmas), unless occluded.
 void SplatLeds(const std::vector<const SceneObject*>& leds, const FrameContext& frame,
                const perception::CameraModel& camera, const Eigen::Isometry3d& T_WC,
                const RenderOptions& options, RenderOutput* output) {
@@ -414,7 +415,13 @@ void SplatLeds(const std::vector<const SceneObject*>& leds, const FrameContext& 
     }
     if (projected > 0) projected_radius_px /= projected;
     const double sigma = std::max(options.min_led_sigma_px, 0.5 * projected_radius_px);
-    const double energy = led.intensity / (distance * distance);
+    double energy = led.intensity / (distance * distance);
+    if (led.radiation_exponent > 0.0) {
+      const Eigen::Vector3d axis_C = T_CW.linear() * led_object->T_WO.linear().col(2);
+      const double cos_off_axis = -axis_C.dot(p_C) / distance;
+      if (cos_off_axis <= 0.0) continue;  // behind the emitter's plane
+      energy *= std::pow(cos_off_axis, led.radiation_exponent);
+    }
     const int x0 = std::max(0, static_cast<int>(std::floor(px.x() - kLedWindowSigmas * sigma)));
     const int x1 = std::min(w - 1, static_cast<int>(std::ceil(px.x() + kLedWindowSigmas * sigma)));
     const int y0 = std::max(0, static_cast<int>(std::floor(px.y() - kLedWindowSigmas * sigma)));

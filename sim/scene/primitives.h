@@ -15,7 +15,8 @@
 //   Sphere      centred at O; u = radius * azimuth, v = radius * elevation.
 //   GroundPlane infinite plane z_O = 0; u = x_O, v = y_O.
 //   Led         small spherical emitter at O; not hit by rays: the renderer draws it as a
-//               radiance blob (ray_caster.h). radius_m sets the blob size, intensity its energy.
+//               radiance blob (ray_caster.h). radius_m sets the blob size, intensity its energy,
+//               radiation_exponent its pattern about +z_O.
 #include <Eigen/Core>
 #include <limits>
 #include <variant>
@@ -58,6 +59,10 @@ struct Led {
   // Energy of the image blob at 1 m [radiance units * px^2]; falls off with 1 / distance^2.
   double intensity = 400.0;
   Rgb color = Rgb::Ones();
+  // Radiation pattern: the energy times cos^m of the angle between the emitter's axis +z_O and
+  // the direction to the camera (m = 1: Lambertian, half power at 60 deg like a wide-angle SMD
+  // LED); nothing is seen from behind the emitter's plane. 0: isotropic.
+  double radiation_exponent = 0.0;
 };
 
 using Primitive = std::variant<Rectangle, Box, Cylinder, Sphere, GroundPlane, Led>;

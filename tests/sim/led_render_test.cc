@@ -46,10 +46,16 @@ TEST_P(LedRenderTest, BlobCentroidsAreTheProjectedEmitters) {
   const bool fisheye = GetParam();
   // Camera frame = world frame. Fisheye LEDs reach 56, 76 and 95 deg off the axis.
   const std::vector<Eigen::Vector3d> p_C =
-      fisheye ? std::vector<Eigen::Vector3d>{{0.0, 0.0, 1.5}, {0.3, -0.25, 2.0}, {1.5, 0.2, 1.0},
-                                             {-2.0, -0.3, 0.5}, {2.0, 0.0, -0.17}}
-              : std::vector<Eigen::Vector3d>{{0.0, 0.0, 1.5}, {0.4, -0.3, 2.0}, {-0.7, 0.35, 1.8},
-                                             {0.9, 0.5, 2.5}, {-0.253, -0.507, 3.1}};
+      fisheye ? std::vector<Eigen::Vector3d>{{0.0, 0.0, 1.5},
+                                             {0.3, -0.25, 2.0},
+                                             {1.5, 0.2, 1.0},
+                                             {-2.0, -0.3, 0.5},
+                                             {2.0, 0.0, -0.17}}
+              : std::vector<Eigen::Vector3d>{{0.0, 0.0, 1.5},
+                                             {0.4, -0.3, 2.0},
+                                             {-0.7, 0.35, 1.8},
+                                             {0.9, 0.5, 2.5},
+                                             {-0.253, -0.507, 3.1}};
   // Resolved emitters (radius 2 cm): sigma = half the projected radius, the peak is
   // intensity / (2 pi sigma^2) whatever the distance; aim at a peak of ~0.6 (unsaturated).
   const double f = fisheye ? 215.0 : 420.0;
@@ -78,8 +84,8 @@ TEST_P(LedRenderTest, BlobCentroidsAreTheProjectedEmitters) {
                                              static_cast<int>(std::lround(px.x()))),
               static_cast<int>(i) + 1);
     double peak;
-    cv::minMaxLoc(captured.frame.image(cv::Rect(static_cast<int>(px.x()) - 3,
-                                                static_cast<int>(px.y()) - 3, 7, 7)),
+    cv::minMaxLoc(captured.frame.image(
+                      cv::Rect(static_cast<int>(px.x()) - 3, static_cast<int>(px.y()) - 3, 7, 7)),
                   nullptr, &peak);
     EXPECT_LT(peak, 255.0);  // unsaturated, else clipping would bias the centroid
   }
@@ -119,13 +125,53 @@ TEST(LedRenderFalloffTest, EnergyFallsWithInverseSquareDistanceAndOccludersHideL
   // The hidden LED's window shows the unlit plate only (ambient-lit grey, no LED energy).
   Eigen::Vector2d px_hidden;
   ASSERT_TRUE(camera->Project({0.0, 0.4, 3.0}, &px_hidden));
-  EXPECT_EQ(out.object_id.at<int32_t>(static_cast<int>(px_hidden.y()), static_cast<int>(px_hidden.x())),
-            scene.FindId("plate"));
+  EXPECT_EQ(
+      out.object_id.at<int32_t>(static_cast<int>(px_hidden.y()), static_cast<int>(px_hidden.x())),
+      scene.FindId("plate"));
   double hidden_peak;
   cv::minMaxLoc(out.radiance(cv::Rect(static_cast<int>(px_hidden.x()) - 4,
                                       static_cast<int>(px_hidden.y()) - 4, 9, 9)),
                 nullptr, &hidden_peak);
   EXPECT_LT(hidden_peak, 0.7f + 1e-6);  // plate albedo 0.7 at most fully lit
+}
+
+// A Lambertian emitter (radiation_exponent 1) seen 60 deg off its axis shows half the energy of
+// one seen on its axis at the same distance, and nothing from behind.
+TEST(LedRenderFalloffTest, RadiationPatternScalesTheEnergyByTheAngleOffTheAxis) {
+  const auto camera = testing::MakeTestPinhole();
+  Scene scene;
+  scene.sky.zenith_color = scene.sky.horizon_color = scene.sky.ground_color = Rgb::Zero();
+  const Eigen::Vector3d p_on(-0.4, 0.0, 2.0), p_off(0.4, 0.0, 2.0), p_behind(0.0, 0.4, 2.0);
+  // Axes: towards the camera; 60 deg off the direction to the camera; away from the camera.
+  const auto facing = [](const Eigen::Vector3d& p, double extra_angle_rad) {
+    const Eigen::Vector3d to_camera = -p.normalized();
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    const Eigen::Vector3d axis =
+        Eigen::AngleAxisd(extra_angle_rad, Eigen::Vector3d::UnitY()) * to_camera;
+    T.linear() = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), axis).matrix();
+    T.translation() = p;
+    return T;
+  };
+  const double pi = 3.14159265358979323846;
+  int i = 0;
+  for (const auto& [p, angle] : {std::pair{p_on, 0.0}, {p_off, pi / 3.0}, {p_behind, pi}}) {
+    SceneObject led = MakeLed("led" + std::to_string(i++), p, 0.001, 20.0);
+    std::get<Led>(led.primitive).radiation_exponent = 1.0;
+    led.T_WO = facing(p, angle);
+    scene.AddObject(led);
+  }
+  RayCaster caster;
+  const RenderOutput out = caster.Render(scene, *camera, Eigen::Isometry3d::Identity());
+  auto energy = [&](const Eigen::Vector3d& p) {
+    Eigen::Vector2d px;
+    EXPECT_TRUE(camera->Project(p, &px));
+    double mass;
+    Centroid(out.radiance, px, 8, &mass);
+    return mass;
+  };
+  EXPECT_NEAR(energy(p_on), 20.0 / p_on.squaredNorm(), 1e-4);
+  EXPECT_NEAR(energy(p_off) / energy(p_on), 0.5, 1e-3);
+  EXPECT_LT(energy(p_behind), 1e-9);
 }
 
 TEST(LedRenderFalloffTest, InfraredModeDarkensTheSceneButNotTheLeds) {
