@@ -4,8 +4,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "control/constants.h"
+#include "control/so3.h"
 #include "experiments/bench/sample_statistics.h"
 
 namespace aperture::experiments {
@@ -93,6 +95,25 @@ bool IsConfidentWrongPose(const Eigen::Isometry3d& T_CT_estimated,
     return false;
   }
   return PoseMahalanobisSquared(T_CT_estimated, covariance, T_CT_true) > kConfidentChiSquared;
+}
+
+Eigen::Isometry3d EstimateHandEye(const std::vector<Eigen::Isometry3d>& T_CT_estimated,
+                                  const std::vector<Eigen::Isometry3d>& T_MT_measured) {
+  if (T_CT_estimated.empty() || T_CT_estimated.size() != T_MT_measured.size()) {
+    throw std::invalid_argument("EstimateHandEye: needs pairs of estimated and measured poses");
+  }
+  std::vector<Eigen::Quaterniond> rotations;
+  for (size_t k = 0; k < T_CT_estimated.size(); ++k) {
+    rotations.emplace_back(T_CT_estimated[k].linear() * T_MT_measured[k].linear().transpose());
+  }
+  Eigen::Isometry3d T_CM = Eigen::Isometry3d::Identity();
+  T_CM.linear() = control::MeanRotation(rotations).toRotationMatrix();
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (size_t k = 0; k < T_CT_estimated.size(); ++k) {
+    sum += T_CT_estimated[k].translation() - T_CM.linear() * T_MT_measured[k].translation();
+  }
+  T_CM.translation() = sum / static_cast<double>(T_CT_estimated.size());
+  return T_CM;
 }
 
 }  // namespace aperture::experiments

@@ -37,6 +37,14 @@ struct PoseErrorStatistics {
 // One entry per frame; std::nullopt = no pose for that frame.
 PoseErrorStatistics ComputePoseErrorStatistics(const std::vector<std::optional<PoseError>>& errors);
 
+// Hand-eye alignment as in thesis C.4.1: the motion capture measures markers M on the camera,
+// not its centre of projection, so the thesis estimates T_CM from the first 10 % of the data.
+// From pairs of an estimate T_CT and the motion capture's T_MT of the same frame: T_CM =
+// T_CT T_MT^-1 averaged (rotations by control::MeanRotation, then t_CT - R_CM t_MT averaged).
+// Throws std::invalid_argument for no pairs.
+Eigen::Isometry3d EstimateHandEye(const std::vector<Eigen::Isometry3d>& T_CT_estimated,
+                                  const std::vector<Eigen::Isometry3d>& T_MT_measured);
+
 // Squared Mahalanobis distance of the estimate from the truth under the estimate's covariance
 // (perception::LedPoseRefinement's parametrisation: [p_CT [m]; rotation vector in C [rad]] with
 // T_CT = (Exp(delta_phi) R_CT, p_CT + delta_t)). Infinite when the covariance is not positive

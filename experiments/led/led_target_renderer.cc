@@ -17,6 +17,13 @@ Eigen::Isometry3d AtPosition(const Eigen::Vector3d& p) {
   return T;
 }
 
+// An emitter at p whose axis +z_O is -z_T (half a turn about x_T).
+Eigen::Isometry3d FacingMinusZ(const Eigen::Vector3d& p) {
+  Eigen::Isometry3d T = AtPosition(p);
+  T.linear() = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  return T;
+}
+
 // The configuration with every LED moved by error.led_position_error_m in a random direction.
 perception::LedConfiguration DisplacedConfiguration(
     const perception::LedConfiguration& configuration, const LedCalibrationError& error) {
@@ -69,11 +76,11 @@ LedTargetRenderer::LedTargetRenderer(const perception::LedConfiguration& configu
     scene_.AddObject({"body", sim::Box{params_.body_size_m}, body, Eigen::Isometry3d::Identity()});
   }
   for (int i = 0; i < configuration_.size(); ++i) {
-    led_ids_.push_back(scene_.AddObject(
-        {"led" + std::to_string(i),
-         sim::Led{params_.led_radius_m, params_.led_intensity, sim::Rgb::Ones()},
-         {},
-         AtPosition(configuration_.p_T()[i])}));
+    led_ids_.push_back(scene_.AddObject({"led" + std::to_string(i),
+                                         sim::Led{params_.led_radius_m, params_.led_intensity,
+                                                  sim::Rgb::Ones(), params_.led_radiation_exponent},
+                                         {},
+                                         FacingMinusZ(configuration_.p_T()[i])}));
   }
 }
 
@@ -94,8 +101,8 @@ cv::Mat LedTargetRenderer::Render(const std::function<Eigen::Isometry3d(double)>
   // An occluded LED moves 1 km to -z_T, behind the camera (which looks along +z_T): never drawn.
   for (int i = 0; i < configuration_.size(); ++i) {
     const bool is_hidden = std::find(hidden.begin(), hidden.end(), i) != hidden.end();
-    scene_.SetPose(led_ids_[i], AtPosition(is_hidden ? Eigen::Vector3d(0.0, 0.0, -1000.0)
-                                                     : configuration_.p_T()[i]));
+    scene_.SetPose(led_ids_[i], FacingMinusZ(is_hidden ? Eigen::Vector3d(0.0, 0.0, -1000.0)
+                                                       : configuration_.p_T()[i]));
   }
   sim::RenderOptions options;
   options.ground_truth = false;

@@ -45,6 +45,9 @@ struct LedTargetRenderParams {
   // farthest sweep distance is still detected above the 120 threshold; nearer LEDs saturate.
   double led_intensity = 150.0;
   double min_led_sigma_px = 0.8;  // lens blur of a point source (renderer floor)
+  // sim::Led::radiation_exponent of every LED, whose axis faces -z_T (the camera's side of the
+  // target; the ceiling is behind it at +z_T). 0: isotropic, 1: Lambertian.
+  double led_radiation_exponent = 0.0;
   double ceiling_distance_m = 3.0;  // dark textured plane at z_T = +3 m behind the target
   // Edge lengths of the target's body, a box centred on T's origin [m]; zero = no body (the LEDs
   // are never occluded but by `hidden`).

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 namespace aperture::experiments {
 namespace {
@@ -35,8 +36,7 @@ TEST(LedPoseErrorTest, PositionAndAngleAxisOrientationErrors) {
 TEST(LedPoseErrorTest, StatisticsSkipFramesWithoutPose) {
   // Errors 1, 2, 3 cm and 0.5, 1.0, 1.5 deg plus two frames without a pose.
   const std::vector<std::optional<PoseError>> errors{
-      PoseError{0.01, 0.5}, std::nullopt, PoseError{0.02, 1.0}, PoseError{0.03, 1.5},
-      std::nullopt};
+      PoseError{0.01, 0.5}, std::nullopt, PoseError{0.02, 1.0}, PoseError{0.03, 1.5}, std::nullopt};
   const PoseErrorStatistics stats = ComputePoseErrorStatistics(errors);
   EXPECT_EQ(stats.frames, 5);
   EXPECT_EQ(stats.frames_with_pose, 3);
@@ -70,8 +70,8 @@ TEST(LedPoseErrorTest, MahalanobisDistanceUsesTheRefinerParametrisation) {
   estimate.linear() = Eigen::AngleAxisd(0.003, Eigen::Vector3d::UnitX()) * truth.linear();
   EXPECT_NEAR(PoseMahalanobisSquared(estimate, covariance, truth), 13.0, 1e-6);
   // Singular covariance: infinitely improbable.
-  EXPECT_TRUE(std::isinf(
-      PoseMahalanobisSquared(estimate, Eigen::Matrix<double, 6, 6>::Zero(), truth)));
+  EXPECT_TRUE(
+      std::isinf(PoseMahalanobisSquared(estimate, Eigen::Matrix<double, 6, 6>::Zero(), truth)));
 }
 
 TEST(LedPoseErrorTest, ConfidentWrongPoseNeedsALargeErrorAndATightCovariance) {
@@ -80,14 +80,40 @@ TEST(LedPoseErrorTest, ConfidentWrongPoseNeedsALargeErrorAndATightCovariance) {
   wrong.translation().x() += 0.05;  // 5 cm off: beyond the 2 cm bound
   const Eigen::Matrix<double, 6, 6> tight = 1e-6 * Eigen::Matrix<double, 6, 6>::Identity();
   const Eigen::Matrix<double, 6, 6> wide = 1e-2 * Eigen::Matrix<double, 6, 6>::Identity();
-  EXPECT_TRUE(IsConfidentWrongPose(wrong, tight, truth));   // (5 cm / 1 mm)^2 = 2500 > 22.5
-  EXPECT_FALSE(IsConfidentWrongPose(wrong, wide, truth));   // (5 cm / 10 cm)^2 = 0.25
+  EXPECT_TRUE(IsConfidentWrongPose(wrong, tight, truth));  // (5 cm / 1 mm)^2 = 2500 > 22.5
+  EXPECT_FALSE(IsConfidentWrongPose(wrong, wide, truth));  // (5 cm / 10 cm)^2 = 0.25
   Eigen::Isometry3d close = truth;
   close.translation().x() += 0.01;  // within the bound: never "wrong"
   EXPECT_FALSE(IsConfidentWrongPose(close, tight, truth));
   Eigen::Isometry3d turned = truth;
   turned.linear() = Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitZ()) * truth.linear();  // 5.7 deg
   EXPECT_TRUE(IsConfidentWrongPose(turned, tight, truth));
+}
+
+// The hand-eye alignment recovers the markers' offset from exact pairs, and averages noisy ones.
+TEST(LedPoseErrorTest, HandEyeRecoversTheMarkerOffset) {
+  Eigen::Isometry3d T_CM = Eigen::Isometry3d::Identity();
+  T_CM.linear() = Eigen::AngleAxisd(0.05, Eigen::Vector3d(1, -2, 0.5).normalized()).matrix();
+  T_CM.translation() = Eigen::Vector3d(0.02, -0.01, 0.03);
+  std::vector<Eigen::Isometry3d> T_CT, T_MT, T_CT_noisy;
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> noise(0.0, 0.002);
+  for (int k = 0; k < 200; ++k) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = Eigen::AngleAxisd(0.01 * k, Eigen::Vector3d(0.3, 1, 0.2).normalized()).matrix();
+    T.translation() = Eigen::Vector3d(0.1 * std::sin(0.1 * k), 0.05, 1.5 + 0.002 * k);
+    T_CT.push_back(T);
+    T_MT.push_back(T_CM.inverse() * T);
+    Eigen::Isometry3d noisy = T;
+    noisy.translation() += Eigen::Vector3d(noise(rng), noise(rng), noise(rng));
+    T_CT_noisy.push_back(noisy);
+  }
+  const PoseError exact = ComputePoseError(EstimateHandEye(T_CT, T_MT), T_CM);
+  EXPECT_LT(exact.position_m, 1e-12);
+  EXPECT_LT(exact.orientation_deg, 1e-9);
+  // 2 mm per-axis noise averages over 200 pairs to ~0.14 mm.
+  EXPECT_LT(ComputePoseError(EstimateHandEye(T_CT_noisy, T_MT), T_CM).position_m, 0.0006);
+  EXPECT_THROW(EstimateHandEye({}, {}), std::invalid_argument);
 }
 
 }  // namespace

@@ -61,6 +61,36 @@ TEST(LedTargetRendererTest, TheBodyHidesTheLedsBehindItAndOnlyThose) {
   }
 }
 
+// Issue 21's radiation pattern: Lambertian LEDs facing -z_T light the camera on that side and
+// are dark from behind the target.
+TEST(LedTargetRendererTest, WideAngleLedsFaceTheCamerasSideOfTheTarget) {
+  const perception::LedConfiguration configuration = perception::LedConfiguration::Default();
+  const auto camera = std::make_shared<perception::PinholeCamera>(
+      752, 480, perception::PinholeIntrinsics{376.0, 376.0, 375.5, 239.5});
+  LedTargetRenderParams params;
+  params.led_radiation_exponent = 1.0;
+  params.effects.read_noise_sigma = 0.0;
+  LedTargetRenderer renderer(configuration, camera, params);
+  for (const double turn_deg : {0.0, 180.0}) {
+    Eigen::Isometry3d T_CT = Eigen::Isometry3d::Identity();
+    T_CT.linear() =
+        Eigen::AngleAxisd(turn_deg * M_PI / 180.0, Eigen::Vector3d::UnitX()).toRotationMatrix();
+    T_CT.translation() = Eigen::Vector3d(0.0, 0.0, 1.5);
+    const cv::Mat image = renderer.Render([&](double) { return T_CT; }, 0.0, 0);
+    for (int led = 0; led < configuration.size(); ++led) {
+      Eigen::Vector2d px;
+      ASSERT_TRUE(camera->Project(T_CT * configuration.p_T()[led], &px));
+      const int gray = image.at<std::uint8_t>(static_cast<int>(std::lround(px.y())),
+                                              static_cast<int>(std::lround(px.x())));
+      if (turn_deg == 0.0) {
+        EXPECT_GT(gray, 200) << "LED " << led << " seen from its front";
+      } else {
+        EXPECT_LT(gray, 60) << "LED " << led << " seen from behind";
+      }
+    }
+  }
+}
+
 // Issue 21's calibration-level errors: the image shows the LEDs where the erroneous intrinsics
 // and displaced LEDs put them, not where the nominal camera and configuration (the tracker's)
 // project them; the nominal camera stays the renderer's camera().
@@ -82,9 +112,8 @@ TEST(LedTargetRendererTest, CalibrationErrorsMoveTheBlobsAsTheErroneousModelProj
   EXPECT_DOUBLE_EQ(k[2], 378.5);
   EXPECT_DOUBLE_EQ(k[3], 237.5);
   for (int led = 0; led < configuration.size(); ++led) {
-    EXPECT_NEAR(
-        (renderer.rendered_configuration().p_T()[led] - configuration.p_T()[led]).norm(), 0.001,
-        1e-12)
+    EXPECT_NEAR((renderer.rendered_configuration().p_T()[led] - configuration.p_T()[led]).norm(),
+                0.001, 1e-12)
         << "LED " << led;
   }
   Eigen::Isometry3d T_CT = Eigen::Isometry3d::Identity();
