@@ -248,10 +248,7 @@ void ValidatePrimitive(const Primitive& primitive) {
   } else if (const auto* l = std::get_if<Led>(&primitive)) {
     control::RequirePositive(l->radius_m, "scene primitive Led.radius_m");
     control::RequirePositive(l->intensity, "scene primitive Led.intensity");
-    if (!std::isfinite(l->radiation_exponent) || l->radiation_exponent < 0.0) {
-      throw std::invalid_argument(
-          "scene primitive Led.radiation_exponent must be finite and >= 0 (0: isotropic)");
-    }
+    control::RequireNonNegative(l->radiation_exponent, "scene primitive Led.radiation_exponent");
   }
 }
 

@@ -5,27 +5,20 @@
 #include <stdexcept>
 #include <string>
 
+#include "control/require.h"
+
 namespace aperture::sim {
-namespace {
-
-void RequireNonNegative(double value, const char* name) {
-  if (!std::isfinite(value) || value < 0.0) {
-    throw std::invalid_argument(std::string("VisualInitializationParams.") + name +
-                                " must be finite and >= 0");
-  }
-}
-
-}  // namespace
 
 void VisualInitializationParams::Validate() const {
-  RequireNonNegative(max_tilt_rad, "max_tilt_rad");
-  RequireNonNegative(min_height_m, "min_height_m");
-  RequireNonNegative(max_flow_radps, "max_flow_radps");
-  RequireNonNegative(min_baseline_ratio, "min_baseline_ratio");
-  RequireNonNegative(latency_s, "latency_s");
-  RequireNonNegative(position_noise_m, "position_noise_m");
-  RequireNonNegative(velocity_noise_mps, "velocity_noise_mps");
-  RequireNonNegative(scale_noise, "scale_noise");
+  const std::string prefix = "VisualInitializationParams.";
+  control::RequireNonNegative(max_tilt_rad, prefix + "max_tilt_rad");
+  control::RequireNonNegative(min_height_m, prefix + "min_height_m");
+  control::RequireNonNegative(max_flow_radps, prefix + "max_flow_radps");
+  control::RequireNonNegative(min_baseline_ratio, prefix + "min_baseline_ratio");
+  control::RequireNonNegative(latency_s, prefix + "latency_s");
+  control::RequireNonNegative(position_noise_m, prefix + "position_noise_m");
+  control::RequireNonNegative(velocity_noise_mps, prefix + "velocity_noise_mps");
+  control::RequireNonNegative(scale_noise, prefix + "scale_noise");
   if (scale_noise >= 0.5) {
     throw std::invalid_argument("VisualInitializationParams.scale_noise must be < 0.5");
   }

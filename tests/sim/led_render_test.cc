@@ -98,6 +98,16 @@ TEST_P(LedRenderTest, BlobCentroidsAreTheProjectedEmitters) {
 INSTANTIATE_TEST_SUITE_P(PinholeAndFisheye, LedRenderTest, ::testing::Bool(),
                          [](const auto& info) { return info.param ? "Fisheye" : "Pinhole"; });
 
+// The radiance summed over an 8 px window around p_C's projection (an LED blob's energy).
+double BlobEnergy(const RenderOutput& out, const perception::CameraModel& camera,
+                  const Eigen::Vector3d& p_C) {
+  Eigen::Vector2d px;
+  EXPECT_TRUE(camera.Project(p_C, &px));
+  double mass;
+  Centroid(out.radiance, px, 8, &mass);
+  return mass;
+}
+
 TEST(LedRenderFalloffTest, EnergyFallsWithInverseSquareDistanceAndOccludersHideLeds) {
   const auto camera = testing::MakeTestPinhole();
   Scene scene;
@@ -109,13 +119,7 @@ TEST(LedRenderFalloffTest, EnergyFallsWithInverseSquareDistanceAndOccludersHideL
   scene.AddObject({"plate", Rectangle{{0.2, 0.2}, {}, {}}, {}, Pose({0, 0, 0}, {0.0, 0.2, 1.5})});
   RayCaster caster;
   const RenderOutput out = caster.Render(scene, *camera, Eigen::Isometry3d::Identity());
-  auto energy = [&](const Eigen::Vector3d& p) {
-    Eigen::Vector2d px;
-    EXPECT_TRUE(camera->Project(p, &px));
-    double mass;
-    Centroid(out.radiance, px, 8, &mass);
-    return mass;
-  };
+  const auto energy = [&](const Eigen::Vector3d& p) { return BlobEnergy(out, *camera, p); };
   const double near = energy({-0.3, 0.0, 2.0});
   const double far = energy({0.6, 0.0, 4.0});
   const double near_distance = Eigen::Vector3d(-0.3, 0.0, 2.0).norm();
@@ -162,13 +166,7 @@ TEST(LedRenderFalloffTest, RadiationPatternScalesTheEnergyByTheAngleOffTheAxis) 
   }
   RayCaster caster;
   const RenderOutput out = caster.Render(scene, *camera, Eigen::Isometry3d::Identity());
-  auto energy = [&](const Eigen::Vector3d& p) {
-    Eigen::Vector2d px;
-    EXPECT_TRUE(camera->Project(p, &px));
-    double mass;
-    Centroid(out.radiance, px, 8, &mass);
-    return mass;
-  };
+  const auto energy = [&](const Eigen::Vector3d& p) { return BlobEnergy(out, *camera, p); };
   EXPECT_NEAR(energy(p_on), 20.0 / p_on.squaredNorm(), 1e-4);
   EXPECT_NEAR(energy(p_off) / energy(p_on), 0.5, 1e-3);
   EXPECT_LT(energy(p_behind), 1e-9);
