@@ -45,8 +45,7 @@ HandMotion HandMotionAt(const HandThrow& hand_throw, double throw_s, double t_s)
     return motion;
   }
   const double u = std::clamp((t_s + throw_s) / throw_s, 0.0, 1.0);
-  // Minimum-jerk velocity v(u) = v_release (10u^3 - 15u^4 + 6u^5): a = v_release 30 u^2 (1-u)^2 /
-  // T.
+  // Minimum-jerk velocity v = v_release (10u^3 - 15u^4 + 6u^5): a = 30 v_release u^2 (1-u)^2 / T.
   motion.a_W = hand_throw.v_W * 30.0 * u * u * (1.0 - u) * (1.0 - u) / throw_s;
   // omega_B = u omega_release about the fixed body axis: the rotation left until the release is
   // |omega| T (1 - u^2) / 2.
